@@ -1,0 +1,17 @@
+// The subcommands of snh-gpu-bench, each in its own file.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace snh::bench {
+
+// Registers the subcommand on `app`; the callback it installs runs it and
+// stores the process exit code in `exit_code`.
+void add_probe_command(CLI::App& app, int& exit_code);
+
+// The default suite, run when no subcommand is given; writes into out_dir.
+int run_default_suite(const std::string& out_dir, int samples);
+
+}  // namespace snh::bench

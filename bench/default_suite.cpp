@@ -1,0 +1,158 @@
+// The default suite: what the engine can measure today. For each precision and
+// barrier setting, the element kernel (SVD, energy, PK1, closed-form
+// eigensystem, projected Hessian) over random and extreme deformation
+// gradients on the device: throughput, and error against the host reference
+// in double precision.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "reference/element_reference.h"
+#include "snh/device.h"
+#include "snh/error.h"
+#include "snh/probe.h"
+
+namespace snh::bench {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+// Random F with singular values spanning compression to 10x stretch,
+// reflections and near-degeneracies, under random rotations.
+std::vector<Matrix3> sample_deformations(int count, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<Matrix3> out;
+  out.reserve(count);
+  for (int n = 0; n < count; ++n) {
+    Matrix3 f;
+    const double scale = std::pow(10.0, unit(rng));  // 0.1 .. 10
+    for (double& x : f) x = scale * unit(rng);
+    if (n % 7 == 0) f = Matrix3{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    if (n % 11 == 0)
+      for (int c = 0; c < 3; ++c) f[3 * c + 2] = 1e-6 * f[3 * c + 2];  // crushed towards a plane
+    out.push_back(f);
+  }
+  return out;
+}
+
+double relative_error(const double* device, const double* reference, int n, double scale) {
+  double diff = 0.0, norm = 0.0;
+  for (int i = 0; i < n; ++i) {
+    diff += (device[i] - reference[i]) * (device[i] - reference[i]);
+    norm += reference[i] * reference[i];
+  }
+  return std::sqrt(diff) / std::max(std::sqrt(norm), scale);
+}
+
+struct CaseResult {
+  std::string device;
+  std::string precision;
+  bool barrier;
+  int samples;
+  double seconds;
+  double max_error_pk1;
+  double max_error_hessian;
+  bool all_finite;
+};
+
+CaseResult run_case(Precision precision, bool barrier, const std::vector<Matrix3>& fs) {
+  const StableNeoHookean material = StableNeoHookean::from_youngs_modulus(1.0, barrier ? 0.3 : 0.45,
+                                                                          barrier ? Barrier::on : Barrier::off);
+  MaterialProbe probe(material, precision);
+  probe.evaluate({fs.front()});  // build the program outside the timing
+  const auto start = Clock::now();
+  const std::vector<ProbeResult> results = probe.evaluate(fs);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+
+  const reference::SnhParameters params{material.mu, material.lambda, material.barrier};
+  CaseResult r{probe.device().name, to_string(precision), barrier, static_cast<int>(fs.size()), seconds, 0.0, 0.0, true};
+  for (size_t n = 0; n < fs.size(); ++n) {
+    const auto pk1 = reference::snh_pk1<double>(fs[n], params);
+    std::array<double, 81> h{};
+    for (int c = 0; c < 9; ++c) {
+      reference::Mat3<double> unit{};
+      unit[c] = 1.0;
+      const auto column = reference::snh_projected_action<double>(fs[n], unit, params);
+      std::copy(column.begin(), column.end(), h.begin() + 9 * c);
+    }
+    const ProbeResult& d = results[n];
+    for (double x : d.H) r.all_finite = r.all_finite && std::isfinite(x);
+    for (double x : d.P) r.all_finite = r.all_finite && std::isfinite(x);
+    r.max_error_pk1 = std::max(r.max_error_pk1, relative_error(d.P.data(), pk1.data(), 9, material.mu));
+    r.max_error_hessian = std::max(r.max_error_hessian, relative_error(d.H.data(), h.data(), 81, material.mu));
+  }
+  return r;
+}
+
+}  // namespace
+
+int run_default_suite(const std::string& out_dir, int samples) {
+  const std::vector<DeviceInfo> devices = list_devices();
+  if (devices.empty()) throw Error("OpenCL: no OpenCL platform or device found");
+  std::filesystem::create_directories(out_dir);
+  const std::vector<Matrix3> fs = sample_deformations(samples, 2018);
+
+  std::vector<CaseResult> cases;
+  std::string device_name;
+  for (Precision precision : {Precision::single, Precision::double_}) {
+    for (bool barrier : {true, false}) {
+      try {
+        cases.push_back(run_case(precision, barrier, fs));
+        device_name = cases.back().device;
+      } catch (const Error& e) {
+        std::cerr << "snh-gpu-bench: skipped " << to_string(precision) << " case: " << e.what() << '\n';
+      }
+      std::cerr << "  element kernel " << to_string(precision) << (barrier ? " barrier" : " no-barrier") << " done\n";
+    }
+  }
+
+  json summary;
+  summary["suite"] = "element";
+  summary["device"] = device_name;
+  summary["samples"] = samples;
+  summary["error_metric"] = "max over F of ||X_device - X_reference||_F / max(||X_reference||_F, mu); reference: host, double";
+  std::ostringstream md;
+  md << "| precision | barrier | F per second | max rel. error P | max rel. error H | all finite |\n"
+     << "|---|---|---|---|---|---|\n";
+  std::cout << "element kernel on " << device_name << " (" << samples << " deformation gradients per case)\n";
+  std::cout << std::left << std::setw(10) << "precision" << std::setw(9) << "barrier" << std::setw(14) << "F/s"
+            << std::setw(14) << "err P" << std::setw(14) << "err H" << "finite\n";
+  for (const CaseResult& c : cases) {
+    const double rate = c.samples / c.seconds;
+    summary["cases"].push_back({{"precision", c.precision},
+                                {"barrier", c.barrier},
+                                {"samples", c.samples},
+                                {"seconds", c.seconds},
+                                {"evaluations_per_second", rate},
+                                {"max_relative_error_pk1", c.max_error_pk1},
+                                {"max_relative_error_hessian", c.max_error_hessian},
+                                {"all_finite", c.all_finite}});
+    std::cout << std::left << std::setw(10) << c.precision << std::setw(9) << (c.barrier ? "on" : "off")
+              << std::setw(14) << std::setprecision(4) << rate << std::setw(14) << std::setprecision(3)
+              << c.max_error_pk1 << std::setw(14) << c.max_error_hessian << (c.all_finite ? "yes" : "NO") << '\n';
+    md << "| " << c.precision << " | " << (c.barrier ? "on" : "off") << " | " << std::setprecision(4) << rate
+       << " | " << std::setprecision(3) << c.max_error_pk1 << " | " << c.max_error_hessian << " | "
+       << (c.all_finite ? "yes" : "NO") << " |\n";
+  }
+  std::ofstream(out_dir + "/summary.json") << summary.dump(2) << '\n';
+  std::ofstream(out_dir + "/summary.md") << "# snh-gpu-bench default suite\n\nDevice: " << device_name << "\n\n"
+                                          << md.str();
+  std::cout << "wrote " << out_dir << "/summary.json and summary.md\n";
+  bool ok = !cases.empty();
+  for (const CaseResult& c : cases) ok = ok && c.all_finite;
+  return ok ? 0 : 1;
+}
+
+}  // namespace snh::bench

@@ -1,0 +1,30 @@
+// snh-gpu-bench: material probe and benchmark suite of the snh engine.
+#include <iostream>
+#include <string>
+
+#include "commands.h"
+#include "snh/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"snh-gpu-bench: Stable Neo-Hookean engine on OpenCL.\n"
+               "With no subcommand, runs the default suite on the default device and writes bench-results/."};
+  app.require_subcommand(0, 1);
+  int exit_code = 0;
+  snh::bench::add_probe_command(app, exit_code);
+  std::string out_dir = "bench-results";
+  int samples = 20000;
+  app.add_option("--out", out_dir, "folder for the default suite's results")->capture_default_str();
+  app.add_option("--samples", samples, "deformation gradients per case in the default suite")
+      ->check(CLI::Range(1, 10000000))
+      ->capture_default_str();
+  try {
+    app.parse(argc, argv);
+    if (app.get_subcommands().empty()) exit_code = snh::bench::run_default_suite(out_dir, samples);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const snh::Error& e) {
+    std::cerr << "snh-gpu-bench: error: " << e.what() << '\n';
+    return 1;
+  }
+  return exit_code;
+}

@@ -1,0 +1,111 @@
+// `snh-gpu-bench probe`: the material on the OpenCL device, one JSON line in
+// ({"F": [[row0], [row1], [row2]]}), one JSON line out per input line.
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "material_options.h"
+#include "snh/error.h"
+#include "snh/probe.h"
+
+namespace snh::bench {
+namespace {
+
+using nlohmann::json;
+
+// Parses {"F": [[a,b,c],[d,e,f],[g,h,i]]} (rows) into column-major storage.
+Matrix3 parse_deformation(const std::string& line) {
+  json doc;
+  try {
+    doc = json::parse(line);
+  } catch (const json::parse_error& e) {
+    throw Error(std::string("not valid JSON (") + e.what() + ")");
+  }
+  if (!doc.is_object() || !doc.contains("F")) throw Error("expected an object with key \"F\"");
+  for (const auto& item : doc.items())
+    if (item.key() != "F") throw Error("unknown key \"" + item.key() + "\"");
+  const json& f = doc["F"];
+  if (!f.is_array() || f.size() != 3) throw Error("\"F\" must be an array of 3 rows");
+  Matrix3 m{};
+  for (int r = 0; r < 3; ++r) {
+    if (!f[r].is_array() || f[r].size() != 3) throw Error("row " + std::to_string(r) + " of \"F\" must hold 3 numbers");
+    for (int c = 0; c < 3; ++c) {
+      if (!f[r][c].is_number()) throw Error("F[" + std::to_string(r) + "][" + std::to_string(c) + "] is not a number");
+      m[3 * c + r] = f[r][c].get<double>();
+    }
+  }
+  return m;
+}
+
+json rows(const double* column_major, int n) {
+  json out = json::array();
+  for (int r = 0; r < n; ++r) {
+    json row = json::array();
+    for (int c = 0; c < n; ++c) row.push_back(column_major[n * c + r]);
+    out.push_back(row);
+  }
+  return out;
+}
+
+int run_probe(const MaterialOptions& options) {
+  const StableNeoHookean material = options.material();
+  MaterialProbe probe(material, parse_precision(options.precision), DeviceOptions{options.device});
+
+  struct Line {
+    long number;
+    std::string error;
+    size_t index = 0;
+  };
+  std::vector<Line> lines;
+  std::vector<Matrix3> fs;
+  std::string text;
+  for (long number = 1; std::getline(std::cin, text); ++number) {
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    try {
+      fs.push_back(parse_deformation(text));
+      lines.push_back({number, {}, fs.size() - 1});
+    } catch (const Error& e) {
+      lines.push_back({number, e.what()});
+    }
+  }
+  const std::vector<ProbeResult> results = probe.evaluate(fs);
+  int failures = 0;
+  for (const Line& line : lines) {
+    json out;
+    if (!line.error.empty()) {
+      ++failures;
+      out["line"] = line.number;
+      out["error"] = "line " + std::to_string(line.number) + ": " + line.error;
+      std::cerr << "snh-gpu-bench probe: line " << line.number << ": " << line.error << '\n';
+    } else {
+      const ProbeResult& r = results[line.index];
+      out["line"] = line.number;
+      out["psi"] = r.psi;
+      out["P"] = rows(r.P.data(), 3);
+      out["H"] = rows(r.H.data(), 9);
+      out["eigenvalues"] = r.eigenvalues;
+      out["sigma"] = r.sigma;
+    }
+    std::cout << out.dump() << '\n';
+  }
+  return failures == 0 ? 0 : 2;
+}
+
+}  // namespace
+
+void add_probe_command(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<MaterialOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "probe",
+      "Evaluate the material on the device. Reads JSON lines {\"F\": [[row0],[row1],[row2]]} from stdin and writes "
+      "one JSON line each: psi, P (rows), H (projected 9x9 Hessian over vec(F), index 3*column+row), eigenvalues "
+      "(nine, unprojected, ascending), sigma. A malformed line gets {\"line\": N, \"error\": ...}; exit status 2 then.");
+  options->add_to(*cmd);
+  cmd->callback([options, &exit_code] { exit_code = run_probe(*options); });
+}
+
+}  // namespace snh::bench

@@ -1,0 +1,214 @@
+#include "device/opencl_context.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+
+#include "device/kernel_source.h"
+#include "snh/error.h"
+
+namespace snh {
+
+Precision parse_precision(const std::string& text) {
+  if (text == "float" || text == "single") return Precision::single;
+  if (text == "double") return Precision::double_;
+  throw Error("precision: expected float or double, got '" + text + "'");
+}
+
+const char* to_string(Precision p) { return p == Precision::single ? "float" : "double"; }
+
+namespace {
+
+struct Candidate {
+  cl_device_id id;
+  DeviceInfo info;
+};
+
+std::string device_string(cl_device_id d, cl_device_info what) {
+  size_t size = 0;
+  if (clGetDeviceInfo(d, what, 0, nullptr, &size) != CL_SUCCESS || size == 0) return {};
+  std::string s(size, '\0');
+  clGetDeviceInfo(d, what, size, s.data(), nullptr);
+  s.resize(std::strlen(s.c_str()));
+  return s;
+}
+
+std::string platform_name(cl_platform_id p) {
+  size_t size = 0;
+  if (clGetPlatformInfo(p, CL_PLATFORM_NAME, 0, nullptr, &size) != CL_SUCCESS || size == 0) return {};
+  std::string s(size, '\0');
+  clGetPlatformInfo(p, CL_PLATFORM_NAME, size, s.data(), nullptr);
+  s.resize(std::strlen(s.c_str()));
+  return s;
+}
+
+std::vector<Candidate> all_devices() {
+  std::vector<Candidate> out;
+  cl_uint platform_count = 0;
+  // No ICD or no platform: CL_PLATFORM_NOT_FOUND_KHR or a zero count.
+  if (clGetPlatformIDs(0, nullptr, &platform_count) != CL_SUCCESS || platform_count == 0) return out;
+  std::vector<cl_platform_id> platforms(platform_count);
+  clGetPlatformIDs(platform_count, platforms.data(), nullptr);
+  for (cl_platform_id p : platforms) {
+    cl_uint count = 0;
+    if (clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, 0, nullptr, &count) != CL_SUCCESS || count == 0) continue;
+    std::vector<cl_device_id> ids(count);
+    clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, count, ids.data(), nullptr);
+    for (cl_device_id d : ids) {
+      Candidate c{d, {}};
+      c.info.platform = platform_name(p);
+      c.info.name = device_string(d, CL_DEVICE_NAME);
+      c.info.version = device_string(d, CL_DEVICE_VERSION);
+      cl_device_type type = 0;
+      clGetDeviceInfo(d, CL_DEVICE_TYPE, sizeof type, &type, nullptr);
+      c.info.is_gpu = (type & CL_DEVICE_TYPE_GPU) != 0;
+      cl_device_fp_config fp64 = 0;
+      clGetDeviceInfo(d, CL_DEVICE_DOUBLE_FP_CONFIG, sizeof fp64, &fp64, nullptr);
+      c.info.has_fp64 = fp64 != 0 || device_string(d, CL_DEVICE_EXTENSIONS).find("cl_khr_fp64") != std::string::npos;
+      cl_uint units = 0;
+      clGetDeviceInfo(d, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof units, &units, nullptr);
+      c.info.compute_units = units;
+      cl_ulong mem = 0;
+      clGetDeviceInfo(d, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, nullptr);
+      c.info.global_memory_bytes = mem;
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string describe(const DeviceInfo& i) { return i.platform + " / " + i.name; }
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  std::vector<DeviceInfo> out;
+  for (const Candidate& c : all_devices()) out.push_back(c.info);
+  return out;
+}
+
+namespace device {
+
+void check(cl_int status, const char* what) {
+  if (status != CL_SUCCESS) {
+    std::string hint;
+    if (status == CL_OUT_OF_RESOURCES || status == CL_MEM_OBJECT_ALLOCATION_FAILURE ||
+        status == CL_OUT_OF_HOST_MEMORY)
+      hint = " (the device ran out of memory)";
+    throw Error(std::string("OpenCL: ") + what + " failed with error " + std::to_string(status) + hint);
+  }
+}
+
+OpenClContext::OpenClContext(const DeviceOptions& options, Precision precision) : precision_(precision) {
+  const std::vector<Candidate> devices = all_devices();
+  if (devices.empty())
+    throw Error("OpenCL: no OpenCL platform or device found (is an ICD such as pocl-opencl-icd installed?)");
+  std::string match = options.match;
+  if (match.empty()) {
+    if (const char* env = std::getenv("SNH_DEVICE")) match = env;
+  }
+  const Candidate* chosen = nullptr;
+  if (!match.empty()) {
+    for (const Candidate& c : devices)
+      if (lower(describe(c.info)).find(lower(match)) != std::string::npos) {
+        chosen = &c;
+        break;
+      }
+    if (!chosen) {
+      std::string names;
+      for (const Candidate& c : devices) names += "\n  " + describe(c.info);
+      throw Error("OpenCL: no device matches '" + match + "'; devices are:" + names);
+    }
+  } else {
+    for (const Candidate& c : devices)
+      if (c.info.is_gpu) {
+        chosen = &c;
+        break;
+      }
+    if (!chosen) chosen = &devices.front();
+  }
+  info_ = chosen->info;
+  device_ = chosen->id;
+  if (precision == Precision::double_ && !info_.has_fp64)
+    throw Error("OpenCL: device '" + describe(info_) +
+                "' has no double precision (cl_khr_fp64); choose --precision float or another device");
+  cl_int status = CL_SUCCESS;
+  context_ = clCreateContext(nullptr, 1, &device_, nullptr, nullptr, &status);
+  check(status, "clCreateContext");
+  queue_ = clCreateCommandQueue(context_, device_, 0, &status);
+  if (status != CL_SUCCESS) {
+    clReleaseContext(context_);
+    check(status, "clCreateCommandQueue");
+  }
+}
+
+OpenClContext::~OpenClContext() {
+  programs_.clear();
+  if (queue_) clReleaseCommandQueue(queue_);
+  if (context_) clReleaseContext(context_);
+}
+
+cl_program OpenClContext::program(const std::string& file, const std::string& defines) {
+  const std::string key = file + '|' + defines;
+  auto found = programs_.find(key);
+  if (found != programs_.end()) return found->second.get();
+  const std::string source = kernel_program_source(file);
+  const char* text = source.c_str();
+  const size_t length = source.size();
+  cl_int status = CL_SUCCESS;
+  Program program(clCreateProgramWithSource(context_, 1, &text, &length, &status));
+  check(status, "clCreateProgramWithSource");
+  const std::string flags = std::string("-cl-std=CL1.2 -DSNH_DOUBLE=") +
+                            (precision_ == Precision::double_ ? "1" : "0") + (defines.empty() ? "" : " " + defines);
+  status = clBuildProgram(program.get(), 1, &device_, flags.c_str(), nullptr, nullptr);
+  if (status != CL_SUCCESS) {
+    size_t size = 0;
+    clGetProgramBuildInfo(program.get(), device_, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
+    std::string log(size, '\0');
+    clGetProgramBuildInfo(program.get(), device_, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
+    throw Error("OpenCL: building kernels/" + file + " (" + flags + ") failed with error " +
+                std::to_string(status) + "; build log:\n" + log);
+  }
+  cl_program raw = program.get();
+  programs_.emplace(key, std::move(program));
+  return raw;
+}
+
+Kernel OpenClContext::kernel(const std::string& file, const std::string& defines, const char* name) {
+  cl_int status = CL_SUCCESS;
+  Kernel k(clCreateKernel(program(file, defines), name, &status));
+  check(status, "clCreateKernel");
+  return k;
+}
+
+Buffer OpenClContext::buffer(cl_mem_flags flags, size_t bytes, const void* host) {
+  cl_int status = CL_SUCCESS;
+  if (host) flags |= CL_MEM_COPY_HOST_PTR;
+  Buffer b(clCreateBuffer(context_, flags, std::max<size_t>(bytes, 1), const_cast<void*>(host), &status));
+  check(status, "clCreateBuffer");
+  return b;
+}
+
+void OpenClContext::write(cl_mem buffer, size_t bytes, const void* data) {
+  check(clEnqueueWriteBuffer(queue_, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr), "clEnqueueWriteBuffer");
+}
+
+void OpenClContext::read(cl_mem buffer, size_t bytes, void* data) {
+  check(clEnqueueReadBuffer(queue_, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr), "clEnqueueReadBuffer");
+}
+
+void OpenClContext::run(cl_kernel kernel, size_t global_size) {
+  if (global_size == 0) return;
+  check(clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global_size, nullptr, 0, nullptr, nullptr),
+        "clEnqueueNDRangeKernel");
+  check(clFinish(queue_), "clFinish");
+}
+
+}  // namespace device
+}  // namespace snh

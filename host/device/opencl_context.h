@@ -1,0 +1,70 @@
+// A chosen OpenCL device with its context and in-order queue, and program
+// building with the build log in the error. Internal: public headers never
+// show OpenCL types.
+#pragma once
+
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "snh/device.h"
+
+namespace snh::device {
+
+// Throws snh::Error naming the call and the OpenCL error code.
+void check(cl_int status, const char* what);
+
+// Owning handles released on destruction.
+struct ProgramDeleter {
+  void operator()(cl_program p) const { clReleaseProgram(p); }
+};
+struct KernelDeleter {
+  void operator()(cl_kernel k) const { clReleaseKernel(k); }
+};
+struct MemDeleter {
+  void operator()(cl_mem m) const { clReleaseMemObject(m); }
+};
+using Program = std::unique_ptr<std::remove_pointer_t<cl_program>, ProgramDeleter>;
+using Kernel = std::unique_ptr<std::remove_pointer_t<cl_kernel>, KernelDeleter>;
+using Buffer = std::unique_ptr<std::remove_pointer_t<cl_mem>, MemDeleter>;
+
+class OpenClContext {
+ public:
+  // Picks the device (see DeviceOptions); throws snh::Error when none matches
+  // or none exists, and when `precision` is double on a device without fp64.
+  OpenClContext(const DeviceOptions& options, Precision precision);
+  ~OpenClContext();
+  OpenClContext(const OpenClContext&) = delete;
+  OpenClContext& operator=(const OpenClContext&) = delete;
+
+  const DeviceInfo& info() const { return info_; }
+  Precision precision() const { return precision_; }
+  cl_context context() const { return context_; }
+  cl_command_queue queue() const { return queue_; }
+  cl_device_id device() const { return device_; }
+
+  // Builds kernels/<file> with -DSNH_DOUBLE=0|1 and the extra `defines`
+  // (e.g. "-DSNH_BARRIER=1"); cached per (file, defines). A failed build
+  // throws snh::Error carrying the compiler's log.
+  cl_program program(const std::string& file, const std::string& defines = "");
+  Kernel kernel(const std::string& file, const std::string& defines, const char* name);
+
+  Buffer buffer(cl_mem_flags flags, size_t bytes, const void* host = nullptr);
+  void write(cl_mem buffer, size_t bytes, const void* data);
+  void read(cl_mem buffer, size_t bytes, void* data);
+  void run(cl_kernel kernel, size_t global_size);
+
+ private:
+  DeviceInfo info_;
+  Precision precision_;
+  cl_device_id device_ = nullptr;
+  cl_context context_ = nullptr;
+  cl_command_queue queue_ = nullptr;
+  std::map<std::string, Program> programs_;
+};
+
+}  // namespace snh::device

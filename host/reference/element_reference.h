@@ -1,0 +1,64 @@
+// Host reference of the element math: the very headers under kernels/,
+// compiled as C++ once per precision. Tests compare the OpenCL kernels with
+// these functions, and the functions with Eigen and finite differences.
+// 3x3 matrices are column-major arrays (index 3 * column + row, the paper's vec).
+#pragma once
+
+#include <array>
+
+namespace snh::reference {
+
+template <typename Real>
+using Mat3 = std::array<Real, 9>;
+
+template <typename Real>
+struct Svd {
+  Mat3<Real> u, v;
+  std::array<Real, 3> sigma;
+};
+
+template <typename Real>
+struct SymmetricEigen {
+  std::array<Real, 3> values;  // ascending
+  Mat3<Real> vectors;          // unit eigenvectors as columns
+};
+
+// Nine eigenpairs of the unprojected 9x9 Hessian, in the paper's order: the
+// block's three (ascending), the twists, then the flips (Eqs. 45-48).
+template <typename Real>
+struct HessianEigensystem {
+  std::array<Real, 9> values;
+  std::array<Mat3<Real>, 9> vectors;
+};
+
+struct SnhParameters {
+  double mu = 0.0;
+  double lambda = 0.0;
+  bool barrier = true;
+};
+
+template <typename Real>
+Svd<Real> svd_rotation_variant(const Mat3<Real>& f);
+
+template <typename Real>
+SymmetricEigen<Real> symmetric_eigen(const std::array<Real, 6>& packed);  // a00 a01 a02 a11 a12 a22
+
+template <typename Real>
+Real snh_energy(const Mat3<Real>& f, const SnhParameters& p);
+
+template <typename Real>
+Mat3<Real> snh_pk1(const Mat3<Real>& f, const SnhParameters& p);
+
+template <typename Real>
+HessianEigensystem<Real> snh_hessian_eigensystem(const Mat3<Real>& f, const SnhParameters& p);
+
+// dP = H_projected : dF, the closed-form PSD projection applied to dF.
+template <typename Real>
+Mat3<Real> snh_projected_action(const Mat3<Real>& f, const Mat3<Real>& df, const SnhParameters& p);
+
+// The same from a given factorization F = U diag(sigma) V^T (any sign
+// convention), to check that the Hessian does not depend on it.
+template <typename Real>
+Mat3<Real> snh_projected_action_from_svd(const Svd<Real>& svd, const Mat3<Real>& df, const SnhParameters& p);
+
+}  // namespace snh::reference

@@ -1,0 +1,59 @@
+/* Portability layer: lets the element math in kernels/ compile unchanged as
+ * OpenCL C 1.2 (device kernels) and as C++17 (host reference and tests).
+ *
+ * The floating type is `real`: double when SNH_DOUBLE is 1, float when 0. On the
+ * host, the including translation unit wraps these headers in a namespace per
+ * precision and includes <cmath> and <cfloat> first; nothing here includes a system header.
+ * No native_* functions and no relaxed math: device and host must agree. */
+#ifndef SNH_PORTABLE_H
+#define SNH_PORTABLE_H
+
+#ifndef SNH_DOUBLE
+#error "define SNH_DOUBLE as 1 (double) or 0 (float) before including the snh kernels"
+#endif
+
+#ifdef __OPENCL_C_VERSION__
+#define SNH_IS_OPENCL 1
+#else
+#define SNH_IS_OPENCL 0
+#endif
+
+/* Helper functions: file-local and inlinable in both languages. */
+#define SNH_FN static inline
+
+/* A literal in the working precision; folded at compile time. */
+#define SNH_R(x) ((real)(x))
+
+#if SNH_IS_OPENCL
+/* No fused multiply-add contraction: the host reference (C++17, ISO mode)
+ * does not contract either, so both round the same expressions alike. */
+#pragma OPENCL FP_CONTRACT OFF
+#endif
+
+#if SNH_DOUBLE
+#if SNH_IS_OPENCL
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#endif
+typedef double real;
+#define SNH_EPS DBL_EPSILON
+#define SNH_REAL_MIN DBL_MIN
+#else
+typedef float real;
+#define SNH_EPS FLT_EPSILON
+#define SNH_REAL_MIN FLT_MIN
+#endif
+
+#if !SNH_IS_OPENCL
+/* Host side: the OpenCL built-ins used by the element math, mapped to <cmath>.
+ * The including file has already included <cmath> and <cfloat>. */
+using std::acos;
+using std::cos;
+using std::fabs;
+using std::fmax;
+using std::fmin;
+using std::isfinite;
+using std::log;
+using std::sqrt;
+#endif
+
+#endif /* SNH_PORTABLE_H */

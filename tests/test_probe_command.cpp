@@ -1,0 +1,114 @@
+// `snh-gpu-bench probe` and the default suite, run as a user would.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "snh_test_support.h"
+
+namespace snh::test {
+namespace {
+
+struct CommandRun {
+  int status;
+  std::vector<std::string> lines;
+};
+
+CommandRun run_bench(const std::string& arguments, const std::string& input) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "snh_probe_test";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path in = dir / "input.jsonl";
+  std::ofstream(in) << input;
+  const std::string command = std::string(SNH_BENCH_BINARY) + " " + arguments + " < " + in.string() + " 2>/dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  CommandRun r{-1, {}};
+  if (!pipe) return r;
+  std::string text;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) text.append(buffer, n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) r.lines.push_back(line);
+  return r;
+}
+
+TEST(ProbeCommand, AnswersEachLineAndNamesMalformedOnes) {
+  const std::string input =
+      "{\"F\": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n"
+      "{\"F\": [[1, 0], [0, 1]]}\n"
+      "{\"F\": [[1.2, 0.3, 0.0], [0.1, 0.9, -0.2], [0.0, 0.4, -0.8]]}\n"
+      "not json\n";
+  const CommandRun r = run_bench("probe --E 1 --nu 0.45 --precision double", input);
+  EXPECT_EQ(r.status, 2);  // some lines were malformed
+  ASSERT_EQ(r.lines.size(), 4u);
+  const auto second = nlohmann::json::parse(r.lines[1]);
+  EXPECT_EQ(second["line"], 2);
+  EXPECT_NE(second["error"].get<std::string>().find("line 2"), std::string::npos);
+  EXPECT_NE(nlohmann::json::parse(r.lines[3])["error"].get<std::string>().find("line 4"), std::string::npos);
+
+  const auto rest = nlohmann::json::parse(r.lines[0]);
+  EXPECT_EQ(rest["psi"].get<double>(), 0.0);
+  const StableNeoHookean material = StableNeoHookean::from_youngs_modulus(1.0, 0.45);
+  const reference::SnhParameters params{material.mu, material.lambda, material.barrier};
+
+  const auto third = nlohmann::json::parse(r.lines[2]);
+  Eigen::Matrix3d f;
+  f << 1.2, 0.3, 0.0, 0.1, 0.9, -0.2, 0.0, 0.4, -0.8;
+  const Eigen::Matrix3d p = to_eigen(reference::snh_pk1<double>(to_array<double>(f), params));
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(third["P"][i][j].get<double>(), p(i, j), 1e-12);
+  const Matrix9 h = projected_hessian<double>(f, params);
+  ASSERT_EQ(third["H"].size(), 9u);
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j) EXPECT_NEAR(third["H"][i][j].get<double>(), h(i, j), 1e-12 * h.norm());
+  const auto values = third["eigenvalues"].get<std::vector<double>>();
+  ASSERT_EQ(values.size(), 9u);
+  EXPECT_TRUE(std::is_sorted(values.begin(), values.end()));
+  EXPECT_LT(values.front(), 0.0);  // inverted F: an indefinite Hessian before projection
+  const auto sigma = third["sigma"].get<std::vector<double>>();
+  ASSERT_EQ(sigma.size(), 3u);
+  EXPECT_LT(sigma[2], 0.0);
+}
+
+TEST(ProbeCommand, LameParametersAndBarrierOption) {
+  const CommandRun r = run_bench("probe --mu 1 --lambda 10 --barrier off --precision float",
+                    "{\"F\": [[2, 0, 0], [0, 1, 0], [0, 0, 1]]}\n");
+  EXPECT_EQ(r.status, 0);
+  ASSERT_EQ(r.lines.size(), 1u);
+  // No barrier: psi = mu/2 (I_C - 3) + lambda/2 ((J - alpha)^2 - (1 - alpha)^2), mu = 1, lambda = 11.
+  const double mu = 1.0, lambda = 11.0, alpha = 1.0 + mu / lambda;
+  const double expected = 0.5 * mu * 3.0 + 0.5 * lambda * ((2.0 - alpha) * (2.0 - alpha) - (1.0 - alpha) * (1.0 - alpha));
+  EXPECT_NEAR(nlohmann::json::parse(r.lines[0])["psi"].get<double>(), expected, 1e-5 * expected);
+}
+
+TEST(ProbeCommand, RejectsOutOfRangeMaterial) {
+  EXPECT_NE(run_bench("probe --E 1 --nu 0.5", "").status, 0);
+  EXPECT_NE(run_bench("probe --E -1 --nu 0.3", "").status, 0);
+}
+
+TEST(DefaultSuite, WritesWellFormedSummaryAtTinySize) {
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "snh_suite_test";
+  std::filesystem::remove_all(out);
+  const CommandRun r = run_bench("--samples 40 --out " + out.string(), "");
+  EXPECT_EQ(r.status, 0);
+  std::ifstream in(out / "summary.json");
+  ASSERT_TRUE(in.good());
+  const auto summary = nlohmann::json::parse(in);
+  ASSERT_EQ(summary["cases"].size(), 4u);
+  for (const auto& c : summary["cases"]) {
+    EXPECT_TRUE(c["all_finite"].get<bool>());
+    EXPECT_GT(c["evaluations_per_second"].get<double>(), 0.0);
+    const double bound = c["precision"] == "double" ? 1e-12 : 2e-4;
+    EXPECT_LT(c["max_relative_error_hessian"].get<double>(), bound);
+  }
+  EXPECT_TRUE(std::filesystem::exists(out / "summary.md"));
+}
+
+}  // namespace
+}  // namespace snh::test
