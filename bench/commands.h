@@ -1,9 +1,8 @@
 // The subcommands of snh-gpu-bench, each in its own file.
 #pragma once
 
-#include <string>
-
 #include <CLI/CLI.hpp>
+#include <string>
 
 namespace snh::bench {
 

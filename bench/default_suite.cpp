@@ -10,11 +10,10 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "reference/element_reference.h"
@@ -25,7 +24,7 @@
 namespace snh::bench {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
 // Random F with singular values spanning compression to 10x stretch,
@@ -68,8 +67,8 @@ struct CaseResult {
 };
 
 CaseResult run_case(Precision precision, bool barrier, const std::vector<Matrix3>& fs) {
-  const StableNeoHookean material = StableNeoHookean::from_youngs_modulus(1.0, barrier ? 0.3 : 0.45,
-                                                                          barrier ? Barrier::on : Barrier::off);
+  const StableNeoHookean material =
+      StableNeoHookean::from_youngs_modulus(1.0, barrier ? 0.3 : 0.45, barrier ? Barrier::on : Barrier::off);
   MaterialProbe probe(material, precision);
   probe.evaluate({fs.front()});  // build the program outside the timing
   const auto start = Clock::now();
@@ -77,7 +76,8 @@ CaseResult run_case(Precision precision, bool barrier, const std::vector<Matrix3
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
   const reference::SnhParameters params{material.mu, material.lambda, material.barrier};
-  CaseResult r{probe.device().name, to_string(precision), barrier, static_cast<int>(fs.size()), seconds, 0.0, 0.0, true};
+  CaseResult r{
+      probe.device().name, to_string(precision), barrier, static_cast<int>(fs.size()), seconds, 0.0, 0.0, true};
   for (size_t n = 0; n < fs.size(); ++n) {
     const auto pk1 = reference::snh_pk1<double>(fs[n], params);
     std::array<double, 81> h{};
@@ -122,13 +122,15 @@ int run_default_suite(const std::string& out_dir, int samples) {
   summary["suite"] = "element";
   summary["device"] = device_name;
   summary["samples"] = samples;
-  summary["error_metric"] = "max over F of ||X_device - X_reference||_F / max(||X_reference||_F, mu); reference: host, double";
+  summary["error_metric"] =
+      "max over F of ||X_device - X_reference||_F / max(||X_reference||_F, mu); reference: host, double";
   std::ostringstream md;
   md << "| precision | barrier | F per second | max rel. error P | max rel. error H | all finite |\n"
      << "|---|---|---|---|---|---|\n";
   std::cout << "element kernel on " << device_name << " (" << samples << " deformation gradients per case)\n";
   std::cout << std::left << std::setw(10) << "precision" << std::setw(9) << "barrier" << std::setw(14) << "F/s"
-            << std::setw(14) << "err P" << std::setw(14) << "err H" << "finite\n";
+            << std::setw(14) << "err P" << std::setw(14) << "err H"
+            << "finite\n";
   for (const CaseResult& c : cases) {
     const double rate = c.samples / c.seconds;
     summary["cases"].push_back({{"precision", c.precision},
@@ -142,13 +144,13 @@ int run_default_suite(const std::string& out_dir, int samples) {
     std::cout << std::left << std::setw(10) << c.precision << std::setw(9) << (c.barrier ? "on" : "off")
               << std::setw(14) << std::setprecision(4) << rate << std::setw(14) << std::setprecision(3)
               << c.max_error_pk1 << std::setw(14) << c.max_error_hessian << (c.all_finite ? "yes" : "NO") << '\n';
-    md << "| " << c.precision << " | " << (c.barrier ? "on" : "off") << " | " << std::setprecision(4) << rate
-       << " | " << std::setprecision(3) << c.max_error_pk1 << " | " << c.max_error_hessian << " | "
+    md << "| " << c.precision << " | " << (c.barrier ? "on" : "off") << " | " << std::setprecision(4) << rate << " | "
+       << std::setprecision(3) << c.max_error_pk1 << " | " << c.max_error_hessian << " | "
        << (c.all_finite ? "yes" : "NO") << " |\n";
   }
   std::ofstream(out_dir + "/summary.json") << summary.dump(2) << '\n';
   std::ofstream(out_dir + "/summary.md") << "# snh-gpu-bench default suite\n\nDevice: " << device_name << "\n\n"
-                                          << md.str();
+                                         << md.str();
   std::cout << "wrote " << out_dir << "/summary.json and summary.md\n";
   bool ok = !cases.empty();
   for (const CaseResult& c : cases) ok = ok && c.all_finite;

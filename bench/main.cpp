@@ -6,8 +6,9 @@
 #include "snh/error.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"snh-gpu-bench: Stable Neo-Hookean engine on OpenCL.\n"
-               "With no subcommand, runs the default suite on the default device and writes bench-results/."};
+  CLI::App app{
+      "snh-gpu-bench: Stable Neo-Hookean engine on OpenCL.\n"
+      "With no subcommand, runs the default suite on the default device and writes bench-results/."};
   app.require_subcommand(0, 1);
   int exit_code = 0;
   snh::bench::add_probe_command(app, exit_code);

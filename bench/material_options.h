@@ -2,9 +2,8 @@
 // (Lame moduli), --barrier, --precision, --device.
 #pragma once
 
-#include <string>
-
 #include <CLI/CLI.hpp>
+#include <string>
 
 #include "snh/device.h"
 #include "snh/material.h"
@@ -33,7 +32,8 @@ struct MaterialOptions {
     command.add_option("--precision", precision, "float or double")
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();
-    command.add_option("--device", device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU, first device)");
+    command.add_option("--device", device,
+                       "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU, first device)");
     mu_given_ = mu;
   }
 

@@ -2,10 +2,9 @@
 // ({"F": [[row0], [row1], [row2]]}), one JSON line out per input line.
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "material_options.h"
@@ -15,20 +14,20 @@
 namespace snh::bench {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 // Parses {"F": [[a,b,c],[d,e,f],[g,h,i]]} (rows) into column-major storage.
 Matrix3 parse_deformation(const std::string& line) {
-  json doc;
+  nlohmann::json doc;
   try {
-    doc = json::parse(line);
-  } catch (const json::parse_error& e) {
+    doc = nlohmann::json::parse(line);
+  } catch (const nlohmann::json::parse_error& e) {
     throw Error(std::string("not valid JSON (") + e.what() + ")");
   }
   if (!doc.is_object() || !doc.contains("F")) throw Error("expected an object with key \"F\"");
   for (const auto& item : doc.items())
     if (item.key() != "F") throw Error("unknown key \"" + item.key() + "\"");
-  const json& f = doc["F"];
+  const nlohmann::json& f = doc["F"];
   if (!f.is_array() || f.size() != 3) throw Error("\"F\" must be an array of 3 rows");
   Matrix3 m{};
   for (int r = 0; r < 3; ++r) {
@@ -103,7 +102,8 @@ void add_probe_command(CLI::App& app, int& exit_code) {
       "probe",
       "Evaluate the material on the device. Reads JSON lines {\"F\": [[row0],[row1],[row2]]} from stdin and writes "
       "one JSON line each: psi, P (rows), H (projected 9x9 Hessian over vec(F), index 3*column+row), eigenvalues "
-      "(nine, unprojected, ascending), sigma. A malformed line gets {\"line\": N, \"error\": ...}; exit status 2 then.");
+      "(nine, unprojected, ascending), sigma. A malformed line gets {\"line\": N, \"error\": ...}; exit status 2 "
+      "then.");
   options->add_to(*cmd);
   cmd->callback([options, &exit_code] { exit_code = run_probe(*options); });
 }

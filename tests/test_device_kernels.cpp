@@ -41,8 +41,7 @@ void compare_with_reference(Precision precision) {
     const std::vector<ProbeResult> results = probe.evaluate(fs);
     ASSERT_EQ(results.size(), fs.size());
     const double conditioning = 1.0 + m.material.lambda / m.material.mu;
-    const double bound =
-        precision == Precision::double_ ? kDoubleBound : kFloatUlps * FLT_EPSILON * conditioning;
+    const double bound = precision == Precision::double_ ? kDoubleBound : kFloatUlps * FLT_EPSILON * conditioning;
     for (size_t n = 0; n < set.size(); ++n) {
       const std::string name = m.name + " / " + set[n].name + " / " + to_string(precision);
       SCOPED_TRACE(name);
@@ -107,6 +106,27 @@ TEST(DeviceKernels, UnknownDeviceGetsClearError) {
 TEST(DeviceKernels, EmptyInputGivesEmptyOutput) {
   MaterialProbe probe(StableNeoHookean::from_youngs_modulus(1.0, 0.3), Precision::double_);
   EXPECT_TRUE(probe.evaluate({}).empty());
+}
+
+}  // namespace
+}  // namespace snh::test
+
+#include "device/opencl_context.h"
+
+namespace snh::test {
+namespace {
+
+TEST(DeviceKernels, KernelBuildFailureCarriesBuildLog) {
+  device::OpenClContext cl(DeviceOptions{}, Precision::double_);
+  try {
+    cl.program("probe.cl", "-DSNH_BARRIER=undefined_symbol_xyz");
+    ADD_FAILURE() << "expected a build error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("building kernels/probe.cl"), std::string::npos) << what;
+    EXPECT_NE(what.find("build log"), std::string::npos) << what;
+    EXPECT_NE(what.find("undefined_symbol_xyz"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

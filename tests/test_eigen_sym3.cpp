@@ -32,7 +32,7 @@ TEST(EigenSym3, RandomAndRepeated) {
     for (int k = 0; k < 9; ++k) b(k) = u(rng);
     const Eigen::Matrix3d q = Eigen::HouseholderQR<Eigen::Matrix3d>(b).householderQ();
     Eigen::Vector3d values(u(rng), u(rng), u(rng));
-    if (n % 4 == 1) values[1] = values[0];                         // double root
+    if (n % 4 == 1) values[1] = values[0];                          // double root
     if (n % 4 == 2) values = Eigen::Vector3d::Constant(values[0]);  // triple root
     if (n % 4 == 3) values[2] = values[1] + 1e-9;                   // nearly double
     if (n % 5 == 0) values[0] = 0.0;

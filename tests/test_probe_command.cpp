@@ -1,12 +1,12 @@
 // `snh-gpu-bench probe` and the default suite, run as a user would.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <sys/wait.h>
 
 #include "snh_test_support.h"
 
@@ -78,12 +78,13 @@ TEST(ProbeCommand, AnswersEachLineAndNamesMalformedOnes) {
 
 TEST(ProbeCommand, LameParametersAndBarrierOption) {
   const CommandRun r = run_bench("probe --mu 1 --lambda 10 --barrier off --precision float",
-                    "{\"F\": [[2, 0, 0], [0, 1, 0], [0, 0, 1]]}\n");
+                                 "{\"F\": [[2, 0, 0], [0, 1, 0], [0, 0, 1]]}\n");
   EXPECT_EQ(r.status, 0);
   ASSERT_EQ(r.lines.size(), 1u);
   // No barrier: psi = mu/2 (I_C - 3) + lambda/2 ((J - alpha)^2 - (1 - alpha)^2), mu = 1, lambda = 11.
   const double mu = 1.0, lambda = 11.0, alpha = 1.0 + mu / lambda;
-  const double expected = 0.5 * mu * 3.0 + 0.5 * lambda * ((2.0 - alpha) * (2.0 - alpha) - (1.0 - alpha) * (1.0 - alpha));
+  const double expected =
+      0.5 * mu * 3.0 + 0.5 * lambda * ((2.0 - alpha) * (2.0 - alpha) - (1.0 - alpha) * (1.0 - alpha));
   EXPECT_NEAR(nlohmann::json::parse(r.lines[0])["psi"].get<double>(), expected, 1e-5 * expected);
 }
 
@@ -108,6 +109,28 @@ TEST(DefaultSuite, WritesWellFormedSummaryAtTinySize) {
     EXPECT_LT(c["max_relative_error_hessian"].get<double>(), bound);
   }
   EXPECT_TRUE(std::filesystem::exists(out / "summary.md"));
+}
+
+}  // namespace
+}  // namespace snh::test
+
+namespace snh::test {
+namespace {
+
+TEST(ProbeCommand, NoOpenClPlatformGetsClearError) {
+  // An empty vendor folder: the ICD loader then finds no platform at all.
+  const std::filesystem::path empty = std::filesystem::temp_directory_path() / "snh_no_icd";
+  std::filesystem::create_directories(empty);
+  const std::string command = "OCL_ICD_VENDORS=" + empty.string() + " " + SNH_BENCH_BINARY + " probe < /dev/null 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string text;
+  char buffer[1024];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) text.append(buffer, n);
+  const int status = pclose(pipe);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << text;
+  EXPECT_NE(text.find("no OpenCL platform or device found"), std::string::npos) << text;
 }
 
 }  // namespace

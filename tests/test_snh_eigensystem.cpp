@@ -68,7 +68,8 @@ TEST(SnhEigensystem, BlockEigenvaluesAreRootsOfPaperCubic) {
       const double rho = p.lambda / denom;
       const double c2 = -g2 * rho - ic * eta;
       const double c1 = -(1.0 + 2.0 * j * rho) * ic - 6.0 * j * eta + (g2 * ic - 9.0 * j * j) * rho * eta;
-      const double c0 = -(2.0 + 3.0 * j * rho) * j + (ic * ic - 4.0 * g2) * eta + 2.0 * j * (ic * ic - 3.0 * g2) * rho * eta;
+      const double c0 =
+          -(2.0 + 3.0 * j * rho) * j + (ic * ic - 4.0 * g2) * eta + 2.0 * j * (ic * ic - 3.0 * g2) * rho * eta;
       const double mu_t = p.barrier ? p.mu * (1.0 - 1.0 / (ic + 1.0)) : p.mu;
       const auto e = reference::snh_hessian_eigensystem<double>(to_array<double>(d.F), p);
       double r[3];
@@ -97,12 +98,16 @@ TEST(SnhEigensystem, RestHessianIsLinearElasticity) {
       for (int j = 0; j < 3; ++j)
         for (int k = 0; k < 3; ++k)
           for (int l = 0; l < 3; ++l)
-            c(3 * j + i, 3 * l + k) = lame.lambda * (i == j) * (k == l) + lame.mu * ((i == k) * (j == l) + (i == l) * (j == k));
+            c(3 * j + i, 3 * l + k) =
+                lame.lambda * (i == j) * (k == l) + lame.mu * ((i == k) * (j == l) + (i == l) * (j == k));
     const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
     const double scale = c.norm();
     EXPECT_LE((explicit_hessian(identity, m.params()) - c).norm(), 1e-13 * scale);
-    EXPECT_LE((hessian_from_eigensystem(reference::snh_hessian_eigensystem<double>(to_array<double>(identity), m.params())) - c).norm(),
-              1e-13 * scale);
+    EXPECT_LE(
+        (hessian_from_eigensystem(reference::snh_hessian_eigensystem<double>(to_array<double>(identity), m.params())) -
+         c)
+            .norm(),
+        1e-13 * scale);
     EXPECT_LE((projected_hessian<double>(identity, m.params()) - c).norm(), 1e-13 * scale);
   }
 }

@@ -98,8 +98,7 @@ namespace device {
 void check(cl_int status, const char* what) {
   if (status != CL_SUCCESS) {
     std::string hint;
-    if (status == CL_OUT_OF_RESOURCES || status == CL_MEM_OBJECT_ALLOCATION_FAILURE ||
-        status == CL_OUT_OF_HOST_MEMORY)
+    if (status == CL_OUT_OF_RESOURCES || status == CL_MEM_OBJECT_ALLOCATION_FAILURE || status == CL_OUT_OF_HOST_MEMORY)
       hint = " (the device ran out of memory)";
     throw Error(std::string("OpenCL: ") + what + " failed with error " + std::to_string(status) + hint);
   }
@@ -172,8 +171,8 @@ cl_program OpenClContext::program(const std::string& file, const std::string& de
     clGetProgramBuildInfo(program.get(), device_, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
     std::string log(size, '\0');
     clGetProgramBuildInfo(program.get(), device_, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
-    throw Error("OpenCL: building kernels/" + file + " (" + flags + ") failed with error " +
-                std::to_string(status) + "; build log:\n" + log);
+    throw Error("OpenCL: building kernels/" + file + " (" + flags + ") failed with error " + std::to_string(status) +
+                "; build log:\n" + log);
   }
   cl_program raw = program.get();
   programs_.emplace(key, std::move(program));
@@ -205,7 +204,16 @@ void OpenClContext::read(cl_mem buffer, size_t bytes, void* data) {
 
 void OpenClContext::run(cl_kernel kernel, size_t global_size) {
   if (global_size == 0) return;
-  check(clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global_size, nullptr, 0, nullptr, nullptr),
+  // An explicit work-group size: left to itself pocl picks groups of
+  // thousands of work-items, whose private arrays overflow its thread stacks.
+  size_t local = kWorkGroupSize;
+  size_t kernel_max = 0;
+  if (clGetKernelWorkGroupInfo(kernel, device_, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_max, &kernel_max, nullptr) ==
+          CL_SUCCESS &&
+      kernel_max > 0)
+    local = std::min(local, kernel_max);
+  const size_t global = (global_size + local - 1) / local * local;  // kernels bound-check their index
+  check(clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global, &local, 0, nullptr, nullptr),
         "clEnqueueNDRangeKernel");
   check(clFinish(queue_), "clFinish");
 }

@@ -56,7 +56,11 @@ class OpenClContext {
   Buffer buffer(cl_mem_flags flags, size_t bytes, const void* host = nullptr);
   void write(cl_mem buffer, size_t bytes, const void* data);
   void read(cl_mem buffer, size_t bytes, void* data);
+  // Runs `kernel` over global_size work-items (rounded up to whole groups)
+  // and waits for it.
   void run(cl_kernel kernel, size_t global_size);
+
+  static constexpr size_t kWorkGroupSize = 64;
 
  private:
   DeviceInfo info_;

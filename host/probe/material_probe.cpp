@@ -22,7 +22,8 @@ struct MaterialProbe::Impl {
     for (size_t n = 0; n < fs.size(); ++n)
       for (int i = 0; i < 9; ++i) input[9 * n + i] = static_cast<Real>(fs[n][i]);
     std::vector<Real> output(kRecord * fs.size());
-    device::Buffer in = cl.buffer(CL_MEM_READ_ONLY, input.size() * sizeof(Real), input.empty() ? nullptr : input.data());
+    device::Buffer in =
+        cl.buffer(CL_MEM_READ_ONLY, input.size() * sizeof(Real), input.empty() ? nullptr : input.data());
     device::Buffer out = cl.buffer(CL_MEM_WRITE_ONLY, output.size() * sizeof(Real));
     device::Kernel k =
         cl.kernel("probe.cl", std::string("-DSNH_BARRIER=") + (material.barrier ? "1" : "0"), "snh_probe");

@@ -35,8 +35,8 @@ struct StableNeoHookean {
                                               Barrier barrier = Barrier::automatic);
   static StableNeoHookean from_lame(const LameParameters& lame, Barrier barrier = Barrier::automatic);
 
-  double alpha() const;            // the rest-stable shift of J (Eq. 14 or Eq. 13)
-  LameParameters lame() const;     // the small-strain moduli this energy reproduces
+  double alpha() const;         // the rest-stable shift of J (Eq. 14 or Eq. 13)
+  LameParameters lame() const;  // the small-strain moduli this energy reproduces
   double poisson_ratio() const;
   double youngs_modulus() const;
 };

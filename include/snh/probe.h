@@ -16,10 +16,10 @@ using Matrix3 = std::array<double, 9>;
 
 struct ProbeResult {
   double psi = 0.0;
-  Matrix3 P{};                      // first Piola-Kirchhoff stress
-  std::array<double, 81> H{};       // projected Hessian, H[9 * c + r] = d vec(P)_r / d vec(F)_c
+  Matrix3 P{};                          // first Piola-Kirchhoff stress
+  std::array<double, 81> H{};           // projected Hessian, H[9 * c + r] = d vec(P)_r / d vec(F)_c
   std::array<double, 9> eigenvalues{};  // of the unprojected Hessian, ascending
-  std::array<double, 3> sigma{};    // rotation-variant singular values of F
+  std::array<double, 3> sigma{};        // rotation-variant singular values of F
 };
 
 class MaterialProbe {

@@ -15,12 +15,12 @@
 #include "math/svd3.h"
 
 typedef struct {
-  mat3 u;      /* left rotation of the SVD */
-  mat3 v;      /* right rotation of the SVD */
-  vec3 sigma;  /* signed singular values, sigma0 >= sigma1 >= |sigma2| */
-  sym3 block;  /* d2 psi / d sigma_i d sigma_j (or its PSD projection) */
-  vec3 twist;  /* twist eigenvalue of pair k: (1,2), (0,2), (0,1) */
-  vec3 flip;   /* flip eigenvalue of pair k */
+  mat3 u;     /* left rotation of the SVD */
+  mat3 v;     /* right rotation of the SVD */
+  vec3 sigma; /* signed singular values, sigma0 >= sigma1 >= |sigma2| */
+  sym3 block; /* d2 psi / d sigma_i d sigma_j (or its PSD projection) */
+  vec3 twist; /* twist eigenvalue of pair k: (1,2), (0,2), (0,1) */
+  vec3 flip;  /* flip eigenvalue of pair k */
 } principal_hessian;
 
 /* Indices (i, j) of pair k: the two axes other than k. */

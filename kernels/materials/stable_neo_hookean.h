@@ -24,7 +24,8 @@ SNH_FN real snh_energy(mat3 f, real mu, real lambda, int barrier) {
   const real j = mat3_det(f);
   const real alpha = snh_alpha(mu, lambda, barrier);
   /* (J - alpha)^2 - (1 - alpha)^2 factored so that psi(I) is exactly 0. */
-  real psi = SNH_R(0.5) * mu * (ic - SNH_R(3)) + SNH_R(0.5) * lambda * (j - SNH_R(1)) * (j + SNH_R(1) - SNH_R(2) * alpha);
+  real psi =
+      SNH_R(0.5) * mu * (ic - SNH_R(3)) + SNH_R(0.5) * lambda * (j - SNH_R(1)) * (j + SNH_R(1) - SNH_R(2) * alpha);
   if (barrier) psi -= SNH_R(0.5) * mu * log((ic + SNH_R(1)) / SNH_R(4));
   return psi;
 }
@@ -55,8 +56,7 @@ SNH_FN mat3 snh_pk1(mat3 f, real mu, real lambda, int barrier) {
  * mu_T = mu (1 - 1/(I_C + 1)) (barrier) or mu (App. D).
  * Any factorization F = U diag(sigma) V^T with orthogonal U, V gives the same
  * Hessian (sec. 4.5.1): the convention is free. */
-SNH_FN principal_hessian snh_principal_hessian_from_svd(mat3 u, vec3 sigma, mat3 v, real mu, real lambda,
-                                                        int barrier) {
+SNH_FN principal_hessian snh_principal_hessian_from_svd(mat3 u, vec3 sigma, mat3 v, real mu, real lambda, int barrier) {
   principal_hessian h;
   h.u = u;
   h.sigma = sigma;

@@ -59,8 +59,8 @@ SNH_FN mat3 mat3_udvt(mat3 u, vec3 s, mat3 v) {
   mat3 m;
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r)
-      M3(m, r, c) = M3(u, r, 0) * s.a[0] * M3(v, c, 0) + M3(u, r, 1) * s.a[1] * M3(v, c, 1) +
-                    M3(u, r, 2) * s.a[2] * M3(v, c, 2);
+      M3(m, r, c) =
+          M3(u, r, 0) * s.a[0] * M3(v, c, 0) + M3(u, r, 1) * s.a[1] * M3(v, c, 1) + M3(u, r, 2) * s.a[2] * M3(v, c, 2);
   return m;
 }
 

@@ -76,8 +76,7 @@ SNH_FN void svd3_rv(mat3 f, mat3* u, vec3* sigma, mat3* v) {
       const int q = pair == 0 ? 1 : 2;
       const real alpha = svd3_column_norm2(b, p);
       const real beta = svd3_column_norm2(b, q);
-      const real gamma =
-          M3(b, 0, p) * M3(b, 0, q) + M3(b, 1, p) * M3(b, 1, q) + M3(b, 2, p) * M3(b, 2, q);
+      const real gamma = M3(b, 0, p) * M3(b, 0, q) + M3(b, 1, p) * M3(b, 1, q) + M3(b, 2, p) * M3(b, 2, q);
       if (!(fabs(gamma) > SNH_EPS * sqrt(alpha * beta)) || !(fabs(gamma) > SNH_REAL_MIN)) continue;
       /* Rotation angle that zeroes the (p, q) entry of B^T B. */
       const real zeta = (beta - alpha) / (SNH_R(2) * gamma);
