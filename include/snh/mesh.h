@@ -1,0 +1,63 @@
+// Volumetric meshes in the user's terms: vertex positions and elements
+// (8-node hexahedra with 2x2x2 Gauss quadrature, or 4-node tetrahedra), plus
+// generators for the lattices the paper's scenes use.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace snh {
+
+enum class ElementType { hex8, tet4 };
+
+const char* to_string(ElementType type);
+int nodes_per_element(ElementType type);
+int quadrature_points(ElementType type);  // 8 for hex8 (2x2x2 Gauss), 1 for tet4
+
+struct Mesh {
+  ElementType type = ElementType::hex8;
+  // Rest positions, xyz per vertex.
+  std::vector<double> positions;
+  // Vertex indices, nodes_per_element() per element. hex8 nodes follow VTK's
+  // VTK_HEXAHEDRON order: the bottom face (z-) counter-clockwise seen from
+  // +z, then the top face; tet4 nodes are positively oriented
+  // ((x1 - x0) x (x2 - x0)) . (x3 - x0) > 0.
+  std::vector<int32_t> elements;
+
+  size_t vertex_count() const { return positions.size() / 3; }
+  size_t element_count() const { return elements.size() / nodes_per_element(type); }
+  std::array<double, 3> vertex(size_t i) const { return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]}; }
+};
+
+// Problems found by validate_mesh that do not stop a solve.
+struct MeshWarnings {
+  std::vector<int32_t> unused_vertices;
+};
+
+// Throws snh::Error naming the element or vertex for: a wrong element array
+// length, indices out of range, repeated vertices within an element,
+// non-finite coordinates, and rest elements with zero or negative volume at
+// any quadrature point (inverted or degenerate). Unused vertices are only
+// reported.
+MeshWarnings validate_mesh(const Mesh& mesh);
+
+// nx * ny * nz cubes of side h, from `origin`.
+Mesh make_box_lattice(int nx, int ny, int nz, double h, std::array<double, 3> origin = {0.0, 0.0, 0.0});
+
+// The cells of an nx * ny * nz lattice whose centres lie within `radius` of
+// the lattice's axis parallel to z: a voxelized cylinder (possibly
+// non-manifold at its rim, as the paper's lattices are). Unused lattice
+// vertices are dropped.
+Mesh make_voxel_cylinder(double radius, double length, double h);
+
+// The box lattice with each cube split into six tetrahedra around its main
+// diagonal (conforming across cubes).
+Mesh make_tet_box(int nx, int ny, int nz, double h, std::array<double, 3> origin = {0.0, 0.0, 0.0});
+
+// Volume of the mesh at positions `x` (xyz per vertex): the sum over
+// elements and quadrature points of det F times the rest volume.
+double mesh_volume(const Mesh& mesh, const std::vector<double>& x);
+
+}  // namespace snh
