@@ -21,6 +21,13 @@
 /* Helper functions: file-local and inlinable in both languages. */
 #define SNH_FN static inline
 
+/* Address space of device buffers; plain memory on the host. */
+#if SNH_IS_OPENCL
+#define SNH_GLOBAL __global
+#else
+#define SNH_GLOBAL
+#endif
+
 /* A literal in the working precision; folded at compile time. */
 #define SNH_R(x) ((real)(x))
 

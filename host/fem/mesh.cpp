@@ -1,0 +1,305 @@
+// Mesh validation, the lattice generators of the paper's scenes, and the
+// deformed volume used by tests and diagnostics.
+#include "snh/mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+
+#include "fem/rest_state.h"
+#include "snh/error.h"
+
+namespace snh {
+
+const char* to_string(ElementType type) {
+  switch (type) {
+    case ElementType::hex8:
+      return "hex8";
+    case ElementType::tet4:
+      return "tet4";
+  }
+  return "unknown";
+}
+
+int nodes_per_element(ElementType type) {
+  switch (type) {
+    case ElementType::hex8:
+      return 8;
+    case ElementType::tet4:
+      return 4;
+  }
+  throw Error("mesh: unknown element type " + std::to_string(static_cast<int>(type)));
+}
+
+int quadrature_points(ElementType type) {
+  switch (type) {
+    case ElementType::hex8:
+      return 8;
+    case ElementType::tet4:
+      return 1;
+  }
+  throw Error("mesh: unknown element type " + std::to_string(static_cast<int>(type)));
+}
+
+MeshWarnings validate_mesh(const Mesh& mesh) {
+  const int n = nodes_per_element(mesh.type);
+  if (mesh.positions.size() % 3 != 0) {
+    std::ostringstream s;
+    s << "mesh: the position array has " << mesh.positions.size() << " values, not a multiple of 3 (xyz per vertex)";
+    throw Error(s.str());
+  }
+  if (mesh.elements.size() % n != 0) {
+    std::ostringstream s;
+    s << "mesh: the element array has " << mesh.elements.size() << " indices, not a multiple of " << n << " ("
+      << to_string(mesh.type) << " nodes per element)";
+    throw Error(s.str());
+  }
+  if (mesh.vertex_count() == 0) throw Error("mesh: it has no vertices");
+  if (mesh.element_count() == 0) throw Error("mesh: it has no elements");
+  // Indices are int32 (the device's layout), so larger meshes cannot be addressed.
+  if (mesh.vertex_count() > static_cast<size_t>(std::numeric_limits<int32_t>::max())) {
+    std::ostringstream s;
+    s << "mesh: it has " << mesh.vertex_count() << " vertices, more than 32-bit indices can address";
+    throw Error(s.str());
+  }
+
+  const size_t vertices = mesh.vertex_count();
+  for (size_t v = 0; v < vertices; ++v)
+    for (int d = 0; d < 3; ++d)
+      if (!std::isfinite(mesh.positions[3 * v + d])) {
+        std::ostringstream s;
+        s << "mesh: vertex " << v << " has a non-finite coordinate ("
+          << "xyz"[d] << " = " << mesh.positions[3 * v + d] << ")";
+        throw Error(s.str());
+      }
+
+  std::vector<char> used(vertices, 0);
+  const size_t elements = mesh.element_count();
+  for (size_t e = 0; e < elements; ++e) {
+    const int32_t* nodes = mesh.elements.data() + n * e;
+    for (int a = 0; a < n; ++a) {
+      if (nodes[a] < 0 || static_cast<size_t>(nodes[a]) >= vertices) {
+        std::ostringstream s;
+        s << "mesh: element " << e << " refers to vertex " << nodes[a] << " (node " << a << "), but the mesh has "
+          << vertices << " vertices";
+        throw Error(s.str());
+      }
+      for (int b = 0; b < a; ++b)
+        if (nodes[b] == nodes[a]) {
+          std::ostringstream s;
+          s << "mesh: element " << e << " uses vertex " << nodes[a] << " twice (nodes " << b << " and " << a << ")";
+          throw Error(s.str());
+        }
+      used[nodes[a]] = 1;
+    }
+  }
+
+  // Zero, negative (inverted) and non-finite rest volumes at any quadrature
+  // point; the rest-state code names the element.
+  fem::compute_rest_state(mesh);
+
+  MeshWarnings warnings;
+  for (size_t v = 0; v < vertices; ++v)
+    if (!used[v]) warnings.unused_vertices.push_back(static_cast<int32_t>(v));
+  return warnings;
+}
+
+namespace {
+
+void check_lattice(int nx, int ny, int nz, double h, const std::array<double, 3>& origin, const char* generator) {
+  if (nx < 1 || ny < 1 || nz < 1) {
+    std::ostringstream s;
+    s << generator << ": the lattice needs at least one cell per axis, got " << nx << " x " << ny << " x " << nz;
+    throw Error(s.str());
+  }
+  if (!(h > 0.0) || !std::isfinite(h)) {
+    std::ostringstream s;
+    s << generator << ": the cell size h must be positive and finite, got " << h;
+    throw Error(s.str());
+  }
+  for (int d = 0; d < 3; ++d)
+    if (!std::isfinite(origin[d])) {
+      std::ostringstream s;
+      s << generator << ": the origin's "
+        << "xyz"[d] << " coordinate is not finite (" << origin[d] << ")";
+      throw Error(s.str());
+    }
+  const double vertices = (nx + 1.0) * (ny + 1.0) * (nz + 1.0);
+  if (vertices > double(std::numeric_limits<int32_t>::max())) {
+    std::ostringstream s;
+    s << generator << ": a " << nx << " x " << ny << " x " << nz
+      << " lattice has more vertices than 32-bit indices can address";
+    throw Error(s.str());
+  }
+}
+
+// Grid vertices in the order i + (nx+1) (j + (ny+1) k) at origin + h (i, j, k).
+std::vector<double> lattice_positions(int nx, int ny, int nz, double h, const std::array<double, 3>& origin) {
+  std::vector<double> positions;
+  positions.reserve(3 * size_t(nx + 1) * (ny + 1) * (nz + 1));
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        positions.push_back(origin[0] + h * i);
+        positions.push_back(origin[1] + h * j);
+        positions.push_back(origin[2] + h * k);
+      }
+  return positions;
+}
+
+// Vertex index of local corner c (bit 0: +x, bit 1: +y, bit 2: +z) of cell (i, j, k).
+int32_t corner(int nx, int ny, int i, int j, int k, int c) {
+  const int64_t x = i + (c & 1), y = j + ((c >> 1) & 1), z = k + ((c >> 2) & 1);
+  return static_cast<int32_t>(x + int64_t(nx + 1) * (y + int64_t(ny + 1) * z));
+}
+
+// VTK_HEXAHEDRON order as local corners: the bottom face counter-clockwise
+// from +z, then the top face (matches fem::kHexNodeSigns).
+constexpr int kHexCorners[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+
+void append_hex(std::vector<int32_t>& elements, int nx, int ny, int i, int j, int k) {
+  for (int c : kHexCorners) elements.push_back(corner(nx, ny, i, j, k, c));
+}
+
+// The six tetrahedra of the Kuhn split of the unit cube, as local corners:
+// each walks from corner 0 to corner 7 adding one axis at a time, one per
+// permutation of the axes. Every cube shares the 0-7 diagonal direction, so
+// the split faces match across neighbouring cubes. Orientation is fixed here
+// once, from the exact integer corner coordinates.
+struct KuhnTets {
+  int tets[6][4];
+  KuhnTets() {
+    const int axes[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int t = 0; t < 6; ++t) {
+      const int c1 = 1 << axes[t][0];
+      const int c2 = c1 | (1 << axes[t][1]);
+      int* tet = tets[t];
+      tet[0] = 0;
+      tet[1] = c1;
+      tet[2] = c2;
+      tet[3] = 7;
+      auto p = [](int c, int d) { return (c >> d) & 1; };
+      int e[3][3];  // edge vectors from corner 0 (which is the origin)
+      for (int r = 0; r < 3; ++r)
+        for (int d = 0; d < 3; ++d) e[r][d] = p(tet[r + 1], d);
+      const int det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                      e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+      if (det < 0) std::swap(tet[1], tet[2]);
+    }
+  }
+};
+
+}  // namespace
+
+Mesh make_box_lattice(int nx, int ny, int nz, double h, std::array<double, 3> origin) {
+  check_lattice(nx, ny, nz, h, origin, "make_box_lattice");
+  Mesh mesh;
+  mesh.type = ElementType::hex8;
+  mesh.positions = lattice_positions(nx, ny, nz, h, origin);
+  mesh.elements.reserve(8 * size_t(nx) * ny * nz);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) append_hex(mesh.elements, nx, ny, i, j, k);
+  return mesh;
+}
+
+Mesh make_voxel_cylinder(double radius, double length, double h) {
+  if (!(radius > 0.0) || !std::isfinite(radius) || !(length > 0.0) || !std::isfinite(length) || !(h > 0.0) ||
+      !std::isfinite(h)) {
+    std::ostringstream s;
+    s << "make_voxel_cylinder: radius, length and cell size must be positive and finite, got radius " << radius
+      << ", length " << length << ", h " << h;
+    throw Error(s.str());
+  }
+  const double cells_across = std::ceil(2.0 * radius / h);
+  const double cells_along = std::max(1.0, std::round(length / h));
+  if (cells_across > 1e6 || cells_along > 1e6) {
+    std::ostringstream s;
+    s << "make_voxel_cylinder: radius " << radius << " and length " << length << " need too many cells of size " << h;
+    throw Error(s.str());
+  }
+  const int n = static_cast<int>(cells_across), nz = static_cast<int>(cells_along);
+  const std::array<double, 3> origin = {-0.5 * n * h, -0.5 * n * h, 0.0};
+  check_lattice(n, n, nz, h, origin, "make_voxel_cylinder");
+
+  // Centre offsets (i + 1/2 - n/2) h are exact mirrors across the axis, so
+  // the kept set is symmetric even where a centre lies on the radius.
+  std::vector<char> keep_column(size_t(n) * n, 0);
+  bool any = false;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double cx = (i + 0.5 - 0.5 * n) * h, cy = (j + 0.5 - 0.5 * n) * h;
+      keep_column[size_t(j) * n + i] = std::sqrt(cx * cx + cy * cy) <= radius;
+      any = any || keep_column[size_t(j) * n + i];
+    }
+  if (!any) {
+    std::ostringstream s;
+    s << "make_voxel_cylinder: no cell of size " << h << " has its centre within radius " << radius;
+    throw Error(s.str());
+  }
+
+  const std::vector<double> positions = lattice_positions(n, n, nz, h, origin);
+  std::vector<int32_t> elements;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (keep_column[size_t(j) * n + i]) append_hex(elements, n, n, i, j, k);
+
+  // Renumber the used vertices in their lattice order.
+  std::vector<int32_t> index(positions.size() / 3, -1);
+  for (int32_t v : elements) index[v] = 0;
+  Mesh mesh;
+  mesh.type = ElementType::hex8;
+  int32_t next = 0;
+  for (size_t v = 0; v < index.size(); ++v)
+    if (index[v] == 0) {
+      index[v] = next++;
+      mesh.positions.insert(mesh.positions.end(), positions.begin() + 3 * v, positions.begin() + 3 * v + 3);
+    }
+  mesh.elements.reserve(elements.size());
+  for (int32_t v : elements) mesh.elements.push_back(index[v]);
+  return mesh;
+}
+
+Mesh make_tet_box(int nx, int ny, int nz, double h, std::array<double, 3> origin) {
+  check_lattice(nx, ny, nz, h, origin, "make_tet_box");
+  static const KuhnTets kuhn;
+  Mesh mesh;
+  mesh.type = ElementType::tet4;
+  mesh.positions = lattice_positions(nx, ny, nz, h, origin);
+  mesh.elements.reserve(24 * size_t(nx) * ny * nz);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        for (const auto& tet : kuhn.tets)
+          for (int c : tet) mesh.elements.push_back(corner(nx, ny, i, j, k, c));
+  return mesh;
+}
+
+double mesh_volume(const Mesh& mesh, const std::vector<double>& x) {
+  if (x.size() != mesh.positions.size()) {
+    std::ostringstream s;
+    s << "mesh_volume: the configuration has " << x.size() << " values, but the mesh has " << mesh.vertex_count()
+      << " vertices (" << mesh.positions.size() << " values expected)";
+    throw Error(s.str());
+  }
+  // The rest-state code trusts the indices, so the mesh is checked first.
+  validate_mesh(mesh);
+  const fem::RestState rest = fem::compute_rest_state(mesh);
+  double volume = 0.0;
+  const size_t elements = mesh.element_count();
+  for (size_t e = 0; e < elements; ++e)
+    for (int q = 0; q < rest.quadrature; ++q) {
+      double f[9];
+      fem::deformation_gradient(mesh, rest, x.data(), e, q, f);
+      const double det =
+          f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
+      volume += det * rest.weight(e, q);
+    }
+  return volume;
+}
+
+}  // namespace snh

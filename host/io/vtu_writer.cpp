@@ -1,0 +1,213 @@
+// ASCII VTK XML output: readable by ParaView and easy to diff or grep in
+// tests. Numbers carry 17 significant digits so results read back bit for bit.
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <locale>
+#include <sstream>
+
+#include "snh/error.h"
+#include "snh/io.h"
+
+namespace snh {
+namespace {
+
+// VTK cell type ids (vtkCellType.h).
+constexpr int kVtkTetra = 10;
+constexpr int kVtkHexahedron = 12;
+
+// Field names and file names go into XML attributes.
+std::string xml_escape(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  return out;
+}
+
+// The stream must not follow a global locale that writes decimal commas.
+void open_for_writing(std::ofstream& file, const std::string& path) {
+  file.open(path, std::ios::out | std::ios::trunc);
+  if (!file) throw Error("cannot write " + path + " (the file cannot be opened; does its directory exist?)");
+  file.imbue(std::locale::classic());
+  file << std::setprecision(std::numeric_limits<double>::max_digits10);
+}
+
+void finish(std::ofstream& file, const std::string& path) {
+  file.flush();
+  if (!file) throw Error("cannot write " + path + " (writing failed part way)");
+  file.close();
+  if (file.fail()) throw Error("cannot write " + path + " (closing failed)");
+}
+
+// `per_line` values to a line, so large arrays stay readable in an editor.
+void write_values(std::ofstream& file, const double* values, size_t count, int per_line) {
+  for (size_t i = 0; i < count; ++i) file << ((i % per_line == 0) ? "\n          " : " ") << values[i];
+  file << "\n";
+}
+
+void check_sizes(const std::string& path, const Mesh& mesh, const std::vector<double>& x,
+                 const std::vector<VtuPointField>& point_fields, const std::vector<VtuCellField>& cell_fields) {
+  const int n = nodes_per_element(mesh.type);
+  const size_t vertices = mesh.vertex_count(), elements = mesh.element_count();
+  if (mesh.positions.size() % 3 != 0 || mesh.elements.size() % n != 0) {
+    std::ostringstream s;
+    s << "write_vtu " << path << ": the mesh is malformed (" << mesh.positions.size() << " position values, "
+      << mesh.elements.size() << " element indices for " << to_string(mesh.type) << ")";
+    throw Error(s.str());
+  }
+  if (x.size() != 3 * vertices) {
+    std::ostringstream s;
+    s << "write_vtu " << path << ": the positions have " << x.size() << " values, but the mesh has " << vertices
+      << " vertices (" << 3 * vertices << " values expected)";
+    throw Error(s.str());
+  }
+  // Offsets are written as Int32 like the connectivity.
+  if (mesh.elements.size() > static_cast<size_t>(std::numeric_limits<int32_t>::max())) {
+    std::ostringstream s;
+    s << "write_vtu " << path << ": " << elements << " elements are too many for 32-bit offsets";
+    throw Error(s.str());
+  }
+  for (size_t i = 0; i < mesh.elements.size(); ++i)
+    if (mesh.elements[i] < 0 || static_cast<size_t>(mesh.elements[i]) >= vertices) {
+      std::ostringstream s;
+      s << "write_vtu " << path << ": element " << i / n << " refers to vertex " << mesh.elements[i]
+        << ", but the mesh has " << vertices << " vertices";
+      throw Error(s.str());
+    }
+  for (const VtuPointField& f : point_fields) {
+    if (f.name.empty()) throw Error("write_vtu " + path + ": a point field has no name");
+    if (f.components != 1 && f.components != 3) {
+      std::ostringstream s;
+      s << "write_vtu " << path << ": point field \"" << f.name << "\" has " << f.components
+        << " components; 1 or 3 are supported";
+      throw Error(s.str());
+    }
+    if (f.values.size() != vertices * f.components) {
+      std::ostringstream s;
+      s << "write_vtu " << path << ": point field \"" << f.name << "\" has " << f.values.size() << " values, but "
+        << vertices << " vertices x " << f.components << " components need " << vertices * f.components;
+      throw Error(s.str());
+    }
+  }
+  for (const VtuCellField& f : cell_fields) {
+    if (f.name.empty()) throw Error("write_vtu " + path + ": a cell field has no name");
+    if (f.values.size() != elements) {
+      std::ostringstream s;
+      s << "write_vtu " << path << ": cell field \"" << f.name << "\" has " << f.values.size()
+        << " values, but the mesh has " << elements << " elements";
+      throw Error(s.str());
+    }
+  }
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<double>& x,
+               const std::vector<VtuPointField>& point_fields, const std::vector<VtuCellField>& cell_fields) {
+  // Everything is checked before the file is touched, so a bad call leaves no
+  // half-written file behind.
+  check_sizes(path, mesh, x, point_fields, cell_fields);
+  const int n = nodes_per_element(mesh.type);
+  const size_t vertices = mesh.vertex_count(), elements = mesh.element_count();
+  const int cell_type = mesh.type == ElementType::hex8 ? kVtkHexahedron : kVtkTetra;
+
+  std::ofstream file;
+  open_for_writing(file, path);
+  file << "<?xml version=\"1.0\"?>\n"
+       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+       << "  <UnstructuredGrid>\n"
+       << "    <Piece NumberOfPoints=\"" << vertices << "\" NumberOfCells=\"" << elements << "\">\n";
+
+  if (!point_fields.empty()) {
+    file << "      <PointData>\n";
+    for (const VtuPointField& f : point_fields) {
+      file << "        <DataArray type=\"Float64\" Name=\"" << xml_escape(f.name) << "\" NumberOfComponents=\""
+           << f.components << "\" format=\"ascii\">";
+      write_values(file, f.values.data(), f.values.size(), f.components == 3 ? 3 : 6);
+      file << "        </DataArray>\n";
+    }
+    file << "      </PointData>\n";
+  }
+  if (!cell_fields.empty()) {
+    file << "      <CellData>\n";
+    for (const VtuCellField& f : cell_fields) {
+      file << "        <DataArray type=\"Float64\" Name=\"" << xml_escape(f.name) << "\" format=\"ascii\">";
+      write_values(file, f.values.data(), f.values.size(), 6);
+      file << "        </DataArray>\n";
+    }
+    file << "      </CellData>\n";
+  }
+
+  file << "      <Points>\n"
+       << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">";
+  write_values(file, x.data(), x.size(), 3);
+  file << "        </DataArray>\n"
+       << "      </Points>\n";
+
+  file << "      <Cells>\n"
+       << "        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">";
+  for (size_t e = 0; e < elements; ++e) {
+    file << "\n         ";
+    for (int a = 0; a < n; ++a) file << ' ' << mesh.elements[n * e + a];
+  }
+  file << "\n        </DataArray>\n"
+       << "        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">";
+  for (size_t e = 0; e < elements; ++e) file << ((e % 12 == 0) ? "\n          " : " ") << n * (e + 1);
+  file << "\n        </DataArray>\n"
+       << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">";
+  for (size_t e = 0; e < elements; ++e) file << ((e % 24 == 0) ? "\n          " : " ") << cell_type;
+  file << "\n        </DataArray>\n"
+       << "      </Cells>\n"
+       << "    </Piece>\n"
+       << "  </UnstructuredGrid>\n"
+       << "</VTKFile>\n";
+  finish(file, path);
+}
+
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {
+  for (size_t i = 0; i < steps.size(); ++i) {
+    if (!std::isfinite(steps[i].first)) {
+      std::ostringstream s;
+      s << "write_pvd " << path << ": step " << i << " (" << steps[i].second << ") has a non-finite time "
+        << steps[i].first;
+      throw Error(s.str());
+    }
+    if (steps[i].second.empty()) {
+      std::ostringstream s;
+      s << "write_pvd " << path << ": step " << i << " has no file name";
+      throw Error(s.str());
+    }
+  }
+  std::ofstream file;
+  open_for_writing(file, path);
+  file << "<?xml version=\"1.0\"?>\n"
+       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+       << "  <Collection>\n";
+  for (const auto& [time, vtu] : steps)
+    file << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << xml_escape(vtu) << "\"/>\n";
+  file << "  </Collection>\n"
+       << "</VTKFile>\n";
+  finish(file, path);
+}
+
+}  // namespace snh

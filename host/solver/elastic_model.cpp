@@ -1,0 +1,243 @@
+#include "solver/elastic_model.h"
+
+#include <cmath>
+
+#include "snh/error.h"
+
+namespace snh::solver {
+
+namespace {
+
+template <typename T>
+void set_arg(cl_kernel k, cl_uint index, const T& value) {
+  device::check(clSetKernelArg(k, index, sizeof(T), &value), "clSetKernelArg");
+}
+
+template <typename Real>
+cl_mem mem(const viennacl::vector_base<Real>& v) {
+  return v.handle().opencl_handle().get();
+}
+
+}  // namespace
+
+template <typename Real>
+ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
+                                 const StableNeoHookean& material, ProductVariant variant)
+    : cl_(cl),
+      vertex_count_(mesh.vertex_count()),
+      element_count_(mesh.element_count()),
+      nodes_(rest.nodes),
+      quadrature_(rest.quadrature),
+      material_(material),
+      variant_(variant),
+      linearized_x_(3 * mesh.vertex_count()) {
+  // Build-time specialization: only what this scene uses is compiled in.
+  defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") +
+             " -DSNH_BARRIER=" + (material.barrier ? "1" : "0") + " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+
+  // Vertex -> (element * nodes + node) slots, in increasing slot order, so
+  // every gather sums in the same order on every run.
+  std::vector<int> offsets(vertex_count_ + 1, 0), adjacency(mesh.elements.size());
+  for (int32_t v : mesh.elements) ++offsets[v + 1];
+  for (size_t v = 0; v < vertex_count_; ++v) offsets[v + 1] += offsets[v];
+  std::vector<int> fill(offsets.begin(), offsets.end() - 1);
+  for (size_t slot = 0; slot < mesh.elements.size(); ++slot)
+    adjacency[fill[mesh.elements[slot]]++] = static_cast<int>(slot);
+
+  const std::vector<Real> gradients(rest.gradients.begin(), rest.gradients.end());
+  const std::vector<Real> weights(rest.weights.begin(), rest.weights.end());
+  const std::vector<int> elements(mesh.elements.begin(), mesh.elements.end());
+  elements_ = cl_.buffer(CL_MEM_READ_ONLY, elements.size() * sizeof(int), elements.data());
+  gradients_ = cl_.buffer(CL_MEM_READ_ONLY, gradients.size() * sizeof(Real), gradients.data());
+  weights_ = cl_.buffer(CL_MEM_READ_ONLY, weights.size() * sizeof(Real), weights.data());
+  offsets_ = cl_.buffer(CL_MEM_READ_ONLY, offsets.size() * sizeof(int), offsets.data());
+  adjacency_ = cl_.buffer(CL_MEM_READ_ONLY, adjacency.size() * sizeof(int), adjacency.data());
+  const std::vector<Real> ones(dofs(), Real(1));
+  mask_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), ones.data());
+  external_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real));
+  element_scratch_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * nodes_ * 3 * sizeof(Real));
+  element_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * nodes_ * 9 * sizeof(Real));
+  cache_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * quadrature_ * 30 * sizeof(Real));
+  energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
+  inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
+
+  energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
+  forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
+  linearize_k_ = cl_.kernel("fem.cl", defines_, "snh_element_linearize");
+  product_cached_k_ = cl_.kernel("fem.cl", defines_, "snh_element_product_cached");
+  product_recompute_k_ = cl_.kernel("fem.cl", defines_, "snh_element_product_recompute");
+  diagonal_k_ = cl_.kernel("fem.cl", defines_, "snh_element_diagonal");
+  gather_k_ = cl_.kernel("fem.cl", defines_, "snh_gather_vectors");
+  setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
+  apply_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_apply");
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_mask(const std::vector<Real>& mask) {
+  if (mask.size() != dofs()) throw Error("solver: constraint mask has the wrong size");
+  cl_.write(mask_.get(), mask.size() * sizeof(Real), mask.data());
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_external_force(const std::vector<double>& force) {
+  has_external_ = !force.empty();
+  if (!has_external_) return;
+  if (force.size() != dofs())
+    throw Error("solver: external force has " + std::to_string(force.size()) + " entries, expected " +
+                std::to_string(dofs()) + " (xyz per vertex)");
+  for (double f : force)
+    if (!std::isfinite(f)) throw Error("solver: external force has a non-finite entry");
+  external_host_ = force;
+  const std::vector<Real> f(force.begin(), force.end());
+  cl_.write(external_.get(), f.size() * sizeof(Real), f.data());
+}
+
+template <typename Real>
+void ElasticModel<Real>::run_element_kernel(cl_kernel k) const {
+  cl_.run(k, element_count_);
+}
+
+template <typename Real>
+double ElasticModel<Real>::energy(const VectorBase& x) {
+  cl_kernel k = energy_k_.get();
+  const int count = static_cast<int>(element_count_);
+  const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
+  set_arg(k, 0, mem(x));
+  set_arg(k, 1, elements_.get());
+  set_arg(k, 2, gradients_.get());
+  set_arg(k, 3, weights_.get());
+  set_arg(k, 4, count);
+  set_arg(k, 5, mu);
+  set_arg(k, 6, lambda);
+  set_arg(k, 7, energies_.get());
+  run_element_kernel(k);
+  std::vector<Real> e(element_count_);
+  cl_.read(energies_.get(), e.size() * sizeof(Real), e.data());
+  double sum = 0.0;
+  for (Real v : e) sum += static_cast<double>(v);
+  if (has_external_) {
+    std::vector<Real> xh(dofs());
+    viennacl::copy(x.begin(), x.end(), xh.begin());
+    for (size_t i = 0; i < xh.size(); ++i) sum -= external_host_[i] * static_cast<double>(xh[i]);
+  }
+  return sum;
+}
+
+template <typename Real>
+void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase& out, bool external) const {
+  cl_kernel k = gather_k_.get();
+  const int use_external = external && has_external_ ? 1 : 0;
+  const Real sign = Real(1);
+  const int count = static_cast<int>(vertex_count_);
+  set_arg(k, 0, element_values.get());
+  set_arg(k, 1, offsets_.get());
+  set_arg(k, 2, adjacency_.get());
+  set_arg(k, 3, mask_.get());
+  set_arg(k, 4, external_.get());
+  set_arg(k, 5, use_external);
+  set_arg(k, 6, sign);
+  set_arg(k, 7, count);
+  set_arg(k, 8, mem(out));
+  cl_.run(k, vertex_count_);
+}
+
+template <typename Real>
+void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
+  cl_kernel k = forces_k_.get();
+  const int count = static_cast<int>(element_count_);
+  const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
+  set_arg(k, 0, mem(x));
+  set_arg(k, 1, elements_.get());
+  set_arg(k, 2, gradients_.get());
+  set_arg(k, 3, weights_.get());
+  set_arg(k, 4, count);
+  set_arg(k, 5, mu);
+  set_arg(k, 6, lambda);
+  set_arg(k, 7, element_scratch_.get());
+  run_element_kernel(k);
+  gather(element_scratch_, r, true);
+}
+
+template <typename Real>
+void ElasticModel<Real>::linearize(const VectorBase& x) {
+  linearized_x_ = x;
+  cl_kernel k = linearize_k_.get();
+  const int count = static_cast<int>(element_count_);
+  const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
+  set_arg(k, 0, mem(x));
+  set_arg(k, 1, elements_.get());
+  set_arg(k, 2, gradients_.get());
+  set_arg(k, 3, count);
+  set_arg(k, 4, mu);
+  set_arg(k, 5, lambda);
+  set_arg(k, 6, cache_.get());
+  run_element_kernel(k);
+}
+
+template <typename Real>
+void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
+  const int count = static_cast<int>(element_count_);
+  cl_kernel k;
+  if (variant_ == ProductVariant::cached) {
+    k = product_cached_k_.get();
+    set_arg(k, 0, mem(p));
+    set_arg(k, 1, elements_.get());
+    set_arg(k, 2, gradients_.get());
+    set_arg(k, 3, weights_.get());
+    set_arg(k, 4, count);
+    set_arg(k, 5, cache_.get());
+    set_arg(k, 6, element_scratch_.get());
+  } else {
+    k = product_recompute_k_.get();
+    const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
+    set_arg(k, 0, mem(p));
+    set_arg(k, 1, elements_.get());
+    set_arg(k, 2, gradients_.get());
+    set_arg(k, 3, weights_.get());
+    set_arg(k, 4, count);
+    set_arg(k, 5, mem(linearized_x_));
+    set_arg(k, 6, mu);
+    set_arg(k, 7, lambda);
+    set_arg(k, 8, element_scratch_.get());
+  }
+  run_element_kernel(k);
+  gather(element_scratch_, y, false);
+}
+
+template <typename Real>
+void ElasticModel<Real>::setup_preconditioner() {
+  cl_kernel k = diagonal_k_.get();
+  const int count = static_cast<int>(element_count_);
+  set_arg(k, 0, elements_.get());
+  set_arg(k, 1, gradients_.get());
+  set_arg(k, 2, weights_.get());
+  set_arg(k, 3, count);
+  set_arg(k, 4, cache_.get());
+  set_arg(k, 5, element_blocks_.get());
+  run_element_kernel(k);
+  cl_kernel s = setup_k_.get();
+  const int vertices = static_cast<int>(vertex_count_);
+  set_arg(s, 0, element_blocks_.get());
+  set_arg(s, 1, offsets_.get());
+  set_arg(s, 2, adjacency_.get());
+  set_arg(s, 3, mask_.get());
+  set_arg(s, 4, vertices);
+  set_arg(s, 5, inverse_blocks_.get());
+  cl_.run(s, vertex_count_);
+}
+
+template <typename Real>
+void ElasticModel<Real>::apply_preconditioner(VectorBase& z) const {
+  cl_kernel k = apply_k_.get();
+  const int vertices = static_cast<int>(vertex_count_);
+  set_arg(k, 0, inverse_blocks_.get());
+  set_arg(k, 1, mem(z));
+  set_arg(k, 2, vertices);
+  set_arg(k, 3, mem(z));
+  cl_.run(k, vertex_count_);
+}
+
+template class ElasticModel<float>;
+template class ElasticModel<double>;
+
+}  // namespace snh::solver

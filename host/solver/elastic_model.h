@@ -1,0 +1,69 @@
+// The elastic model on the device: buffers of one mesh and material and the
+// kernels of kernels/fem.cl, operating on ViennaCL vectors so that ViennaCL's
+// CG can drive the matrix-free product. Internal to the library.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "device/opencl_context.h"
+#include "fem/rest_state.h"
+#include "snh/material.h"
+#include "snh/mesh.h"
+#include "snh/simulation.h"
+#include "viennacl/vector.hpp"
+
+namespace snh::solver {
+
+template <typename Real>
+class ElasticModel {
+ public:
+  using Vector = viennacl::vector<Real>;
+  using VectorBase = viennacl::vector_base<Real>;
+
+  ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
+               const StableNeoHookean& material, ProductVariant variant);
+
+  size_t dofs() const { return 3 * vertex_count_; }
+  // 1 for free DOFs, 0 for constrained ones (xyz per vertex).
+  void set_mask(const std::vector<Real>& mask);
+  // Lumped external force, xyz per vertex; empty for none.
+  void set_external_force(const std::vector<double>& force);
+
+  // Total potential energy: elastic energy minus external work, summed on the
+  // host in double and in element order. Non-finite when any element's is.
+  double energy(const VectorBase& x);
+  // r = mask * (elastic forces + external force) = -mask * dE/dx.
+  void residual(const VectorBase& x, VectorBase& r);
+  // The per-Newton linearization at x (SVD and clamped eigensystem per point).
+  void linearize(const VectorBase& x);
+  // y = mask * K p, K the PSD-projected stiffness at the linearized x.
+  void product(const VectorBase& p, VectorBase& y) const;
+  // Block-Jacobi preconditioner from the current linearization.
+  void setup_preconditioner();
+  void apply_preconditioner(VectorBase& z) const;  // z <- M^-1 z
+
+  std::string specialization() const { return defines_; }
+  ProductVariant variant() const { return variant_; }
+  void set_variant(ProductVariant v) { variant_ = v; }
+
+ private:
+  void run_element_kernel(cl_kernel k) const;
+  void gather(const device::Buffer& element_values, VectorBase& out, bool external) const;
+
+  device::OpenClContext& cl_;
+  size_t vertex_count_, element_count_;
+  int nodes_, quadrature_;
+  StableNeoHookean material_;
+  ProductVariant variant_;
+  std::string defines_;
+  device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
+      element_blocks_, cache_, energies_, inverse_blocks_;
+  bool has_external_ = false;
+  std::vector<double> external_host_;
+  Vector linearized_x_;
+  device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
+      setup_k_, apply_k_;
+};
+
+}  // namespace snh::solver

@@ -1,0 +1,63 @@
+// The pieces ViennaCL's CG is handed: the matrix-free projected Hessian
+// (apply + sizes, as in ViennaCL's matrix-free tutorial) and a block-Jacobi
+// preconditioner with apply() (ViennaCL's own need an assembled matrix).
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "solver/elastic_model.h"
+#include "viennacl/linalg/inner_prod.hpp"
+
+namespace snh::solver {
+
+template <typename Real>
+class HessianOperator {
+ public:
+  explicit HessianOperator(const ElasticModel<Real>& model) : model_(model) {}
+
+  // y = K p. A direction of non-positive or non-finite curvature (possible
+  // only for a singular K or through rounding, K being PSD by construction)
+  // is reported and answered with an infinitely stiff response, y = big * p,
+  // so that CG's step along it vanishes; the monitor then ends the solve.
+  void apply(const viennacl::vector_base<Real>& p, viennacl::vector_base<Real>& y) const {
+    model_.product(p, y);
+    const Real pp = viennacl::linalg::inner_prod(p, p);
+    const Real pkp = viennacl::linalg::inner_prod(p, y);
+    if (!(pp > Real(0))) return;
+    if (!std::isfinite(static_cast<double>(pkp))) {
+      breakdown_ = true;
+      y = p * kStiff;
+    } else if (!(pkp > Real(0))) {
+      negative_curvature_ = true;
+      y = p * kStiff;
+    }
+  }
+  size_t size1() const { return model_.dofs(); }
+  size_t size2() const { return model_.dofs(); }
+
+  bool negative_curvature() const { return negative_curvature_; }
+  bool breakdown() const { return breakdown_; }
+  void reset() const { negative_curvature_ = breakdown_ = false; }
+
+ private:
+  static constexpr Real kStiff = Real(1) / (std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon());
+  const ElasticModel<Real>& model_;
+  mutable bool negative_curvature_ = false;
+  mutable bool breakdown_ = false;
+};
+
+template <typename Real>
+class BlockJacobiPreconditioner {
+ public:
+  BlockJacobiPreconditioner(const ElasticModel<Real>& model, bool enabled) : model_(model), enabled_(enabled) {}
+  void apply(viennacl::vector_base<Real>& z) const {
+    if (enabled_) model_.apply_preconditioner(z);
+  }
+
+ private:
+  const ElasticModel<Real>& model_;
+  bool enabled_;
+};
+
+}  // namespace snh::solver

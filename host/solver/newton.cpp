@@ -1,0 +1,175 @@
+#include "solver/newton.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/matrix_free.h"
+#include "viennacl/linalg/cg.hpp"
+#include "viennacl/linalg/norm_2.hpp"
+
+namespace snh::solver {
+
+namespace {
+
+// L2 norm on the host in double, summed in index order: deterministic.
+template <typename Real>
+double norm(const viennacl::vector<Real>& v, std::vector<Real>& scratch) {
+  scratch.resize(v.size());
+  viennacl::copy(v.begin(), v.end(), scratch.begin());
+  double s = 0.0;
+  for (Real x : scratch) s += static_cast<double>(x) * static_cast<double>(x);
+  return std::sqrt(s);
+}
+
+template <typename Real>
+double dot(const viennacl::vector<Real>& a, const viennacl::vector<Real>& b) {
+  std::vector<Real> ha(a.size()), hb(b.size());
+  viennacl::copy(a.begin(), a.end(), ha.begin());
+  viennacl::copy(b.begin(), b.end(), hb.begin());
+  double s = 0.0;
+  for (size_t i = 0; i < ha.size(); ++i) s += static_cast<double>(ha[i]) * static_cast<double>(hb[i]);
+  return s;
+}
+
+template <typename Real>
+struct CgMonitor {
+  const HessianOperator<Real>* op;
+  static bool stop(const viennacl::vector<Real>&, Real relative_residual, void* self) {
+    const CgMonitor* m = static_cast<CgMonitor*>(self);
+    return m->op->negative_curvature() || m->op->breakdown() ||
+           !std::isfinite(static_cast<double>(relative_residual));
+  }
+};
+
+}  // namespace
+
+template <typename Real>
+StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, std::vector<NewtonIteration>& history,
+                                          Clock::time_point start) {
+  constexpr double kArmijo = 1e-4;
+  constexpr int kMaxHalvings = 40;
+  const double eps = std::numeric_limits<Real>::epsilon();
+  const size_t n = model_.dofs();
+  viennacl::vector<Real> r(n), p(n), trial(n), r_trial(n);
+  std::vector<Real> scratch;
+  HessianOperator<Real> op(model_);
+  BlockJacobiPreconditioner<Real> precond(model_, options_.block_jacobi);
+
+  StepResult result;
+  result.step = step;
+  model_.residual(x, r);
+  double rn = norm(r, scratch);
+  double energy = model_.energy(x);
+  const double tolerance = std::max(options_.absolute_tolerance, options_.relative_tolerance * rn);
+  double eta = options_.forcing_max, previous_rn = rn;
+
+  for (int it = 0;; ++it) {
+    NewtonIteration rec;
+    rec.step = step;
+    rec.iteration = it;
+    rec.residual_norm = rn;
+    rec.energy = energy;
+    if (!std::isfinite(rn) || !std::isfinite(energy)) {
+      result.status = "non_finite_state";
+      history.push_back(rec);
+      break;
+    }
+    if (rn <= tolerance) {
+      result.converged = true;
+      result.status = "converged";
+      rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      history.push_back(rec);
+      break;
+    }
+    if (it >= options_.max_newton_iterations) {
+      result.status = "max_newton_iterations";
+      rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      history.push_back(rec);
+      break;
+    }
+
+    // Eisenstat-Walker choice 2 with its safeguards, floored where the
+    // working precision cannot resolve a smaller relative residual.
+    if (it > 0) {
+      const double candidate = options_.forcing_gamma * (rn / previous_rn) * (rn / previous_rn);
+      const double safeguard = options_.forcing_gamma * eta * eta;
+      eta = safeguard > 0.1 ? std::max(candidate, safeguard) : candidate;
+      eta = std::min(eta, options_.forcing_max);
+      eta = std::max(eta, 0.5 * tolerance / rn);
+    }
+    eta = std::max(eta, 100.0 * eps);
+
+    model_.linearize(x);
+    if (options_.block_jacobi) model_.setup_preconditioner();
+    op.reset();
+    viennacl::linalg::cg_tag tag(static_cast<Real>(eta), static_cast<unsigned>(options_.max_cg_iterations));
+    viennacl::linalg::cg_solver<viennacl::vector<Real>> cg(tag);
+    CgMonitor<Real> monitor{&op};
+    cg.set_monitor(&CgMonitor<Real>::stop, &monitor);
+    p = cg(op, r, precond);
+    rec.cg_iterations = static_cast<int>(cg.tag().iters());
+    rec.cg_relative_residual = cg.tag().error();
+    rec.cg_stop = op.breakdown() ? "breakdown"
+                  : op.negative_curvature()
+                      ? "negative_curvature"
+                      : (rec.cg_relative_residual <= eta ? "converged" : "max_iterations");
+
+    // A usable descent direction: CG's, else the preconditioned residual.
+    double slope = dot(r, p);  // -dE/dalpha at alpha = 0
+    if (!std::isfinite(slope) || !(slope > 0.0)) {
+      rec.cg_stop += "+steepest_descent";
+      p = r;
+      precond.apply(p);
+      slope = dot(r, p);
+    }
+
+    // Backtracking on the energy; never accept a non-finite energy. Where
+    // the energy change is below its rounding noise (float near the
+    // solution), a decrease of the residual norm decides instead.
+    double alpha = 1.0, accepted = 0.0, trial_energy = energy, trial_rn = rn;
+    for (int h = 0; h < kMaxHalvings; ++h, alpha *= 0.5) {
+      trial = x + static_cast<Real>(alpha) * p;
+      trial_energy = model_.energy(trial);
+      if (!std::isfinite(trial_energy)) continue;
+      const double noise = 64.0 * eps * std::max(std::abs(energy), std::abs(trial_energy));
+      if (trial_energy <= energy - kArmijo * alpha * slope) {
+        accepted = alpha;
+        break;
+      }
+      if (std::abs(trial_energy - energy) <= noise) {
+        model_.residual(trial, r_trial);
+        trial_rn = norm(r_trial, scratch);
+        if (trial_rn < rn) {
+          accepted = alpha;
+          break;
+        }
+      }
+    }
+    rec.step_length = accepted;
+    if (accepted == 0.0) {
+      result.status = "line_search_failed";
+      rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      history.push_back(rec);
+      result.cg_iterations += rec.cg_iterations;
+      break;
+    }
+    x = trial;
+    energy = trial_energy;
+    previous_rn = rn;
+    model_.residual(x, r);
+    rn = norm(r, scratch);
+    result.newton_iterations = it + 1;
+    result.cg_iterations += rec.cg_iterations;
+    rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    history.push_back(rec);
+  }
+  result.residual_norm = rn;
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+template class NewtonSolver<float>;
+template class NewtonSolver<double>;
+
+}  // namespace snh::solver

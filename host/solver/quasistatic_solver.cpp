@@ -1,0 +1,200 @@
+// QuasistaticSolver: load stepping over Newton solves on the device.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "device/opencl_context.h"
+#include "fem/rest_state.h"
+#include "snh/error.h"
+#include "snh/simulation.h"
+#include "solver/elastic_model.h"
+#include "solver/newton.h"
+#include "viennacl/ocl/backend.hpp"
+
+namespace snh {
+
+RigidTransform RigidTransform::rotation_about(const std::array<double, 3>& axis, double angle,
+                                              const std::array<double, 3>& center) {
+  const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  if (!(len > 0.0)) throw Error("RigidTransform: rotation axis must be non-zero");
+  const double x = axis[0] / len, y = axis[1] / len, z = axis[2] / len;
+  const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
+  RigidTransform r;
+  // Rodrigues, column-major.
+  r.rotation = {t * x * x + c,     t * x * y + s * z, t * x * z - s * y, t * x * y - s * z, t * y * y + c,
+                t * y * z + s * x, t * x * z + s * y, t * y * z - s * x, t * z * z + c};
+  r.center = center;
+  return r;
+}
+
+RigidTransform RigidTransform::translation_by(const std::array<double, 3>& offset) {
+  RigidTransform r;
+  r.translation = offset;
+  return r;
+}
+
+std::array<double, 3> RigidTransform::apply(const std::array<double, 3>& p) const {
+  const double d[3] = {p[0] - center[0], p[1] - center[1], p[2] - center[2]};
+  std::array<double, 3> out;
+  for (int i = 0; i < 3; ++i)
+    out[i] = rotation[i] * d[0] + rotation[3 + i] * d[1] + rotation[6 + i] * d[2] + center[i] + translation[i];
+  return out;
+}
+
+DeformationStatistics deformation_statistics(const Mesh& mesh, const std::vector<double>& x) {
+  const fem::RestState rest = fem::compute_rest_state(mesh);
+  DeformationStatistics s;
+  s.min_j = std::numeric_limits<double>::infinity();
+  s.max_j = -std::numeric_limits<double>::infinity();
+  double volume = 0.0;
+  for (size_t e = 0; e < mesh.element_count(); ++e) {
+    bool inverted = false;
+    for (int q = 0; q < rest.quadrature; ++q) {
+      double f[9];
+      fem::deformation_gradient(mesh, rest, x.data(), e, q, f);
+      const double j = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) +
+                       f[6] * (f[1] * f[5] - f[2] * f[4]);
+      s.min_j = std::min(s.min_j, j);
+      s.max_j = std::max(s.max_j, j);
+      inverted = inverted || !(j > 0.0);
+      volume += j * rest.weight(e, q);
+    }
+    s.inverted_elements += inverted ? 1 : 0;
+  }
+  s.volume_ratio = volume / rest.rest_volume;
+  return s;
+}
+
+struct QuasistaticSolver::Impl {
+  Mesh mesh;
+  StableNeoHookean material;
+  std::vector<ConstraintSet> constraints;
+  SolveOptions options;
+  fem::RestState rest;
+  device::OpenClContext cl;
+  long viennacl_context_id;
+
+  Impl(Mesh m, const StableNeoHookean& mat, std::vector<ConstraintSet> c, SolveOptions o)
+      : mesh(std::move(m)),
+        material(mat),
+        constraints(std::move(c)),
+        options(std::move(o)),
+        rest(validated_rest_state(mesh)),
+        cl(options.device, options.precision),
+        viennacl_context_id(next_context_id()) {
+    validate_inputs();
+    viennacl::ocl::setup_context(viennacl_context_id, cl.context(), cl.device(), cl.queue());
+  }
+
+  static fem::RestState validated_rest_state(const Mesh& mesh) {
+    validate_mesh(mesh);
+    return fem::compute_rest_state(mesh);
+  }
+
+  static long next_context_id() {
+    static std::atomic<long> id{1000};
+    return id++;
+  }
+
+  void validate_inputs() const {
+    const size_t n = mesh.vertex_count();
+    for (const ConstraintSet& c : constraints) {
+      if (c.vertices.empty()) throw Error("constraint set '" + c.name + "' selects no vertex");
+      for (int32_t v : c.vertices)
+        if (v < 0 || static_cast<size_t>(v) >= n)
+          throw Error("constraint set '" + c.name + "' refers to vertex " + std::to_string(v) + ", but the mesh has " +
+                      std::to_string(n) + " vertices");
+    }
+    if (!options.initial_positions.empty() && options.initial_positions.size() != 3 * n)
+      throw Error("solve options: initial_positions has " + std::to_string(options.initial_positions.size()) +
+                  " entries, expected " + std::to_string(3 * n));
+    for (double v : options.initial_positions)
+      if (!std::isfinite(v)) throw Error("solve options: initial_positions has a non-finite entry");
+    if (options.load_steps < 1) throw Error("solve options: load_steps must be >= 1");
+    if (options.max_newton_iterations < 0 || options.max_cg_iterations < 1)
+      throw Error("solve options: iteration limits must be positive");
+    if (!(options.absolute_tolerance >= 0.0) || !(options.relative_tolerance >= 0.0))
+      throw Error("solve options: tolerances must be >= 0");
+  }
+
+  // Writes the targets of every constrained vertex at load parameter t.
+  void apply_constraints(double t, std::vector<double>& x) const {
+    for (const ConstraintSet& c : constraints) {
+      if (c.targets) {
+        std::vector<double> xyz(3 * c.vertices.size());
+        c.targets(t, xyz);
+        if (xyz.size() != 3 * c.vertices.size())
+          throw Error("constraint set '" + c.name + "': targets callback returned the wrong size");
+        for (size_t k = 0; k < c.vertices.size(); ++k)
+          for (int d = 0; d < 3; ++d) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
+        continue;
+      }
+      const RigidTransform motion = c.motion ? c.motion(t) : RigidTransform::identity();
+      for (int32_t v : c.vertices) {
+        const auto p = motion.apply(mesh.vertex(v));
+        for (int d = 0; d < 3; ++d) x[3 * v + d] = p[d];
+      }
+    }
+    for (double v : x)
+      if (!std::isfinite(v)) throw Error("constraints produced a non-finite target position");
+  }
+
+  template <typename Real>
+  SolveResult run(const StepCallback& on_step) {
+    viennacl::ocl::switch_context(viennacl_context_id);
+    const auto start = std::chrono::steady_clock::now();
+    solver::ElasticModel<Real> model(cl, mesh, rest, material, options.product);
+    std::vector<Real> mask(3 * mesh.vertex_count(), Real(1));
+    for (const ConstraintSet& c : constraints)
+      for (int32_t v : c.vertices) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = Real(0);
+    model.set_mask(mask);
+    model.set_external_force(options.external_force);
+    solver::NewtonSolver<Real> newton(model, options);
+
+    SolveResult result;
+    result.device = cl.info();
+    result.kernel_specialization = model.specialization() + " -DSNH_DOUBLE=" +
+                                   (options.precision == Precision::double_ ? "1" : "0");
+    std::vector<double> x = options.initial_positions.empty() ? mesh.positions : options.initial_positions;
+    std::vector<Real> xr(x.size());
+    viennacl::vector<Real> xd(x.size());
+    result.converged = true;
+    for (int s = 1; s <= options.load_steps; ++s) {
+      apply_constraints(static_cast<double>(s) / options.load_steps, x);
+      std::copy(x.begin(), x.end(), xr.begin());
+      viennacl::copy(xr.begin(), xr.end(), xd.begin());
+      StepResult step = newton.solve_step(s, xd, result.history, start);
+      viennacl::copy(xd.begin(), xd.end(), xr.begin());
+      std::copy(xr.begin(), xr.end(), x.begin());
+      result.converged = result.converged && step.converged;
+      result.final_residual_norm = step.residual_norm;
+      result.steps.push_back(step);
+      if (on_step) on_step(s, x);
+    }
+    result.positions = x;
+    const DeformationStatistics stats = deformation_statistics(mesh, x);
+    result.volume_ratio = stats.volume_ratio;
+    result.min_j = stats.min_j;
+    result.max_j = stats.max_j;
+    result.inverted_elements = stats.inverted_elements;
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
+};
+
+QuasistaticSolver::QuasistaticSolver(Mesh mesh, const StableNeoHookean& material,
+                                     std::vector<ConstraintSet> constraints, SolveOptions options)
+    : impl_(std::make_unique<Impl>(std::move(mesh), material, std::move(constraints), std::move(options))) {}
+QuasistaticSolver::~QuasistaticSolver() = default;
+QuasistaticSolver::QuasistaticSolver(QuasistaticSolver&&) noexcept = default;
+QuasistaticSolver& QuasistaticSolver::operator=(QuasistaticSolver&&) noexcept = default;
+
+SolveResult QuasistaticSolver::solve(const StepCallback& on_step) {
+  return impl_->options.precision == Precision::double_ ? impl_->run<double>(on_step) : impl_->run<float>(on_step);
+}
+
+const Mesh& QuasistaticSolver::mesh() const { return impl_->mesh; }
+const DeviceInfo& QuasistaticSolver::device() const { return impl_->cl.info(); }
+
+}  // namespace snh

@@ -1,0 +1,141 @@
+// Quasistatic simulation: a mesh, a material and kinematic constraints in;
+// equilibrium positions and the solver's history out. Newton with a
+// backtracking line search on the energy; each linear system solved by
+// ViennaCL's conjugate gradient through the matrix-free, eigen-projected
+// Hessian on the OpenCL device.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "snh/device.h"
+#include "snh/material.h"
+#include "snh/mesh.h"
+
+namespace snh {
+
+// x = rotation (X - center) + center + translation; rotation column-major.
+struct RigidTransform {
+  std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  std::array<double, 3> translation{0, 0, 0};
+  std::array<double, 3> center{0, 0, 0};
+
+  static RigidTransform identity() { return {}; }
+  // Rotation by `angle` (radians) about the unit `axis` through `center`.
+  static RigidTransform rotation_about(const std::array<double, 3>& axis, double angle,
+                                       const std::array<double, 3>& center);
+  static RigidTransform translation_by(const std::array<double, 3>& offset);
+  std::array<double, 3> apply(const std::array<double, 3>& rest) const;
+};
+
+// A set of vertices whose positions are prescribed. At load parameter t in
+// (0, 1] (step s of n has t = s / n) each vertex sits at motion(t) applied to
+// its rest position; without a motion the vertices stay at rest. `targets`,
+// when set, overrides `motion`: it fills xyz per vertex of the set.
+struct ConstraintSet {
+  std::string name;
+  std::vector<int32_t> vertices;
+  std::function<RigidTransform(double t)> motion;
+  std::function<void(double t, std::vector<double>& xyz)> targets;
+};
+
+enum class ProductVariant {
+  cached,     // SVD and eigensystem once per Newton iteration, reused by every product
+  recompute,  // SVD and eigensystem at every product
+};
+
+struct SolveOptions {
+  Precision precision = Precision::double_;
+  DeviceOptions device;
+  int load_steps = 1;
+  int max_newton_iterations = 50;
+  // Stop when the L2 norm of the free-DOF force residual is below
+  // max(absolute_tolerance, relative_tolerance * initial norm of the step).
+  double absolute_tolerance = 1e-2;
+  double relative_tolerance = 0.0;
+  int max_cg_iterations = 20000;
+  // Eisenstat-Walker (choice 2) forcing terms: eta_k = gamma (|r_k| / |r_k-1|)^2,
+  // capped at eta_max.
+  double forcing_gamma = 0.9;
+  double forcing_max = 0.5;
+  bool block_jacobi = true;  // false: CG without preconditioner
+  ProductVariant product = ProductVariant::cached;
+  // Lumped external force, xyz per vertex (e.g. gravity); empty for none.
+  std::vector<double> external_force;
+  // Starting positions of the first step (xyz per vertex); empty: rest.
+  std::vector<double> initial_positions;
+};
+
+struct NewtonIteration {
+  int step = 0;
+  int iteration = 0;
+  double residual_norm = 0.0;  // before this iteration's update
+  double energy = 0.0;
+  double step_length = 0.0;    // line-search alpha accepted (0 if none)
+  int cg_iterations = 0;
+  double cg_relative_residual = 0.0;
+  std::string cg_stop;         // "converged", "max_iterations", "negative_curvature", "breakdown"
+  double seconds = 0.0;        // wall time since the solve began, at the end of this iteration
+};
+
+struct StepResult {
+  int step = 0;
+  int newton_iterations = 0;
+  int cg_iterations = 0;
+  bool converged = false;
+  double residual_norm = 0.0;
+  std::string status;  // "converged", "max_newton_iterations", "line_search_failed"
+  double seconds = 0.0;
+};
+
+struct SolveResult {
+  std::vector<double> positions;  // xyz per vertex, after the last step
+  std::vector<NewtonIteration> history;
+  std::vector<StepResult> steps;
+  bool converged = false;
+  double final_residual_norm = 0.0;
+  double volume_ratio = 0.0;  // deformed / rest volume
+  double min_j = 0.0;         // over quadrature points
+  double max_j = 0.0;
+  int inverted_elements = 0;  // elements with J <= 0 at some quadrature point
+  double seconds = 0.0;
+  DeviceInfo device;
+  std::string kernel_specialization;  // the build-time switches of the kernels used
+};
+
+// Called after each load step with the step's positions (e.g. to write a .vtu).
+using StepCallback = std::function<void(int step, const std::vector<double>& positions)>;
+
+class QuasistaticSolver {
+ public:
+  // Validates the mesh (snh::Error on bad input) and prepares the device.
+  QuasistaticSolver(Mesh mesh, const StableNeoHookean& material, std::vector<ConstraintSet> constraints,
+                    SolveOptions options = {});
+  ~QuasistaticSolver();
+  QuasistaticSolver(QuasistaticSolver&&) noexcept;
+  QuasistaticSolver& operator=(QuasistaticSolver&&) noexcept;
+
+  SolveResult solve(const StepCallback& on_step = {});
+
+  const Mesh& mesh() const;
+  const DeviceInfo& device() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Deformation statistics of positions x: volume ratio, min/max J over the
+// quadrature points, number of elements with J <= 0 somewhere.
+struct DeformationStatistics {
+  double volume_ratio = 0.0;
+  double min_j = 0.0;
+  double max_j = 0.0;
+  int inverted_elements = 0;
+};
+DeformationStatistics deformation_statistics(const Mesh& mesh, const std::vector<double>& x);
+
+}  // namespace snh

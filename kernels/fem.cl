@@ -1,0 +1,217 @@
+/* Finite-element kernels of the Newton-CG engine. Specialized at build time:
+ *   SNH_DOUBLE        working precision
+ *   SNH_HEX8          element type (1: hex8, 0: tet4)
+ *   SNH_BARRIER       Stable Neo-Hookean origin barrier (Eq. 14) or not (Eq. 13)
+ *   SNH_UNIFORM_REST  every element shares element 0's rest gradients (lattices)
+ * Element kernels write per-element nodal values; gather kernels sum them per
+ * vertex over a fixed adjacency order, so results are bitwise reproducible
+ * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
+ * element; gradients: [element][q][a][3]; weights: [element][q]. */
+#include "fem/element.h"
+#include "materials/stable_neo_hookean.h"
+
+#if SNH_UNIFORM_REST
+#define REST_ELEMENT(e) 0
+#else
+#define REST_ELEMENT(e) (e)
+#endif
+
+SNH_FN void load_nodes(SNH_GLOBAL const real* x, SNH_GLOBAL const int* nodes, real* xs) {
+  for (int a = 0; a < SNH_NODES; ++a)
+    for (int i = 0; i < 3; ++i) xs[3 * a + i] = x[3 * nodes[a] + i];
+}
+
+SNH_FN void load_gradients(SNH_GLOBAL const real* gradients, int e, int q, real* g) {
+  SNH_GLOBAL const real* src = gradients + (size_t)3 * SNH_NODES * (SNH_QUADRATURE * REST_ELEMENT(e) + q);
+  for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = src[i];
+}
+
+SNH_FN real load_weight(SNH_GLOBAL const real* weights, int e, int q) {
+  return weights[SNH_QUADRATURE * REST_ELEMENT(e) + q];
+}
+
+/* Strain energy of each element: sum_q w_q psi(F_q). */
+__kernel void snh_element_energy(__global const real* x, __global const int* elements,
+                                 __global const real* gradients, __global const real* weights, const int count,
+                                 const real mu, const real lambda, __global real* energy) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  real xs[3 * SNH_NODES], g[3 * SNH_NODES];
+  load_nodes(x, elements + SNH_NODES * e, xs);
+  real sum = SNH_R(0);
+  for (int q = 0; q < SNH_QUADRATURE; ++q) {
+    load_gradients(gradients, e, q, g);
+    sum += load_weight(weights, e, q) * snh_energy(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER);
+  }
+  energy[e] = sum;
+}
+
+/* Elastic forces per element node: -sum_q w_q P_q dN_a/dX. */
+__kernel void snh_element_forces(__global const real* x, __global const int* elements,
+                                 __global const real* gradients, __global const real* weights, const int count,
+                                 const real mu, const real lambda, __global real* out) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  real xs[3 * SNH_NODES], g[3 * SNH_NODES], f[3 * SNH_NODES];
+  load_nodes(x, elements + SNH_NODES * e, xs);
+  for (int i = 0; i < 3 * SNH_NODES; ++i) f[i] = SNH_R(0);
+  for (int q = 0; q < SNH_QUADRATURE; ++q) {
+    load_gradients(gradients, e, q, g);
+    const mat3 p = snh_pk1(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER);
+    element_scatter(p, g, -load_weight(weights, e, q), f);
+  }
+  for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = f[i];
+}
+
+/* Once per Newton iteration: SVD and clamped eigensystem at every point. */
+__kernel void snh_element_linearize(__global const real* x, __global const int* elements,
+                                    __global const real* gradients, const int count, const real mu,
+                                    const real lambda, __global real* cache) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  real xs[3 * SNH_NODES], g[3 * SNH_NODES];
+  load_nodes(x, elements + SNH_NODES * e, xs);
+  for (int q = 0; q < SNH_QUADRATURE; ++q) {
+    load_gradients(gradients, e, q, g);
+    const principal_hessian h =
+        principal_hessian_project(snh_principal_hessian(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER));
+    linearization_store(&h, cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+  }
+}
+
+/* y_a = sum_q w_q (H_q : dF_q) dN_a/dX with dF_q = sum_b p_b (dN_b/dX)^T. */
+SNH_FN void element_product(const principal_hessian* h, const real* ps, const real* g, real w, real* y) {
+  const mat3 dp = principal_hessian_action(h, element_deformation_gradient(ps, g));
+  element_scatter(dp, g, w, y);
+}
+
+/* Projected Hessian times p, per element, reusing the linearization. */
+__kernel void snh_element_product_cached(__global const real* p, __global const int* elements,
+                                         __global const real* gradients, __global const real* weights,
+                                         const int count, __global const real* cache, __global real* out) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  real ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
+  load_nodes(p, elements + SNH_NODES * e, ps);
+  for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
+  for (int q = 0; q < SNH_QUADRATURE; ++q) {
+    load_gradients(gradients, e, q, g);
+    const principal_hessian h = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    element_product(&h, ps, g, load_weight(weights, e, q), y);
+  }
+  for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = y[i];
+}
+
+/* The same, recomputing SVD and eigensystem from x at every product. */
+__kernel void snh_element_product_recompute(__global const real* p, __global const int* elements,
+                                            __global const real* gradients, __global const real* weights,
+                                            const int count, __global const real* x, const real mu,
+                                            const real lambda, __global real* out) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
+  load_nodes(x, elements + SNH_NODES * e, xs);
+  load_nodes(p, elements + SNH_NODES * e, ps);
+  for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
+  for (int q = 0; q < SNH_QUADRATURE; ++q) {
+    load_gradients(gradients, e, q, g);
+    const principal_hessian h =
+        principal_hessian_project(snh_principal_hessian(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER));
+    element_product(&h, ps, g, load_weight(weights, e, q), y);
+  }
+  for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = y[i];
+}
+
+/* The 3x3 diagonal blocks K_aa of each element's projected stiffness,
+ * column-major per node: out[(e * NODES + a) * 9 + 3 d + i]. */
+__kernel void snh_element_diagonal(__global const int* elements, __global const real* gradients,
+                                   __global const real* weights, const int count, __global const real* cache,
+                                   __global real* out) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  real g[3 * SNH_NODES], k[9 * SNH_NODES];
+  for (int i = 0; i < 9 * SNH_NODES; ++i) k[i] = SNH_R(0);
+  for (int q = 0; q < SNH_QUADRATURE; ++q) {
+    load_gradients(gradients, e, q, g);
+    const principal_hessian h = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    const real w = load_weight(weights, e, q);
+    for (int a = 0; a < SNH_NODES; ++a)
+      for (int d = 0; d < 3; ++d) {
+        /* dF = e_d (dN_a/dX)^T; column d of K_aa is w (H : dF) dN_a/dX. */
+        mat3 df = mat3_zero();
+        for (int c = 0; c < 3; ++c) M3(df, d, c) = g[3 * a + c];
+        const mat3 dp = principal_hessian_action(&h, df);
+        for (int i = 0; i < 3; ++i)
+          k[9 * a + 3 * d + i] +=
+              w * (M3(dp, i, 0) * g[3 * a] + M3(dp, i, 1) * g[3 * a + 1] + M3(dp, i, 2) * g[3 * a + 2]);
+      }
+  }
+  for (int i = 0; i < 9 * SNH_NODES; ++i) out[9 * SNH_NODES * e + i] = k[i];
+}
+
+/* Per vertex: out = mask * (sign * sum of its element-node values + external).
+ * adjacency lists the (element * NODES + node) slots of each vertex, in
+ * increasing order, between offsets[v] and offsets[v + 1]. */
+__kernel void snh_gather_vectors(__global const real* element_values, __global const int* offsets,
+                                 __global const int* adjacency, __global const real* mask,
+                                 __global const real* external_force, const int use_external, const real sign,
+                                 const int vertex_count, __global real* out) {
+  const int v = get_global_id(0);
+  if (v >= vertex_count) return;
+  real s0 = SNH_R(0), s1 = SNH_R(0), s2 = SNH_R(0);
+  for (int k = offsets[v]; k < offsets[v + 1]; ++k) {
+    const int slot = 3 * adjacency[k];
+    s0 += element_values[slot];
+    s1 += element_values[slot + 1];
+    s2 += element_values[slot + 2];
+  }
+  s0 *= sign;
+  s1 *= sign;
+  s2 *= sign;
+  if (use_external) {
+    s0 += external_force[3 * v];
+    s1 += external_force[3 * v + 1];
+    s2 += external_force[3 * v + 2];
+  }
+  out[3 * v] = mask[3 * v] * s0;
+  out[3 * v + 1] = mask[3 * v + 1] * s1;
+  out[3 * v + 2] = mask[3 * v + 2] * s2;
+}
+
+/* Per vertex: inverse of its assembled 3x3 diagonal block, constrained rows
+ * and columns replaced by the identity. A singular block (a vertex whose
+ * elements are all flat) falls back to the inverse of its diagonal. */
+__kernel void snh_block_jacobi_setup(__global const real* element_blocks, __global const int* offsets,
+                                     __global const int* adjacency, __global const real* mask,
+                                     const int vertex_count, __global real* inverse) {
+  const int v = get_global_id(0);
+  if (v >= vertex_count) return;
+  mat3 b = mat3_zero();
+  for (int k = offsets[v]; k < offsets[v + 1]; ++k)
+    for (int i = 0; i < 9; ++i) b.a[i] += element_blocks[9 * adjacency[k] + i];
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) M3(b, r, c) *= mask[3 * v + r] * mask[3 * v + c];
+  for (int d = 0; d < 3; ++d)
+    if (mask[3 * v + d] == SNH_R(0)) M3(b, d, d) = SNH_R(1);
+  const real det = mat3_det(b);
+  const real scale = fmax(fmax(fabs(M3(b, 0, 0)), fabs(M3(b, 1, 1))), fabs(M3(b, 2, 2)));
+  mat3 inv;
+  if (fabs(det) > SNH_R(1e3) * SNH_EPS * scale * scale * scale && scale > SNH_R(0)) {
+    const mat3 cof = mat3_cofactor(b); /* symmetric b: inverse = cof / det */
+    for (int i = 0; i < 9; ++i) inv.a[i] = cof.a[i] / det;
+  } else {
+    inv = mat3_zero();
+    for (int d = 0; d < 3; ++d) M3(inv, d, d) = M3(b, d, d) > SNH_R(0) ? SNH_R(1) / M3(b, d, d) : SNH_R(1);
+  }
+  for (int i = 0; i < 9; ++i) inverse[9 * v + i] = inv.a[i] * mask[3 * v + i % 3] * mask[3 * v + i / 3];
+}
+
+/* z_v = inverse_v r_v */
+__kernel void snh_block_jacobi_apply(__global const real* inverse, __global const real* r, const int vertex_count,
+                                     __global real* z) {
+  const int v = get_global_id(0);
+  if (v >= vertex_count) return;
+  const real r0 = r[3 * v], r1 = r[3 * v + 1], r2 = r[3 * v + 2]; /* r and z may alias */
+  for (int i = 0; i < 3; ++i)
+    z[3 * v + i] = inverse[9 * v + i] * r0 + inverse[9 * v + 3 + i] * r1 + inverse[9 * v + 6 + i] * r2;
+}

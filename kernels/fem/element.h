@@ -1,0 +1,63 @@
+/* Element kinematics shared by the OpenCL kernels and the host reference:
+ * the deformation gradient at a quadrature point and the scatter of a stress
+ * back to the element's nodes. The element type is fixed at build time:
+ * SNH_HEX8 = 1 (trilinear hexahedron, 2x2x2 Gauss points) or 0 (linear
+ * tetrahedron, one point). Gradients g are dN_a/dX at one point, [a][3]. */
+#ifndef SNH_FEM_ELEMENT_H
+#define SNH_FEM_ELEMENT_H
+
+#include "materials/principal_hessian.h"
+
+#ifndef SNH_HEX8
+#error "define SNH_HEX8 as 1 (hex8) or 0 (tet4)"
+#endif
+
+#if SNH_HEX8
+#define SNH_NODES 8
+#define SNH_QUADRATURE 8
+#else
+#define SNH_NODES 4
+#define SNH_QUADRATURE 1
+#endif
+
+/* Per quadrature point, the cached linearization: U, V, the PSD-projected
+ * 3x3 block and the clamped twist and flip eigenvalues. */
+#define SNH_LINEARIZATION_SIZE 30
+
+/* F = sum_a x_a (dN_a/dX)^T for node values xs[a][3]. */
+SNH_FN mat3 element_deformation_gradient(const real* xs, const real* g) {
+  mat3 f = mat3_zero();
+  for (int a = 0; a < SNH_NODES; ++a)
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) M3(f, r, c) += xs[3 * a + r] * g[3 * a + c];
+  return f;
+}
+
+/* out[a][i] += w sum_j P_ij dN_a/dX_j: the stress's work-conjugate nodal
+ * vector (the internal force is its negative). */
+SNH_FN void element_scatter(mat3 p, const real* g, real w, real* out) {
+  for (int a = 0; a < SNH_NODES; ++a)
+    for (int i = 0; i < 3; ++i)
+      out[3 * a + i] += w * (M3(p, i, 0) * g[3 * a] + M3(p, i, 1) * g[3 * a + 1] + M3(p, i, 2) * g[3 * a + 2]);
+}
+
+SNH_FN void linearization_store(const principal_hessian* h, SNH_GLOBAL real* out) {
+  for (int i = 0; i < 9; ++i) out[i] = h->u.a[i];
+  for (int i = 0; i < 9; ++i) out[9 + i] = h->v.a[i];
+  for (int i = 0; i < 6; ++i) out[18 + i] = h->block.a[i];
+  for (int i = 0; i < 3; ++i) out[24 + i] = h->twist.a[i];
+  for (int i = 0; i < 3; ++i) out[27 + i] = h->flip.a[i];
+}
+
+SNH_FN principal_hessian linearization_load(SNH_GLOBAL const real* in) {
+  principal_hessian h;
+  for (int i = 0; i < 9; ++i) h.u.a[i] = in[i];
+  for (int i = 0; i < 9; ++i) h.v.a[i] = in[9 + i];
+  for (int i = 0; i < 6; ++i) h.block.a[i] = in[18 + i];
+  for (int i = 0; i < 3; ++i) h.twist.a[i] = in[24 + i];
+  for (int i = 0; i < 3; ++i) h.flip.a[i] = in[27 + i];
+  for (int i = 0; i < 3; ++i) h.sigma.a[i] = SNH_R(0);
+  return h;
+}
+
+#endif /* SNH_FEM_ELEMENT_H */
