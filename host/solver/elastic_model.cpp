@@ -237,6 +237,13 @@ void ElasticModel<Real>::apply_preconditioner(VectorBase& z) const {
   cl_.run(k, vertex_count_);
 }
 
+template <typename Real>
+std::vector<Real> ElasticModel<Real>::preconditioner_blocks() const {
+  std::vector<Real> blocks(9 * vertex_count_);
+  cl_.read(inverse_blocks_.get(), blocks.size() * sizeof(Real), blocks.data());
+  return blocks;
+}
+
 template class ElasticModel<float>;
 template class ElasticModel<double>;
 

@@ -42,6 +42,8 @@ class ElasticModel {
   // Block-Jacobi preconditioner from the current linearization.
   void setup_preconditioner();
   void apply_preconditioner(VectorBase& z) const;  // z <- M^-1 z
+  // The preconditioner's inverted 3x3 blocks, column-major per vertex (tests).
+  std::vector<Real> preconditioner_blocks() const;
 
   std::string specialization() const { return defines_; }
   ProductVariant variant() const { return variant_; }

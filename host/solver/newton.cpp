@@ -63,6 +63,8 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
   double energy = model_.energy(x);
   const double tolerance = std::max(options_.absolute_tolerance, options_.relative_tolerance * rn);
   double eta = options_.forcing_max, previous_rn = rn;
+  constexpr size_t kStagnation = 8;
+  std::vector<double> best_rn;
 
   for (int it = 0;; ++it) {
     NewtonIteration rec;
@@ -78,6 +80,16 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
     if (rn <= tolerance) {
       result.converged = true;
       result.status = "converged";
+      rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      history.push_back(rec);
+      break;
+    }
+    // No 1% progress in kStagnation iterations: the working precision's floor.
+    best_rn.push_back(rn);
+    if (best_rn.size() > kStagnation && rn > 0.99 * best_rn[best_rn.size() - 1 - kStagnation] &&
+        *std::min_element(best_rn.end() - kStagnation, best_rn.end()) >
+            0.99 * best_rn[best_rn.size() - 1 - kStagnation]) {
+      result.status = "stagnated";
       rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
       history.push_back(rec);
       break;

@@ -87,7 +87,9 @@ struct StepResult {
   int cg_iterations = 0;
   bool converged = false;
   double residual_norm = 0.0;
-  std::string status;  // "converged", "max_newton_iterations", "line_search_failed"
+  // "converged", "max_newton_iterations", "line_search_failed", "stagnated"
+  // (no 1% residual decrease in 8 iterations: the precision floor), "non_finite_state"
+  std::string status;
   double seconds = 0.0;
 };
 
