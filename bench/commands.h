@@ -9,6 +9,7 @@ namespace snh::bench {
 // Registers the subcommand on `app`; the callback it installs runs it and
 // stores the process exit code in `exit_code`.
 void add_probe_command(CLI::App& app, int& exit_code);
+void add_scene_command(CLI::App& app, int& exit_code);
 
 // The default suite, run when no subcommand is given; writes into out_dir.
 int run_default_suite(const std::string& out_dir, int samples);

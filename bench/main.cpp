@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   int exit_code = 0;
   snh::bench::add_probe_command(app, exit_code);
+  snh::bench::add_scene_command(app, exit_code);
   std::string out_dir = "bench-results";
   int samples = 20000;
   app.add_option("--out", out_dir, "folder for the default suite's results")->capture_default_str();

@@ -64,7 +64,7 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
   const double tolerance = std::max(options_.absolute_tolerance, options_.relative_tolerance * rn);
   double eta = options_.forcing_max, previous_rn = rn;
   constexpr size_t kStagnation = 8;
-  std::vector<double> best_rn;
+  std::vector<double> residuals, energies;
 
   for (int it = 0;; ++it) {
     NewtonIteration rec;
@@ -84,15 +84,22 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
       history.push_back(rec);
       break;
     }
-    // No 1% progress in kStagnation iterations: the working precision's floor.
-    best_rn.push_back(rn);
-    if (best_rn.size() > kStagnation && rn > 0.99 * best_rn[best_rn.size() - 1 - kStagnation] &&
-        *std::min_element(best_rn.end() - kStagnation, best_rn.end()) >
-            0.99 * best_rn[best_rn.size() - 1 - kStagnation]) {
-      result.status = "stagnated";
-      rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-      history.push_back(rec);
-      break;
+    // The working precision's floor: in the last kStagnation iterations
+    // neither a 1% drop of the residual norm nor an energy decrease above
+    // rounding noise. (Far from the solution the residual may plateau while
+    // the energy still falls; that is progress.)
+    residuals.push_back(rn);
+    energies.push_back(energy);
+    if (residuals.size() > kStagnation) {
+      const size_t old = residuals.size() - 1 - kStagnation;
+      const double best = *std::min_element(residuals.begin() + old + 1, residuals.end());
+      const double noise = 64.0 * eps * std::abs(energies[old]);
+      if (best > 0.99 * residuals[old] && energies[old] - energy <= noise) {
+        result.status = "stagnated";
+        rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        history.push_back(rec);
+        break;
+      }
     }
     if (it >= options_.max_newton_iterations) {
       result.status = "max_newton_iterations";

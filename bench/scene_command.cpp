@@ -1,0 +1,180 @@
+// `snh-gpu-bench scene NAME`: one of the paper's scenes through the library,
+// with a JSON summary and ParaView output on request.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "commands.h"
+#include "snh/error.h"
+#include "snh/io.h"
+#include "snh/scenes.h"
+#include "snh/simulation.h"
+
+namespace snh::bench {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+struct SceneOptions {
+  std::string name;
+  int resolution = 0;
+  double youngs_modulus = 1.0;
+  double poisson_ratio = 0.49;
+  std::string barrier = "auto";
+  std::string precision = "double";
+  int steps = 0;
+  unsigned seed = 1;
+  std::string json_path;
+  std::string vtu_dir;
+  std::string device;
+  std::string variant = "cached";
+  std::string preconditioner = "block-jacobi";
+  double relative_tolerance = -1.0;
+  double absolute_tolerance = -1.0;
+  int max_newton = 0;
+};
+
+json summary_json(const Scene& scene, const SolveOptions& options, const SolveResult& r) {
+  json j;
+  j["scene"] = scene.name;
+  j["element_type"] = to_string(scene.mesh.type);
+  j["elements"] = scene.mesh.element_count();
+  j["dofs"] = 3 * scene.mesh.vertex_count();
+  j["device"] = r.device.platform + " / " + r.device.name;
+  j["precision"] = to_string(options.precision);
+  j["kernel_specialization"] = r.kernel_specialization;
+  j["youngs_modulus"] = scene.material.youngs_modulus();
+  j["poisson_ratio"] = scene.material.poisson_ratio();
+  j["barrier"] = scene.material.barrier;
+  j["product"] = options.product == ProductVariant::cached ? "cached" : "recompute";
+  j["preconditioner"] = options.block_jacobi ? "block-jacobi" : "none";
+  j["steps"] = json::array();
+  for (const StepResult& s : r.steps)
+    j["steps"].push_back({{"step", s.step},
+                          {"newton_iterations", s.newton_iterations},
+                          {"cg_iterations", s.cg_iterations},
+                          {"converged", s.converged},
+                          {"status", s.status},
+                          {"residual", s.residual_norm},
+                          {"seconds", s.seconds}});
+  j["wall_seconds"] = r.seconds;
+  j["final_residual"] = r.final_residual_norm;
+  j["converged"] = r.converged;
+  j["volume_ratio"] = r.volume_ratio;
+  j["min_j"] = r.min_j;
+  j["max_j"] = r.max_j;
+  j["inverted_elements"] = r.inverted_elements;
+  j["history"] = json::array();
+  for (const NewtonIteration& h : r.history)
+    j["history"].push_back({{"step", h.step},
+                            {"iteration", h.iteration},
+                            {"residual", h.residual_norm},
+                            {"energy", h.energy},
+                            {"step_length", h.step_length},
+                            {"cg_iterations", h.cg_iterations},
+                            {"cg_stop", h.cg_stop},
+                            {"seconds", h.seconds}});
+  return j;
+}
+
+int run_scene(const SceneOptions& o) {
+  SceneParameters p;
+  p.resolution = o.resolution;
+  p.youngs_modulus = o.youngs_modulus;
+  p.poisson_ratio = o.poisson_ratio;
+  p.barrier = parse_barrier(o.barrier);
+  p.steps = o.steps;
+  p.seed = o.seed;
+  Scene scene = make_scene(o.name, p);
+  SolveOptions options = scene.options;
+  options.precision = parse_precision(o.precision);
+  options.device.match = o.device;
+  options.product = o.variant == "recompute" ? ProductVariant::recompute : ProductVariant::cached;
+  options.block_jacobi = o.preconditioner == "block-jacobi";
+  if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
+  if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
+  if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
+
+  const bool terminal = isatty(STDERR_FILENO);
+  std::cerr << "scene " << scene.name << ": " << scene.description << "; " << scene.mesh.element_count() << " "
+            << to_string(scene.mesh.type) << " elements, " << 3 * scene.mesh.vertex_count() << " dofs, "
+            << to_string(options.precision) << '\n';
+  std::vector<std::pair<double, std::string>> written;
+  if (!o.vtu_dir.empty()) {
+    std::filesystem::create_directories(o.vtu_dir);
+    const std::vector<double>& x0 = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
+    const std::string file = scene.name + "_0000.vtu";
+    write_vtu(o.vtu_dir + "/" + file, scene.mesh, x0);
+    written.push_back({0.0, file});
+  }
+  QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
+  const Mesh& mesh = solver.mesh();
+  const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
+    if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
+    if (o.vtu_dir.empty()) return;
+    char file[256];
+    std::snprintf(file, sizeof file, "%s_%04d.vtu", scene.name.c_str(), step);
+    std::vector<double> displacement(x.size());
+    for (size_t i = 0; i < x.size(); ++i) displacement[i] = x[i] - mesh.positions[i];
+    write_vtu(o.vtu_dir + "/" + file, mesh, x, {{"displacement", 3, displacement}});
+    written.push_back({static_cast<double>(step), file});
+  });
+  if (!o.vtu_dir.empty()) write_pvd(o.vtu_dir + "/" + scene.name + ".pvd", written);
+
+  std::cout << "step  newton  cg      status                 residual\n";
+  for (const StepResult& s : r.steps)
+    std::cout << std::left << std::setw(6) << s.step << std::setw(8) << s.newton_iterations << std::setw(8)
+              << s.cg_iterations << std::setw(23) << s.status << std::setprecision(3) << s.residual_norm << '\n';
+  std::cout << "converged " << (r.converged ? "yes" : "no") << ", " << std::setprecision(4) << r.seconds
+            << " s, volume ratio " << std::setprecision(6) << r.volume_ratio << ", min J " << std::setprecision(4)
+            << r.min_j << ", inverted elements " << r.inverted_elements << '\n';
+  if (!o.json_path.empty()) {
+    const auto parent = std::filesystem::path(o.json_path).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    std::ofstream out(o.json_path);
+    if (!out) throw Error("cannot write " + o.json_path);
+    out << summary_json(scene, options, r).dump(2) << '\n';
+  }
+  return r.converged ? 0 : 3;
+}
+
+}  // namespace
+
+void add_scene_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<SceneOptions>();
+  CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex)");
+  cmd->add_option("name", o->name, "scene name")->required()->check(CLI::IsMember(scene_names()));
+  cmd->add_option("--res", o->resolution, "cells across the scene's thickness (0: scene default)");
+  cmd->add_option("--E", o->youngs_modulus, "Young's modulus")->capture_default_str();
+  cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();
+  cmd->add_option("--barrier", o->barrier, "origin barrier: on, off, auto")
+      ->check(CLI::IsMember({"on", "off", "auto"}))
+      ->capture_default_str();
+  cmd->add_option("--precision", o->precision, "float or double")
+      ->check(CLI::IsMember({"float", "double"}))
+      ->capture_default_str();
+  cmd->add_option("--steps", o->steps, "load steps (0: scene default)");
+  cmd->add_option("--seed", o->seed, "random seed (scramble)")->capture_default_str();
+  cmd->add_option("--json", o->json_path, "write a JSON summary with the per-iteration history here");
+  cmd->add_option("--vtu", o->vtu_dir, "write ASCII .vtu per step and a .pvd into this folder");
+  cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
+  cmd->add_option("--variant", o->variant, "Hessian product: cached or recompute")
+      ->check(CLI::IsMember({"cached", "recompute"}))
+      ->capture_default_str();
+  cmd->add_option("--preconditioner", o->preconditioner, "block-jacobi or none")
+      ->check(CLI::IsMember({"block-jacobi", "none"}))
+      ->capture_default_str();
+  cmd->add_option("--rtol", o->relative_tolerance, "relative residual tolerance per step (default 1e-6)");
+  cmd->add_option("--atol", o->absolute_tolerance, "absolute residual tolerance (default 1e-12 E)");
+  cmd->add_option("--max-newton", o->max_newton, "Newton iteration limit per step");
+  cmd->callback([o, &exit_code] { exit_code = run_scene(*o); });
+}
+
+}  // namespace snh::bench

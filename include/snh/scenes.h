@@ -1,0 +1,47 @@
+// The paper's test scenes (Smith et al. 2018, sec. 6) at sizes a small
+// machine can run: a mesh, a material, constraints and solve options that
+// QuasistaticSolver runs as they are.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "snh/material.h"
+#include "snh/mesh.h"
+#include "snh/simulation.h"
+
+namespace snh {
+
+struct SceneParameters {
+  int resolution = 0;  // cells across the scene's thickness; 0: the scene's default
+  double youngs_modulus = 1.0;
+  double poisson_ratio = 0.49;
+  Barrier barrier = Barrier::automatic;
+  int steps = 0;  // load steps; 0: the scene's default
+  unsigned seed = 1;
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  Mesh mesh;
+  StableNeoHookean material;
+  std::vector<ConstraintSet> constraints;
+  SolveOptions options;  // steps, tolerance and, for scramble, the initial positions
+};
+
+// "stretch": a voxelized hex cylinder (radius 0.5, length 2) stretched to 3.4x
+//   its length by moving its end faces apart (paper: volume +4.3%, nu = 0.49).
+// "twist": a unit cube of resolution^3 hexes (default 15), the bottom face
+//   fixed, the top face rotated about the vertical axis by pi/2 per step,
+//   twice (paper: 12 and 16 Newton, 3,278 and 4,956 CG iterations).
+// "scramble": a cube whose vertices start at random inside a box of twice its
+//   volume, four bottom corners pinned at rest; it must recover.
+// "flex": a 4:1:1 limb-like hex lattice driven by two rigid bones (vertex sets
+//   in its core); one bone fixed, the other bent 90 degrees about the joint.
+// Throws snh::Error for an unknown name or out-of-range parameters.
+Scene make_scene(const std::string& name, const SceneParameters& parameters);
+
+std::vector<std::string> scene_names();
+
+}  // namespace snh
