@@ -128,6 +128,7 @@ int run_scene(const SceneOptions& o) {
   });
   if (!o.vtu_dir.empty()) write_pvd(o.vtu_dir + "/" + scene.name + ".pvd", written);
 
+  for (const std::string& w : r.warnings) std::cerr << "warning: " << w << '\n';
   std::cout << "step  newton  cg      status                 residual\n";
   for (const StepResult& s : r.steps)
     std::cout << std::left << std::setw(6) << s.step << std::setw(8) << s.newton_iterations << std::setw(8)

@@ -115,6 +115,17 @@ TEST(Solver, RejectsBadConstraintsAndOptions) {
   EXPECT_THROW(s.solve(), Error);
 }
 
+TEST(Solver, UnusedVertexIsAWarningNotAnError) {
+  Mesh mesh = make_box_lattice(2, 2, 2, 0.5);
+  mesh.positions.insert(mesh.positions.end(), {5.0, 5.0, 5.0});
+  QuasistaticSolver solver(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3), {ConstraintSet{"pin", {0}, {}, {}}});
+  const SolveResult r = solver.solve();
+  EXPECT_TRUE(r.converged);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("1 vertices belong to no element (first: 27)"), std::string::npos) << r.warnings[0];
+  EXPECT_EQ(r.positions[3 * 27], 5.0);
+}
+
 TEST(Solver, GravityOnPinnedBlockSagsAndBalances) {
   const Mesh mesh = make_box_lattice(4, 2, 2, 0.25);
   ConstraintSet wall{"wall", {}, {}, {}};

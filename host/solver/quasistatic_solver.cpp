@@ -71,6 +71,7 @@ struct QuasistaticSolver::Impl {
   StableNeoHookean material;
   std::vector<ConstraintSet> constraints;
   SolveOptions options;
+  MeshWarnings mesh_warnings;
   fem::RestState rest;
   device::OpenClContext cl;
   long viennacl_context_id;
@@ -80,16 +81,12 @@ struct QuasistaticSolver::Impl {
         material(mat),
         constraints(std::move(c)),
         options(std::move(o)),
-        rest(validated_rest_state(mesh)),
+        mesh_warnings(validate_mesh(mesh)),
+        rest(fem::compute_rest_state(mesh)),
         cl(options.device, options.precision),
         viennacl_context_id(next_context_id()) {
     validate_inputs();
     viennacl::ocl::setup_context(viennacl_context_id, cl.context(), cl.device(), cl.queue());
-  }
-
-  static fem::RestState validated_rest_state(const Mesh& mesh) {
-    validate_mesh(mesh);
-    return fem::compute_rest_state(mesh);
   }
 
   static long next_context_id() {
@@ -173,6 +170,10 @@ struct QuasistaticSolver::Impl {
       if (on_step) on_step(s, x);
     }
     result.positions = x;
+    if (!mesh_warnings.unused_vertices.empty())
+      result.warnings.push_back("mesh: " + std::to_string(mesh_warnings.unused_vertices.size()) +
+                                " vertices belong to no element (first: " +
+                                std::to_string(mesh_warnings.unused_vertices.front()) + "); they do not move");
     const DeformationStatistics stats = deformation_statistics(mesh, x);
     result.volume_ratio = stats.volume_ratio;
     result.min_j = stats.min_j;

@@ -106,6 +106,7 @@ struct SolveResult {
   double seconds = 0.0;
   DeviceInfo device;
   std::string kernel_specialization;  // the build-time switches of the kernels used
+  std::vector<std::string> warnings;  // e.g. unused vertices (they stay where they are)
 };
 
 // Called after each load step with the step's positions (e.g. to write a .vtu).
