@@ -1,15 +1,15 @@
 // `snh-gpu-bench scene NAME`: one of the paper's scenes through the library,
 // with a JSON summary and ParaView output on request.
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
-#include <string>
-
 #include <nlohmann/json.hpp>
-#include <unistd.h>
+#include <string>
 
 #include "commands.h"
 #include "snh/error.h"
@@ -36,6 +36,7 @@ struct SceneOptions {
   std::string device;
   std::string variant = "cached";
   std::string preconditioner = "block-jacobi";
+  double strain_tolerance = 0.0;
   double relative_tolerance = -1.0;
   double absolute_tolerance = -1.0;
   int max_newton = 0;
@@ -92,6 +93,7 @@ int run_scene(const SceneOptions& o) {
   p.barrier = parse_barrier(o.barrier);
   p.steps = o.steps;
   p.seed = o.seed;
+  if (o.strain_tolerance > 0.0) p.strain_tolerance = o.strain_tolerance;
   Scene scene = make_scene(o.name, p);
   SolveOptions options = scene.options;
   options.precision = parse_precision(o.precision);
@@ -109,7 +111,8 @@ int run_scene(const SceneOptions& o) {
   std::vector<std::pair<double, std::string>> written;
   if (!o.vtu_dir.empty()) {
     std::filesystem::create_directories(o.vtu_dir);
-    const std::vector<double>& x0 = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
+    const std::vector<double>& x0 =
+        options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
     const std::string file = scene.name + "_0000.vtu";
     write_vtu(o.vtu_dir + "/" + file, scene.mesh, x0);
     written.push_back({0.0, file});
@@ -172,8 +175,10 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--preconditioner", o->preconditioner, "block-jacobi or none")
       ->check(CLI::IsMember({"block-jacobi", "none"}))
       ->capture_default_str();
-  cmd->add_option("--rtol", o->relative_tolerance, "relative residual tolerance per step (default 1e-6)");
-  cmd->add_option("--atol", o->absolute_tolerance, "absolute residual tolerance (default 1e-12 E)");
+  cmd->add_option("--strain-tol", o->strain_tolerance,
+                  "stop at the residual of this strain error, |r| <= tol E h^2 sqrt(vertices) (default 1e-6)");
+  cmd->add_option("--rtol", o->relative_tolerance, "relative residual tolerance per step (default: none)");
+  cmd->add_option("--atol", o->absolute_tolerance, "absolute residual tolerance (overrides --strain-tol)");
   cmd->add_option("--max-newton", o->max_newton, "Newton iteration limit per step");
   cmd->callback([o, &exit_code] { exit_code = run_scene(*o); });
 }

@@ -31,9 +31,9 @@ SNH_FN real load_weight(SNH_GLOBAL const real* weights, int e, int q) {
 }
 
 /* Strain energy of each element: sum_q w_q psi(F_q). */
-__kernel void snh_element_energy(__global const real* x, __global const int* elements,
-                                 __global const real* gradients, __global const real* weights, const int count,
-                                 const real mu, const real lambda, __global real* energy) {
+__kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,
+                                 __global const real* weights, const int count, const real mu, const real lambda,
+                                 __global real* energy) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
@@ -47,9 +47,9 @@ __kernel void snh_element_energy(__global const real* x, __global const int* ele
 }
 
 /* Elastic forces per element node: -sum_q w_q P_q dN_a/dX. */
-__kernel void snh_element_forces(__global const real* x, __global const int* elements,
-                                 __global const real* gradients, __global const real* weights, const int count,
-                                 const real mu, const real lambda, __global real* out) {
+__kernel void snh_element_forces(__global const real* x, __global const int* elements, __global const real* gradients,
+                                 __global const real* weights, const int count, const real mu, const real lambda,
+                                 __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES], f[3 * SNH_NODES];
@@ -65,8 +65,8 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
 
 /* Once per Newton iteration: SVD and clamped eigensystem at every point. */
 __kernel void snh_element_linearize(__global const real* x, __global const int* elements,
-                                    __global const real* gradients, const int count, const real mu,
-                                    const real lambda, __global real* cache) {
+                                    __global const real* gradients, const int count, const real mu, const real lambda,
+                                    __global real* cache) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
@@ -87,8 +87,8 @@ SNH_FN void element_product(const principal_hessian* h, const real* ps, const re
 
 /* Projected Hessian times p, per element, reusing the linearization. */
 __kernel void snh_element_product_cached(__global const real* p, __global const int* elements,
-                                         __global const real* gradients, __global const real* weights,
-                                         const int count, __global const real* cache, __global real* out) {
+                                         __global const real* gradients, __global const real* weights, const int count,
+                                         __global const real* cache, __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
@@ -105,8 +105,8 @@ __kernel void snh_element_product_cached(__global const real* p, __global const 
 /* The same, recomputing SVD and eigensystem from x at every product. */
 __kernel void snh_element_product_recompute(__global const real* p, __global const int* elements,
                                             __global const real* gradients, __global const real* weights,
-                                            const int count, __global const real* x, const real mu,
-                                            const real lambda, __global real* out) {
+                                            const int count, __global const real* x, const real mu, const real lambda,
+                                            __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
@@ -182,8 +182,8 @@ __kernel void snh_gather_vectors(__global const real* element_values, __global c
  * and columns replaced by the identity. A singular block (a vertex whose
  * elements are all flat) falls back to the inverse of its diagonal. */
 __kernel void snh_block_jacobi_setup(__global const real* element_blocks, __global const int* offsets,
-                                     __global const int* adjacency, __global const real* mask,
-                                     const int vertex_count, __global real* inverse) {
+                                     __global const int* adjacency, __global const real* mask, const int vertex_count,
+                                     __global real* inverse) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
   mat3 b = mat3_zero();

@@ -80,10 +80,10 @@ TEST(Solver, BitwiseDeterministic) {
   for (Precision precision : {Precision::double_, Precision::single}) {
     SceneParameters p;
     p.resolution = 3;
+    p.strain_tolerance = 1e-4;
     const Scene scene = make_scene("twist", p);
     SolveOptions options = scene.options;
     options.precision = precision;
-    options.relative_tolerance = 1e-4;
     QuasistaticSolver a(scene.mesh, scene.material, scene.constraints, options);
     QuasistaticSolver b(scene.mesh, scene.material, scene.constraints, options);
     const SolveResult ra = a.solve(), rb = b.solve();
@@ -151,10 +151,10 @@ SolveResult run_scene(const std::string& name, int resolution, Precision precisi
   SceneParameters p;
   p.resolution = resolution;
   p.seed = seed;
+  if (precision == Precision::single) p.strain_tolerance = 1e-4;
   const Scene scene = make_scene(name, p);
   SolveOptions options = scene.options;
   options.precision = precision;
-  if (precision == Precision::single) options.relative_tolerance = 1e-4;
   QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
   return solver.solve();
 }

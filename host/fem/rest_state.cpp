@@ -14,8 +14,8 @@ namespace {
 
 // Inverse transpose and determinant of a column-major 3x3.
 double inverse_transpose(const double j[9], double out[9]) {
-  const double det = j[0] * (j[4] * j[8] - j[5] * j[7]) - j[3] * (j[1] * j[8] - j[2] * j[7]) +
-                     j[6] * (j[1] * j[5] - j[2] * j[4]);
+  const double det =
+      j[0] * (j[4] * j[8] - j[5] * j[7]) - j[3] * (j[1] * j[8] - j[2] * j[7]) + j[6] * (j[1] * j[5] - j[2] * j[4]);
   // Cofactor matrix / det = inverse transpose.
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) {
@@ -40,7 +40,8 @@ void element_rest_state(const Mesh& mesh, size_t e, double* gradients, double* w
   if (mesh.type == ElementType::tet4) {
     double dm[9];
     for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r) dm[3 * c + r] = mesh.positions[3 * nodes[c + 1] + r] - mesh.positions[3 * nodes[0] + r];
+      for (int r = 0; r < 3; ++r)
+        dm[3 * c + r] = mesh.positions[3 * nodes[c + 1] + r] - mesh.positions[3 * nodes[0] + r];
     double it[9];
     const double det = inverse_transpose(dm, it);
     const double volume = det / 6.0;

@@ -41,7 +41,6 @@ struct RestState {
 RestState compute_rest_state(const Mesh& mesh);
 
 // F at point q of element e for positions x (xyz per vertex), column-major.
-void deformation_gradient(const Mesh& mesh, const RestState& rest, const double* x, size_t element, int q,
-                          double f[9]);
+void deformation_gradient(const Mesh& mesh, const RestState& rest, const double* x, size_t element, int q, double f[9]);
 
 }  // namespace snh::fem

@@ -1,8 +1,9 @@
+#include "snh/scenes.h"
+
 #include <cmath>
 #include <random>
 
 #include "snh/error.h"
-#include "snh/scenes.h"
 
 namespace snh {
 
@@ -66,8 +67,8 @@ Scene scramble(const SceneParameters& p) {
   std::vector<int32_t> corners;
   for (size_t v = 0; v < s.mesh.vertex_count(); ++v) {
     const auto x = s.mesh.vertex(v);
-    const bool corner = (x[0] < 0.5 * h || x[0] > 1.0 - 0.5 * h) && (x[1] < 0.5 * h || x[1] > 1.0 - 0.5 * h) &&
-                        x[2] < 0.5 * h;
+    const bool corner =
+        (x[0] < 0.5 * h || x[0] > 1.0 - 0.5 * h) && (x[1] < 0.5 * h || x[1] > 1.0 - 0.5 * h) && x[2] < 0.5 * h;
     if (corner) corners.push_back(static_cast<int32_t>(v));
   }
   s.constraints = {ConstraintSet{"bottom_corners", corners, {}, {}}};
@@ -107,6 +108,12 @@ Scene flex(const SceneParameters& p) {
   return s;
 }
 
+// Edge length of the first element (the scenes' lattices are uniform).
+double scene_cell_size(const Mesh& mesh) {
+  const auto a = mesh.vertex(mesh.elements[0]), b = mesh.vertex(mesh.elements[1]);
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
 }  // namespace
 
 std::vector<std::string> scene_names() { return {"stretch", "twist", "scramble", "flex"}; }
@@ -125,11 +132,14 @@ Scene make_scene(const std::string& name, const SceneParameters& p) {
     throw Error("scene: unknown scene '" + name + "' (known: stretch, twist, scramble, flex)");
   s.name = name;
   s.material = StableNeoHookean::from_youngs_modulus(p.youngs_modulus, p.poisson_ratio, p.barrier);
-  // Newton to a residual 1e-6 of each step's initial one (the paper's
-  // absolute 1e-2 assumes its own units), with a floor for steps that start
-  // at equilibrium.
-  s.options.relative_tolerance = 1e-6;
-  s.options.absolute_tolerance = 1e-12 * p.youngs_modulus;
+  // Newton to a residual equivalent to a strain error of strain_tolerance:
+  // a vertex force is about E h^2 times a strain, summed over the vertices.
+  // (The paper's absolute 1e-2 assumes its own units; a tolerance relative to
+  // the first residual would stop the scramble far from equilibrium.)
+  const double h = scene_cell_size(s.mesh);
+  s.options.relative_tolerance = 0.0;
+  s.options.absolute_tolerance =
+      p.strain_tolerance * p.youngs_modulus * h * h * std::sqrt(static_cast<double>(s.mesh.vertex_count()));
   for (const ConstraintSet& c : s.constraints)
     if (c.vertices.empty()) throw Error("scene " + name + ": constraint set '" + c.name + "' selects no vertex");
   return s;

@@ -41,7 +41,8 @@ class HessianOperator {
   void reset() const { negative_curvature_ = breakdown_ = false; }
 
  private:
-  static constexpr Real kStiff = Real(1) / (std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon());
+  static constexpr Real kStiff =
+      Real(1) / (std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon());
   const ElasticModel<Real>& model_;
   mutable bool negative_curvature_ = false;
   mutable bool breakdown_ = false;

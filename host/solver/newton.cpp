@@ -37,8 +37,7 @@ struct CgMonitor {
   const HessianOperator<Real>* op;
   static bool stop(const viennacl::vector<Real>&, Real relative_residual, void* self) {
     const CgMonitor* m = static_cast<CgMonitor*>(self);
-    return m->op->negative_curvature() || m->op->breakdown() ||
-           !std::isfinite(static_cast<double>(relative_residual));
+    return m->op->negative_curvature() || m->op->breakdown() || !std::isfinite(static_cast<double>(relative_residual));
   }
 };
 
@@ -129,10 +128,9 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
     p = cg(op, r, precond);
     rec.cg_iterations = static_cast<int>(cg.tag().iters());
     rec.cg_relative_residual = cg.tag().error();
-    rec.cg_stop = op.breakdown() ? "breakdown"
-                  : op.negative_curvature()
-                      ? "negative_curvature"
-                      : (rec.cg_relative_residual <= eta ? "converged" : "max_iterations");
+    rec.cg_stop = op.breakdown()            ? "breakdown"
+                  : op.negative_curvature() ? "negative_curvature"
+                                            : (rec.cg_relative_residual <= eta ? "converged" : "max_iterations");
 
     // A usable descent direction: CG's, else the preconditioned residual.
     double slope = dot(r, p);  // -dE/dalpha at alpha = 0

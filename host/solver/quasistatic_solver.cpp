@@ -53,8 +53,8 @@ DeformationStatistics deformation_statistics(const Mesh& mesh, const std::vector
     for (int q = 0; q < rest.quadrature; ++q) {
       double f[9];
       fem::deformation_gradient(mesh, rest, x.data(), e, q, f);
-      const double j = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) +
-                       f[6] * (f[1] * f[5] - f[2] * f[4]);
+      const double j =
+          f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
       s.min_j = std::min(s.min_j, j);
       s.max_j = std::max(s.max_j, j);
       inverted = inverted || !(j > 0.0);
@@ -151,8 +151,8 @@ struct QuasistaticSolver::Impl {
 
     SolveResult result;
     result.device = cl.info();
-    result.kernel_specialization = model.specialization() + " -DSNH_DOUBLE=" +
-                                   (options.precision == Precision::double_ ? "1" : "0");
+    result.kernel_specialization =
+        model.specialization() + " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
     std::vector<double> x = options.initial_positions.empty() ? mesh.positions : options.initial_positions;
     std::vector<Real> xr(x.size());
     viennacl::vector<Real> xd(x.size());

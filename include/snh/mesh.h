@@ -28,7 +28,9 @@ struct Mesh {
 
   size_t vertex_count() const { return positions.size() / 3; }
   size_t element_count() const { return elements.size() / nodes_per_element(type); }
-  std::array<double, 3> vertex(size_t i) const { return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]}; }
+  std::array<double, 3> vertex(size_t i) const {
+    return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
+  }
 };
 
 // Problems found by validate_mesh that do not stop a solve.

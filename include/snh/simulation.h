@@ -74,11 +74,11 @@ struct NewtonIteration {
   int iteration = 0;
   double residual_norm = 0.0;  // before this iteration's update
   double energy = 0.0;
-  double step_length = 0.0;    // line-search alpha accepted (0 if none)
+  double step_length = 0.0;  // line-search alpha accepted (0 if none)
   int cg_iterations = 0;
   double cg_relative_residual = 0.0;
-  std::string cg_stop;         // "converged", "max_iterations", "negative_curvature", "breakdown"
-  double seconds = 0.0;        // wall time since the solve began, at the end of this iteration
+  std::string cg_stop;   // "converged", "max_iterations", "negative_curvature", "breakdown"
+  double seconds = 0.0;  // wall time since the solve began, at the end of this iteration
 };
 
 struct StepResult {
