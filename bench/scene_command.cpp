@@ -40,6 +40,8 @@ struct SceneOptions {
   double relative_tolerance = -1.0;
   double absolute_tolerance = -1.0;
   int max_newton = 0;
+  double forcing_max = 0.0;
+  std::string hessian = "adaptive";
 };
 
 json summary_json(const Scene& scene, const SolveOptions& options, const SolveResult& r) {
@@ -56,6 +58,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["barrier"] = scene.material.barrier;
   j["product"] = options.product == ProductVariant::cached ? "cached" : "recompute";
   j["preconditioner"] = options.block_jacobi ? "block-jacobi" : "none";
+  j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
   j["steps"] = json::array();
   for (const StepResult& s : r.steps)
     j["steps"].push_back({{"step", s.step},
@@ -81,6 +84,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                             {"step_length", h.step_length},
                             {"cg_iterations", h.cg_iterations},
                             {"cg_stop", h.cg_stop},
+                            {"projected", h.projected},
                             {"seconds", h.seconds}});
   return j;
 }
@@ -103,6 +107,8 @@ int run_scene(const SceneOptions& o) {
   if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
   if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
   if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
+  if (o.forcing_max > 0.0) options.forcing_max = o.forcing_max;
+  options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
 
   const bool terminal = isatty(STDERR_FILENO);
   std::cerr << "scene " << scene.name << ": " << scene.description << "; " << scene.mesh.element_count() << " "
@@ -180,6 +186,11 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--rtol", o->relative_tolerance, "relative residual tolerance per step (default: none)");
   cmd->add_option("--atol", o->absolute_tolerance, "absolute residual tolerance (overrides --strain-tol)");
   cmd->add_option("--max-newton", o->max_newton, "Newton iteration limit per step");
+  cmd->add_option("--forcing-max", o->forcing_max, "cap of the Eisenstat-Walker forcing term (default 0.5)");
+  cmd->add_option("--hessian", o->hessian,
+                  "projected (always the PSD projection) or adaptive (true Hessian near convergence)")
+      ->check(CLI::IsMember({"projected", "adaptive"}))
+      ->capture_default_str();
   cmd->callback([o, &exit_code] { exit_code = run_scene(*o); });
 }
 

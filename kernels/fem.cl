@@ -30,20 +30,24 @@ SNH_FN real load_weight(SNH_GLOBAL const real* weights, int e, int q) {
   return weights[SNH_QUADRATURE * REST_ELEMENT(e) + q];
 }
 
-/* Strain energy of each element: sum_q w_q psi(F_q). */
+/* Strain energy of each element, sum_q w_q psi(F_q), and its smallest J. */
 __kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,
                                  __global const real* weights, const int count, const real mu, const real lambda,
-                                 __global real* energy) {
+                                 __global real* energy, __global real* min_j) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
   load_nodes(x, elements + SNH_NODES * e, xs);
-  real sum = SNH_R(0);
+  real sum = SNH_R(0), smallest = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    sum += load_weight(weights, e, q) * snh_energy(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER);
+    const mat3 f = element_deformation_gradient(xs, g);
+    sum += load_weight(weights, e, q) * snh_energy(f, mu, lambda, SNH_BARRIER);
+    const real j = mat3_det(f);
+    smallest = q == 0 ? j : fmin(smallest, j);
   }
   energy[e] = sum;
+  min_j[e] = smallest;
 }
 
 /* Elastic forces per element node: -sum_q w_q P_q dN_a/dX. */
@@ -63,18 +67,19 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
   for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = f[i];
 }
 
-/* Once per Newton iteration: SVD and clamped eigensystem at every point. */
+/* Once per Newton iteration: SVD and eigensystem at every point, clamped to
+ * PSD when `project` (else the true Hessian, for Newton near a solution). */
 __kernel void snh_element_linearize(__global const real* x, __global const int* elements,
                                     __global const real* gradients, const int count, const real mu, const real lambda,
-                                    __global real* cache) {
+                                    const int project, __global real* cache) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
   load_nodes(x, elements + SNH_NODES * e, xs);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    const principal_hessian h =
-        principal_hessian_project(snh_principal_hessian(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER));
+    principal_hessian h = snh_principal_hessian(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER);
+    if (project) h = principal_hessian_project(h);
     linearization_store(&h, cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
   }
 }
@@ -106,7 +111,7 @@ __kernel void snh_element_product_cached(__global const real* p, __global const 
 __kernel void snh_element_product_recompute(__global const real* p, __global const int* elements,
                                             __global const real* gradients, __global const real* weights,
                                             const int count, __global const real* x, const real mu, const real lambda,
-                                            __global real* out) {
+                                            const int project, __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
@@ -115,15 +120,16 @@ __kernel void snh_element_product_recompute(__global const real* p, __global con
   for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    const principal_hessian h =
-        principal_hessian_project(snh_principal_hessian(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER));
+    principal_hessian h = snh_principal_hessian(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER);
+    if (project) h = principal_hessian_project(h);
     element_product(&h, ps, g, load_weight(weights, e, q), y);
   }
   for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = y[i];
 }
 
 /* The 3x3 diagonal blocks K_aa of each element's projected stiffness,
- * column-major per node: out[(e * NODES + a) * 9 + 3 d + i]. */
+ * column-major per node: out[(e * NODES + a) * 9 + 3 d + i]. Projected even
+ * when the cache holds the true Hessian, so the preconditioner stays SPD. */
 __kernel void snh_element_diagonal(__global const int* elements, __global const real* gradients,
                                    __global const real* weights, const int count, __global const real* cache,
                                    __global real* out) {
@@ -133,7 +139,8 @@ __kernel void snh_element_diagonal(__global const int* elements, __global const 
   for (int i = 0; i < 9 * SNH_NODES; ++i) k[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    const principal_hessian h = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    const principal_hessian h = principal_hessian_project(
+        linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q)));
     const real w = load_weight(weights, e, q);
     for (int a = 0; a < SNH_NODES; ++a)
       for (int d = 0; d < 3; ++d) {

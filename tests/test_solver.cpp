@@ -191,6 +191,26 @@ TEST(Scenes, FlexBendsWithoutInversion) {
   EXPECT_EQ(r.inverted_elements, 0);
 }
 
+TEST(Solver, AdaptiveHessianUsesTrueHessianNearSolutionAndNeedsFewerIterations) {
+  SceneParameters p;
+  p.resolution = 4;
+  const Scene scene = make_scene("twist", p);
+  int iterations[2] = {0, 0};
+  for (HessianMode mode : {HessianMode::projected, HessianMode::adaptive}) {
+    SolveOptions options = scene.options;
+    options.hessian = mode;
+    QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
+    const SolveResult r = solver.solve();
+    ASSERT_TRUE(r.converged);
+    int unprojected = 0;
+    for (const NewtonIteration& h : r.history) unprojected += h.projected ? 0 : 1;
+    if (mode == HessianMode::projected) EXPECT_EQ(unprojected, 0);
+    if (mode == HessianMode::adaptive) EXPECT_GT(unprojected, 0);
+    iterations[mode == HessianMode::adaptive] = static_cast<int>(r.history.size());
+  }
+  EXPECT_LT(iterations[1], iterations[0]);
+}
+
 TEST(Scenes, UnknownSceneIsAnError) { EXPECT_THROW(make_scene("wobble", {}), Error); }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "solver/elastic_model.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "snh/error.h"
@@ -59,6 +60,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   element_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * nodes_ * 9 * sizeof(Real));
   cache_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * quadrature_ * 30 * sizeof(Real));
   energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
+  min_j_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
 
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
@@ -110,11 +112,14 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   set_arg(k, 5, mu);
   set_arg(k, 6, lambda);
   set_arg(k, 7, energies_.get());
+  set_arg(k, 8, min_j_.get());
   run_element_kernel(k);
-  std::vector<Real> e(element_count_);
+  std::vector<Real> e(element_count_), j(element_count_);
   cl_.read(energies_.get(), e.size() * sizeof(Real), e.data());
+  cl_.read(min_j_.get(), j.size() * sizeof(Real), j.data());
   double sum = 0.0;
   for (Real v : e) sum += static_cast<double>(v);
+  last_min_j_ = j.empty() ? 0.0 : static_cast<double>(*std::min_element(j.begin(), j.end()));
   if (has_external_) {
     std::vector<Real> xh(dofs());
     viennacl::copy(x.begin(), x.end(), xh.begin());
@@ -159,8 +164,9 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
 }
 
 template <typename Real>
-void ElasticModel<Real>::linearize(const VectorBase& x) {
+void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   linearized_x_ = x;
+  projected_ = projected ? 1 : 0;
   cl_kernel k = linearize_k_.get();
   const int count = static_cast<int>(element_count_);
   const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
@@ -170,7 +176,8 @@ void ElasticModel<Real>::linearize(const VectorBase& x) {
   set_arg(k, 3, count);
   set_arg(k, 4, mu);
   set_arg(k, 5, lambda);
-  set_arg(k, 6, cache_.get());
+  set_arg(k, 6, projected_);
+  set_arg(k, 7, cache_.get());
   run_element_kernel(k);
 }
 
@@ -198,7 +205,8 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(k, 5, mem(linearized_x_));
     set_arg(k, 6, mu);
     set_arg(k, 7, lambda);
-    set_arg(k, 8, element_scratch_.get());
+    set_arg(k, 8, projected_);
+    set_arg(k, 9, element_scratch_.get());
   }
   run_element_kernel(k);
   gather(element_scratch_, y, false);

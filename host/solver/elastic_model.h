@@ -33,11 +33,14 @@ class ElasticModel {
   // Total potential energy: elastic energy minus external work, summed on the
   // host in double and in element order. Non-finite when any element's is.
   double energy(const VectorBase& x);
+  // The smallest J over all quadrature points at the x of the last energy().
+  double last_min_j() const { return last_min_j_; }
   // r = mask * (elastic forces + external force) = -mask * dE/dx.
   void residual(const VectorBase& x, VectorBase& r);
-  // The per-Newton linearization at x (SVD and clamped eigensystem per point).
-  void linearize(const VectorBase& x);
-  // y = mask * K p, K the PSD-projected stiffness at the linearized x.
+  // The per-Newton linearization at x (SVD and eigensystem per point),
+  // clamped to PSD when `projected`, else the true Hessian.
+  void linearize(const VectorBase& x, bool projected = true);
+  // y = mask * K p, K the (projected) stiffness at the linearized x.
   void product(const VectorBase& p, VectorBase& y) const;
   // Block-Jacobi preconditioner from the current linearization.
   void setup_preconditioner();
@@ -60,8 +63,10 @@ class ElasticModel {
   ProductVariant variant_;
   std::string defines_;
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
-      element_blocks_, cache_, energies_, inverse_blocks_;
+      element_blocks_, cache_, energies_, min_j_, inverse_blocks_;
   bool has_external_ = false;
+  int projected_ = 1;
+  double last_min_j_ = 0.0;
   std::vector<double> external_host_;
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,

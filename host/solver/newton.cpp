@@ -64,6 +64,9 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
   double eta = options_.forcing_max, previous_rn = rn;
   constexpr size_t kStagnation = 8;
   std::vector<double> residuals, energies;
+  constexpr int kProjectionCooldown = 3;
+  int projection_cooldown = 0;
+  double last_alpha = 0.0;
 
   for (int it = 0;; ++it) {
     NewtonIteration rec;
@@ -118,19 +121,33 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
     }
     eta = std::max(eta, 100.0 * eps);
 
-    model_.linearize(x);
-    if (options_.block_jacobi) model_.setup_preconditioner();
-    op.reset();
-    viennacl::linalg::cg_tag tag(static_cast<Real>(eta), static_cast<unsigned>(options_.max_cg_iterations));
-    viennacl::linalg::cg_solver<viennacl::vector<Real>> cg(tag);
-    CgMonitor<Real> monitor{&op};
-    cg.set_monitor(&CgMonitor<Real>::stop, &monitor);
-    p = cg(op, r, precond);
-    rec.cg_iterations = static_cast<int>(cg.tag().iters());
-    rec.cg_relative_residual = cg.tag().error();
-    rec.cg_stop = op.breakdown()            ? "breakdown"
-                  : op.negative_curvature() ? "negative_curvature"
-                                            : (rec.cg_relative_residual <= eta ? "converged" : "max_iterations");
+    // The true Hessian only where Newton is converging (full steps, falling
+    // residual), no element is inverted and it has not just shown negative
+    // curvature; CG on it stops at negative curvature, and the iteration is
+    // then redone with the projection. (An inverted element is where the
+    // projection's robustness matters: Newton on the true Hessian could be
+    // drawn to a tangled stationary point.)
+    const bool true_hessian = options_.hessian == HessianMode::adaptive && it > 0 && last_alpha == 1.0 &&
+                              rn < previous_rn && projection_cooldown == 0 && model_.last_min_j() > 0.0;
+    if (projection_cooldown > 0) --projection_cooldown;
+    for (bool projected : {!true_hessian, true}) {
+      model_.linearize(x, projected);
+      if (options_.block_jacobi) model_.setup_preconditioner();
+      op.reset();
+      viennacl::linalg::cg_tag tag(static_cast<Real>(eta), static_cast<unsigned>(options_.max_cg_iterations));
+      viennacl::linalg::cg_solver<viennacl::vector<Real>> cg(tag);
+      CgMonitor<Real> monitor{&op};
+      cg.set_monitor(&CgMonitor<Real>::stop, &monitor);
+      p = cg(op, r, precond);
+      rec.cg_iterations += static_cast<int>(cg.tag().iters());
+      rec.cg_relative_residual = cg.tag().error();
+      rec.projected = projected;
+      rec.cg_stop = op.breakdown()            ? "breakdown"
+                    : op.negative_curvature() ? "negative_curvature"
+                                              : (rec.cg_relative_residual <= eta ? "converged" : "max_iterations");
+      if (projected || !(op.negative_curvature() || op.breakdown())) break;
+      projection_cooldown = kProjectionCooldown;
+    }
 
     // A usable descent direction: CG's, else the preconditioned residual.
     double slope = dot(r, p);  // -dE/dalpha at alpha = 0
@@ -172,6 +189,7 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
       break;
     }
     x = trial;
+    last_alpha = accepted;
     energy = trial_energy;
     previous_rn = rn;
     model_.residual(x, r);

@@ -47,6 +47,14 @@ enum class ProductVariant {
   recompute,  // SVD and eigensystem at every product
 };
 
+enum class HessianMode {
+  projected,  // always the per-element PSD projection (Smith et al. 2018, sec. 4)
+  // the true Hessian once Newton takes full steps that lower the residual,
+  // back to the projection for a few iterations when CG meets negative
+  // curvature: quadratic instead of linear convergence near the solution
+  adaptive,
+};
+
 struct SolveOptions {
   Precision precision = Precision::double_;
   DeviceOptions device;
@@ -63,6 +71,7 @@ struct SolveOptions {
   double forcing_max = 0.5;
   bool block_jacobi = true;  // false: CG without preconditioner
   ProductVariant product = ProductVariant::cached;
+  HessianMode hessian = HessianMode::adaptive;
   // Lumped external force, xyz per vertex (e.g. gravity); empty for none.
   std::vector<double> external_force;
   // Starting positions of the first step (xyz per vertex); empty: rest.
@@ -77,8 +86,9 @@ struct NewtonIteration {
   double step_length = 0.0;  // line-search alpha accepted (0 if none)
   int cg_iterations = 0;
   double cg_relative_residual = 0.0;
-  std::string cg_stop;   // "converged", "max_iterations", "negative_curvature", "breakdown"
-  double seconds = 0.0;  // wall time since the solve began, at the end of this iteration
+  std::string cg_stop;    // "converged", "max_iterations", "negative_curvature", "breakdown"
+  bool projected = true;  // whether this iteration's Hessian was the PSD projection
+  double seconds = 0.0;   // wall time since the solve began, at the end of this iteration
 };
 
 struct StepResult {
