@@ -97,7 +97,12 @@ int run_scene(const SceneOptions& o) {
   p.barrier = parse_barrier(o.barrier);
   p.steps = o.steps;
   p.seed = o.seed;
-  if (o.strain_tolerance > 0.0) p.strain_tolerance = o.strain_tolerance;
+  // Float resolves J - alpha only to about FLT_EPSILON lambda / mu: its
+  // default stopping strain is 1e-4 (double: 1e-6).
+  if (o.strain_tolerance > 0.0)
+    p.strain_tolerance = o.strain_tolerance;
+  else if (o.precision == "float")
+    p.strain_tolerance = 1e-4;
   Scene scene = make_scene(o.name, p);
   SolveOptions options = scene.options;
   options.precision = parse_precision(o.precision);
@@ -182,7 +187,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"block-jacobi", "none"}))
       ->capture_default_str();
   cmd->add_option("--strain-tol", o->strain_tolerance,
-                  "stop at the residual of this strain error, |r| <= tol E h^2 sqrt(vertices) (default 1e-6)");
+                  "stop at the residual of this strain error, |r| <= tol E h^2 sqrt(vertices) (default 1e-6; float 1e-4)");
   cmd->add_option("--rtol", o->relative_tolerance, "relative residual tolerance per step (default: none)");
   cmd->add_option("--atol", o->absolute_tolerance, "absolute residual tolerance (overrides --strain-tol)");
   cmd->add_option("--max-newton", o->max_newton, "Newton iteration limit per step");
