@@ -135,3 +135,35 @@ TEST(ProbeCommand, NoOpenClPlatformGetsClearError) {
 
 }  // namespace
 }  // namespace snh::test
+
+namespace snh::test {
+namespace {
+
+TEST(SceneCommand, WritesJsonSummaryAndParaViewSeries) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "snh_scene_test";
+  std::filesystem::remove_all(dir);
+  const std::string json_path = (dir / "twist.json").string();
+  const CommandRun r = run_bench(
+      "scene twist --res 2 --steps 2 --precision double --json " + json_path + " --vtu " + (dir / "vtu").string(), "");
+  EXPECT_EQ(r.status, 0);
+  std::ifstream in(json_path);
+  ASSERT_TRUE(in.good());
+  const auto j = nlohmann::json::parse(in);
+  for (const char* key : {"scene", "elements", "dofs", "device", "precision", "steps", "wall_seconds", "final_residual",
+                          "converged", "volume_ratio", "min_j", "inverted_elements", "history"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["scene"], "twist");
+  EXPECT_EQ(j["elements"], 8);
+  EXPECT_EQ(j["dofs"], 81);
+  ASSERT_EQ(j["steps"].size(), 2u);
+  EXPECT_GT(j["steps"][0]["newton_iterations"].get<int>(), 0);
+  EXPECT_GT(j["steps"][0]["cg_iterations"].get<int>(), 0);
+  EXPECT_TRUE(j["converged"].get<bool>());
+  for (const char* file : {"twist.pvd", "twist_0000.vtu", "twist_0001.vtu", "twist_0002.vtu"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "vtu" / file)) << file;
+}
+
+TEST(SceneCommand, UnknownSceneIsRejected) { EXPECT_NE(run_bench("scene wobble", "").status, 0); }
+
+}  // namespace
+}  // namespace snh::test
