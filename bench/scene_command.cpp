@@ -186,8 +186,9 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--preconditioner", o->preconditioner, "block-jacobi or none")
       ->check(CLI::IsMember({"block-jacobi", "none"}))
       ->capture_default_str();
-  cmd->add_option("--strain-tol", o->strain_tolerance,
-                  "stop at the residual of this strain error, |r| <= tol E h^2 sqrt(vertices) (default 1e-6; float 1e-4)");
+  cmd->add_option(
+      "--strain-tol", o->strain_tolerance,
+      "stop at the residual of this strain error, |r| <= tol E h^2 sqrt(vertices) (default 1e-6; float 1e-4)");
   cmd->add_option("--rtol", o->relative_tolerance, "relative residual tolerance per step (default: none)");
   cmd->add_option("--atol", o->absolute_tolerance, "absolute residual tolerance (overrides --strain-tol)");
   cmd->add_option("--max-newton", o->max_newton, "Newton iteration limit per step");
