@@ -198,6 +198,11 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
     result.cg_iterations += rec.cg_iterations;
     rec.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     history.push_back(rec);
+    if (options_.on_iteration) {
+      std::vector<Real> xr(n);
+      viennacl::copy(x.begin(), x.end(), xr.begin());
+      options_.on_iteration(rec, std::vector<double>(xr.begin(), xr.end()));
+    }
   }
   result.residual_norm = rn;
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();

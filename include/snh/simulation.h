@@ -47,6 +47,19 @@ enum class ProductVariant {
   recompute,  // SVD and eigensystem at every product
 };
 
+struct NewtonIteration {
+  int step = 0;
+  int iteration = 0;
+  double residual_norm = 0.0;  // before this iteration's update
+  double energy = 0.0;
+  double step_length = 0.0;  // line-search alpha accepted (0 if none)
+  int cg_iterations = 0;
+  double cg_relative_residual = 0.0;
+  std::string cg_stop;    // "converged", "max_iterations", "negative_curvature", "breakdown"
+  bool projected = true;  // whether this iteration's Hessian was the PSD projection
+  double seconds = 0.0;   // wall time since the solve began, at the end of this iteration
+};
+
 enum class HessianMode {
   projected,  // always the per-element PSD projection (Smith et al. 2018, sec. 4)
   // the true Hessian once Newton takes full steps that lower the residual,
@@ -76,19 +89,10 @@ struct SolveOptions {
   std::vector<double> external_force;
   // Starting positions of the first step (xyz per vertex); empty: rest.
   std::vector<double> initial_positions;
-};
-
-struct NewtonIteration {
-  int step = 0;
-  int iteration = 0;
-  double residual_norm = 0.0;  // before this iteration's update
-  double energy = 0.0;
-  double step_length = 0.0;  // line-search alpha accepted (0 if none)
-  int cg_iterations = 0;
-  double cg_relative_residual = 0.0;
-  std::string cg_stop;    // "converged", "max_iterations", "negative_curvature", "breakdown"
-  bool projected = true;  // whether this iteration's Hessian was the PSD projection
-  double seconds = 0.0;   // wall time since the solve began, at the end of this iteration
+  // Called after every Newton iteration with its record and the positions
+  // it produced (xyz per vertex), e.g. to measure error against a reference
+  // as the solve runs. Downloads the positions: leave empty when not needed.
+  std::function<void(const NewtonIteration&, const std::vector<double>& positions)> on_iteration;
 };
 
 struct StepResult {
