@@ -23,6 +23,12 @@ class NewtonSolver {
                         Clock::time_point start);
 
  private:
+  // Wall time since `start`, less the time spent in on_iteration callbacks.
+  double elapsed(Clock::time_point start) const {
+    return std::chrono::duration<double>(Clock::now() - start).count() - callback_seconds_;
+  }
+
+  double callback_seconds_ = 0.0;
   ElasticModel<Real>& model_;
   const SolveOptions& options_;
 };
