@@ -34,7 +34,7 @@ struct SceneOptions {
   std::string json_path;
   std::string vtu_dir;
   std::string device;
-  std::string variant = "cached";
+  std::string variant = "automatic";
   std::string preconditioner = "block-jacobi";
   double strain_tolerance = 0.0;
   double relative_tolerance = -1.0;
@@ -56,7 +56,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["youngs_modulus"] = scene.material.youngs_modulus();
   j["poisson_ratio"] = scene.material.poisson_ratio();
   j["barrier"] = scene.material.barrier;
-  j["product"] = options.product == ProductVariant::cached ? "cached" : "recompute";
+  j["product"] = to_string(r.product);
   j["preconditioner"] = options.block_jacobi ? "block-jacobi" : "none";
   j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
   j["steps"] = json::array();
@@ -107,7 +107,7 @@ int run_scene(const SceneOptions& o) {
   SolveOptions options = scene.options;
   options.precision = parse_precision(o.precision);
   options.device.match = o.device;
-  options.product = o.variant == "recompute" ? ProductVariant::recompute : ProductVariant::cached;
+  options.product = parse_product_variant(o.variant);
   options.block_jacobi = o.preconditioner == "block-jacobi";
   if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
   if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
@@ -180,8 +180,9 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--json", o->json_path, "write a JSON summary with the per-iteration history here");
   cmd->add_option("--vtu", o->vtu_dir, "write ASCII .vtu per step and a .pvd into this folder");
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
-  cmd->add_option("--variant", o->variant, "Hessian product: cached or recompute")
-      ->check(CLI::IsMember({"cached", "recompute"}))
+  cmd->add_option("--variant", o->variant,
+                  "Hessian product: automatic (measured default), cached, recompute, element-matrices, assembled")
+      ->check(CLI::IsMember({"automatic", "cached", "recompute", "element-matrices", "assembled"}))
       ->capture_default_str();
   cmd->add_option("--preconditioner", o->preconditioner, "block-jacobi or none")
       ->check(CLI::IsMember({"block-jacobi", "none"}))

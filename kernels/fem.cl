@@ -222,3 +222,57 @@ __kernel void snh_block_jacobi_apply(__global const real* inverse, __global cons
   for (int i = 0; i < 3; ++i)
     z[3 * v + i] = inverse[9 * v + i] * r0 + inverse[9 * v + 3 + i] * r1 + inverse[9 * v + 6 + i] * r2;
 }
+
+/* Per element, the projected stiffness K_e = sum_q w_q B_q^T H_q B_q
+ * (24 x 24 for hex8, 12 x 12 for tet4), column-major:
+ * out[e * (3N)^2 + (3 b + d) * 3N + 3 a + i]. Column (b, d) is the response
+ * to dF = e_d (dN_b/dX)^T. */
+#define SNH_DOFS (3 * SNH_NODES)
+__kernel void snh_element_matrices(__global const int* elements, __global const real* gradients,
+                                   __global const real* weights, const int count, __global const real* cache,
+                                   __global real* out) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  __global real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
+  for (int i = 0; i < SNH_DOFS * SNH_DOFS; ++i) k[i] = SNH_R(0);
+  real g[3 * SNH_NODES];
+  for (int q = 0; q < SNH_QUADRATURE; ++q) {
+    load_gradients(gradients, e, q, g);
+    const principal_hessian h = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    const real w = load_weight(weights, e, q);
+    for (int b = 0; b < SNH_NODES; ++b)
+      for (int d = 0; d < 3; ++d) {
+        mat3 df = mat3_zero();
+        for (int c = 0; c < 3; ++c) M3(df, d, c) = g[3 * b + c];
+        const mat3 dp = principal_hessian_action(&h, df);
+        __global real* column = k + SNH_DOFS * (3 * b + d);
+        for (int a = 0; a < SNH_NODES; ++a)
+          for (int i = 0; i < 3; ++i)
+            column[3 * a + i] +=
+                w * (M3(dp, i, 0) * g[3 * a] + M3(dp, i, 1) * g[3 * a + 1] + M3(dp, i, 2) * g[3 * a + 2]);
+      }
+  }
+}
+
+/* y_e = K_e p_e from the stored element matrices. */
+__kernel void snh_element_matrix_product(__global const real* p, __global const int* elements,
+                                         __global const real* matrices, const int count, __global real* out) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  real ps[SNH_DOFS], y[SNH_DOFS];
+  load_nodes(p, elements + SNH_NODES * e, ps);
+  for (int i = 0; i < SNH_DOFS; ++i) y[i] = SNH_R(0);
+  __global const real* k = matrices + (size_t)SNH_DOFS * SNH_DOFS * e;
+  for (int c = 0; c < SNH_DOFS; ++c) {
+    const real pc = ps[c];
+    for (int r = 0; r < SNH_DOFS; ++r) y[r] += k[SNH_DOFS * c + r] * pc;
+  }
+  for (int i = 0; i < SNH_DOFS; ++i) out[SNH_DOFS * e + i] = y[i];
+}
+
+/* y = mask * y, elementwise (after an assembled product). */
+__kernel void snh_apply_mask(__global const real* mask, const int size, __global real* y) {
+  const int i = get_global_id(0);
+  if (i >= size) return;
+  y[i] *= mask[i];
+}

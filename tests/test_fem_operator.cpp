@@ -333,12 +333,13 @@ void check_product() {
         multiply(reference::assembled_projected_stiffness(s.mesh, s.rest, s.material, x), p);
     model.linearize(upload<Real>(x));
     const viennacl::vector<Real> pd = upload<Real>(p);
-    for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute}) {
+    for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute, ProductVariant::element_matrices,
+                                   ProductVariant::assembled}) {
       model.set_variant(variant);
+      model.linearize(upload<Real>(x));
       viennacl::vector<Real> y(model.dofs());
       model.product(pd, y);
-      tolerance.check(relative_error(download(y), expected), s,
-                      c.name + (variant == ProductVariant::cached ? "/cached" : "/recompute"));
+      tolerance.check(relative_error(download(y), expected), s, c.name + "/" + to_string(variant));
     }
   }
 }
@@ -375,9 +376,11 @@ void check_mask() {
 
     const Eigen::SparseMatrix<double> k = reference::assembled_projected_stiffness(s.mesh, s.rest, s.material, x);
     model.linearize(xd);
-    for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute}) {
+    for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute, ProductVariant::element_matrices,
+                                   ProductVariant::assembled}) {
       model.set_variant(variant);
-      const std::string name = c.name + (variant == ProductVariant::cached ? "/cached" : "/recompute");
+      model.linearize(xd);
+      const std::string name = c.name + "/" + to_string(variant);
       viennacl::vector<Real> y(model.dofs());
       const std::vector<double> free_p = masked(mask, p);
       model.product(upload<Real>(free_p), y);
@@ -537,8 +540,10 @@ void check_determinism() {
     EXPECT_EQ(download_raw(a), download_raw(b));
     EXPECT_EQ(model.energy(xd), model.energy(xd));
     model.linearize(xd);
-    for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute}) {
+    for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute, ProductVariant::element_matrices,
+                                   ProductVariant::assembled}) {
       model.set_variant(variant);
+      model.linearize(xd);
       model.product(pd, a);
       model.product(pd, b);
       EXPECT_EQ(download_raw(a), download_raw(b));

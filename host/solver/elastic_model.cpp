@@ -1,9 +1,11 @@
 #include "solver/elastic_model.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "snh/error.h"
+#include "viennacl/linalg/prod.hpp"
 
 namespace snh::solver {
 
@@ -72,6 +74,97 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   gather_k_ = cl_.kernel("fem.cl", defines_, "snh_gather_vectors");
   setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
   apply_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_apply");
+  matrices_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrices");
+  matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
+  mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
+  elements_host_ = elements;
+  set_variant(variant);
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_variant(ProductVariant v) {
+  if (v == ProductVariant::automatic) throw Error("solver: resolve ProductVariant::automatic before use");
+  variant_ = v;
+  const size_t m = static_cast<size_t>(3 * nodes_) * (3 * nodes_);
+  if ((v == ProductVariant::element_matrices || v == ProductVariant::assembled) && !element_matrices_)
+    element_matrices_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * m * sizeof(Real));
+}
+
+template <typename Real>
+size_t ElasticModel<Real>::variant_memory_bytes() const {
+  const size_t cache = element_count_ * quadrature_ * 30 * sizeof(Real);
+  const size_t m = static_cast<size_t>(3 * nodes_) * (3 * nodes_);
+  switch (variant_) {
+    case ProductVariant::recompute:
+      return dofs() * sizeof(Real);  // the linearization point x
+    case ProductVariant::element_matrices:
+      return cache + element_count_ * m * sizeof(Real);
+    case ProductVariant::assembled:
+      return cache + element_count_ * m * sizeof(Real) + csr_columns_.size() * (sizeof(Real) + sizeof(unsigned)) +
+             csr_rows_.size() * sizeof(unsigned);
+    default:
+      return cache;
+  }
+}
+
+template <typename Real>
+void ElasticModel<Real>::compute_element_matrices() {
+  cl_kernel k = matrices_k_.get();
+  const int count = static_cast<int>(element_count_);
+  set_arg(k, 0, elements_.get());
+  set_arg(k, 1, gradients_.get());
+  set_arg(k, 2, weights_.get());
+  set_arg(k, 3, count);
+  set_arg(k, 4, cache_.get());
+  set_arg(k, 5, element_matrices_.get());
+  run_element_kernel(k);
+}
+
+template <typename Real>
+void ElasticModel<Real>::assemble() {
+  const auto start = std::chrono::steady_clock::now();
+  const int n = 3 * nodes_;
+  const size_t m = static_cast<size_t>(n) * n;
+  if (csr_slot_.empty()) {
+    // Pattern: 3x3 blocks between vertices that share an element.
+    std::vector<std::vector<int>> neighbours(vertex_count_);
+    for (size_t e = 0; e < element_count_; ++e)
+      for (int a = 0; a < nodes_; ++a)
+        for (int b = 0; b < nodes_; ++b)
+          neighbours[elements_host_[nodes_ * e + a]].push_back(elements_host_[nodes_ * e + b]);
+    csr_rows_.assign(dofs() + 1, 0);
+    for (size_t v = 0; v < vertex_count_; ++v) {
+      auto& list = neighbours[v];
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+      for (int i = 0; i < 3; ++i) {
+        for (int u : list)
+          for (int j = 0; j < 3; ++j) csr_columns_.push_back(static_cast<unsigned>(3 * u + j));
+        csr_rows_[3 * v + i + 1] = static_cast<unsigned>(csr_columns_.size());
+      }
+    }
+    csr_slot_.resize(element_count_ * m);
+    for (size_t e = 0; e < element_count_; ++e)
+      for (int c = 0; c < n; ++c)
+        for (int r = 0; r < n; ++r) {
+          const unsigned row = static_cast<unsigned>(3 * elements_host_[nodes_ * e + r / 3] + r % 3);
+          const unsigned column = static_cast<unsigned>(3 * elements_host_[nodes_ * e + c / 3] + c % 3);
+          const auto first = csr_columns_.begin() + csr_rows_[row], last = csr_columns_.begin() + csr_rows_[row + 1];
+          csr_slot_[e * m + static_cast<size_t>(n) * c + r] =
+              static_cast<int>(std::lower_bound(first, last, column) - csr_columns_.begin());
+        }
+  }
+  std::vector<Real> local(element_count_ * m);
+  cl_.read(element_matrices_.get(), local.size() * sizeof(Real), local.data());
+  std::vector<Real> values(csr_columns_.size(), Real(0));
+  for (size_t k = 0; k < local.size(); ++k) values[csr_slot_[k]] += local[k];
+  if (!assembled_ready_) {
+    assembled_.set(csr_rows_.data(), csr_columns_.data(), values.data(), dofs(), dofs(), values.size());
+    assembled_ready_ = true;
+  } else {
+    viennacl::backend::memory_write(assembled_.handle(), 0, values.size() * sizeof(Real), values.data());
+  }
+  last_assembly_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 template <typename Real>
@@ -179,13 +272,33 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   set_arg(k, 6, projected_);
   set_arg(k, 7, cache_.get());
   run_element_kernel(k);
+  last_assembly_seconds_ = 0.0;
+  if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled) compute_element_matrices();
+  if (variant_ == ProductVariant::assembled) assemble();
 }
 
 template <typename Real>
 void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   const int count = static_cast<int>(element_count_);
   cl_kernel k;
-  if (variant_ == ProductVariant::cached) {
+  if (variant_ == ProductVariant::assembled) {
+    y = viennacl::linalg::prod(assembled_, p);
+    cl_kernel mk = mask_k_.get();
+    const int size = static_cast<int>(dofs());
+    set_arg(mk, 0, mask_.get());
+    set_arg(mk, 1, size);
+    set_arg(mk, 2, mem(y));
+    cl_.run(mk, dofs());
+    return;
+  }
+  if (variant_ == ProductVariant::element_matrices) {
+    k = matrix_product_k_.get();
+    set_arg(k, 0, mem(p));
+    set_arg(k, 1, elements_.get());
+    set_arg(k, 2, element_matrices_.get());
+    set_arg(k, 3, count);
+    set_arg(k, 4, element_scratch_.get());
+  } else if (variant_ == ProductVariant::cached) {
     k = product_cached_k_.get();
     set_arg(k, 0, mem(p));
     set_arg(k, 1, elements_.get());

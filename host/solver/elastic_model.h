@@ -11,6 +11,7 @@
 #include "snh/material.h"
 #include "snh/mesh.h"
 #include "snh/simulation.h"
+#include "viennacl/compressed_matrix.hpp"
 #include "viennacl/vector.hpp"
 
 namespace snh::solver {
@@ -50,10 +51,20 @@ class ElasticModel {
 
   std::string specialization() const { return defines_; }
   ProductVariant variant() const { return variant_; }
-  void set_variant(ProductVariant v) { variant_ = v; }
+  // Takes effect at the next linearize(). `automatic` is not accepted here.
+  void set_variant(ProductVariant v);
+  // Device memory the current variant holds beyond the mesh and vectors:
+  // the linearization cache, element matrices or assembled matrix.
+  size_t variant_memory_bytes() const;
+  // Seconds the last linearize() spent assembling the compressed matrix
+  // (download, host scatter, upload); 0 for other variants.
+  double last_assembly_seconds() const { return last_assembly_seconds_; }
+  size_t assembled_nonzeros() const { return csr_columns_.size(); }
 
  private:
   void run_element_kernel(cl_kernel k) const;
+  void compute_element_matrices();
+  void assemble();
   void gather(const device::Buffer& element_values, VectorBase& out, bool external) const;
 
   device::OpenClContext& cl_;
@@ -63,14 +74,22 @@ class ElasticModel {
   ProductVariant variant_;
   std::string defines_;
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
-      element_blocks_, cache_, energies_, min_j_, inverse_blocks_;
+      element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
   bool has_external_ = false;
   int projected_ = 1;
+  double last_assembly_seconds_ = 0.0;
+  // Assembled variant: CSR pattern, and the CSR slot of every element-matrix
+  // entry (summed in element order: deterministic).
+  std::vector<unsigned> csr_rows_, csr_columns_;
+  std::vector<int> csr_slot_;
+  viennacl::compressed_matrix<Real> assembled_;
+  bool assembled_ready_ = false;
+  std::vector<int> elements_host_;
   double last_min_j_ = 0.0;
   std::vector<double> external_host_;
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
-      setup_k_, apply_k_;
+      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;
 };
 
 }  // namespace snh::solver

@@ -141,7 +141,10 @@ struct QuasistaticSolver::Impl {
   SolveResult run(const StepCallback& on_step) {
     viennacl::ocl::switch_context(viennacl_context_id);
     const auto start = std::chrono::steady_clock::now();
-    solver::ElasticModel<Real> model(cl, mesh, rest, material, options.product);
+    const ProductVariant product = options.product == ProductVariant::automatic
+                                       ? default_product_variant(mesh.type, options.precision, cl.info().is_gpu)
+                                       : options.product;
+    solver::ElasticModel<Real> model(cl, mesh, rest, material, product);
     std::vector<Real> mask(3 * mesh.vertex_count(), Real(1));
     for (const ConstraintSet& c : constraints)
       for (int32_t v : c.vertices) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = Real(0);
@@ -151,6 +154,7 @@ struct QuasistaticSolver::Impl {
 
     SolveResult result;
     result.device = cl.info();
+    result.product = product;
     result.kernel_specialization =
         model.specialization() + " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
     std::vector<double> x = options.initial_positions.empty() ? mesh.positions : options.initial_positions;

@@ -43,9 +43,19 @@ struct ConstraintSet {
 };
 
 enum class ProductVariant {
-  cached,     // SVD and eigensystem once per Newton iteration, reused by every product
-  recompute,  // SVD and eigensystem at every product
+  automatic,         // the measured winner for this element type, precision and device class
+  cached,            // SVD and eigensystem once per Newton iteration, reused by every product
+  recompute,         // SVD and eigensystem at every product
+  element_matrices,  // per-element 24x24 (hex8) / 12x12 (tet4) projected matrices, once per Newton iteration
+  assembled,         // a ViennaCL compressed_matrix assembled from the element matrices
 };
+
+const char* to_string(ProductVariant v);
+ProductVariant parse_product_variant(const std::string& text);  // the names above
+
+// The variant `automatic` resolves to, from snh-gpu-bench throughput
+// measurements (README); device classes not measured get `cached`.
+ProductVariant default_product_variant(ElementType type, Precision precision, bool gpu);
 
 struct NewtonIteration {
   int step = 0;
@@ -83,7 +93,7 @@ struct SolveOptions {
   double forcing_gamma = 0.9;
   double forcing_max = 0.5;
   bool block_jacobi = true;  // false: CG without preconditioner
-  ProductVariant product = ProductVariant::cached;
+  ProductVariant product = ProductVariant::automatic;
   HessianMode hessian = HessianMode::adaptive;
   // Lumped external force, xyz per vertex (e.g. gravity); empty for none.
   std::vector<double> external_force;
@@ -119,8 +129,9 @@ struct SolveResult {
   int inverted_elements = 0;  // elements with J <= 0 at some quadrature point
   double seconds = 0.0;
   DeviceInfo device;
-  std::string kernel_specialization;  // the build-time switches of the kernels used
-  std::vector<std::string> warnings;  // e.g. unused vertices (they stay where they are)
+  std::string kernel_specialization;                // the build-time switches of the kernels used
+  ProductVariant product = ProductVariant::cached;  // the variant used (automatic resolved)
+  std::vector<std::string> warnings;                // e.g. unused vertices (they stay where they are)
 };
 
 // Called after each load step with the step's positions (e.g. to write a .vtu).
