@@ -10,8 +10,11 @@ namespace snh::bench {
 // stores the process exit code in `exit_code`.
 void add_probe_command(CLI::App& app, int& exit_code);
 void add_scene_command(CLI::App& app, int& exit_code);
+void add_errtime_command(CLI::App& app, int& exit_code);  // errtime.h: run_errtime for the suite
 
-// The default suite, run when no subcommand is given; writes into out_dir.
-int run_default_suite(const std::string& out_dir, int samples);
+// The default suite, run when no subcommand is given: the element check,
+// throughput and errtime, into out_dir with a combined summary.{json,md}.
+// `quick`: tiny sizes, for the tests.
+int run_default_suite(const std::string& out_dir, int samples, bool quick);
 
 }  // namespace snh::bench

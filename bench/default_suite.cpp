@@ -16,10 +16,12 @@
 #include <vector>
 
 #include "commands.h"
+#include "errtime.h"
 #include "reference/element_reference.h"
 #include "snh/device.h"
 #include "snh/error.h"
 #include "snh/probe.h"
+#include "throughput.h"
 
 namespace snh::bench {
 namespace {
@@ -96,12 +98,11 @@ CaseResult run_case(Precision precision, bool barrier, const std::vector<Matrix3
   return r;
 }
 
-}  // namespace
-
-int run_default_suite(const std::string& out_dir, int samples) {
+// The element check: device kernels over random and extreme F against the
+// host reference, with element-kernel throughput. Writes element.{json,md}.
+int run_element_check(const std::string& out_dir, int samples, json& summary_out, std::string& md_out) {
   const std::vector<DeviceInfo> devices = list_devices();
   if (devices.empty()) throw Error("OpenCL: no OpenCL platform or device found");
-  std::filesystem::create_directories(out_dir);
   const std::vector<Matrix3> fs = sample_deformations(samples, 2018);
 
   std::vector<CaseResult> cases;
@@ -114,12 +115,11 @@ int run_default_suite(const std::string& out_dir, int samples) {
       } catch (const Error& e) {
         std::cerr << "snh-gpu-bench: skipped " << to_string(precision) << " case: " << e.what() << '\n';
       }
-      std::cerr << "  element kernel " << to_string(precision) << (barrier ? " barrier" : " no-barrier") << " done\n";
     }
   }
+  std::cerr << "  element check done\n";
 
   json summary;
-  summary["suite"] = "element";
   summary["device"] = device_name;
   summary["samples"] = samples;
   summary["error_metric"] =
@@ -148,13 +148,65 @@ int run_default_suite(const std::string& out_dir, int samples) {
        << std::setprecision(3) << c.max_error_pk1 << " | " << c.max_error_hessian << " | "
        << (c.all_finite ? "yes" : "NO") << " |\n";
   }
-  std::ofstream(out_dir + "/summary.json") << summary.dump(2) << '\n';
-  std::ofstream(out_dir + "/summary.md") << "# snh-gpu-bench default suite\n\nDevice: " << device_name << "\n\n"
-                                         << md.str();
-  std::cout << "wrote " << out_dir << "/summary.json and summary.md\n";
+  std::ofstream(out_dir + "/element.json") << summary.dump(2) << '\n';
+  std::ofstream(out_dir + "/element.md") << "# Element kernel\n\nDevice: " << device_name << "\n\n" << md.str();
+  summary_out = summary;
+  md_out = md.str();
   bool ok = !cases.empty();
   for (const CaseResult& c : cases) ok = ok && c.all_finite;
   return ok ? 0 : 1;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+int run_default_suite(const std::string& out_dir, int samples, bool quick) {
+  const auto start = Clock::now();
+  std::filesystem::create_directories(out_dir);
+  std::cerr << "snh-gpu-bench default suite -> " << out_dir << "/ (element check, throughput, errtime)\n";
+  json summary;
+  std::string element_md;
+  int status = run_element_check(out_dir, samples, summary["element"], element_md);
+
+  ThroughputOptions throughput;
+  throughput.out = out_dir;
+  throughput.sizes = quick ? std::vector<int>{2} : std::vector<int>{8, 12};
+  throughput.min_seconds = quick ? 0.01 : 0.1;
+  std::cerr << "throughput\n";
+  status = std::max(status, run_throughput(throughput));
+
+  ErrtimeOptions errtime;
+  errtime.out_dir = out_dir;
+  if (quick) {
+    errtime.scenes = {"twist"};
+    errtime.resolution = 2;
+    errtime.plots = false;
+  }
+  std::cerr << "errtime\n";
+  status = std::max(status, run_errtime(errtime));
+
+  for (const char* part : {"throughput", "errtime"}) {
+    std::ifstream in(out_dir + "/" + part + ".json");
+    if (in) summary[part] = json::parse(in);
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  summary["suite_seconds"] = seconds;
+  std::ofstream(out_dir + "/summary.json") << summary.dump(2) << '\n';
+  std::ofstream(out_dir + "/summary.md") << "# snh-gpu-bench default suite\n\nDevice: "
+                                         << summary["element"].value("device", std::string("?")) << "; "
+                                         << std::setprecision(3) << seconds << " s in all.\n\n## Element kernel\n\n"
+                                         << element_md << "\n"
+                                         << read_file(out_dir + "/throughput.md") << "\n"
+                                         << read_file(out_dir + "/errtime.md");
+  std::cout << "wrote " << out_dir << "/summary.{json,md} (and element, throughput, errtime files) in "
+            << std::setprecision(3) << seconds << " s\n";
+  return status;
 }
 
 }  // namespace snh::bench

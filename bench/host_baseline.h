@@ -26,9 +26,9 @@ struct HostBaselineResult {
 // backtracking on the energy and Eisenstat-Walker forcing like the device
 // solver. on_iteration (optional) as SolveOptions::on_iteration; its time is
 // excluded from the history's seconds.
-HostBaselineResult solve_on_host(const Scene& scene, const SolveOptions& options,
-                                 const std::function<void(const NewtonIteration&, const std::vector<double>&)>&
-                                     on_iteration = {});
+HostBaselineResult solve_on_host(
+    const Scene& scene, const SolveOptions& options,
+    const std::function<void(const NewtonIteration&, const std::vector<double>&)>& on_iteration = {});
 
 // Seconds per sparse matrix-vector product with the Eigen-assembled projected
 // stiffness at positions x (mean over `repetitions`), and the assembly time.

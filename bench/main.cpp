@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "snh/error.h"
+#include "throughput.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -13,15 +14,19 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   snh::bench::add_probe_command(app, exit_code);
   snh::bench::add_scene_command(app, exit_code);
+  snh::bench::add_errtime_command(app, exit_code);
+  snh::bench::add_throughput_command(app, exit_code);
   std::string out_dir = "bench-results";
   int samples = 20000;
   app.add_option("--out", out_dir, "folder for the default suite's results")->capture_default_str();
   app.add_option("--samples", samples, "deformation gradients per case in the default suite")
       ->check(CLI::Range(1, 10000000))
       ->capture_default_str();
+  bool quick = false;
+  app.add_flag("--quick", quick, "tiny sizes throughout (checks that the suite runs; not for figures)");
   try {
     app.parse(argc, argv);
-    if (app.get_subcommands().empty()) exit_code = snh::bench::run_default_suite(out_dir, samples);
+    if (app.get_subcommands().empty()) exit_code = snh::bench::run_default_suite(out_dir, samples, quick);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const snh::Error& e) {

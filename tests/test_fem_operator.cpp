@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "device/opencl_context.h"
+#include "device/viennacl_binding.h"
 #include "fem/rest_state.h"
 #include "reference/element_reference.h"
 #include "reference/fem_reference.h"
@@ -51,13 +52,13 @@ constexpr Precision precision_of = std::is_same_v<Real, double> ? Precision::dou
 // once per context), each with its own ViennaCL context id.
 device::OpenClContext& device_for(Precision precision) {
   static std::unique_ptr<device::OpenClContext> contexts[2];
+  static long ids[2];
   const int k = precision == Precision::double_ ? 1 : 0;
-  const long id = 2000 + k;
   if (!contexts[k]) {
     contexts[k] = std::make_unique<device::OpenClContext>(DeviceOptions{}, precision);
-    viennacl::ocl::setup_context(id, contexts[k]->context(), contexts[k]->device(), contexts[k]->queue());
+    ids[k] = device::bind_viennacl(*contexts[k]);
   }
-  viennacl::ocl::switch_context(id);
+  device::use_viennacl(ids[k]);
   return *contexts[k];
 }
 

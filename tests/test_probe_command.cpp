@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "snh_test_support.h"
@@ -96,19 +97,31 @@ TEST(ProbeCommand, RejectsOutOfRangeMaterial) {
 TEST(DefaultSuite, WritesWellFormedSummaryAtTinySize) {
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "snh_suite_test";
   std::filesystem::remove_all(out);
-  const CommandRun r = run_bench("--samples 40 --out " + out.string(), "");
+  const CommandRun r = run_bench("--quick --samples 40 --out " + out.string(), "");
   EXPECT_EQ(r.status, 0);
   std::ifstream in(out / "summary.json");
   ASSERT_TRUE(in.good());
   const auto summary = nlohmann::json::parse(in);
-  ASSERT_EQ(summary["cases"].size(), 4u);
-  for (const auto& c : summary["cases"]) {
+  ASSERT_EQ(summary["element"]["cases"].size(), 4u);
+  for (const auto& c : summary["element"]["cases"]) {
     EXPECT_TRUE(c["all_finite"].get<bool>());
     EXPECT_GT(c["evaluations_per_second"].get<double>(), 0.0);
     const double bound = c["precision"] == "double" ? 1e-12 : 2e-4;
     EXPECT_LT(c["max_relative_error_hessian"].get<double>(), bound);
   }
-  EXPECT_TRUE(std::filesystem::exists(out / "summary.md"));
+  // Throughput: the roofline and every product variant side by side.
+  ASSERT_TRUE(summary.contains("throughput"));
+  EXPECT_GT(summary["throughput"]["roofline"]["double"]["triad_bandwidth_gb_s"].get<double>(), 0.0);
+  std::set<std::string> variants;
+  for (const auto& p : summary["throughput"]["products"]) {
+    variants.insert(p["variant"].get<std::string>());
+    EXPECT_GT(p["product_seconds"].get<double>(), 0.0);
+  }
+  for (const char* v : {"recompute", "cached", "element-matrices", "assembled", "host-eigen-csr"})
+    EXPECT_EQ(variants.count(v), 1u) << v;
+  ASSERT_TRUE(summary.contains("errtime"));
+  for (const char* file : {"summary.md", "element.md", "throughput.csv", "throughput.md", "errtime.csv", "errtime.md"})
+    EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
 }
 
 }  // namespace

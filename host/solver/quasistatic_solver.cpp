@@ -1,16 +1,15 @@
 // QuasistaticSolver: load stepping over Newton solves on the device.
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
 #include "device/opencl_context.h"
+#include "device/viennacl_binding.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
 #include "solver/newton.h"
-#include "viennacl/ocl/backend.hpp"
 
 namespace snh {
 
@@ -84,14 +83,8 @@ struct QuasistaticSolver::Impl {
         mesh_warnings(validate_mesh(mesh)),
         rest(fem::compute_rest_state(mesh)),
         cl(options.device, options.precision),
-        viennacl_context_id(next_context_id()) {
+        viennacl_context_id(device::bind_viennacl(cl)) {
     validate_inputs();
-    viennacl::ocl::setup_context(viennacl_context_id, cl.context(), cl.device(), cl.queue());
-  }
-
-  static long next_context_id() {
-    static std::atomic<long> id{1000};
-    return id++;
   }
 
   void validate_inputs() const {
@@ -139,7 +132,7 @@ struct QuasistaticSolver::Impl {
 
   template <typename Real>
   SolveResult run(const StepCallback& on_step) {
-    viennacl::ocl::switch_context(viennacl_context_id);
+    device::use_viennacl(viennacl_context_id);
     const auto start = std::chrono::steady_clock::now();
     const ProductVariant product = options.product == ProductVariant::automatic
                                        ? default_product_variant(mesh.type, options.precision, cl.info().is_gpu)

@@ -1,0 +1,736 @@
+// `snh-gpu-bench errtime`: for each scene, a reference solution (double,
+// solved to a relative residual of 1e-10 per load step), then every series
+// (precision x preconditioner on the device, and the Eigen host baseline)
+// with the force residual and the error against the reference recorded after
+// every Newton iteration, against wall time.
+#include "errtime.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include "commands.h"
+#include "host_baseline.h"
+#include "snh/error.h"
+#include "snh/scenes.h"
+#include "snh/simulation.h"
+
+#ifndef SNH_BENCH_SCRIPT_DIR
+#define SNH_BENCH_SCRIPT_DIR "bench"
+#endif
+
+namespace snh::bench {
+namespace {
+
+using json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kThresholds[] = {1e-2, 1e-4, 1e-6};
+constexpr const char* kThresholdNames[] = {"1e-2", "1e-4", "1e-6"};
+constexpr const char* kPython = "/usr/bin/python3";
+
+const char* kErrorMetric =
+    "||x - x_ref(step)||_2 / max(||x_ref(step) - X_rest||_2, ||x_initial - X_rest||_2) over all vertices, x_ref the "
+    "reference at the same load step (the second term matters only for scramble, whose reference is the rest shape)";
+const char* kTimeDefinition =
+    "first wall time (seconds since the solve began, callbacks excluded) at which the residual of the LAST load step "
+    "is <= the threshold; null if never";
+
+// One CSV row: the state at a step's start (newton_iteration 0) or after a
+// Newton update.
+struct Row {
+  int step = 0;
+  int newton_iteration = 0;  // within the step; 0: the step's start, before any update
+  int newton_total = 0;      // updates so far, all steps
+  int cg_total = 0;          // CG iterations so far, all steps
+  double seconds = 0.0;
+  double residual = 0.0;  // L2 norm of the free-DOF force residual at this state
+  double error = 0.0;
+  int projected = -1;  // the Hessian of the update: 1 projected, 0 true; -1 none (a step's start)
+};
+
+struct Reference {
+  SolveResult result;
+  std::vector<std::vector<double>> positions;  // after each load step
+  std::vector<double> scale;                   // the error's denominator per step
+  std::vector<double> reached_relative;        // per step: final / initial residual
+};
+
+struct Series {
+  std::string name, precision, preconditioner, variant, hessian, device, specialization;
+  std::vector<Row> rows;
+  std::vector<StepResult> steps;
+  bool converged = false;
+  double seconds = 0.0;
+  std::string skipped;  // why the series did not run, if it did not
+};
+
+struct SceneRun {
+  Scene scene;
+  int resolution = 0;
+  Reference reference;
+  std::vector<Series> series;
+  std::string skipped;
+};
+
+double distance(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
+  return std::sqrt(s);
+}
+
+// The constrained vertices at their targets for load parameter t, as the
+// solver places them at the start of a step.
+void apply_constraints(const Scene& scene, double t, std::vector<double>& x) {
+  for (const ConstraintSet& c : scene.constraints) {
+    if (c.targets) {
+      std::vector<double> xyz(3 * c.vertices.size());
+      c.targets(t, xyz);
+      for (size_t k = 0; k < c.vertices.size() && 3 * k + 2 < xyz.size(); ++k)
+        for (int d = 0; d < 3; ++d) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
+      continue;
+    }
+    const RigidTransform motion = c.motion ? c.motion(t) : RigidTransform::identity();
+    for (int32_t v : c.vertices) {
+      const auto p = motion.apply(scene.mesh.vertex(v));
+      for (int d = 0; d < 3; ++d) x[3 * v + d] = p[d];
+    }
+  }
+}
+
+std::vector<double> initial_positions(const Scene& scene) {
+  return scene.options.initial_positions.empty() ? scene.mesh.positions : scene.options.initial_positions;
+}
+
+// Collects the error after every Newton update (as on_iteration) and turns
+// it, with the solve's history, into rows.
+class Recorder {
+ public:
+  Recorder(const Scene& scene, const Reference& reference)
+      : scene_(scene), reference_(reference), steps_(scene.options.load_steps), last_(initial_positions(scene)) {}
+
+  void operator()(const NewtonIteration& rec, const std::vector<double>& x) {
+    fill_starts(rec.step);
+    updates_.push_back({rec.step, rec.iteration, error(rec.step, x)});
+    last_ = x;
+  }
+
+  std::vector<Row> rows(const std::vector<NewtonIteration>& history) {
+    fill_starts(steps_);
+    std::map<std::pair<int, int>, size_t> index;
+    std::vector<int> cg_through(history.size());
+    std::vector<double> seconds_through(history.size());
+    for (size_t i = 0; i < history.size(); ++i) {
+      index[{history[i].step, history[i].iteration}] = i;
+      cg_through[i] = (i > 0 ? cg_through[i - 1] : 0) + history[i].cg_iterations;
+      seconds_through[i] = std::max(i > 0 ? seconds_through[i - 1] : 0.0, history[i].seconds);
+    }
+    std::vector<Row> out;
+    int newton_total = 0;
+    size_t next_update = 0;
+    for (int s = 1; s <= steps_; ++s) {
+      const auto first = index.find({s, 0});
+      if (first == index.end()) break;
+      const size_t i0 = first->second;
+      Row start;
+      start.step = s;
+      start.newton_total = newton_total;
+      start.cg_total = i0 > 0 ? cg_through[i0 - 1] : 0;
+      start.seconds = i0 > 0 ? seconds_through[i0 - 1] : 0.0;
+      start.residual = history[i0].residual_norm;
+      start.error = start_errors_[s - 1];
+      out.push_back(start);
+      for (; next_update < updates_.size() && updates_[next_update].step == s; ++next_update) {
+        const Update& u = updates_[next_update];
+        const auto at = index.find({s, u.iteration}), after = index.find({s, u.iteration + 1});
+        if (at == index.end()) continue;
+        const NewtonIteration& h = history[at->second];
+        Row r;
+        r.step = s;
+        r.newton_iteration = u.iteration + 1;
+        r.newton_total = ++newton_total;
+        r.cg_total = cg_through[at->second];
+        r.seconds = h.seconds;
+        r.residual = after != index.end() ? history[after->second].residual_norm : std::nan("");
+        r.error = u.error;
+        r.projected = h.projected ? 1 : 0;
+        out.push_back(r);
+      }
+    }
+    return out;
+  }
+
+ private:
+  struct Update {
+    int step, iteration;
+    double error;
+  };
+
+  double error(int step, const std::vector<double>& x) const {
+    return distance(x, reference_.positions[step - 1]) / reference_.scale[step - 1];
+  }
+
+  // The error at the start of every step up to `step` not yet recorded: the
+  // last positions with that step's constraint targets.
+  void fill_starts(int step) {
+    for (int s = static_cast<int>(start_errors_.size()) + 1; s <= step; ++s) {
+      std::vector<double> x = last_;
+      apply_constraints(scene_, static_cast<double>(s) / steps_, x);
+      start_errors_.push_back(error(s, x));
+    }
+  }
+
+  const Scene& scene_;
+  const Reference& reference_;
+  int steps_;
+  std::vector<double> last_;
+  std::vector<double> start_errors_;
+  std::vector<Update> updates_;
+};
+
+Reference solve_reference(const Scene& scene, const ErrtimeOptions& o) {
+  SolveOptions options = scene.options;
+  options.precision = Precision::double_;
+  options.device.match = o.device;
+  options.relative_tolerance = o.reference_tolerance;
+  options.absolute_tolerance = 0.0;
+  options.max_newton_iterations = std::max(options.max_newton_iterations, 200);
+  options.hessian = HessianMode::adaptive;
+  options.block_jacobi = true;
+  options.product = ProductVariant::cached;
+  Reference ref;
+  QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
+  ref.result = solver.solve([&](int, const std::vector<double>& x) { ref.positions.push_back(x); });
+  const double initial = distance(initial_positions(scene), scene.mesh.positions);
+  for (const auto& x : ref.positions) {
+    const double scale = std::max(distance(x, scene.mesh.positions), initial);
+    ref.scale.push_back(scale > 0.0 ? scale : 1.0);
+  }
+  for (const StepResult& s : ref.result.steps) {
+    double first = 0.0;
+    for (const NewtonIteration& h : ref.result.history)
+      if (h.step == s.step && h.iteration == 0) first = h.residual_norm;
+    ref.reached_relative.push_back(first > 0.0 ? s.residual_norm / first : 0.0);
+  }
+  return ref;
+}
+
+SolveOptions series_options(const Scene& scene, const ErrtimeOptions& o) {
+  SolveOptions options = scene.options;
+  options.device.match = o.device;
+  options.absolute_tolerance = o.absolute_tolerance;
+  options.relative_tolerance = 0.0;
+  options.max_newton_iterations = std::max(options.max_newton_iterations, 100);
+  options.product = parse_product_variant(o.variant);
+  options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
+  return options;
+}
+
+Series run_device_series(const Scene& scene, const SceneParameters& parameters, const Reference& ref,
+                         const ErrtimeOptions& o, Precision precision, bool block_jacobi) {
+  Series s;
+  s.precision = to_string(precision);
+  s.preconditioner = block_jacobi ? "block-jacobi" : "none";
+  s.name = s.precision + "/" + s.preconditioner;
+  s.variant = o.variant;
+  s.hessian = o.hessian;
+  SolveOptions options = series_options(scene, o);
+  options.precision = precision;
+  options.block_jacobi = block_jacobi;
+  try {
+    {
+      // Warm-up on a small copy of the scene (same kernel specialization):
+      // one Newton iteration compiles the element kernels and ViennaCL's
+      // into pocl's cache, so that the timed solve loads them instead of
+      // compiling them. (Each solver has its own OpenCL context; loading
+      // its programs stays in the timings, as in any solve.)
+      SceneParameters small = parameters;
+      small.resolution = std::min(parameters.resolution, 3);
+      const Scene tiny = make_scene(scene.name, small);
+      SolveOptions warm = options;
+      warm.initial_positions = tiny.options.initial_positions;
+      warm.max_newton_iterations = 1;
+      warm.load_steps = 1;
+      QuasistaticSolver(tiny.mesh, tiny.material, tiny.constraints, warm).solve();
+    }
+    Recorder recorder(scene, ref);
+    options.on_iteration = [&recorder](const NewtonIteration& rec, const std::vector<double>& x) { recorder(rec, x); };
+    QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
+    const SolveResult r = solver.solve();
+    s.rows = recorder.rows(r.history);
+    s.steps = r.steps;
+    s.converged = r.converged;
+    for (const NewtonIteration& h : r.history) s.seconds = std::max(s.seconds, h.seconds);
+    s.device = r.device.platform + " / " + r.device.name;
+    s.specialization = r.kernel_specialization;
+    s.variant = to_string(r.product);  // `automatic` resolved
+  } catch (const Error& e) {
+    s.skipped = e.what();
+  }
+  return s;
+}
+
+Series run_host_series(const Scene& scene, const Reference& ref, const ErrtimeOptions& o) {
+  Series s;
+  s.name = "host-eigen";
+  s.precision = "double";
+  s.preconditioner = "diagonal";
+  s.variant = "assembled";
+  s.hessian = "projected";
+  s.device = "host CPU (Eigen, assembled projected stiffness)";
+  SolveOptions options = series_options(scene, o);
+  options.precision = Precision::double_;
+  options.hessian = HessianMode::projected;
+  try {
+    Recorder recorder(scene, ref);
+    const HostBaselineResult r = solve_on_host(
+        scene, options, [&recorder](const NewtonIteration& rec, const std::vector<double>& x) { recorder(rec, x); });
+    s.rows = recorder.rows(r.history);
+    s.steps = r.steps;
+    s.converged = r.converged;
+    for (const NewtonIteration& h : r.history) s.seconds = std::max(s.seconds, h.seconds);
+  } catch (const Error& e) {
+    s.skipped = e.what();
+  }
+  return s;
+}
+
+// Seconds at which the last load step's residual first is <= threshold.
+std::optional<double> time_to(const Series& s, int last_step, double threshold) {
+  for (const Row& r : s.rows)
+    if (r.step == last_step && r.residual <= threshold) return r.seconds;
+  return std::nullopt;
+}
+
+int total_newton(const Series& s) {
+  int n = 0;
+  for (const StepResult& st : s.steps) n += st.newton_iterations;
+  return n;
+}
+
+int total_cg(const Series& s) {
+  int n = 0;
+  for (const StepResult& st : s.steps) n += st.cg_iterations;
+  return n;
+}
+
+// Best (lowest) residual of the last load step: the precision floor when a
+// series stagnates.
+double best_residual(const Series& s, int last_step) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Row& r : s.rows)
+    if (r.step == last_step && r.residual < best) best = r.residual;
+  return best;
+}
+
+std::string fmt(double v, int digits = 3) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream s;
+  s << std::setprecision(digits) << v;
+  return s.str();
+}
+
+std::string fmt_seconds(const std::optional<double>& v) { return v ? fmt(*v, 3) : "never"; }
+
+std::string thousands(long long n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+// "21 + 22" for up to two load steps (the paper's twist reports per step), else the total.
+std::string per_step(const Series& s, bool cg) {
+  const int total = cg ? total_cg(s) : total_newton(s);
+  if (s.steps.size() < 2 || s.steps.size() > 2) return thousands(total);
+  std::string out;
+  for (const StepResult& st : s.steps)
+    out += (out.empty() ? "" : " + ") + thousands(cg ? st.cg_iterations : st.newton_iterations);
+  return out;
+}
+
+std::string stop_status(const Series& s) {
+  std::map<std::string, int> counts;
+  for (const StepResult& st : s.steps) ++counts[st.status];
+  std::string out;
+  for (const auto& [status, n] : counts)
+    out += (out.empty() ? "" : ", ") + status + (s.steps.size() > 1 ? " x" + std::to_string(n) : "");
+  return out;
+}
+
+std::string paper_figures(const SceneRun& run) {
+  const SolveResult& r = run.reference.result;
+  std::ostringstream s;
+  if (run.scene.name == "twist")
+    s << "12 + 16 Newton, 3,278 + 4,956 CG (two pi/2 steps, 15^3 hexes, no preconditioner stated)";
+  else if (run.scene.name == "stretch")
+    s << "volume +4.3% (306,406 hexes); reference here: " << std::showpos << std::fixed << std::setprecision(2)
+      << 100.0 * (r.volume_ratio - 1.0) << "%";
+  else if (run.scene.name == "scramble")
+    s << "recovers; reference here: volume " << std::fixed << std::setprecision(4) << r.volume_ratio << ", min J "
+      << std::setprecision(3) << r.min_j;
+  else
+    s << "none";
+  return s.str();
+}
+
+json series_json(const Series& s, int last_step) {
+  json j;
+  j["series"] = s.name;
+  j["precision"] = s.precision;
+  j["preconditioner"] = s.preconditioner;
+  j["variant"] = s.variant;
+  j["hessian"] = s.hessian;
+  if (!s.skipped.empty()) {
+    j["skipped"] = s.skipped;
+    return j;
+  }
+  j["converged"] = s.converged;
+  j["newton_iterations"] = total_newton(s);
+  j["cg_iterations"] = total_cg(s);
+  j["steps"] = json::array();
+  for (const StepResult& st : s.steps)
+    j["steps"].push_back({{"step", st.step},
+                          {"newton_iterations", st.newton_iterations},
+                          {"cg_iterations", st.cg_iterations},
+                          {"status", st.status},
+                          {"residual", st.residual_norm}});
+  j["wall_seconds"] = s.seconds;
+  json t;
+  for (size_t k = 0; k < std::size(kThresholds); ++k) {
+    const auto v = time_to(s, last_step, kThresholds[k]);
+    t[kThresholdNames[k]] = v ? json(*v) : json(nullptr);
+  }
+  j["seconds_to_residual"] = t;
+  const Row* last = s.rows.empty() ? nullptr : &s.rows.back();
+  j["final_residual"] = last ? json(last->residual) : json(nullptr);
+  j["best_residual_last_step"] = s.rows.empty() ? json(nullptr) : json(best_residual(s, last_step));
+  j["final_error"] = last ? json(last->error) : json(nullptr);
+  j["device"] = s.device;
+  j["kernel_specialization"] = s.specialization.empty() ? json(nullptr) : json(s.specialization);
+  return j;
+}
+
+json reference_json(const Reference& ref) {
+  const SolveResult& r = ref.result;
+  json j;
+  j["precision"] = "double";
+  j["converged"] = r.converged;
+  int newton = 0, cg = 0;
+  for (const StepResult& s : r.steps) newton += s.newton_iterations, cg += s.cg_iterations;
+  j["newton_iterations"] = newton;
+  j["cg_iterations"] = cg;
+  j["wall_seconds"] = r.seconds;
+  j["steps"] = json::array();
+  for (size_t k = 0; k < r.steps.size(); ++k)
+    j["steps"].push_back({{"step", r.steps[k].step},
+                          {"status", r.steps[k].status},
+                          {"residual", r.steps[k].residual_norm},
+                          {"reached_relative_residual", ref.reached_relative[k]},
+                          {"newton_iterations", r.steps[k].newton_iterations},
+                          {"cg_iterations", r.steps[k].cg_iterations}});
+  j["volume_ratio"] = r.volume_ratio;
+  j["min_j"] = r.min_j;
+  j["inverted_elements"] = r.inverted_elements;
+  j["device"] = r.device.platform + " / " + r.device.name;
+  j["kernel_specialization"] = r.kernel_specialization;
+  return j;
+}
+
+double worst_reached(const Reference& ref) {
+  double worst = 0.0;
+  for (double v : ref.reached_relative) worst = std::max(worst, v);
+  return worst;
+}
+
+std::string quoted(const std::string& path) {
+  std::string out = "'";
+  for (char c : path) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// Draws errtime_<scene>.png with Debian's python3-matplotlib; a warning, not
+// a failure, when it is missing.
+void draw_plots(const std::string& out_dir) {
+  const std::string script = std::string(SNH_BENCH_SCRIPT_DIR) + "/plot_errtime.py";
+  if (!std::filesystem::exists(kPython)) {
+    std::cerr << "errtime: warning: " << kPython << " not found; plots skipped\n";
+    return;
+  }
+  if (!std::filesystem::exists(script)) {
+    std::cerr << "errtime: warning: " << script << " not found; plots skipped\n";
+    return;
+  }
+  const std::string command = std::string(kPython) + " " + quoted(script) + " " + quoted(out_dir + "/errtime.csv") +
+                              " " + quoted(out_dir) + " 1>&2";
+  const int status = std::system(command.c_str());
+  if (status != 0) std::cerr << "errtime: warning: plotting failed or matplotlib is missing; plots skipped\n";
+}
+
+std::vector<std::string> expand(const std::string& choice, std::vector<std::string> all) {
+  return choice == "both" ? all : std::vector<std::string>{choice};
+}
+
+}  // namespace
+
+int default_errtime_resolution(const std::string& scene) {
+  if (scene == "stretch") return 6;
+  if (scene == "twist") return 8;
+  if (scene == "scramble") return 5;
+  if (scene == "flex") return 3;
+  return 0;
+}
+
+int run_errtime(const ErrtimeOptions& o) {
+  const auto start = Clock::now();
+  std::filesystem::create_directories(o.out_dir);
+  std::vector<SceneRun> runs;
+  std::string device;
+  for (const std::string& name : o.scenes) {
+    SceneRun run;
+    SceneParameters p;
+    run.resolution = o.resolution > 0 ? o.resolution : default_errtime_resolution(name);
+    p.resolution = run.resolution;
+    p.youngs_modulus = o.youngs_modulus;
+    p.poisson_ratio = o.poisson_ratio;
+    p.seed = o.seed;
+    run.scene = make_scene(name, p);
+    const Scene& scene = run.scene;
+    std::cerr << "errtime: " << name << " (" << scene.mesh.element_count() << " " << to_string(scene.mesh.type) << ", "
+              << 3 * scene.mesh.vertex_count() << " dofs, " << scene.options.load_steps << " steps)\n";
+    try {
+      run.reference = solve_reference(scene, o);
+    } catch (const Error& e) {
+      run.skipped = e.what();
+      std::cerr << "errtime:   reference failed, scene skipped: " << e.what() << '\n';
+      runs.push_back(std::move(run));
+      continue;
+    }
+    const SolveResult& ref = run.reference.result;
+    device = ref.device.platform + " / " + ref.device.name;
+    std::cerr << "errtime:   reference: " << ref.history.size() << " records, " << std::setprecision(3) << ref.seconds
+              << " s, worst reached relative residual " << worst_reached(run.reference)
+              << (ref.converged ? "" : " (did not reach the tolerance in every step)") << '\n';
+    for (const std::string& precision : expand(o.precision, {"double", "float"}))
+      for (const std::string& pre : expand(o.preconditioner, {"block-jacobi", "none"})) {
+        run.series.push_back(
+            run_device_series(scene, p, run.reference, o, parse_precision(precision), pre == "block-jacobi"));
+        const Series& s = run.series.back();
+        if (!s.skipped.empty())
+          std::cerr << "errtime:   " << s.name << " skipped: " << s.skipped << '\n';
+        else
+          std::cerr << "errtime:   " << s.name << ": " << total_newton(s) << " Newton, " << total_cg(s) << " CG, "
+                    << std::setprecision(3) << s.seconds << " s, final residual " << s.rows.back().residual
+                    << ", error " << s.rows.back().error << " (" << stop_status(s) << ")\n";
+      }
+    if (o.host_baseline) {
+      run.series.push_back(run_host_series(scene, run.reference, o));
+      const Series& s = run.series.back();
+      if (!s.skipped.empty())
+        std::cerr << "errtime:   host-eigen skipped: " << s.skipped << '\n';
+      else
+        std::cerr << "errtime:   host-eigen: " << total_newton(s) << " Newton, " << total_cg(s) << " CG, "
+                  << std::setprecision(3) << s.seconds << " s, final residual " << s.rows.back().residual << ", error "
+                  << s.rows.back().error << " (" << stop_status(s) << ")\n";
+    }
+    runs.push_back(std::move(run));
+  }
+
+  // CSV: one row per step start and per Newton update.
+  {
+    std::ofstream csv(o.out_dir + "/errtime.csv");
+    if (!csv) throw Error("cannot write " + o.out_dir + "/errtime.csv");
+    csv << "scene,series,precision,preconditioner,step,newton_iteration,newton_total,cg_total,seconds,residual,error,"
+           "projected\n";
+    csv << std::setprecision(9);
+    for (const SceneRun& run : runs)
+      for (const Series& s : run.series)
+        for (const Row& r : s.rows) {
+          csv << run.scene.name << ',' << s.name << ',' << s.precision << ',' << s.preconditioner << ',' << r.step
+              << ',' << r.newton_iteration << ',' << r.newton_total << ',' << r.cg_total << ',' << r.seconds << ','
+              << r.residual << ',' << r.error << ',';
+          if (r.projected >= 0) csv << r.projected;
+          csv << '\n';
+        }
+  }
+
+  // JSON summary.
+  json summary;
+  summary["command"] = "errtime";
+  summary["device"] = device;
+  summary["youngs_modulus"] = o.youngs_modulus;
+  summary["poisson_ratio"] = o.poisson_ratio;
+  summary["series_absolute_tolerance"] = o.absolute_tolerance;
+  summary["reference_relative_tolerance"] = o.reference_tolerance;
+  summary["variant"] = o.variant;
+  summary["hessian"] = o.hessian;
+  summary["error_metric"] = kErrorMetric;
+  summary["seconds_to_residual_definition"] = kTimeDefinition;
+  summary["scenes"] = json::array();
+  for (const SceneRun& run : runs) {
+    json j;
+    j["scene"] = run.scene.name;
+    j["description"] = run.scene.description;
+    j["resolution"] = run.resolution;
+    j["element_type"] = to_string(run.scene.mesh.type);
+    j["elements"] = run.scene.mesh.element_count();
+    j["dofs"] = 3 * run.scene.mesh.vertex_count();
+    j["load_steps"] = run.scene.options.load_steps;
+    if (!run.skipped.empty()) {
+      j["skipped"] = run.skipped;
+      summary["scenes"].push_back(j);
+      continue;
+    }
+    j["paper"] = paper_figures(run);
+    j["reference"] = reference_json(run.reference);
+    j["series"] = json::array();
+    for (const Series& s : run.series) j["series"].push_back(series_json(s, run.scene.options.load_steps));
+    summary["scenes"].push_back(j);
+  }
+  std::ofstream(o.out_dir + "/errtime.json") << summary.dump(2) << '\n';
+
+  // Markdown.
+  std::ostringstream md;
+  md << "# snh-gpu-bench errtime\n\n"
+     << "Device: " << device << ". E = " << o.youngs_modulus << ", nu = " << o.poisson_ratio << ", product "
+     << o.variant << ", Hessian " << o.hessian << ".\n\n"
+     << "Series stop at an absolute residual of " << fmt(o.absolute_tolerance)
+     << " (or when they stagnate at their precision floor). References: double, block-Jacobi, adaptive Hessian, "
+        "solved to a relative residual of "
+     << fmt(o.reference_tolerance) << " per load step.\n\n"
+     << "- t(r <= x): " << kTimeDefinition << ".\n"
+     << "- error: " << kErrorMetric << ".\n"
+     << "- Newton and CG: per load step when the scene has two (as the paper reports the twist), else totals.\n\n"
+     << "## References\n\n"
+     << "| scene | res | elements / dofs | steps | Newton | CG | wall s | worst reached relative residual | status |\n"
+     << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const SceneRun& run : runs) {
+    md << "| " << run.scene.name << " | " << run.resolution << " | "
+       << thousands(static_cast<long long>(run.scene.mesh.element_count())) << " / "
+       << thousands(static_cast<long long>(3 * run.scene.mesh.vertex_count())) << " | " << run.scene.options.load_steps
+       << " | ";
+    if (!run.skipped.empty()) {
+      md << "- | - | - | - | skipped: " << run.skipped << " |\n";
+      continue;
+    }
+    Series as_series;
+    as_series.steps = run.reference.result.steps;
+    md << per_step(as_series, false) << " | " << per_step(as_series, true) << " | " << fmt(run.reference.result.seconds)
+       << " | " << fmt(worst_reached(run.reference), 2) << " | " << stop_status(as_series) << " |\n";
+  }
+  md << "\n## Series\n\n"
+     << "| scene | series | Newton | CG | wall s | t(r <= 1e-2) s | t(r <= 1e-4) s | t(r <= 1e-6) s | final residual "
+        "| final error | stop | paper |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const SceneRun& run : runs) {
+    if (!run.skipped.empty()) continue;
+    const int last = run.scene.options.load_steps;
+    bool first = true;
+    for (const Series& s : run.series) {
+      md << "| " << run.scene.name << " | " << s.name << " | ";
+      if (!s.skipped.empty()) {
+        md << "- | - | - | - | - | - | - | - | skipped: " << s.skipped << " | " << (first ? paper_figures(run) : "")
+           << " |\n";
+      } else {
+        md << per_step(s, false) << " | " << per_step(s, true) << " | " << fmt(s.seconds) << " | "
+           << fmt_seconds(time_to(s, last, 1e-2)) << " | " << fmt_seconds(time_to(s, last, 1e-4)) << " | "
+           << fmt_seconds(time_to(s, last, 1e-6)) << " | " << fmt(s.rows.back().residual, 2) << " | "
+           << fmt(s.rows.back().error, 2) << " | " << stop_status(s) << " | " << (first ? paper_figures(run) : "")
+           << " |\n";
+      }
+      first = false;
+    }
+  }
+  std::ofstream(o.out_dir + "/errtime.md") << md.str();
+
+  // Short table on stdout.
+  std::cout << std::left << std::setw(10) << "scene" << std::setw(20) << "series" << std::setw(8) << "newton"
+            << std::setw(8) << "cg" << std::setw(9) << "wall s" << std::setw(9) << "t 1e-2" << std::setw(9) << "t 1e-4"
+            << std::setw(9) << "t 1e-6" << std::setw(11) << "residual"
+            << "error\n";
+  bool any = false;
+  for (const SceneRun& run : runs)
+    for (const Series& s : run.series) {
+      if (!s.skipped.empty()) continue;
+      any = true;
+      const int last = run.scene.options.load_steps;
+      std::cout << std::left << std::setw(10) << run.scene.name << std::setw(20) << s.name << std::setw(8)
+                << total_newton(s) << std::setw(8) << total_cg(s) << std::setw(9) << fmt(s.seconds) << std::setw(9)
+                << fmt_seconds(time_to(s, last, 1e-2)) << std::setw(9) << fmt_seconds(time_to(s, last, 1e-4))
+                << std::setw(9) << fmt_seconds(time_to(s, last, 1e-6)) << std::setw(11)
+                << fmt(s.rows.back().residual, 2) << fmt(s.rows.back().error, 2) << '\n';
+    }
+  if (o.plots) draw_plots(o.out_dir);
+  std::cout << "wrote " << o.out_dir << "/errtime.csv, errtime.json, errtime.md (" << std::setprecision(3)
+            << std::chrono::duration<double>(Clock::now() - start).count() << " s)\n";
+  return any ? 0 : 1;
+}
+
+void add_errtime_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ErrtimeOptions>();
+  auto host = std::make_shared<std::string>("on");
+  CLI::App* cmd = app.add_subcommand(
+      "errtime",
+      "Force residual and error against a double reference (relative residual 1e-10) versus wall time, per Newton "
+      "iteration, for each scene, precision and preconditioner; writes errtime.csv, errtime.json, errtime.md and "
+      "errtime_<scene>.png");
+  cmd->add_option("--scenes", o->scenes, "comma-separated scenes")
+      ->delimiter(',')
+      ->check(CLI::IsMember(scene_names()))
+      ->capture_default_str();
+  cmd->add_option("--res", o->resolution,
+                  "cells across each scene's thickness (0: stretch 6, twist 8, scramble 5, flex 3)")
+      ->check(CLI::Range(0, 400))
+      ->capture_default_str();
+  cmd->add_option("--precision", o->precision, "float, double or both")
+      ->check(CLI::IsMember({"float", "double", "both"}))
+      ->capture_default_str();
+  cmd->add_option("--preconditioner", o->preconditioner, "block-jacobi, none or both")
+      ->check(CLI::IsMember({"block-jacobi", "none", "both"}))
+      ->capture_default_str();
+  cmd->add_option("--variant", o->variant,
+                  "Hessian product of the device series: automatic (measured default), cached, recompute, "
+                  "element-matrices, assembled (the reference always uses cached)")
+      ->check(CLI::IsMember({"automatic", "cached", "recompute", "element-matrices", "assembled"}))
+      ->capture_default_str();
+  cmd->add_option("--hessian", o->hessian,
+                  "projected (always the PSD projection) or adaptive (true Hessian near convergence)")
+      ->check(CLI::IsMember({"adaptive", "projected"}))
+      ->capture_default_str();
+  cmd->add_option("--host-baseline", *host, "also solve on the host with Eigen (double) as series host-eigen: on, off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");
+  cmd->add_option("--out", o->out_dir, "folder for errtime.csv, errtime.json, errtime.md and the PNGs")
+      ->capture_default_str();
+  cmd->add_option("--E", o->youngs_modulus, "Young's modulus")->capture_default_str();
+  cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "random seed (scramble)")->capture_default_str();
+  cmd->add_option("--atol", o->absolute_tolerance, "absolute residual at which the series stop")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--ref-rtol", o->reference_tolerance, "relative residual per load step of the reference")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("!--no-plots", o->plots, "do not draw the PNGs");
+  cmd->callback([o, host, &exit_code] {
+    o->host_baseline = *host == "on";
+    exit_code = run_errtime(*o);
+  });
+}
+
+}  // namespace snh::bench

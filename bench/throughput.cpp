@@ -1,0 +1,367 @@
+#include "throughput.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "device/opencl_context.h"
+#include "device/viennacl_binding.h"
+#include "fem/rest_state.h"
+#include "host_baseline.h"
+#include "snh/error.h"
+#include "snh/mesh.h"
+#include "snh/simulation.h"
+#include "solver/elastic_model.h"
+
+namespace snh::bench {
+namespace {
+
+using json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+// Repeats f until min_seconds have passed (at least 3 times, after one
+// warm-up call) and returns the best time of one call.
+template <typename F>
+double best_seconds(F&& f, double min_seconds) {
+  f();
+  double best = 1e300, total = 0.0;
+  for (int n = 0; n < 3 || total < min_seconds; ++n) {
+    const auto t0 = Clock::now();
+    f();
+    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+    best = std::min(best, dt);
+    total += dt;
+    if (n > 10000) break;
+  }
+  return best;
+}
+
+template <typename T>
+void arg(cl_kernel k, cl_uint i, const T& v) {
+  device::check(clSetKernelArg(k, i, sizeof(T), &v), "clSetKernelArg");
+}
+
+struct Roofline {
+  double bandwidth = 0.0;    // bytes per second, triad
+  double peak_scalar = 0.0;  // flops per second
+  double peak_vector = 0.0;
+  double peak() const { return std::max(peak_scalar, peak_vector); }
+};
+
+template <typename Real>
+Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
+  Roofline r;
+  const int n = 1 << 23;
+  std::vector<Real> init(n, Real(1));
+  device::Buffer a = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real)),
+                 b = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real), init.data()),
+                 c = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real), init.data());
+  device::Kernel triad = cl.kernel("roofline.cl", "", "snh_triad");
+  const Real s = Real(0.5);
+  arg(triad.get(), 0, a.get());
+  arg(triad.get(), 1, b.get());
+  arg(triad.get(), 2, c.get());
+  arg(triad.get(), 3, s);
+  arg(triad.get(), 4, n);
+  const double t_triad = best_seconds([&] { cl.run(triad.get(), n); }, min_seconds);
+  r.bandwidth = 3.0 * n * sizeof(Real) / t_triad;
+
+  const int items = 1 << 16;
+  device::Buffer out = cl.buffer(CL_MEM_READ_WRITE, items * sizeof(Real));
+  const Real m = Real(0.999), k = Real(0.001);
+  for (const char* name : {"snh_fma_scalar", "snh_fma_vector"}) {
+    device::Kernel fma = cl.kernel("roofline.cl", "", name);
+    arg(fma.get(), 0, out.get());
+    arg(fma.get(), 1, m);
+    arg(fma.get(), 2, k);
+    const double t = best_seconds([&] { cl.run(fma.get(), items); }, min_seconds);
+    const bool vector = std::string(name) == "snh_fma_vector";
+    const double flops = 2.0 * 8 * 256 * items * (vector ? 8 : 1);  // SNH_FMA_ITERATIONS = 256
+    (vector ? r.peak_vector : r.peak_scalar) = flops / t;
+  }
+  return r;
+}
+
+// Operation counts per element, counted from kernels/ (see the comment at
+// each): flops of the arithmetic as written, bytes of global memory each
+// element's work-item reads and writes with no reuse between elements.
+struct Counts {
+  double flops = 0.0;
+  double bytes = 0.0;
+};
+
+// principal_hessian_action: U^T dF and (.) V (2 x 45), the block (15), three
+// twist/flip pairs (3 x 8), U (.) and (.) V^T (2 x 45).
+constexpr double kActionFlops = 219;
+// snh_principal_hessian + principal_hessian_project: SVD with 4 Jacobi
+// sweeps (~360), block and pairs (~40), eigen_sym3 (~140, acos/cos as one
+// flop each), the projected block rebuilt (36).
+constexpr double kLinearizationFlops = 576;
+
+Counts product_counts(ProductVariant v, int nodes, int quadrature, bool uniform, int real_bytes, double nonzeros,
+                      double elements, double vertices) {
+  const double dofs = 3.0 * nodes, per_vertex = vertices / elements;
+  // Shared: gather p (3N reals, N ints), write 3N reals; the vertex gather
+  // reads them back with N adjacency ints and writes 3 reals per vertex.
+  Counts c;
+  const double rest_bytes = uniform ? 0.0 : quadrature * (dofs + 1) * real_bytes;
+  const double io = 2 * dofs * real_bytes + nodes * 4 + dofs * real_bytes + nodes * 4 + 3 * per_vertex * real_bytes;
+  // F (18 N) and scatter (21 N) per point; the gather's 3 N additions.
+  const double kinematics = quadrature * 39.0 * nodes + 3.0 * nodes;
+  switch (v) {
+    case ProductVariant::cached:
+      c.flops = kinematics + quadrature * kActionFlops;
+      c.bytes = io + rest_bytes + quadrature * 30.0 * real_bytes;
+      break;
+    case ProductVariant::recompute:
+      c.flops = kinematics + quadrature * (kActionFlops + kLinearizationFlops + 18.0 * nodes);
+      c.bytes = io + rest_bytes + dofs * real_bytes;
+      break;
+    case ProductVariant::element_matrices:
+      c.flops = 2.0 * dofs * dofs + 3.0 * nodes;
+      c.bytes = io + dofs * dofs * real_bytes;
+      break;
+    default:  // assembled CSR: 2 flops and a value and a column index per nonzero
+      c.flops = 2.0 * nonzeros / elements;
+      c.bytes = (nonzeros * (real_bytes + 4.0) + (vertices * 3 + 1) * 4.0 + 2 * 3 * vertices * real_bytes) / elements;
+      break;
+  }
+  return c;
+}
+
+Mesh make_mesh(const std::string& type, int n) {
+  return type == "hex8" ? make_box_lattice(n, n, n, 1.0 / n) : make_tet_box(n, n, n, 1.0 / n);
+}
+
+// A deformed state with varied, some indefinite, element Hessians.
+std::vector<double> deformed(const Mesh& mesh, int n) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.1 / n, 0.1 / n);
+  std::vector<double> x = mesh.positions;
+  for (size_t i = 0; i < x.size(); ++i) x[i] = (i % 3 == 2 ? 1.3 : 0.9) * x[i] + u(rng);
+  return x;
+}
+
+struct VariantRow {
+  std::string element_type, precision, variant;
+  int size;
+  size_t elements, dofs;
+  double product_seconds, setup_seconds, assembly_seconds;
+  size_t memory_bytes;
+  Counts counts;
+};
+
+struct OperationRow {
+  std::string element_type, precision, operation;
+  int size;
+  size_t elements;
+  double seconds;
+};
+
+template <typename Real>
+void run_precision(const ThroughputOptions& o, Precision precision, json& report, std::vector<VariantRow>& rows,
+                   std::vector<OperationRow>& ops, std::map<std::string, Roofline>& rooflines) {
+  device::OpenClContext cl(DeviceOptions{o.device}, precision);
+  device::bind_viennacl(cl);
+  const std::string pname = to_string(precision);
+  std::cerr << "  roofline (" << pname << ")\n";
+  const Roofline roof = measure_roofline<Real>(cl, o.min_seconds);
+  rooflines[pname] = roof;
+  report["device"] = cl.info().platform + " / " + cl.info().name;
+  report["device_is_gpu"] = cl.info().is_gpu;
+  report["roofline"][pname] = {{"triad_bandwidth_gb_s", roof.bandwidth / 1e9},
+                               {"fma_peak_scalar_gflop_s", roof.peak_scalar / 1e9},
+                               {"fma_peak_vector_gflop_s", roof.peak_vector / 1e9}};
+  const StableNeoHookean material = StableNeoHookean::from_youngs_modulus(1.0, 0.45);
+  for (const std::string& type : o.element_types)
+    for (int n : o.sizes) {
+      const Mesh mesh = make_mesh(type, n);
+      const fem::RestState rest = fem::compute_rest_state(mesh);
+      const std::vector<double> xh = deformed(mesh, n);
+      std::vector<Real> xr(xh.begin(), xh.end());
+      viennacl::vector<Real> x(xr.size()), r(xr.size()), p(xr.size()), y(xr.size());
+      viennacl::copy(xr.begin(), xr.end(), x.begin());
+      std::vector<Real> ph(xr.size());
+      std::mt19937_64 rng(3);
+      std::uniform_real_distribution<double> u(-1.0, 1.0);
+      for (Real& v : ph) v = Real(u(rng));
+      viennacl::copy(ph.begin(), ph.end(), p.begin());
+      solver::ElasticModel<Real> model(cl, mesh, rest, material, ProductVariant::cached);
+      std::cerr << "  " << type << " " << n << "^3 (" << mesh.element_count() << " elements, " << pname << ")\n";
+      const size_t ne = mesh.element_count();
+      ops.push_back({type, pname, "residual", n, ne, best_seconds([&] { model.residual(x, r); }, o.min_seconds)});
+      ops.push_back({type, pname, "energy", n, ne, best_seconds([&] { model.energy(x); }, o.min_seconds)});
+      ops.push_back({type, pname, "linearize", n, ne, best_seconds([&] { model.linearize(x); }, o.min_seconds)});
+      for (const std::string& vname : o.variants) {
+        const ProductVariant v = parse_product_variant(vname);
+        model.set_variant(v);
+        const double setup = best_seconds([&] { model.linearize(x); }, o.min_seconds);
+        const double product = best_seconds([&] { model.product(p, y); }, o.min_seconds);
+        const Counts counts = product_counts(v, rest.nodes, rest.quadrature, rest.uniform, sizeof(Real),
+                                             static_cast<double>(model.assembled_nonzeros()), static_cast<double>(ne),
+                                             static_cast<double>(mesh.vertex_count()));
+        rows.push_back({type, pname, vname, n, ne, xh.size(), product, setup, model.last_assembly_seconds(),
+                        model.variant_memory_bytes(), counts});
+      }
+      if (o.host_baseline && precision == Precision::double_) {
+        const HostProductTiming host = time_host_product(mesh, material, xh, 20);
+        rows.push_back({type, "double", "host-eigen-csr", n, ne, xh.size(), host.product_seconds, host.assembly_seconds,
+                        host.assembly_seconds, host.nonzeros * 12 + (xh.size() + 1) * 4,
+                        Counts{2.0 * host.nonzeros / ne, 0.0}});
+      }
+    }
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::setprecision(digits) << v;
+  return s.str();
+}
+
+}  // namespace
+
+int run_throughput(const ThroughputOptions& o) {
+  json report;
+  std::vector<VariantRow> rows;
+  std::vector<OperationRow> ops;
+  std::map<std::string, Roofline> rooflines;
+  for (const std::string& p : o.precisions) {
+    const Precision precision = parse_precision(p);
+    try {
+      if (precision == Precision::double_)
+        run_precision<double>(o, precision, report, rows, ops, rooflines);
+      else
+        run_precision<float>(o, precision, report, rows, ops, rooflines);
+    } catch (const Error& e) {
+      std::cerr << "snh-gpu-bench throughput: skipped " << p << ": " << e.what() << '\n';
+      report["skipped"].push_back(p + ": " + e.what());
+    }
+  }
+  std::filesystem::create_directories(o.out);
+  report["counting"] =
+      "flops and bytes per element counted from kernels/ as written (bench/throughput.cpp, product_counts): "
+      "no reuse of gathered vertex data between elements is assumed; transcendental functions count as one flop";
+  std::ofstream csv(o.out + "/throughput.csv");
+  csv << "element_type,precision,size,elements,dofs,variant,product_seconds,elements_per_second,setup_seconds,"
+         "assembly_seconds,memory_bytes,flops_per_element,bytes_per_element,fraction_of_peak,fraction_of_bandwidth\n";
+  std::ostringstream md;
+  md << "| element | precision | cells | variant | product ms | Melem/s | setup ms | memory MB | flop/elem | "
+        "byte/elem | % peak | % bandwidth |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::cout << std::left << std::setw(6) << "elem" << std::setw(8) << "prec" << std::setw(7) << "cells" << std::setw(18)
+            << "variant" << std::setw(12) << "product ms" << std::setw(10) << "Melem/s" << std::setw(11) << "setup ms"
+            << std::setw(11) << "memory MB" << std::setw(8) << "%peak"
+            << "%bw\n";
+  for (const VariantRow& r : rows) {
+    const double rate = r.elements / r.product_seconds;
+    const Roofline& roof = rooflines[r.precision];
+    const double fpeak = r.counts.flops * rate / roof.peak();
+    const double fbw = r.counts.bytes * rate / roof.bandwidth;
+    csv << r.element_type << ',' << r.precision << ',' << r.size << ',' << r.elements << ',' << r.dofs << ','
+        << r.variant << ',' << r.product_seconds << ',' << rate << ',' << r.setup_seconds << ',' << r.assembly_seconds
+        << ',' << r.memory_bytes << ',' << r.counts.flops << ',' << r.counts.bytes << ',' << fpeak << ',' << fbw
+        << '\n';
+    report["products"].push_back({{"element_type", r.element_type},
+                                  {"precision", r.precision},
+                                  {"cells_per_side", r.size},
+                                  {"elements", r.elements},
+                                  {"dofs", r.dofs},
+                                  {"variant", r.variant},
+                                  {"product_seconds", r.product_seconds},
+                                  {"elements_per_second", rate},
+                                  {"setup_seconds", r.setup_seconds},
+                                  {"assembly_seconds", r.assembly_seconds},
+                                  {"memory_bytes", r.memory_bytes},
+                                  {"flops_per_element", r.counts.flops},
+                                  {"bytes_per_element", r.counts.bytes},
+                                  {"fraction_of_peak", fpeak},
+                                  {"fraction_of_bandwidth", fbw}});
+    md << "| " << r.element_type << " | " << r.precision << " | " << r.size << "^3 | " << r.variant << " | "
+       << fixed(1e3 * r.product_seconds, 3) << " | " << fixed(rate / 1e6, 3) << " | " << fixed(1e3 * r.setup_seconds, 3)
+       << " | " << fixed(r.memory_bytes / 1e6, 3) << " | " << fixed(r.counts.flops, 4) << " | "
+       << fixed(r.counts.bytes, 4) << " | " << fixed(100 * fpeak, 3) << " | " << fixed(100 * fbw, 3) << " |\n";
+    std::cout << std::left << std::setw(6) << r.element_type << std::setw(8) << r.precision << std::setw(7)
+              << (std::to_string(r.size) + "^3") << std::setw(18) << r.variant << std::setw(12)
+              << fixed(1e3 * r.product_seconds, 3) << std::setw(10) << fixed(rate / 1e6, 3) << std::setw(11)
+              << fixed(1e3 * r.setup_seconds, 3) << std::setw(11) << fixed(r.memory_bytes / 1e6, 3) << std::setw(8)
+              << fixed(100 * fpeak, 3) << fixed(100 * fbw, 3) << '\n';
+  }
+  // The winner per element type and precision: the least time per Newton
+  // iteration for a typical 50 products per setup.
+  std::map<std::string, std::pair<double, std::string>> winners;
+  for (const VariantRow& r : rows) {
+    if (r.variant == "host-eigen-csr") continue;
+    const std::string key = r.element_type + " " + r.precision + " " + std::to_string(r.size);
+    const double cost = r.setup_seconds + 50.0 * r.product_seconds;
+    auto it = winners.find(key);
+    if (it == winners.end() || cost < it->second.first) winners[key] = {cost, r.variant};
+  }
+  md << "\nWinner (setup + 50 products per Newton iteration):\n\n";
+  for (const auto& [key, w] : winners) {
+    md << "- " << key << "^3: " << w.second << '\n';
+    report["winners"][key] = w.second;
+    std::cout << "winner " << key << "^3: " << w.second << '\n';
+  }
+  md << "\n| element | precision | cells | operation | ms | Melem/s |\n|---|---|---|---|---|---|\n";
+  for (const OperationRow& r : ops) {
+    md << "| " << r.element_type << " | " << r.precision << " | " << r.size << "^3 | " << r.operation << " | "
+       << fixed(1e3 * r.seconds, 3) << " | " << fixed(r.elements / r.seconds / 1e6, 3) << " |\n";
+    report["operations"].push_back({{"element_type", r.element_type},
+                                    {"precision", r.precision},
+                                    {"cells_per_side", r.size},
+                                    {"operation", r.operation},
+                                    {"seconds", r.seconds},
+                                    {"elements_per_second", r.elements / r.seconds}});
+  }
+  std::ostringstream roof_md;
+  roof_md << "| precision | triad GB/s | FMA scalar GFLOP/s | FMA 8-wide GFLOP/s |\n|---|---|---|---|\n";
+  for (const auto& [p, r] : rooflines)
+    roof_md << "| " << p << " | " << fixed(r.bandwidth / 1e9, 4) << " | " << fixed(r.peak_scalar / 1e9, 4) << " | "
+            << fixed(r.peak_vector / 1e9, 4) << " |\n";
+  std::ofstream(o.out + "/throughput.json") << report.dump(2) << '\n';
+  std::ofstream(o.out + "/throughput.md")
+      << "# Throughput\n\nDevice: " << report.value("device", std::string("?")) << "\n\n"
+      << roof_md.str() << '\n'
+      << md.str();
+  std::cout << "wrote " << o.out << "/throughput.{json,csv,md}\n";
+  return rows.empty() ? 1 : 0;
+}
+
+void add_throughput_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ThroughputOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "throughput",
+      "Device roofline (triad bandwidth, FMA peak) and the engine's kernels against it: every Hessian-product "
+      "variant side by side, residual, energy, linearization, and the host Eigen CSR product");
+  cmd->add_option("--element", o->element_types, "element types: hex8, tet4")
+      ->check(CLI::IsMember({"hex8", "tet4"}))
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--precision", o->precisions, "float, double")
+      ->check(CLI::IsMember({"float", "double"}))
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--size", o->sizes, "cells per side of the box lattice (comma list)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 200))
+      ->capture_default_str();
+  cmd->add_option("--variant", o->variants, "product variants: recompute, cached, element-matrices, assembled")
+      ->check(CLI::IsMember({"recompute", "cached", "element-matrices", "assembled"}))
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--min-seconds", o->min_seconds, "minimum time spent timing each operation")->capture_default_str();
+  cmd->add_flag("!--no-host-baseline", o->host_baseline, "skip the host Eigen CSR product");
+  cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
+  cmd->add_option("--out", o->out, "output folder")->capture_default_str();
+  cmd->callback([o, &exit_code] { exit_code = run_throughput(*o); });
+}
+
+}  // namespace snh::bench

@@ -1,0 +1,26 @@
+// `snh-gpu-bench throughput`: the device's own limits (streaming bandwidth,
+// FMA peak) and the engine's kernels against them, with every Hessian-product
+// variant side by side on the same mesh and a host CPU baseline.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace snh::bench {
+
+struct ThroughputOptions {
+  std::vector<std::string> element_types{"hex8", "tet4"};
+  std::vector<std::string> precisions{"float", "double"};
+  std::vector<int> sizes{8, 16};  // cells per side of the box lattice
+  std::vector<std::string> variants{"recompute", "cached", "element-matrices", "assembled"};
+  double min_seconds = 0.2;  // per timed operation
+  bool host_baseline = true;
+  std::string device;
+  std::string out = "bench-results";
+};
+
+int run_throughput(const ThroughputOptions& options);
+void add_throughput_command(CLI::App& app, int& exit_code);
+
+}  // namespace snh::bench

@@ -1,0 +1,57 @@
+/* Device limits for the roofline in snh-gpu-bench throughput: a streaming
+ * triad for bandwidth and FMA chains for arithmetic peak, in the working
+ * precision, with scalar and 8-wide vector types (pocl vectorizes across
+ * work-items only sometimes; the vector form gives it the width explicitly). */
+#include "snh_portable.h"
+
+#if SNH_DOUBLE
+typedef double8 real8;
+#else
+typedef float8 real8;
+#endif
+
+/* a = b + s c: 3 reals moved, 2 flops per entry. */
+__kernel void snh_triad(__global real* a, __global const real* b, __global const real* c, const real s, const int n) {
+  const int i = get_global_id(0);
+  if (i < n) a[i] = b[i] + s * c[i];
+}
+
+/* SNH_FMA_ITERATIONS iterations of 8 independent scalar FMA chains:
+ * 16 flops per chain and iteration. */
+#define SNH_FMA_ITERATIONS 256
+__kernel void snh_fma_scalar(__global real* out, const real m, const real k) {
+  const int i = get_global_id(0);
+  real x0 = (real)i, x1 = x0 + SNH_R(1), x2 = x0 + SNH_R(2), x3 = x0 + SNH_R(3);
+  real x4 = x0 + SNH_R(4), x5 = x0 + SNH_R(5), x6 = x0 + SNH_R(6), x7 = x0 + SNH_R(7);
+  for (int it = 0; it < SNH_FMA_ITERATIONS; ++it) {
+    x0 = fma(x0, m, k);
+    x1 = fma(x1, m, k);
+    x2 = fma(x2, m, k);
+    x3 = fma(x3, m, k);
+    x4 = fma(x4, m, k);
+    x5 = fma(x5, m, k);
+    x6 = fma(x6, m, k);
+    x7 = fma(x7, m, k);
+  }
+  out[i] = x0 + x1 + x2 + x3 + x4 + x5 + x6 + x7;
+}
+
+/* The same with 8-wide vectors: 8 chains x 8 lanes x 2 flops per iteration. */
+__kernel void snh_fma_vector(__global real* out, const real m, const real k) {
+  const int i = get_global_id(0);
+  real8 x0 = (real8)((real)i), x1 = x0 + SNH_R(1), x2 = x0 + SNH_R(2), x3 = x0 + SNH_R(3);
+  real8 x4 = x0 + SNH_R(4), x5 = x0 + SNH_R(5), x6 = x0 + SNH_R(6), x7 = x0 + SNH_R(7);
+  const real8 mv = (real8)(m), kv = (real8)(k);
+  for (int it = 0; it < SNH_FMA_ITERATIONS; ++it) {
+    x0 = fma(x0, mv, kv);
+    x1 = fma(x1, mv, kv);
+    x2 = fma(x2, mv, kv);
+    x3 = fma(x3, mv, kv);
+    x4 = fma(x4, mv, kv);
+    x5 = fma(x5, mv, kv);
+    x6 = fma(x6, mv, kv);
+    x7 = fma(x7, mv, kv);
+  }
+  const real8 s = x0 + x1 + x2 + x3 + x4 + x5 + x6 + x7;
+  out[i] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7;
+}

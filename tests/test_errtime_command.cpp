@@ -1,0 +1,146 @@
+// `snh-gpu-bench errtime` at a tiny size, run as a user would: the CSV, the
+// JSON summary, the markdown table and (where matplotlib is installed) the PNGs.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace snh::test {
+namespace {
+
+int run_command(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::string field;
+  std::istringstream s(line);
+  while (std::getline(s, field, ',')) out.push_back(field);
+  if (!line.empty() && line.back() == ',') out.push_back("");
+  return out;
+}
+
+TEST(ErrtimeCommand, WritesCsvJsonMarkdownAndPlots) {
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "snh_errtime_test";
+  std::filesystem::remove_all(out);
+  ASSERT_EQ(run_command(std::string(SNH_BENCH_BINARY) + " errtime --scenes twist,flex --res 2 --out " + out.string() +
+                        " > /dev/null 2>&1"),
+            0);
+
+  // CSV: the header, then one row per step start and Newton update.
+  std::ifstream csv(out / "errtime.csv");
+  ASSERT_TRUE(csv.good());
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line,
+            "scene,series,precision,preconditioner,step,newton_iteration,newton_total,cg_total,seconds,residual,error,"
+            "projected");
+  std::map<std::string, std::vector<std::vector<std::string>>> by_series;  // "scene series" -> rows
+  while (std::getline(csv, line)) {
+    const auto f = split(line);
+    ASSERT_EQ(f.size(), 12u) << line;
+    by_series[f[0] + " " + f[1]].push_back(f);
+  }
+  const std::set<std::string> series{"double/block-jacobi", "double/none", "float/block-jacobi", "float/none",
+                                     "host-eigen"};
+  for (const std::string scene : {"twist", "flex"})
+    for (const std::string& s : series) {
+      const auto it = by_series.find(scene + " " + s);
+      ASSERT_NE(it, by_series.end()) << scene << " " << s;
+      const auto& rows = it->second;
+      ASSERT_GE(rows.size(), 3u);
+      EXPECT_EQ(rows.front()[4], "1");  // the first step's start
+      EXPECT_EQ(rows.front()[5], "0");
+      EXPECT_EQ(rows.front()[11], "");
+      double previous_seconds = 0.0;
+      int previous_cg = 0;
+      for (const auto& r : rows) {
+        const double seconds = std::stod(r[8]), residual = std::stod(r[9]), error = std::stod(r[10]);
+        EXPECT_GE(seconds, previous_seconds) << scene << " " << s;
+        EXPECT_GE(std::stoi(r[7]), previous_cg);
+        EXPECT_TRUE(std::isfinite(residual) && residual >= 0.0);
+        EXPECT_TRUE(std::isfinite(error) && error >= 0.0);
+        previous_seconds = seconds;
+        previous_cg = std::stoi(r[7]);
+      }
+      // Double reaches the series tolerance, 1e-7, and lands near the reference.
+      if (s.rfind("float", 0) != 0) {
+        EXPECT_LE(std::stod(rows.back()[9]), 1e-7) << scene << " " << s;
+        EXPECT_LT(std::stod(rows.back()[10]), 1e-4) << scene << " " << s;
+      }
+    }
+
+  // JSON summary.
+  std::ifstream in(out / "errtime.json");
+  ASSERT_TRUE(in.good());
+  const auto summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["command"], "errtime");
+  ASSERT_EQ(summary["scenes"].size(), 2u);
+  EXPECT_EQ(summary["scenes"][0]["scene"], "twist");
+  EXPECT_EQ(summary["scenes"][1]["scene"], "flex");
+  for (const auto& scene : summary["scenes"]) {
+    EXPECT_TRUE(scene["reference"]["converged"].get<bool>());
+    for (const auto& step : scene["reference"]["steps"])
+      EXPECT_LE(step["reached_relative_residual"].get<double>(), 1e-10);
+    ASSERT_EQ(scene["series"].size(), 5u);
+    for (const auto& s : scene["series"]) {
+      for (const char* key :
+           {"series", "precision", "preconditioner", "converged", "newton_iterations", "cg_iterations", "wall_seconds",
+            "seconds_to_residual", "final_residual", "final_error", "device", "kernel_specialization"})
+        EXPECT_TRUE(s.contains(key)) << key;
+      for (const char* threshold : {"1e-2", "1e-4", "1e-6"})
+        EXPECT_TRUE(s["seconds_to_residual"].contains(threshold)) << threshold;
+      EXPECT_GT(s["newton_iterations"].get<int>(), 0);
+      EXPECT_GT(s["cg_iterations"].get<int>(), 0);
+      if (s["precision"] == "double") {
+        EXPECT_TRUE(s["converged"].get<bool>()) << s["series"];
+        const auto& t = s["seconds_to_residual"];
+        ASSERT_FALSE(t["1e-6"].is_null()) << s["series"];
+        EXPECT_LE(t["1e-2"].get<double>(), t["1e-4"].get<double>());
+        EXPECT_LE(t["1e-4"].get<double>(), t["1e-6"].get<double>());
+        EXPECT_LE(t["1e-6"].get<double>(), s["wall_seconds"].get<double>());
+      }
+    }
+  }
+
+  // Markdown table with the paper's figures beside ours.
+  std::ifstream md_file(out / "errtime.md");
+  ASSERT_TRUE(md_file.good());
+  std::stringstream md;
+  md << md_file.rdbuf();
+  EXPECT_NE(md.str().find("| scene | series | Newton | CG |"), std::string::npos);
+  EXPECT_NE(md.str().find("| twist | double/block-jacobi |"), std::string::npos);
+  EXPECT_NE(md.str().find("3,278 + 4,956 CG"), std::string::npos);
+
+  // PNGs, where Debian's matplotlib is there to draw them.
+  if (run_command("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0) {
+    for (const char* png : {"errtime_twist.png", "errtime_flex.png"}) {
+      std::ifstream f(out / png, std::ios::binary);
+      ASSERT_TRUE(f.good()) << png;
+      char magic[4] = {};
+      f.read(magic, 4);
+      EXPECT_EQ(std::string(magic + 1, 3), "PNG") << png;
+    }
+  }
+}
+
+TEST(ErrtimeCommand, RejectsUnknownSceneAndBadChoice) {
+  const std::string bench = std::string(SNH_BENCH_BINARY) + " errtime --out /dev/null/x";
+  EXPECT_NE(run_command(bench + " --scenes twist,wobble > /dev/null 2>&1"), 0);
+  EXPECT_NE(run_command(bench + " --precision half > /dev/null 2>&1"), 0);
+}
+
+}  // namespace
+}  // namespace snh::test
