@@ -508,6 +508,7 @@ int run_errtime(const ErrtimeOptions& o) {
     p.youngs_modulus = o.youngs_modulus;
     p.poisson_ratio = o.poisson_ratio;
     p.seed = o.seed;
+    p.element_type = o.element == "tet4" ? ElementType::tet4 : ElementType::hex8;
     run.scene = make_scene(name, p);
     const Scene& scene = run.scene;
     std::cerr << "errtime: " << name << " (" << scene.mesh.element_count() << " " << to_string(scene.mesh.type) << ", "
@@ -691,6 +692,9 @@ void add_errtime_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--scenes", o->scenes, "comma-separated scenes")
       ->delimiter(',')
       ->check(CLI::IsMember(scene_names()))
+      ->capture_default_str();
+  cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
+      ->check(CLI::IsMember({"hex8", "tet4"}))
       ->capture_default_str();
   cmd->add_option("--res", o->resolution,
                   "cells across each scene's thickness (0: stretch 6, twist 8, scramble 5, flex 3)")

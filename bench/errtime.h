@@ -12,6 +12,7 @@ namespace snh::bench {
 struct ErrtimeOptions {
   std::vector<std::string> scenes{"stretch", "twist", "scramble", "flex"};
   int resolution = 0;                     // 0: default_errtime_resolution(scene)
+  std::string element = "hex8";           // hex8 or tet4
   std::string precision = "both";         // float, double, both
   std::string preconditioner = "both";    // block-jacobi, none, both
   std::string variant = "automatic";      // automatic, cached, recompute, element-matrices, assembled

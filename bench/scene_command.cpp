@@ -25,6 +25,7 @@ using json = nlohmann::ordered_json;
 struct SceneOptions {
   std::string name;
   int resolution = 0;
+  std::string element = "hex8";
   double youngs_modulus = 1.0;
   double poisson_ratio = 0.49;
   std::string barrier = "auto";
@@ -97,6 +98,7 @@ int run_scene(const SceneOptions& o) {
   p.barrier = parse_barrier(o.barrier);
   p.steps = o.steps;
   p.seed = o.seed;
+  p.element_type = o.element == "tet4" ? ElementType::tet4 : ElementType::hex8;
   // Float resolves J - alpha only to about FLT_EPSILON lambda / mu: its
   // default stopping strain is 1e-4 (double: 1e-6).
   if (o.strain_tolerance > 0.0)
@@ -167,6 +169,9 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex)");
   cmd->add_option("name", o->name, "scene name")->required()->check(CLI::IsMember(scene_names()));
   cmd->add_option("--res", o->resolution, "cells across the scene's thickness (0: scene default)");
+  cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
+      ->check(CLI::IsMember({"hex8", "tet4"}))
+      ->capture_default_str();
   cmd->add_option("--E", o->youngs_modulus, "Young's modulus")->capture_default_str();
   cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();
   cmd->add_option("--barrier", o->barrier, "origin barrier: on, off, auto")

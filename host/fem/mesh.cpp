@@ -279,6 +279,31 @@ Mesh make_tet_box(int nx, int ny, int nz, double h, std::array<double, 3> origin
   return mesh;
 }
 
+Mesh split_hexes_into_tets(const Mesh& hexes) {
+  if (hexes.type != ElementType::hex8) throw Error("split_hexes_into_tets: the mesh is not hex8");
+  static const KuhnTets kuhn;
+  // Kuhn corners are bit masks (bit 0: x, 1: y, 2: z); VTK hex node order.
+  static const int kVtkNode[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+  Mesh mesh;
+  mesh.type = ElementType::tet4;
+  mesh.positions = hexes.positions;
+  mesh.elements.reserve(3 * hexes.elements.size());
+  for (size_t e = 0; e < hexes.element_count(); ++e)
+    for (const auto& tet : kuhn.tets) {
+      int32_t v[4];
+      for (int c = 0; c < 4; ++c) v[c] = hexes.elements[8 * e + kVtkNode[tet[c]]];
+      double d[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) d[r][k] = hexes.positions[3 * v[r + 1] + k] - hexes.positions[3 * v[0] + k];
+      const double det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) -
+                         d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0]) +
+                         d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+      if (det < 0.0) std::swap(v[1], v[2]);
+      mesh.elements.insert(mesh.elements.end(), v, v + 4);
+    }
+  return mesh;
+}
+
 double mesh_volume(const Mesh& mesh, const std::vector<double>& x) {
   if (x.size() != mesh.positions.size()) {
     std::ostringstream s;

@@ -1,5 +1,6 @@
 #include "snh/scenes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -109,6 +110,7 @@ Scene flex(const SceneParameters& p) {
 }
 
 // Edge length of the first element (the scenes' lattices are uniform).
+// Edge length of the first hex (the scenes' lattices are uniform).
 double scene_cell_size(const Mesh& mesh) {
   const auto a = mesh.vertex(mesh.elements[0]), b = mesh.vertex(mesh.elements[1]);
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
@@ -131,13 +133,17 @@ Scene make_scene(const std::string& name, const SceneParameters& p) {
   else
     throw Error("scene: unknown scene '" + name + "' (known: stretch, twist, scramble, flex)");
   s.name = name;
+  const double h = scene_cell_size(s.mesh);
+  // Vertices (and so the constraint sets) are the lattice's either way.
+  if (p.element_type == ElementType::tet4) s.mesh = split_hexes_into_tets(s.mesh);
   s.material = StableNeoHookean::from_youngs_modulus(p.youngs_modulus, p.poisson_ratio, p.barrier);
   // Newton to a residual equivalent to a strain error of strain_tolerance:
   // a vertex force is about E h^2 times a strain, summed over the vertices.
   // (The paper's absolute 1e-2 assumes its own units; a tolerance relative to
   // the first residual would stop the scramble far from equilibrium.)
-  const double h = scene_cell_size(s.mesh);
   s.options.relative_tolerance = 0.0;
+  // Coarse tets under a sudden pi/2 twist need some 60 iterations.
+  s.options.max_newton_iterations = std::max(s.options.max_newton_iterations, 200);
   s.options.absolute_tolerance =
       p.strain_tolerance * p.youngs_modulus * h * h * std::sqrt(static_cast<double>(s.mesh.vertex_count()));
   for (const ConstraintSet& c : s.constraints)

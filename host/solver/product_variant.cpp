@@ -28,15 +28,18 @@ ProductVariant parse_product_variant(const std::string& text) {
               "'");
 }
 
-// Measured with `snh-gpu-bench throughput --size 8,16` on pocl (2 CPU cores):
-// per-element matrices win for hex8 and tet4 in float and double (setup plus
-// 50 products per Newton iteration: e.g. hex8 16^3 double 0.71 ms per product
-// and 104 ms setup, against 5.5 ms and 26 ms cached, 3.3 ms and 116 ms
-// assembled, 21.9 ms recomputed). No GPU was measured: there the cached
-// linearization, 7.5x less memory than element matrices, is the default until
-// a measurement says otherwise.
-ProductVariant default_product_variant(ElementType, Precision, bool gpu) {
-  return gpu ? ProductVariant::cached : ProductVariant::element_matrices;
+// Measured with `snh-gpu-bench throughput` (sizes 8^3 and 12^3; README) on
+// pocl, 2 CPU cores, scored as setup + 50 products per Newton iteration:
+// hex8: per-element matrices win in float and double at both sizes (e.g.
+// double 12^3: 0.136 ms per product + 19.9 ms setup, against 0.93 + 5.1
+// cached, 0.41 + 21.8 assembled, 5.9 + 5.2 recomputed); tet4: the assembled
+// matrix wins in 3 of 4 cases (double 12^3: 0.196 + 10.8 against 0.255 + 9.4
+// element matrices). No GPU was measured: there the cached linearization,
+// with the least memory of the fast variants, is the default until a
+// measurement says otherwise.
+ProductVariant default_product_variant(ElementType type, Precision, bool gpu) {
+  if (gpu) return ProductVariant::cached;
+  return type == ElementType::hex8 ? ProductVariant::element_matrices : ProductVariant::assembled;
 }
 
 }  // namespace snh

@@ -58,6 +58,12 @@ Mesh make_voxel_cylinder(double radius, double length, double h);
 // diagonal (conforming across cubes).
 Mesh make_tet_box(int nx, int ny, int nz, double h, std::array<double, 3> origin = {0.0, 0.0, 0.0});
 
+// Each hex of a lattice-like hex8 mesh (all elements with the same
+// orientation, as every generator here makes) split into six tetrahedra
+// around its 0-6 diagonal, conforming across hexes. Tets come out positively
+// oriented; throws snh::Error for a mesh that is not hex8.
+Mesh split_hexes_into_tets(const Mesh& hexes);
+
 // Volume of the mesh at positions `x` (xyz per vertex): the sum over
 // elements and quadrature points of det F times the rest volume.
 double mesh_volume(const Mesh& mesh, const std::vector<double>& x);

@@ -19,6 +19,8 @@ struct SceneParameters {
   Barrier barrier = Barrier::automatic;
   int steps = 0;  // load steps; 0: the scene's default
   unsigned seed = 1;
+  // hex8 (the paper's lattices) or tet4 (each lattice hex split in six).
+  ElementType element_type = ElementType::hex8;
   // Newton stops when the force residual is that of a strain error of this
   // size: |r| <= strain_tolerance * E * h^2 * sqrt(vertices), h the cell size.
   double strain_tolerance = 1e-6;
