@@ -216,7 +216,9 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
         const HostProductTiming host = time_host_product(mesh, material, xh, 20);
         rows.push_back({type, "double", "host-eigen-csr", n, ne, xh.size(), host.product_seconds, host.assembly_seconds,
                         host.assembly_seconds, host.nonzeros * 12 + (xh.size() + 1) * 4,
-                        Counts{2.0 * host.nonzeros / ne, 0.0}});
+                        product_counts(ProductVariant::assembled, rest.nodes, rest.quadrature, rest.uniform,
+                                       sizeof(double), static_cast<double>(host.nonzeros), static_cast<double>(ne),
+                                       static_cast<double>(mesh.vertex_count()))});
       }
     }
 }
