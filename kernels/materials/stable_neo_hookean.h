@@ -12,7 +12,7 @@
 #ifndef SNH_STABLE_NEO_HOOKEAN_H
 #define SNH_STABLE_NEO_HOOKEAN_H
 
-#include "materials/principal_hessian.h"
+#include "materials/invariant_hessian.h"
 
 /* alpha of Eq. 14 (barrier) or Eq. 13 (no barrier): makes P(I) = 0. */
 SNH_FN real snh_alpha(real mu, real lambda, int barrier) {
@@ -30,55 +30,37 @@ SNH_FN real snh_energy(mat3 f, real mu, real lambda, int barrier) {
   return psi;
 }
 
-/* PK1, Eq. 18: P = mu (1 - 1/(I_C + 1)) F + lambda (J - alpha) dJ/dF. */
-SNH_FN mat3 snh_pk1(mat3 f, real mu, real lambda, int barrier) {
-  const real ic = mat3_ddot(f, f);
-  const real alpha = snh_alpha(mu, lambda, barrier);
-  const mat3 g = mat3_cofactor(f);
-  const real j = mat3_det(f);
-  const real mu_t = barrier ? mu * (SNH_R(1) - SNH_R(1) / (ic + SNH_R(1))) : mu;
-  const real vol = lambda * (j - alpha);
-  mat3 p;
-  for (int i = 0; i < 9; ++i) p.a[i] = mu_t * f.a[i] + vol * g.a[i];
-  return p;
+/* The invariant terms of Eq. 52 for this energy (sec. 4.6, App. D):
+ * gamma_I = mu_T = mu (1 - 1/(I_C + 1)) (barrier) or mu, gamma_F =
+ * 2 mu / (I_C + 1)^2 (barrier) or 0, gamma_G = lambda, gamma_H =
+ * lambda (J - alpha). */
+SNH_FN invariant_terms snh_invariant_terms(real ic, real j, real mu, real lambda, int barrier) {
+  invariant_terms t;
+  t.gamma_i = barrier ? mu * (SNH_R(1) - SNH_R(1) / (ic + SNH_R(1))) : mu;
+  t.gamma_f = barrier ? SNH_R(2) * mu / ((ic + SNH_R(1)) * (ic + SNH_R(1))) : SNH_R(0);
+  t.gamma_g = lambda;
+  t.gamma_h = lambda * (j - snh_alpha(mu, lambda, barrier));
+  return t;
 }
 
-/* The Hessian's eigensystem in the SVD frame (sec. 4.6).
- * Block: d2 psi / d sigma_i d sigma_j, whose characteristic cubic is the
- * rank-two updated cubic of Eqs. 42-43 (App. D: rank-one, Eq. 66) shifted by
- * mu_T and scaled by lambda (J - alpha), Eq. 45. We solve the cubic of the
- * block itself: Eq. 42's coefficients divide by lambda (J - 1) - 3 mu / 4,
- * which is zero at J = alpha, while the block is finite everywhere.
- *   A_ii = mu_T + 2 b mu sigma_i^2 / (I_C + 1)^2 + lambda (sigma_j sigma_k)^2
- *   A_ij = 2 b mu sigma_i sigma_j / (I_C + 1)^2 + lambda sigma_i sigma_j sigma_k^2
- *          + lambda (J - alpha) sigma_k
- * Twists and flips, Eqs. 46-48: mu_T +- lambda (J - alpha) sigma_k, with
- * mu_T = mu (1 - 1/(I_C + 1)) (barrier) or mu (App. D).
- * Any factorization F = U diag(sigma) V^T with orthogonal U, V gives the same
- * Hessian (sec. 4.5.1): the convention is free. */
+/* PK1, Eq. 18: P = mu (1 - 1/(I_C + 1)) F + lambda (J - alpha) dJ/dF. */
+SNH_FN mat3 snh_pk1(mat3 f, real mu, real lambda, int barrier) {
+  return invariant_pk1(f, snh_invariant_terms(mat3_ddot(f, f), mat3_det(f), mu, lambda, barrier));
+}
+
+/* The Hessian's eigensystem in the SVD frame (sec. 4.6), through the
+ * invariant form. The block's characteristic cubic is the rank-two updated
+ * cubic of Eqs. 42-43 (App. D: rank-one, Eq. 66) shifted by mu_T and scaled
+ * by lambda (J - alpha), Eq. 45. We solve the cubic of the block itself:
+ * Eq. 42's coefficients divide by lambda (J - 1) - 3 mu / 4, which is zero
+ * at J = alpha, while the block is finite everywhere. Twists and flips,
+ * Eqs. 46-48: mu_T +- lambda (J - alpha) sigma_k. Any factorization
+ * F = U diag(sigma) V^T with rotations U, V gives the same Hessian
+ * (sec. 4.5.1): the sign convention is free. */
 SNH_FN principal_hessian snh_principal_hessian_from_svd(mat3 u, vec3 sigma, mat3 v, real mu, real lambda, int barrier) {
-  principal_hessian h;
-  h.u = u;
-  h.sigma = sigma;
-  h.v = v;
-  const real s0 = h.sigma.a[0], s1 = h.sigma.a[1], s2 = h.sigma.a[2];
-  const real ic = s0 * s0 + s1 * s1 + s2 * s2;
-  const real j = s0 * s1 * s2;
-  const real alpha = snh_alpha(mu, lambda, barrier);
-  const real mu_t = barrier ? mu * (SNH_R(1) - SNH_R(1) / (ic + SNH_R(1))) : mu;
-  const real bar = barrier ? SNH_R(2) * mu / ((ic + SNH_R(1)) * (ic + SNH_R(1))) : SNH_R(0);
-  const real vol = lambda * (j - alpha);
-  h.block.a[0] = mu_t + bar * s0 * s0 + lambda * (s1 * s2) * (s1 * s2);
-  h.block.a[3] = mu_t + bar * s1 * s1 + lambda * (s0 * s2) * (s0 * s2);
-  h.block.a[5] = mu_t + bar * s2 * s2 + lambda * (s0 * s1) * (s0 * s1);
-  h.block.a[1] = bar * s0 * s1 + lambda * s0 * s1 * s2 * s2 + vol * s2;
-  h.block.a[2] = bar * s0 * s2 + lambda * s0 * s2 * s1 * s1 + vol * s1;
-  h.block.a[4] = bar * s1 * s2 + lambda * s1 * s2 * s0 * s0 + vol * s0;
-  for (int k = 0; k < 3; ++k) {
-    h.twist.a[k] = mu_t + vol * h.sigma.a[k];
-    h.flip.a[k] = mu_t - vol * h.sigma.a[k];
-  }
-  return h;
+  const real s0 = sigma.a[0], s1 = sigma.a[1], s2 = sigma.a[2];
+  return invariant_principal_hessian(
+      u, sigma, v, snh_invariant_terms(s0 * s0 + s1 * s1 + s2 * s2, s0 * s1 * s2, mu, lambda, barrier));
 }
 
 SNH_FN principal_hessian snh_principal_hessian(mat3 f, real mu, real lambda, int barrier) {
