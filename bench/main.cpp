@@ -3,7 +3,9 @@
 #include <string>
 
 #include "commands.h"
+#include "materials_report.h"
 #include "snh/error.h"
+#include "stability.h"
 #include "throughput.h"
 
 int main(int argc, char** argv) {
@@ -16,6 +18,8 @@ int main(int argc, char** argv) {
   snh::bench::add_scene_command(app, exit_code);
   snh::bench::add_errtime_command(app, exit_code);
   snh::bench::add_throughput_command(app, exit_code);
+  snh::bench::add_materials_command(app, exit_code);
+  snh::bench::add_stability_command(app, exit_code);
   std::string out_dir = "bench-results";
   int samples = 20000;
   app.add_option("--out", out_dir, "folder for the default suite's results")->capture_default_str();

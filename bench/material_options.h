@@ -16,6 +16,8 @@ struct MaterialOptions {
   double lame_mu = 0.0;
   double lame_lambda = 0.0;
   std::string barrier = "auto";
+  std::string model = "snh";
+  snh::MaterialOptions model_options;
   std::string precision = "double";
   std::string device;
 
@@ -29,6 +31,23 @@ struct MaterialOptions {
     command.add_option("--barrier", barrier, "origin barrier: on, off, auto (off for nu >= 0.4)")
         ->check(CLI::IsMember({"on", "off", "auto"}))
         ->capture_default_str();
+    command
+        .add_option("--model", model,
+                    "material: snh, fung, arruda-boyce, corotational, fixed-corotational, stvk-kikuuwe, neohookean "
+                    "(all normalized to the same small-strain E, nu)")
+        ->check(CLI::IsMember(
+            {"snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"}))
+        ->capture_default_str();
+    command.add_option("--fung-gamma", model_options.fung_gamma, "fung: gamma / mu_Lame")->capture_default_str();
+    command.add_option("--fung-mu1", model_options.fung_mu1, "fung: exponent rate mu1")->capture_default_str();
+    command.add_option("--ab-beta1", model_options.arruda_boyce_beta1, "arruda-boyce: beta1")->capture_default_str();
+    command.add_option("--ab-beta2", model_options.arruda_boyce_beta2, "arruda-boyce: beta2")->capture_default_str();
+    command.add_option("--kappa", model_options.kikuuwe_kappa, "stvk-kikuuwe: compression penalty kappa / mu_Lame")
+        ->capture_default_str();
+    command
+        .add_option("--j0", model_options.neohookean_j0,
+                    "neohookean: inversion handling below J0 (0: none, J <= 0 is an error)")
+        ->capture_default_str();
     command.add_option("--precision", precision, "float or double")
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();
@@ -37,10 +56,12 @@ struct MaterialOptions {
     mu_given_ = mu;
   }
 
-  StableNeoHookean material() const {
-    const Barrier b = parse_barrier(barrier);
-    if (mu_given_ && mu_given_->count() > 0) return StableNeoHookean::from_lame({lame_mu, lame_lambda}, b);
-    return StableNeoHookean::from_youngs_modulus(youngs_modulus, poisson_ratio, b);
+  Material material() const {
+    snh::MaterialOptions o = model_options;
+    o.barrier = parse_barrier(barrier);
+    const MaterialModel m = parse_material_model(model);
+    if (mu_given_ && mu_given_->count() > 0) return Material::from_lame(m, {lame_mu, lame_lambda}, o);
+    return Material::from_youngs_modulus(m, youngs_modulus, poisson_ratio, o);
   }
 
  private:

@@ -51,7 +51,7 @@ json rows(const double* column_major, int n) {
 }
 
 int run_probe(const MaterialOptions& options) {
-  const StableNeoHookean material = options.material();
+  const Material material = options.material();
   MaterialProbe probe(material, parse_precision(options.precision), DeviceOptions{options.device});
 
   struct Line {
@@ -65,7 +65,13 @@ int run_probe(const MaterialOptions& options) {
   for (long number = 1; std::getline(std::cin, text); ++number) {
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
     try {
-      fs.push_back(parse_deformation(text));
+      const Matrix3 f = parse_deformation(text);
+      const double j =
+          f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
+      if (!material.defined_for_inversion() && !(j > 0.0))
+        throw Error("the neohookean model without inversion handling (--j0 0) is undefined for J = det F = " +
+                    std::to_string(j) + " <= 0");
+      fs.push_back(f);
       lines.push_back({number, {}, fs.size() - 1});
     } catch (const Error& e) {
       lines.push_back({number, e.what()});

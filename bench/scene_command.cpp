@@ -29,6 +29,7 @@ struct SceneOptions {
   double youngs_modulus = 1.0;
   double poisson_ratio = 0.49;
   std::string barrier = "auto";
+  std::string model = "snh";
   std::string precision = "double";
   int steps = 0;
   unsigned seed = 1;
@@ -130,7 +131,11 @@ int run_scene(const SceneOptions& o) {
     write_vtu(o.vtu_dir + "/" + file, scene.mesh, x0);
     written.push_back({0.0, file});
   }
-  QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
+  MaterialOptions material_options;
+  material_options.barrier = p.barrier;
+  const Material material =
+      Material::from_youngs_modulus(parse_material_model(o.model), o.youngs_modulus, o.poisson_ratio, material_options);
+  QuasistaticSolver solver(scene.mesh, material, scene.constraints, options);
   const Mesh& mesh = solver.mesh();
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
     if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
@@ -157,7 +162,9 @@ int run_scene(const SceneOptions& o) {
     if (!parent.empty()) std::filesystem::create_directories(parent);
     std::ofstream out(o.json_path);
     if (!out) throw Error("cannot write " + o.json_path);
-    out << summary_json(scene, options, r).dump(2) << '\n';
+    json j = summary_json(scene, options, r);
+    j["model"] = to_string(material.model);
+    out << j.dump(2) << '\n';
   }
   return r.converged ? 0 : 3;
 }
@@ -174,6 +181,12 @@ void add_scene_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--E", o->youngs_modulus, "Young's modulus")->capture_default_str();
   cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();
+  cmd->add_option("--model", o->model,
+                  "material: snh, fung, arruda-boyce, corotational, fixed-corotational, stvk-kikuuwe, neohookean "
+                  "(normalized to the same small-strain E, nu; model settings at their defaults)")
+      ->check(CLI::IsMember(
+          {"snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"}))
+      ->capture_default_str();
   cmd->add_option("--barrier", o->barrier, "origin barrier: on, off, auto")
       ->check(CLI::IsMember({"on", "off", "auto"}))
       ->capture_default_str();

@@ -8,7 +8,11 @@
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
  * element; gradients: [element][q][a][3]; weights: [element][q]. */
 #include "fem/element.h"
-#include "materials/stable_neo_hookean.h"
+#include "materials/material.h"
+
+#ifndef SNH_MODEL
+#define SNH_MODEL SNH_MODEL_SNH
+#endif
 
 #if SNH_UNIFORM_REST
 #define REST_ELEMENT(e) 0
@@ -33,7 +37,7 @@ SNH_FN real load_weight(SNH_GLOBAL const real* weights, int e, int q) {
 /* Strain energy of each element, sum_q w_q psi(F_q), and its smallest J. */
 __kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,
                                  __global const real* weights, const int count, const real mu, const real lambda,
-                                 __global real* energy, __global real* min_j) {
+                                 const real c0, const real c1, __global real* energy, __global real* min_j) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
@@ -42,7 +46,7 @@ __kernel void snh_element_energy(__global const real* x, __global const int* ele
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
     const mat3 f = element_deformation_gradient(xs, g);
-    sum += load_weight(weights, e, q) * snh_energy(f, mu, lambda, SNH_BARRIER);
+    sum += load_weight(weights, e, q) * material_energy(SNH_MODEL, SNH_BARRIER, f, material_make(mu, lambda, c0, c1));
     const real j = mat3_det(f);
     smallest = q == 0 ? j : fmin(smallest, j);
   }
@@ -53,7 +57,7 @@ __kernel void snh_element_energy(__global const real* x, __global const int* ele
 /* Elastic forces per element node: -sum_q w_q P_q dN_a/dX. */
 __kernel void snh_element_forces(__global const real* x, __global const int* elements, __global const real* gradients,
                                  __global const real* weights, const int count, const real mu, const real lambda,
-                                 __global real* out) {
+                                 const real c0, const real c1, __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES], f[3 * SNH_NODES];
@@ -61,7 +65,8 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
   for (int i = 0; i < 3 * SNH_NODES; ++i) f[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    const mat3 p = snh_pk1(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER);
+    const mat3 p =
+        material_pk1(SNH_MODEL, SNH_BARRIER, element_deformation_gradient(xs, g), material_make(mu, lambda, c0, c1));
     element_scatter(p, g, -load_weight(weights, e, q), f);
   }
   for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = f[i];
@@ -71,14 +76,15 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
  * PSD when `project` (else the true Hessian, for Newton near a solution). */
 __kernel void snh_element_linearize(__global const real* x, __global const int* elements,
                                     __global const real* gradients, const int count, const real mu, const real lambda,
-                                    const int project, __global real* cache) {
+                                    const real c0, const real c1, const int project, __global real* cache) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
   load_nodes(x, elements + SNH_NODES * e, xs);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    principal_hessian h = snh_principal_hessian(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER);
+    principal_hessian h = material_principal_hessian(SNH_MODEL, SNH_BARRIER, element_deformation_gradient(xs, g),
+                                                     material_make(mu, lambda, c0, c1));
     if (project) h = principal_hessian_project(h);
     linearization_store(&h, cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
   }
@@ -111,7 +117,7 @@ __kernel void snh_element_product_cached(__global const real* p, __global const 
 __kernel void snh_element_product_recompute(__global const real* p, __global const int* elements,
                                             __global const real* gradients, __global const real* weights,
                                             const int count, __global const real* x, const real mu, const real lambda,
-                                            const int project, __global real* out) {
+                                            const real c0, const real c1, const int project, __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
@@ -120,7 +126,8 @@ __kernel void snh_element_product_recompute(__global const real* p, __global con
   for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    principal_hessian h = snh_principal_hessian(element_deformation_gradient(xs, g), mu, lambda, SNH_BARRIER);
+    principal_hessian h = material_principal_hessian(SNH_MODEL, SNH_BARRIER, element_deformation_gradient(xs, g),
+                                                     material_make(mu, lambda, c0, c1));
     if (project) h = principal_hessian_project(h);
     element_product(&h, ps, g, load_weight(weights, e, q), y);
   }

@@ -55,6 +55,7 @@ typedef float real;
  * The including file has already included <cmath> and <cfloat>. */
 using std::acos;
 using std::cos;
+using std::exp;
 using std::fabs;
 using std::fmax;
 using std::fmin;

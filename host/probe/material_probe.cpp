@@ -11,9 +11,9 @@ constexpr int kRecord = 103;  // SNH_PROBE_RECORD in kernels/probe.cl
 }
 
 struct MaterialProbe::Impl {
-  StableNeoHookean material;
+  Material material;
   device::OpenClContext cl;
-  Impl(const StableNeoHookean& m, Precision p, const DeviceOptions& d) : material(m), cl(d, p) {}
+  Impl(const Material& m, Precision p, const DeviceOptions& d) : material(m), cl(d, p) {}
 
   template <typename Real>
   std::vector<ProbeResult> evaluate(const std::vector<Matrix3>& fs) {
@@ -25,15 +25,20 @@ struct MaterialProbe::Impl {
     device::Buffer in =
         cl.buffer(CL_MEM_READ_ONLY, input.size() * sizeof(Real), input.empty() ? nullptr : input.data());
     device::Buffer out = cl.buffer(CL_MEM_WRITE_ONLY, output.size() * sizeof(Real));
-    device::Kernel k =
-        cl.kernel("probe.cl", std::string("-DSNH_BARRIER=") + (material.barrier ? "1" : "0"), "snh_probe");
+    device::Kernel k = cl.kernel("probe.cl",
+                                 "-DSNH_MODEL=" + std::to_string(static_cast<int>(material.model)) +
+                                     " -DSNH_BARRIER=" + (material.barrier ? "1" : "0"),
+                                 "snh_probe");
     const Real mu = static_cast<Real>(material.mu), lambda = static_cast<Real>(material.lambda);
+    const Real c0 = static_cast<Real>(material.c0), c1 = static_cast<Real>(material.c1);
     cl_mem in_mem = in.get(), out_mem = out.get();
     device::check(clSetKernelArg(k.get(), 0, sizeof(cl_mem), &in_mem), "clSetKernelArg");
     device::check(clSetKernelArg(k.get(), 1, sizeof(int), &count), "clSetKernelArg");
     device::check(clSetKernelArg(k.get(), 2, sizeof(Real), &mu), "clSetKernelArg");
     device::check(clSetKernelArg(k.get(), 3, sizeof(Real), &lambda), "clSetKernelArg");
-    device::check(clSetKernelArg(k.get(), 4, sizeof(cl_mem), &out_mem), "clSetKernelArg");
+    device::check(clSetKernelArg(k.get(), 4, sizeof(Real), &c0), "clSetKernelArg");
+    device::check(clSetKernelArg(k.get(), 5, sizeof(Real), &c1), "clSetKernelArg");
+    device::check(clSetKernelArg(k.get(), 6, sizeof(cl_mem), &out_mem), "clSetKernelArg");
     cl.run(k.get(), fs.size());
     if (!output.empty()) cl.read(out.get(), output.size() * sizeof(Real), output.data());
 
@@ -51,7 +56,7 @@ struct MaterialProbe::Impl {
   }
 };
 
-MaterialProbe::MaterialProbe(const StableNeoHookean& material, Precision precision, const DeviceOptions& device)
+MaterialProbe::MaterialProbe(const Material& material, Precision precision, const DeviceOptions& device)
     : impl_(std::make_unique<Impl>(material, precision, device)) {}
 MaterialProbe::~MaterialProbe() = default;
 MaterialProbe::MaterialProbe(MaterialProbe&&) noexcept = default;

@@ -61,4 +61,24 @@ Mat3<Real> snh_projected_action(const Mat3<Real>& f, const Mat3<Real>& df, const
 template <typename Real>
 Mat3<Real> snh_projected_action_from_svd(const Svd<Real>& svd, const Mat3<Real>& df, const SnhParameters& p);
 
+// Any material model (ids of snh::MaterialModel), parameters as in
+// snh::Material: the same kernels/materials/material.h the device runs.
+struct MaterialSpec {
+  int model = 0;
+  bool barrier = true;
+  double mu = 0.0, lambda = 0.0, c0 = 0.0, c1 = 0.0;
+};
+
+template <typename Real>
+Real material_energy(const Mat3<Real>& f, const MaterialSpec& m);
+
+template <typename Real>
+Mat3<Real> material_pk1(const Mat3<Real>& f, const MaterialSpec& m);
+
+template <typename Real>
+HessianEigensystem<Real> material_hessian_eigensystem(const Mat3<Real>& f, const MaterialSpec& m);
+
+template <typename Real>
+Mat3<Real> material_projected_action(const Mat3<Real>& f, const Mat3<Real>& df, const MaterialSpec& m);
+
 }  // namespace snh::reference

@@ -25,7 +25,7 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 
 template <typename Real>
 ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
-                                 const StableNeoHookean& material, ProductVariant variant)
+                                 const Material& material, ProductVariant variant)
     : cl_(cl),
       vertex_count_(mesh.vertex_count()),
       element_count_(mesh.element_count()),
@@ -36,6 +36,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
       linearized_x_(3 * mesh.vertex_count()) {
   // Build-time specialization: only what this scene uses is compiled in.
   defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") +
+             " -DSNH_MODEL=" + std::to_string(static_cast<int>(material.model)) +
              " -DSNH_BARRIER=" + (material.barrier ? "1" : "0") + " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
 
   // Vertex -> (element * nodes + node) slots, in increasing slot order, so
@@ -79,6 +80,14 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
   elements_host_ = elements;
   set_variant(variant);
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_material_args(cl_kernel k, cl_uint first) const {
+  set_arg(k, first, Real(material_.mu));
+  set_arg(k, first + 1, Real(material_.lambda));
+  set_arg(k, first + 2, Real(material_.c0));
+  set_arg(k, first + 3, Real(material_.c1));
 }
 
 template <typename Real>
@@ -196,16 +205,14 @@ template <typename Real>
 double ElasticModel<Real>::energy(const VectorBase& x) {
   cl_kernel k = energy_k_.get();
   const int count = static_cast<int>(element_count_);
-  const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
   set_arg(k, 0, mem(x));
   set_arg(k, 1, elements_.get());
   set_arg(k, 2, gradients_.get());
   set_arg(k, 3, weights_.get());
   set_arg(k, 4, count);
-  set_arg(k, 5, mu);
-  set_arg(k, 6, lambda);
-  set_arg(k, 7, energies_.get());
-  set_arg(k, 8, min_j_.get());
+  set_material_args(k, 5);
+  set_arg(k, 9, energies_.get());
+  set_arg(k, 10, min_j_.get());
   run_element_kernel(k);
   std::vector<Real> e(element_count_), j(element_count_);
   cl_.read(energies_.get(), e.size() * sizeof(Real), e.data());
@@ -243,15 +250,13 @@ template <typename Real>
 void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
   cl_kernel k = forces_k_.get();
   const int count = static_cast<int>(element_count_);
-  const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
   set_arg(k, 0, mem(x));
   set_arg(k, 1, elements_.get());
   set_arg(k, 2, gradients_.get());
   set_arg(k, 3, weights_.get());
   set_arg(k, 4, count);
-  set_arg(k, 5, mu);
-  set_arg(k, 6, lambda);
-  set_arg(k, 7, element_scratch_.get());
+  set_material_args(k, 5);
+  set_arg(k, 9, element_scratch_.get());
   run_element_kernel(k);
   gather(element_scratch_, r, true);
 }
@@ -262,15 +267,13 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   projected_ = projected ? 1 : 0;
   cl_kernel k = linearize_k_.get();
   const int count = static_cast<int>(element_count_);
-  const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
   set_arg(k, 0, mem(x));
   set_arg(k, 1, elements_.get());
   set_arg(k, 2, gradients_.get());
   set_arg(k, 3, count);
-  set_arg(k, 4, mu);
-  set_arg(k, 5, lambda);
-  set_arg(k, 6, projected_);
-  set_arg(k, 7, cache_.get());
+  set_material_args(k, 4);
+  set_arg(k, 8, projected_);
+  set_arg(k, 9, cache_.get());
   run_element_kernel(k);
   last_assembly_seconds_ = 0.0;
   if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled) compute_element_matrices();
@@ -309,17 +312,15 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(k, 6, element_scratch_.get());
   } else {
     k = product_recompute_k_.get();
-    const Real mu = Real(material_.mu), lambda = Real(material_.lambda);
     set_arg(k, 0, mem(p));
     set_arg(k, 1, elements_.get());
     set_arg(k, 2, gradients_.get());
     set_arg(k, 3, weights_.get());
     set_arg(k, 4, count);
     set_arg(k, 5, mem(linearized_x_));
-    set_arg(k, 6, mu);
-    set_arg(k, 7, lambda);
-    set_arg(k, 8, projected_);
-    set_arg(k, 9, element_scratch_.get());
+    set_material_args(k, 6);
+    set_arg(k, 10, projected_);
+    set_arg(k, 11, element_scratch_.get());
   }
   run_element_kernel(k);
   gather(element_scratch_, y, false);

@@ -22,8 +22,8 @@ class ElasticModel {
   using Vector = viennacl::vector<Real>;
   using VectorBase = viennacl::vector_base<Real>;
 
-  ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
-               const StableNeoHookean& material, ProductVariant variant);
+  ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest, const Material& material,
+               ProductVariant variant);
 
   size_t dofs() const { return 3 * vertex_count_; }
   // 1 for free DOFs, 0 for constrained ones (xyz per vertex).
@@ -64,13 +64,15 @@ class ElasticModel {
  private:
   void run_element_kernel(cl_kernel k) const;
   void compute_element_matrices();
+  // mu, lambda, c0, c1 as kernel arguments first .. first + 3.
+  void set_material_args(cl_kernel k, cl_uint first) const;
   void assemble();
   void gather(const device::Buffer& element_values, VectorBase& out, bool external) const;
 
   device::OpenClContext& cl_;
   size_t vertex_count_, element_count_;
   int nodes_, quadrature_;
-  StableNeoHookean material_;
+  Material material_;
   ProductVariant variant_;
   std::string defines_;
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,

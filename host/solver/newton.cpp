@@ -149,37 +149,77 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
       projection_cooldown = kProjectionCooldown;
     }
 
-    // A usable descent direction: CG's, else the preconditioned residual.
-    double slope = dot(r, p);  // -dE/dalpha at alpha = 0
-    if (!std::isfinite(slope) || !(slope > 0.0)) {
-      rec.cg_stop += "+steepest_descent";
+    // A usable descent direction: CG's, else the preconditioned residual
+    // (else, with a broken preconditioner, the residual itself).
+    bool steepest = false;
+    double slope = 0.0;
+    auto use_steepest_descent = [&] {
       p = r;
       precond.apply(p);
       slope = dot(r, p);
+      if (!std::isfinite(slope) || !(slope > 0.0)) {
+        p = r;
+        slope = rn * rn;
+      }
+      steepest = true;
+    };
+    slope = dot(r, p);  // -dE/dalpha at alpha = 0; non-finite when p has a non-finite entry
+    if (!std::isfinite(slope) || !(slope > 0.0)) {
+      rec.recovery = std::string(rec.cg_stop == "breakdown" ? "cg_breakdown"
+                                 : !std::isfinite(slope)    ? "non_finite_direction"
+                                                            : "non_descent") +
+                     " -> steepest_descent";
+      rec.cg_stop += "+steepest_descent";
+      use_steepest_descent();
+    } else if (rec.cg_stop == "breakdown") {
+      rec.recovery = "cg_breakdown -> partial_cg_direction";
     }
 
-    // Backtracking on the energy; never accept a non-finite energy. Where
-    // the energy change is below its rounding noise (float near the
-    // solution), a decrease of the residual norm decides instead.
-    double alpha = 1.0, accepted = 0.0, trial_energy = energy, trial_rn = rn;
-    for (int h = 0; h < kMaxHalvings; ++h, alpha *= 0.5) {
-      trial = x + static_cast<Real>(alpha) * p;
-      trial_energy = model_.energy(trial);
-      if (!std::isfinite(trial_energy)) continue;
-      const double noise = 64.0 * eps * std::max(std::abs(energy), std::abs(trial_energy));
-      if (trial_energy <= energy - kArmijo * alpha * slope) {
-        accepted = alpha;
-        break;
-      }
-      if (std::abs(trial_energy - energy) <= noise) {
-        model_.residual(trial, r_trial);
-        trial_rn = norm(r_trial, scratch);
-        if (trial_rn < rn) {
-          accepted = alpha;
-          break;
+    // Backtracking on the energy; never accept a non-finite energy or a
+    // trial whose residual is non-finite. Where the energy change is below
+    // its rounding noise (float near the solution), a decrease of the
+    // residual norm decides instead. On acceptance r_trial holds the
+    // trial's residual.
+    double trial_energy = energy, trial_rn = rn;
+    bool non_finite_residual = false;
+    auto line_search = [&]() -> double {
+      double alpha = 1.0;
+      for (int h = 0; h < kMaxHalvings; ++h, alpha *= 0.5) {
+        trial = x + static_cast<Real>(alpha) * p;
+        trial_energy = model_.energy(trial);
+        if (!std::isfinite(trial_energy)) continue;
+        const double noise = 64.0 * eps * std::max(std::abs(energy), std::abs(trial_energy));
+        bool residual_known = false;
+        if (!(trial_energy <= energy - kArmijo * alpha * slope)) {
+          if (!(std::abs(trial_energy - energy) <= noise)) continue;
+          model_.residual(trial, r_trial);
+          trial_rn = norm(r_trial, scratch);
+          if (!(trial_rn < rn)) continue;
+          residual_known = true;
         }
+        if (!residual_known) {
+          model_.residual(trial, r_trial);
+          trial_rn = norm(r_trial, scratch);
+        }
+        if (!std::isfinite(trial_rn)) {
+          non_finite_residual = true;
+          continue;
+        }
+        return alpha;
       }
+      return 0.0;
+    };
+    double accepted = line_search();
+    if (accepted == 0.0 && !steepest) {
+      // Once more along the preconditioned steepest descent before giving up.
+      const std::string before = rec.recovery;
+      use_steepest_descent();
+      accepted = line_search();
+      rec.recovery = (before.empty() ? "" : before + "; ") + "line_search_failed -> steepest_descent" +
+                     (accepted == 0.0 ? " failed" : "");
     }
+    if (non_finite_residual)
+      rec.recovery += std::string(rec.recovery.empty() ? "" : "; ") + "non_finite_residual -> shorter_step";
     rec.step_length = accepted;
     if (accepted == 0.0) {
       result.status = "line_search_failed";
@@ -192,8 +232,8 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
     last_alpha = accepted;
     energy = trial_energy;
     previous_rn = rn;
-    model_.residual(x, r);
-    rn = norm(r, scratch);
+    r.fast_swap(r_trial);
+    rn = trial_rn;
     result.newton_iterations = it + 1;
     result.cg_iterations += rec.cg_iterations;
     rec.seconds = elapsed(start);

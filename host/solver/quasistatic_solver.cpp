@@ -1,6 +1,7 @@
 // QuasistaticSolver: load stepping over Newton solves on the device.
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "device/opencl_context.h"
@@ -67,7 +68,7 @@ DeformationStatistics deformation_statistics(const Mesh& mesh, const std::vector
 
 struct QuasistaticSolver::Impl {
   Mesh mesh;
-  StableNeoHookean material;
+  Material material;
   std::vector<ConstraintSet> constraints;
   SolveOptions options;
   MeshWarnings mesh_warnings;
@@ -75,7 +76,7 @@ struct QuasistaticSolver::Impl {
   device::OpenClContext cl;
   long viennacl_context_id;
 
-  Impl(Mesh m, const StableNeoHookean& mat, std::vector<ConstraintSet> c, SolveOptions o)
+  Impl(Mesh m, const Material& mat, std::vector<ConstraintSet> c, SolveOptions o)
       : mesh(std::move(m)),
         material(mat),
         constraints(std::move(c)),
@@ -130,6 +131,40 @@ struct QuasistaticSolver::Impl {
       if (!std::isfinite(v)) throw Error("constraints produced a non-finite target position");
   }
 
+  // Double precision state for SolveOptions::fallback_to_double, made on
+  // the first float step that fails: a context of its own on the same device
+  // (kernels are built per context precision) with its ViennaCL binding.
+  struct DoubleFallback {
+    std::unique_ptr<device::OpenClContext> cl;
+    long viennacl_context_id = 0;
+    std::unique_ptr<solver::ElasticModel<double>> model;
+    std::unique_ptr<solver::NewtonSolver<double>> newton;
+  };
+
+  template <typename Real>
+  std::unique_ptr<solver::ElasticModel<Real>> make_model(device::OpenClContext& context, ProductVariant product) {
+    auto model = std::make_unique<solver::ElasticModel<Real>>(context, mesh, rest, material, product);
+    std::vector<Real> mask(3 * mesh.vertex_count(), Real(1));
+    for (const ConstraintSet& c : constraints)
+      for (int32_t v : c.vertices) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = Real(0);
+    model->set_mask(mask);
+    model->set_external_force(options.external_force);
+    return model;
+  }
+
+  // Solves load step s from x in precision Real on the current ViennaCL context.
+  template <typename Real>
+  static StepResult solve_in(solver::NewtonSolver<Real>& newton, int s, std::vector<double>& x,
+                             std::vector<NewtonIteration>& history, std::chrono::steady_clock::time_point start) {
+    std::vector<Real> xr(x.begin(), x.end());
+    viennacl::vector<Real> xd(x.size());
+    viennacl::copy(xr.begin(), xr.end(), xd.begin());
+    StepResult step = newton.solve_step(s, xd, history, start);
+    viennacl::copy(xd.begin(), xd.end(), xr.begin());
+    std::copy(xr.begin(), xr.end(), x.begin());
+    return step;
+  }
+
   template <typename Real>
   SolveResult run(const StepCallback& on_step) {
     device::use_viennacl(viennacl_context_id);
@@ -137,30 +172,73 @@ struct QuasistaticSolver::Impl {
     const ProductVariant product = options.product == ProductVariant::automatic
                                        ? default_product_variant(mesh.type, options.precision, cl.info().is_gpu)
                                        : options.product;
-    solver::ElasticModel<Real> model(cl, mesh, rest, material, product);
-    std::vector<Real> mask(3 * mesh.vertex_count(), Real(1));
-    for (const ConstraintSet& c : constraints)
-      for (int32_t v : c.vertices) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = Real(0);
-    model.set_mask(mask);
-    model.set_external_force(options.external_force);
-    solver::NewtonSolver<Real> newton(model, options);
+    std::unique_ptr<solver::ElasticModel<Real>> model = make_model<Real>(cl, product);
+    solver::NewtonSolver<Real> newton(*model, options);
+    const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
+    DoubleFallback fallback;
+    bool in_double = false;
 
     SolveResult result;
     result.device = cl.info();
     result.product = product;
     result.kernel_specialization =
-        model.specialization() + " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
+        model->specialization() + " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
     std::vector<double> x = options.initial_positions.empty() ? mesh.positions : options.initial_positions;
-    std::vector<Real> xr(x.size());
-    viennacl::vector<Real> xd(x.size());
     result.converged = true;
     for (int s = 1; s <= options.load_steps; ++s) {
       apply_constraints(static_cast<double>(s) / options.load_steps, x);
-      std::copy(x.begin(), x.end(), xr.begin());
-      viennacl::copy(xr.begin(), xr.end(), xd.begin());
-      StepResult step = newton.solve_step(s, xd, result.history, start);
-      viennacl::copy(xd.begin(), xd.end(), xr.begin());
-      std::copy(xr.begin(), xr.end(), x.begin());
+      const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
+      StepResult step;
+      if (!in_double) {
+        step = solve_in<Real>(newton, s, x, result.history, start);
+        step.precision_used = to_string(options.precision);
+      }
+      if (may_fall_back && (in_double || !step.converged)) {
+        if (!in_double && !cl.info().has_fp64) {
+          result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + step.status +
+                                    ") and fallback_to_double was asked, but the device has no fp64");
+        } else {
+          if (!fallback.cl) {
+            fallback.cl = std::make_unique<device::OpenClContext>(options.device, Precision::double_);
+            fallback.viennacl_context_id = device::bind_viennacl(*fallback.cl);
+            const ProductVariant double_product =
+                options.product == ProductVariant::automatic
+                    ? default_product_variant(mesh.type, Precision::double_, fallback.cl->info().is_gpu)
+                    : options.product;
+            fallback.model = make_model<double>(*fallback.cl, double_product);
+            fallback.newton = std::make_unique<solver::NewtonSolver<double>>(*fallback.model, options);
+          }
+          device::use_viennacl(fallback.viennacl_context_id);
+          std::string note;
+          if (!in_double) {
+            std::ostringstream why;
+            why << "float " << step.status << " after " << step.newton_iterations << " Newton / " << step.cg_iterations
+                << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
+            note = why.str();
+            x = step_start;
+          }
+          const size_t first_record = result.history.size();
+          StepResult redo = solve_in<double>(*fallback.newton, s, x, result.history, start);
+          device::use_viennacl(viennacl_context_id);
+          redo.precision_used = "double";
+          if (!in_double) {
+            if (first_record < result.history.size()) {
+              std::string& r = result.history[first_record].recovery;
+              r = "float " + step.status + " -> double" + (r.empty() ? "" : "; " + r);
+            }
+            redo.newton_iterations += step.newton_iterations;
+            redo.cg_iterations += step.cg_iterations;
+            redo.fallback = note;
+            result.warnings.push_back("step " + std::to_string(s) + ": " + note +
+                                      (redo.converged ? " (converged)" : " (did not converge: " + redo.status + ")") +
+                                      (s < options.load_steps ? "; the remaining steps run in double" : ""));
+          } else {
+            redo.fallback = "double (after a float failure in an earlier step)";
+          }
+          in_double = true;
+          step = redo;
+        }
+      }
       result.converged = result.converged && step.converged;
       result.final_residual_norm = step.residual_norm;
       result.steps.push_back(step);
@@ -181,8 +259,8 @@ struct QuasistaticSolver::Impl {
   }
 };
 
-QuasistaticSolver::QuasistaticSolver(Mesh mesh, const StableNeoHookean& material,
-                                     std::vector<ConstraintSet> constraints, SolveOptions options)
+QuasistaticSolver::QuasistaticSolver(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints,
+                                     SolveOptions options)
     : impl_(std::make_unique<Impl>(std::move(mesh), material, std::move(constraints), std::move(options))) {}
 QuasistaticSolver::~QuasistaticSolver() = default;
 QuasistaticSolver::QuasistaticSolver(QuasistaticSolver&&) noexcept = default;

@@ -43,4 +43,59 @@ struct StableNeoHookean {
 
 LameParameters lame_from_youngs_modulus(double youngs_modulus, double poisson_ratio);
 
+// The material family (one kernel file each under kernels/materials/):
+// Stable Neo-Hookean, its stabilized Fung and Arruda-Boyce extensions
+// (Smith et al. 2018, sec. 5.3) and the paper's comparison models.
+enum class MaterialModel {
+  stable_neo_hookean,  // "snh"
+  fung,                // "fung"
+  arruda_boyce,        // "arruda-boyce"
+  corotational,        // "corotational"
+  fixed_corotational,  // "fixed-corotational"
+  stvk_kikuuwe,        // "stvk-kikuuwe"
+  neohookean,          // "neohookean" (log J; optional inversion handling)
+};
+
+const char* to_string(MaterialModel model);
+MaterialModel parse_material_model(const std::string& name);
+
+// Model-specific settings for building a material from (E, nu). Stiffness-
+// like ones are fractions of the Lame shear modulus so that the small-strain
+// response stays (E, nu) whatever they are.
+struct MaterialOptions {
+  Barrier barrier = Barrier::automatic;  // snh only
+  double fung_gamma = 0.1;               // gamma / mu_Lame
+  double fung_mu1 = 0.5;                 // exponent rate
+  double arruda_boyce_beta1 = 0.1;
+  double arruda_boyce_beta2 = 0.01;
+  double kikuuwe_kappa = 10.0;  // kappa / mu_Lame
+  double neohookean_j0 = 0.1;   // inversion handling below J0; 0: none (J <= 0 is an error)
+};
+
+// Any model with its own parameters (mu, lambda and c0, c1: Fung gamma, mu1;
+// Arruda-Boyce beta1, beta2; StVK kappa; Neo-Hookean J0).
+struct Material {
+  MaterialModel model = MaterialModel::stable_neo_hookean;
+  double mu = 0.0;
+  double lambda = 0.0;
+  double c0 = 0.0;
+  double c1 = 0.0;
+  bool barrier = true;
+
+  Material() = default;
+  Material(const StableNeoHookean& snh);  // NOLINT: implicit, every SNH is a Material
+
+  // Normalized by (E, nu) (seed 004, Eq. 15 and Table 1): every model gets the
+  // same small-deformation Lame moduli. Throws snh::Error for out-of-range
+  // values (E <= 0, nu outside the model's admissible range, bad options).
+  static Material from_lame(MaterialModel model, const LameParameters& lame, const MaterialOptions& options = {});
+  static Material from_youngs_modulus(MaterialModel model, double youngs_modulus, double poisson_ratio,
+                                      const MaterialOptions& options = {});
+
+  LameParameters lame() const;  // the small-strain moduli (closed form per model)
+  // True where the energy is defined for every F (false: Neo-Hookean without
+  // inversion handling, undefined for J <= 0).
+  bool defined_for_inversion() const { return model != MaterialModel::neohookean || c0 > 0.0; }
+};
+
 }  // namespace snh

@@ -24,7 +24,7 @@ struct ProbeResult {
 
 class MaterialProbe {
  public:
-  MaterialProbe(const StableNeoHookean& material, Precision precision, const DeviceOptions& device = {});
+  MaterialProbe(const Material& material, Precision precision, const DeviceOptions& device = {});
   ~MaterialProbe();
   MaterialProbe(MaterialProbe&&) noexcept;
   MaterialProbe& operator=(MaterialProbe&&) noexcept;

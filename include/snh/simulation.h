@@ -68,6 +68,15 @@ struct NewtonIteration {
   std::string cg_stop;    // "converged", "max_iterations", "negative_curvature", "breakdown"
   bool projected = true;  // whether this iteration's Hessian was the PSD projection
   double seconds = 0.0;   // wall time since the solve began, at the end of this iteration
+  // What the solver did to get past trouble in this iteration; empty if
+  // nothing. E.g. "cg_breakdown -> steepest_descent", "non_descent ->
+  // steepest_descent", "line_search_failed -> steepest_descent" (the line
+  // search along CG's direction failed and the preconditioned steepest
+  // descent was tried; "... failed" appended if that failed too),
+  // "non_finite_residual -> shorter_step" (a trial with finite energy but a
+  // non-finite residual was rejected), "float <status> -> double" (the first
+  // record of a step re-solved in double, see SolveOptions::fallback_to_double).
+  std::string recovery;
 };
 
 enum class HessianMode {
@@ -97,6 +106,13 @@ struct SolveOptions {
   HessianMode hessian = HessianMode::adaptive;
   // Lumped external force, xyz per vertex (e.g. gravity); empty for none.
   std::vector<double> external_force;
+  // Float only: when a load step does not converge in float (stagnated above
+  // the tolerance, line search failed, non-finite state or the iteration
+  // limit), re-solve it in double from the step's starting positions and run
+  // the remaining steps in double too. Needs a device with fp64 (else a
+  // warning and the float result). Reported in StepResult::precision_used,
+  // StepResult::fallback and SolveResult::warnings.
+  bool fallback_to_double = false;
   // Starting positions of the first step (xyz per vertex); empty: rest.
   std::vector<double> initial_positions;
   // Called after every Newton iteration with its record and the positions
@@ -115,6 +131,12 @@ struct StepResult {
   // (no 1% residual decrease in 8 iterations: the precision floor), "non_finite_state"
   std::string status;
   double seconds = 0.0;
+  // "float" or "double": the precision of the solve this result reports.
+  std::string precision_used;
+  // Empty, or what fallback_to_double did, e.g. "float stagnated after 12
+  // Newton / 340 CG iterations (residual 3.1e-05); re-solved in double".
+  // newton_iterations and cg_iterations then count both attempts.
+  std::string fallback;
 };
 
 struct SolveResult {
@@ -140,7 +162,7 @@ using StepCallback = std::function<void(int step, const std::vector<double>& pos
 class QuasistaticSolver {
  public:
   // Validates the mesh (snh::Error on bad input) and prepares the device.
-  QuasistaticSolver(Mesh mesh, const StableNeoHookean& material, std::vector<ConstraintSet> constraints,
+  QuasistaticSolver(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints,
                     SolveOptions options = {});
   ~QuasistaticSolver();
   QuasistaticSolver(QuasistaticSolver&&) noexcept;

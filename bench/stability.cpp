@@ -1,0 +1,395 @@
+// `snh-gpu-bench stability`: see stability.h.
+#include "stability.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "snh/error.h"
+
+namespace snh::bench {
+namespace {
+
+using json = nlohmann::ordered_json;
+constexpr double kPi = 3.14159265358979323846;
+
+double strain_tolerance(Precision p) { return p == Precision::single ? 1e-4 : 1e-6; }
+
+// The scenes' stopping rule: |r| <= strain tol E h^2 sqrt(vertices).
+void set_tolerance(Scene& s, Precision precision, double h) {
+  s.options.relative_tolerance = 0.0;
+  s.options.absolute_tolerance = strain_tolerance(precision) * s.material.youngs_modulus() * h * h *
+                                 std::sqrt(static_cast<double>(s.mesh.vertex_count()));
+}
+
+std::vector<int32_t> on_plane(const Mesh& mesh, int axis, double value, double h) {
+  std::vector<int32_t> out;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (std::abs(mesh.positions[3 * v + axis] - value) <= 1e-9 * h) out.push_back(static_cast<int32_t>(v));
+  return out;
+}
+
+// A unit cube lattice of res^3 hexes, nu = 0.49, its bottom face pinned.
+Scene pinned_cube(int res, Precision precision) {
+  Scene s;
+  const double h = 1.0 / res;
+  s.mesh = make_box_lattice(res, res, res, h);
+  s.material = StableNeoHookean::from_youngs_modulus(1.0, 0.49);
+  s.constraints = {ConstraintSet{"bottom_face", on_plane(s.mesh, 2, 0.0, h), {}, {}}};
+  s.options.load_steps = 1;
+  s.options.max_newton_iterations = 200;
+  set_tolerance(s, precision, h);
+  return s;
+}
+
+bool pinned(const Scene& s, size_t v) {
+  for (const ConstraintSet& c : s.constraints)
+    if (std::find(c.vertices.begin(), c.vertices.end(), static_cast<int32_t>(v)) != c.vertices.end()) return true;
+  return false;
+}
+
+// Free vertices crushed to z = 0 ("plane"), onto the vertical axis x = y =
+// 1/2 ("line") or to the cube's centre ("point"); then released.
+Scene crush(const std::string& shape, int res, Precision precision) {
+  Scene s = pinned_cube(res, precision);
+  s.options.initial_positions = s.mesh.positions;
+  s.options.max_newton_iterations = 2000;
+  for (size_t v = 0; v < s.mesh.vertex_count(); ++v) {
+    if (pinned(s, v)) continue;
+    double* x = &s.options.initial_positions[3 * v];
+    if (shape == "plane") x[2] = 0.0;
+    if (shape == "line" || shape == "point") x[0] = x[1] = 0.5;
+    if (shape == "point") x[2] = 0.5;
+  }
+  s.description = "cube, bottom face pinned, free vertices crushed to a " + shape + ", released";
+  return s;
+}
+
+Scene make_case(const std::string& name, Precision precision, int resolution) {
+  auto res_or = [&](int fallback) { return resolution > 0 ? resolution : fallback; };
+  SceneParameters p;
+  p.strain_tolerance = strain_tolerance(precision);
+  if (name.rfind("nu", 0) == 0) {
+    p.poisson_ratio = std::stod(name.substr(2));
+    p.resolution = res_or(4);
+    Scene s = make_scene("twist", p);
+    s.description = "twist 2 x pi/2, nu = " + name.substr(2);
+    return s;
+  }
+  if (name.rfind("scramble_seed", 0) == 0) {
+    p.seed = static_cast<unsigned>(std::stoul(name.substr(13)));
+    p.resolution = res_or(4);
+    Scene s = make_scene("scramble", p);
+    s.description = "scramble, seed " + name.substr(13);
+    return s;
+  }
+  if (name == "crush_plane") return crush("plane", res_or(4), precision);
+  if (name == "crush_line") return crush("line", res_or(4), precision);
+  if (name == "crush_point") return crush("point", res_or(4), precision);
+  if (name == "twist_2pi") {
+    p.resolution = res_or(4);
+    p.steps = 4;
+    Scene s = make_scene("twist", p);
+    s.description = "twist by pi/2 steps to 2 pi";
+    return s;
+  }
+  if (name == "stretch_3.4x" || name == "stretch_5x") {
+    p.resolution = res_or(4);
+    const bool five = name == "stretch_5x";
+    if (five) p.steps = 12;
+    Scene s = make_scene("stretch", p);
+    if (five) {
+      double top = 0.0;
+      for (size_t v = 0; v < s.mesh.vertex_count(); ++v) top = std::max(top, s.mesh.positions[3 * v + 2]);
+      for (ConstraintSet& c : s.constraints)
+        if (c.name == "top_cap")
+          c.motion = [top](double t) { return RigidTransform::translation_by({0.0, 0.0, t * 4.0 * top}); };
+    }
+    s.description = std::string("cylinder stretched to ") + (five ? "5x" : "3.4x") + " in " +
+                    std::to_string(s.options.load_steps) + " steps";
+    return s;
+  }
+  if (name == "inverted_start") {
+    // One layer of interior vertices pushed through the next: the elements
+    // between are inverted when the solve starts; the top is compressed 20%.
+    const int res = res_or(4);
+    const double h = 1.0 / res;
+    Scene s = pinned_cube(res, precision);
+    ConstraintSet top{"top_face", on_plane(s.mesh, 2, 1.0, h), {}, {}};
+    top.motion = [](double t) { return RigidTransform::translation_by({0.0, 0.0, -0.2 * t}); };
+    s.constraints.push_back(top);
+    s.options.load_steps = 2;
+    s.options.initial_positions = s.mesh.positions;
+    for (size_t v = 0; v < s.mesh.vertex_count(); ++v) {
+      const auto x = s.mesh.vertex(v);
+      const bool interior_xy = x[0] > 0.5 * h && x[0] < 1.0 - 0.5 * h && x[1] > 0.5 * h && x[1] < 1.0 - 0.5 * h;
+      if (interior_xy && std::abs(x[2] - h) < 0.5 * h) s.options.initial_positions[3 * v + 2] = 2.6 * h;
+    }
+    s.description = "interior layer pushed through its neighbours (inverted at start), top compressed 20%";
+    return s;
+  }
+  if (name == "flip_top") {
+    // The top face turned upside down (pi about x) in one load step: its
+    // layer starts inverted.
+    const int res = res_or(4);
+    const double h = 1.0 / res;
+    Scene s = pinned_cube(res, precision);
+    ConstraintSet top{"top_face", on_plane(s.mesh, 2, 1.0, h), {}, {}};
+    top.motion = [](double t) { return RigidTransform::rotation_about({1.0, 0.0, 0.0}, t * kPi, {0.5, 0.5, 1.0}); };
+    s.constraints.push_back(top);
+    s.description = "top face flipped by pi about x in one load step";
+    return s;
+  }
+  if (name == "push_through") {
+    // The top face pushed down through the pinned bottom to z = -0.5 in two
+    // load steps: the body must invert.
+    const int res = res_or(4);
+    const double h = 1.0 / res;
+    Scene s = pinned_cube(res, precision);
+    ConstraintSet top{"top_face", on_plane(s.mesh, 2, 1.0, h), {}, {}};
+    top.motion = [](double t) { return RigidTransform::translation_by({0.0, 0.0, -1.5 * t}); };
+    s.constraints.push_back(top);
+    s.options.load_steps = 2;
+    s.description = "top face pushed through the pinned bottom to z = -0.5 in 2 steps";
+    return s;
+  }
+  std::string known;
+  for (const std::string& n : stability_case_names()) known += (known.empty() ? "" : ", ") + n;
+  throw Error("stability: unknown case '" + name + "' (known: " + known + ")");
+}
+
+// The first step's starting positions: the initial positions with the
+// constraints at t = 1 / steps.
+std::vector<double> first_step_start(const Scene& s) {
+  std::vector<double> x = s.options.initial_positions.empty() ? s.mesh.positions : s.options.initial_positions;
+  const double t = 1.0 / s.options.load_steps;
+  for (const ConstraintSet& c : s.constraints) {
+    if (c.targets) {
+      std::vector<double> xyz(3 * c.vertices.size());
+      c.targets(t, xyz);
+      for (size_t k = 0; k < c.vertices.size(); ++k)
+        for (int d = 0; d < 3; ++d) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
+      continue;
+    }
+    const RigidTransform m = c.motion ? c.motion(t) : RigidTransform::identity();
+    for (int32_t v : c.vertices) {
+      const auto p = m.apply(s.mesh.vertex(v));
+      for (int d = 0; d < 3; ++d) x[3 * v + d] = p[d];
+    }
+  }
+  return x;
+}
+
+std::string fixed(double v, int digits) {
+  if (!std::isfinite(v)) return std::isnan(v) ? "NaN" : (v > 0 ? "inf" : "-inf");
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(digits) << v;
+  return o.str();
+}
+
+json run_json(const StabilityRun& r, const std::string& note) {
+  json j;
+  j["case"] = r.name;
+  j["precision"] = r.precision;
+  j["description"] = r.description;
+  j["elements"] = r.elements;
+  j["converged"] = r.converged;
+  j["status"] = r.status;
+  j["newton_iterations"] = r.newton_iterations;
+  j["cg_iterations"] = r.cg_iterations;
+  j["seconds"] = r.seconds;
+  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(fixed(v, 0)); };
+  j["min_j"] = num(r.min_j);
+  j["max_j"] = num(r.max_j);
+  j["volume_ratio"] = num(r.volume_ratio);
+  j["inverted_elements_at_start"] = r.initially_inverted_elements;
+  j["inverted_elements"] = r.inverted_elements;
+  j["non_finite_positions"] = r.non_finite_positions;
+  j["nan_in_history"] = r.nan_in_history;
+  j["recoveries"] = r.recoveries;
+  j["precision_per_step"] = r.precisions_used;
+  j["warnings"] = r.warnings;
+  j["error"] = r.error;
+  j["note"] = note;
+  return j;
+}
+
+struct StabilityOptions {
+  int resolution = 0;
+  std::string precision = "both";
+  std::string out_dir = "bench-results";
+  std::string device;
+  std::string cases;
+};
+
+int run_stability(const StabilityOptions& o) {
+  std::vector<std::string> names;
+  if (o.cases.empty()) {
+    names = stability_case_names();
+  } else {
+    std::stringstream in(o.cases);
+    for (std::string item; std::getline(in, item, ',');) {
+      if (item.empty()) continue;
+      bool any = false;
+      for (const std::string& n : stability_case_names())
+        if (n == item || n.rfind(item + "_", 0) == 0 || (item == "nu" && n.rfind("nu", 0) == 0)) {
+          names.push_back(n);
+          any = true;
+        }
+      if (!any) make_case(item, Precision::double_, 0);  // throws naming the known cases
+    }
+  }
+  std::vector<Precision> precisions;
+  if (o.precision != "double") precisions.push_back(Precision::single);
+  if (o.precision != "float") precisions.push_back(Precision::double_);
+
+  std::vector<std::pair<StabilityRun, std::string>> rows;
+  int problems = 0;
+  for (const std::string& name : names) {
+    std::map<std::string, StabilityRun> by_precision;
+    for (Precision p : precisions) {
+      StabilityRun r = run_stability_case(name, p, o.resolution, false, o.device);
+      std::cerr << "  " << std::left << std::setw(16) << name << std::setw(8) << r.precision << r.status << ", "
+                << r.newton_iterations << " Newton, " << r.cg_iterations << " CG, " << fixed(r.seconds, 2) << " s\n";
+      by_precision[r.precision] = r;
+      rows.push_back({r, ""});
+    }
+    auto f = by_precision.find("float"), d = by_precision.find("double");
+    if (f != by_precision.end() && d != by_precision.end() && !f->second.converged && d->second.converged) {
+      for (auto& row : rows)
+        if (row.first.name == name && row.first.precision == "float") row.second = "float fails, double converges";
+      StabilityRun fb = run_stability_case(name, Precision::single, o.resolution, true, o.device);
+      std::cerr << "  " << std::left << std::setw(16) << name << std::setw(8) << "float+fallback " << fb.status << '\n';
+      rows.push_back({fb, "float with fallback_to_double"});
+    }
+  }
+
+  std::filesystem::create_directories(o.out_dir);
+  json all;
+  all["suite"] = "stability";
+  all["resolution"] = o.resolution;
+  all["runs"] = json::array();
+  std::ofstream csv(o.out_dir + "/stability.csv");
+  csv << "case,precision,converged,status,newton,cg,seconds,min_j,max_j,inverted_at_start,inverted,volume_ratio,"
+         "non_finite_positions,nan_in_history,recovery,note\n";
+  std::ostringstream md;
+  md << "| case | precision | converged | status | Newton | CG | s | min J | max J | inverted (start → end) | "
+        "volume | NaN | recovery | note |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const auto& [r, note] : rows) {
+    const int nan = r.non_finite_positions + r.nan_in_history;
+    if (nan > 0 || !r.error.empty()) ++problems;
+    all["runs"].push_back(run_json(r, note));
+    std::string rec = recovery_summary(r.recoveries);
+    std::string csv_rec = rec;
+    std::replace(csv_rec.begin(), csv_rec.end(), ',', ';');
+    csv << r.name << ',' << r.precision << ',' << (r.converged ? "yes" : "no") << ',' << r.status << ','
+        << r.newton_iterations << ',' << r.cg_iterations << ',' << fixed(r.seconds, 3) << ',' << fixed(r.min_j, 6)
+        << ',' << fixed(r.max_j, 6) << ',' << r.initially_inverted_elements << ',' << r.inverted_elements << ','
+        << fixed(r.volume_ratio, 6) << ',' << r.non_finite_positions << ',' << r.nan_in_history << ',' << csv_rec << ','
+        << note << '\n';
+    std::string status = r.error.empty() ? r.status : "error: " + r.error;
+    md << "| " << r.name << " | " << r.precision << " | " << (r.converged ? "yes" : "**no**") << " | " << status
+       << " | " << r.newton_iterations << " | " << r.cg_iterations << " | " << fixed(r.seconds, 2) << " | "
+       << fixed(r.min_j, 3) << " | " << fixed(r.max_j, 3) << " | " << r.initially_inverted_elements << " → "
+       << r.inverted_elements << " | " << fixed(r.volume_ratio, 4) << " | " << (nan > 0 ? "**YES**" : "none") << " | "
+       << rec << " | " << note << " |\n";
+  }
+  all["runs_with_nan_or_error"] = problems;
+  std::ofstream(o.out_dir + "/stability.json") << all.dump(2) << '\n';
+  std::ofstream(o.out_dir + "/stability.md") << md.str();
+  std::cout << md.str();
+  std::cerr << "wrote " << o.out_dir << "/stability.{json,csv,md}" << (problems ? "; NaN or errors found!" : "")
+            << '\n';
+  return problems > 0 ? 3 : 0;
+}
+
+}  // namespace
+
+std::vector<std::string> stability_case_names() {
+  return {"nu0.45",         "nu0.49",         "nu0.499",        "nu0.4999",   "scramble_seed1", "scramble_seed2",
+          "scramble_seed3", "scramble_seed4", "crush_plane",    "crush_line", "crush_point",    "twist_2pi",
+          "stretch_3.4x",   "stretch_5x",     "inverted_start", "flip_top",   "push_through"};
+}
+
+Scene make_stability_case(const std::string& name, Precision precision, int resolution) {
+  Scene s = make_case(name, precision, resolution);
+  s.name = name;
+  s.options.precision = precision;
+  return s;
+}
+
+std::string recovery_summary(const std::map<std::string, int>& recoveries) {
+  if (recoveries.empty()) return "-";
+  std::string out;
+  for (const auto& [what, count] : recoveries) out += (out.empty() ? "" : "; ") + what + " x" + std::to_string(count);
+  return out;
+}
+
+StabilityRun run_stability_case(const std::string& name, Precision precision, int resolution, bool fallback_to_double,
+                                const std::string& device) {
+  const Scene scene = make_stability_case(name, precision, resolution);
+  StabilityRun r;
+  r.name = name;
+  r.precision = std::string(to_string(precision)) + (fallback_to_double ? "+fallback" : "");
+  r.description = scene.description;
+  r.elements = scene.mesh.element_count();
+  r.initially_inverted_elements = deformation_statistics(scene.mesh, first_step_start(scene)).inverted_elements;
+  SolveOptions options = scene.options;
+  options.device.match = device;
+  options.fallback_to_double = fallback_to_double;
+  try {
+    QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
+    const SolveResult s = solver.solve();
+    r.converged = s.converged;
+    r.status = "converged";
+    for (const StepResult& step : s.steps) {
+      r.newton_iterations += step.newton_iterations;
+      r.cg_iterations += step.cg_iterations;
+      r.precisions_used.push_back(step.precision_used);
+      if (!step.converged && r.status == "converged") r.status = step.status;
+    }
+    for (const NewtonIteration& h : s.history) {
+      if (!h.recovery.empty()) ++r.recoveries[h.recovery];
+      if (std::isnan(h.residual_norm) || std::isnan(h.energy)) ++r.nan_in_history;
+    }
+    for (double v : s.positions) r.non_finite_positions += std::isfinite(v) ? 0 : 1;
+    r.seconds = s.seconds;
+    r.min_j = s.min_j;
+    r.max_j = s.max_j;
+    r.volume_ratio = s.volume_ratio;
+    r.inverted_elements = s.inverted_elements;
+    r.warnings = s.warnings;
+  } catch (const Error& e) {
+    r.status = "error";
+    r.error = e.what();
+  }
+  return r;
+}
+
+void add_stability_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<StabilityOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "stability",
+      "Stiff and extreme cases in float and double: nu to 0.4999, scramble, crush to a plane/line/point, twist to "
+      "2 pi, stretch to 3.4x and 5x, elements inverted mid-solve");
+  cmd->add_option("--res", o->resolution, "cells across each case (0: the cases' small defaults)")
+      ->capture_default_str();
+  cmd->add_option("--precision", o->precision, "float, double or both")
+      ->check(CLI::IsMember({"float", "double", "both"}))
+      ->capture_default_str();
+  cmd->add_option("--out", o->out_dir, "folder for stability.{json,csv,md}")->capture_default_str();
+  cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
+  cmd->add_option("--cases", o->cases,
+                  "comma list of cases or groups (nu, scramble, crush, twist, stretch, ...); default: all");
+  cmd->callback([o, &exit_code] { exit_code = run_stability(*o); });
+}
+
+}  // namespace snh::bench

@@ -1,0 +1,63 @@
+// `snh-gpu-bench stability`: the solver on stiff and extreme cases, in float
+// and double: nu up to 0.4999, scrambled starts, crushes to a plane, a line
+// and a point, a 2 pi twist, 3.4x and 5x stretches, and elements inverted
+// mid-solve. Per case and precision: converged or not, Newton and CG
+// iterations, time, min/max J, inverted elements, volume ratio, non-finite
+// positions (there must be none) and the solver's recovery events. Where
+// float fails and double succeeds, float is run again with
+// SolveOptions::fallback_to_double to show the switch. Writes
+// stability.{json,csv,md}.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "snh/scenes.h"
+#include "snh/simulation.h"
+
+namespace CLI {
+class App;
+}
+
+namespace snh::bench {
+
+void add_stability_command(CLI::App& app, int& exit_code);
+
+// The case names in suite order.
+std::vector<std::string> stability_case_names();
+
+// Case `name` as a scene ready to solve in `precision` (float stops at a
+// strain-equivalent residual of 1e-4, double 1e-6); resolution 0: the case's
+// default. Throws snh::Error for an unknown name.
+Scene make_stability_case(const std::string& name, Precision precision, int resolution = 0);
+
+struct StabilityRun {
+  std::string name;
+  std::string precision;  // "float", "double", "float+fallback"
+  std::string description;
+  size_t elements = 0;
+  bool converged = false;
+  std::string status;  // the first non-converged step's status, else "converged"
+  int newton_iterations = 0;
+  int cg_iterations = 0;
+  double seconds = 0.0;
+  double min_j = 0.0, max_j = 0.0, volume_ratio = 0.0;
+  int inverted_elements = 0;
+  int initially_inverted_elements = 0;       // at the first step's start
+  int non_finite_positions = 0;              // must be 0
+  int nan_in_history = 0;                    // NaN residuals or energies in the history (must be 0)
+  std::map<std::string, int> recoveries;     // NewtonIteration::recovery -> count
+  std::vector<std::string> precisions_used;  // per step
+  std::vector<std::string> warnings;
+  std::string error;  // an snh::Error, if the run threw
+};
+
+// Runs one case in one precision (fallback: SolveOptions::fallback_to_double).
+StabilityRun run_stability_case(const std::string& name, Precision precision, int resolution = 0,
+                                bool fallback_to_double = false, const std::string& device = "");
+
+// "a x2; b x1" from the recovery counts ("-" for none).
+std::string recovery_summary(const std::map<std::string, int>& recoveries);
+
+}  // namespace snh::bench

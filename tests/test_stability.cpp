@@ -1,0 +1,179 @@
+// Stability on stiff and extreme cases: the small cases of `snh-gpu-bench
+// stability` in both precisions without NaN, the Newton solver's recovery
+// paths, and the float-to-double fallback.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "snh/scenes.h"
+#include "snh/simulation.h"
+#include "stability.h"
+
+namespace snh::test {
+namespace {
+
+bool all_finite(const std::vector<double>& x) {
+  for (double v : x)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+void expect_no_nan(const SolveResult& r, const std::string& what) {
+  EXPECT_TRUE(all_finite(r.positions)) << what;
+  for (const NewtonIteration& h : r.history) {
+    EXPECT_FALSE(std::isnan(h.residual_norm)) << what << " iteration " << h.iteration;
+    EXPECT_FALSE(std::isnan(h.energy)) << what << " iteration " << h.iteration;
+  }
+}
+
+// Every case of the suite at a tiny size, float and double: no NaN anywhere.
+class StabilitySmallCases : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(StabilitySmallCases, NoNanInEitherPrecision) {
+  for (Precision p : {Precision::single, Precision::double_}) {
+    const bench::StabilityRun r = bench::run_stability_case(GetParam(), p, 2);
+    EXPECT_TRUE(r.error.empty()) << r.error;
+    EXPECT_EQ(r.non_finite_positions, 0) << GetParam() << " " << r.precision;
+    EXPECT_EQ(r.nan_in_history, 0) << GetParam() << " " << r.precision;
+    EXPECT_FALSE(r.status.empty());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Stability, StabilitySmallCases,
+                         ::testing::Values("nu0.4999", "scramble_seed3", "crush_plane", "crush_line", "crush_point",
+                                           "twist_2pi", "stretch_5x", "inverted_start", "flip_top", "push_through"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           for (char& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
+
+TEST(Stability, SmallCasesConvergeInDouble) {
+  for (const char* name : {"nu0.4999", "crush_point", "twist_2pi", "inverted_start"}) {
+    const bench::StabilityRun r = bench::run_stability_case(name, Precision::double_, 2);
+    EXPECT_TRUE(r.converged) << name << ": " << r.status;
+  }
+}
+
+// A free vertex far away (1e6 cells): in float its elements' energy is huge
+// and the first Newton directions are poor. Whatever the solver does, it
+// must never accept a non-finite state, and it reports what it did.
+TEST(Stability, FarVertexNeverProducesNan) {
+  for (Precision p : {Precision::single, Precision::double_}) {
+    Scene s = bench::make_stability_case("crush_plane", p, 2);
+    s.options.initial_positions = s.mesh.positions;
+    const size_t v = s.mesh.vertex_count() - 1;  // the top corner, free
+    s.options.initial_positions[3 * v] = 1e6;
+    s.options.max_newton_iterations = 60;
+    QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
+    const SolveResult r = solver.solve();
+    expect_no_nan(r, to_string(p));
+    ASSERT_EQ(r.steps.size(), 1u);
+    EXPECT_FALSE(r.steps[0].status.empty());
+  }
+}
+
+// Crushed to a point: F = 0 in every free element (zero gradient there).
+TEST(Stability, CrushToPointRecoversInBothPrecisions) {
+  for (Precision p : {Precision::single, Precision::double_}) {
+    const Scene s = bench::make_stability_case("crush_point", p, 2);
+    QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
+    const SolveResult r = solver.solve();
+    expect_no_nan(r, to_string(p));
+    EXPECT_TRUE(r.converged) << to_string(p) << " " << r.steps[0].status;
+    EXPECT_EQ(r.inverted_elements, 0);
+  }
+}
+
+// A vertex so far out that float's energy overflows: the first state is not
+// finite, the step stops at once with "non_finite_state" and the positions
+// are returned as they were (finite), never a NaN.
+TEST(Stability, NonFiniteEnergyIsNeverAccepted) {
+  Scene s = bench::make_stability_case("crush_plane", Precision::single, 2);
+  s.options.initial_positions = s.mesh.positions;
+  const size_t v = s.mesh.vertex_count() - 1;
+  s.options.initial_positions[3 * v] = 1e30;
+  QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
+  const SolveResult r = solver.solve();
+  ASSERT_EQ(r.steps.size(), 1u);
+  EXPECT_EQ(r.steps[0].status, "non_finite_state");
+  EXPECT_FALSE(r.converged);
+  EXPECT_TRUE(all_finite(r.positions));
+  EXPECT_EQ(r.positions[3 * v], 1e30f);
+}
+
+// One CG iteration per Newton step on a hard start: poor directions, finite
+// positions after every iteration; any steepest-descent retry after a failed
+// line search must have taken a step. (This start does not provoke a failed
+// line search on pocl; the retry path is not forced here.)
+TEST(Stability, PoorDirectionsKeepPositionsFinite) {
+  int retries = 0;
+  for (Precision p : {Precision::single, Precision::double_}) {
+    Scene s = bench::make_stability_case("flip_top", p, 2);
+    s.options.max_cg_iterations = 1;
+    s.options.max_newton_iterations = 40;
+    s.options.on_iteration = [&](const NewtonIteration&, const std::vector<double>& x) { EXPECT_TRUE(all_finite(x)); };
+    QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
+    const SolveResult r = solver.solve();
+    expect_no_nan(r, to_string(p));
+    for (const NewtonIteration& h : r.history)
+      if (h.recovery.find("line_search_failed -> steepest_descent") != std::string::npos) {
+        ++retries;
+        if (h.recovery.find("failed", h.recovery.find("steepest_descent")) == std::string::npos)
+          EXPECT_GT(h.step_length, 0.0);
+      }
+  }
+  RecordProperty("steepest_descent_retries", retries);
+}
+
+// A tolerance below float's floor: float stagnates (or runs out of
+// iterations); with fallback_to_double the step is re-solved in double and
+// converges, and the result says so.
+TEST(Stability, FallbackToDoubleRescuesAFloatStep) {
+  Scene s = bench::make_stability_case("nu0.49", Precision::single, 2);
+  s.options.load_steps = 1;
+  s.options.absolute_tolerance = 1e-11;
+  s.options.max_newton_iterations = 60;
+  {
+    QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
+    const SolveResult r = solver.solve();
+    ASSERT_EQ(r.steps.size(), 1u);
+    EXPECT_FALSE(r.converged);
+    EXPECT_EQ(r.steps[0].precision_used, "float");
+    EXPECT_TRUE(r.steps[0].fallback.empty());
+    expect_no_nan(r, "float");
+  }
+  s.options.fallback_to_double = true;
+  QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
+  if (!solver.device().has_fp64) GTEST_SKIP() << "device without fp64";
+  const SolveResult r = solver.solve();
+  ASSERT_EQ(r.steps.size(), 1u);
+  EXPECT_TRUE(r.converged) << r.steps[0].status;
+  EXPECT_EQ(r.steps[0].precision_used, "double");
+  EXPECT_NE(r.steps[0].fallback.find("re-solved in double"), std::string::npos) << r.steps[0].fallback;
+  EXPECT_LE(r.final_residual_norm, 1e-11);
+  bool warned = false;
+  for (const std::string& w : r.warnings) warned = warned || w.find("re-solved in double") != std::string::npos;
+  EXPECT_TRUE(warned);
+  bool marked = false;
+  for (const NewtonIteration& h : r.history) marked = marked || h.recovery.find("-> double") != std::string::npos;
+  EXPECT_TRUE(marked);
+  expect_no_nan(r, "fallback");
+}
+
+// Fallback off, or a double solve: nothing changes (precision_used says which).
+TEST(Stability, NoFallbackWhenFloatConverges) {
+  Scene s = bench::make_stability_case("nu0.45", Precision::single, 2);
+  s.options.fallback_to_double = true;
+  QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
+  const SolveResult r = solver.solve();
+  EXPECT_TRUE(r.converged);
+  for (const StepResult& step : r.steps) {
+    EXPECT_EQ(step.precision_used, "float");
+    EXPECT_TRUE(step.fallback.empty());
+  }
+}
+
+}  // namespace
+}  // namespace snh::test
