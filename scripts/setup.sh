@@ -8,7 +8,8 @@ build_dir="${1:-build}"
 packages=(cmake g++ make pkg-config clang-format
           ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
           libviennacl-dev libeigen3-dev libgtest-dev
-          nlohmann-json3-dev libcli11-dev python3-matplotlib)
+          nlohmann-json3-dev libcli11-dev python3-matplotlib
+          gmsh python3-meshio)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
