@@ -12,6 +12,7 @@
 #include <string>
 
 #include "commands.h"
+#include "scene_file.h"
 #include "snh/error.h"
 #include "snh/io.h"
 #include "snh/scenes.h"
@@ -34,6 +35,7 @@ struct SceneOptions {
   int steps = 0;
   unsigned seed = 1;
   std::string json_path;
+  std::string file;
   std::string vtu_dir;
   std::string device;
   std::string variant = "automatic";
@@ -91,32 +93,53 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   return j;
 }
 
-int run_scene(const SceneOptions& o) {
-  SceneParameters p;
-  p.resolution = o.resolution;
-  p.youngs_modulus = o.youngs_modulus;
-  p.poisson_ratio = o.poisson_ratio;
-  p.barrier = parse_barrier(o.barrier);
-  p.steps = o.steps;
-  p.seed = o.seed;
-  p.element_type = o.element == "tet4" ? ElementType::tet4 : ElementType::hex8;
-  // Float resolves J - alpha only to about FLT_EPSILON lambda / mu: its
-  // default stopping strain is 1e-4 (double: 1e-6).
-  if (o.strain_tolerance > 0.0)
-    p.strain_tolerance = o.strain_tolerance;
-  else if (o.precision == "float")
-    p.strain_tolerance = 1e-4;
-  Scene scene = make_scene(o.name, p);
-  SolveOptions options = scene.options;
-  options.precision = parse_precision(o.precision);
-  options.device.match = o.device;
-  options.product = parse_product_variant(o.variant);
-  options.block_jacobi = o.preconditioner == "block-jacobi";
-  if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
-  if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
-  if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
-  if (o.forcing_max > 0.0) options.forcing_max = o.forcing_max;
-  options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
+int run_scene(const SceneOptions& given) {
+  SceneOptions o = given;
+  if (o.name.empty() == o.file.empty()) throw Error("scene: give either a scene NAME or --file FILE");
+  Scene scene;
+  Material material;
+  SolveOptions options;
+  if (!o.file.empty()) {
+    // A scene file carries its own material and solver settings; --json and
+    // --vtu on the command line override its outputs.
+    const SceneFile f = load_scene_file(o.file);
+    scene = f.scene;
+    material = f.material;
+    options = scene.options;
+    if (o.json_path.empty()) o.json_path = f.json_path;
+    if (o.vtu_dir.empty()) o.vtu_dir = f.vtu_dir;
+    options.device.match = o.device;
+  } else {
+    SceneParameters p;
+    p.resolution = o.resolution;
+    p.youngs_modulus = o.youngs_modulus;
+    p.poisson_ratio = o.poisson_ratio;
+    p.barrier = parse_barrier(o.barrier);
+    p.steps = o.steps;
+    p.seed = o.seed;
+    p.element_type = o.element == "tet4" ? ElementType::tet4 : ElementType::hex8;
+    // Float resolves J - alpha only to about FLT_EPSILON lambda / mu: its
+    // default stopping strain is 1e-4 (double: 1e-6).
+    if (o.strain_tolerance > 0.0)
+      p.strain_tolerance = o.strain_tolerance;
+    else if (o.precision == "float")
+      p.strain_tolerance = 1e-4;
+    scene = make_scene(o.name, p);
+    options = scene.options;
+    options.precision = parse_precision(o.precision);
+    options.device.match = o.device;
+    options.product = parse_product_variant(o.variant);
+    options.block_jacobi = o.preconditioner == "block-jacobi";
+    if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
+    if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
+    if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
+    if (o.forcing_max > 0.0) options.forcing_max = o.forcing_max;
+    options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
+    MaterialOptions material_options;
+    material_options.barrier = p.barrier;
+    material = Material::from_youngs_modulus(parse_material_model(o.model), o.youngs_modulus, o.poisson_ratio,
+                                             material_options);
+  }
 
   const bool terminal = isatty(STDERR_FILENO);
   std::cerr << "scene " << scene.name << ": " << scene.description << "; " << scene.mesh.element_count() << " "
@@ -131,10 +154,6 @@ int run_scene(const SceneOptions& o) {
     write_vtu(o.vtu_dir + "/" + file, scene.mesh, x0);
     written.push_back({0.0, file});
   }
-  MaterialOptions material_options;
-  material_options.barrier = p.barrier;
-  const Material material =
-      Material::from_youngs_modulus(parse_material_model(o.model), o.youngs_modulus, o.poisson_ratio, material_options);
   QuasistaticSolver solver(scene.mesh, material, scene.constraints, options);
   const Mesh& mesh = solver.mesh();
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
@@ -174,7 +193,10 @@ int run_scene(const SceneOptions& o) {
 void add_scene_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SceneOptions>();
   CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex)");
-  cmd->add_option("name", o->name, "scene name")->required()->check(CLI::IsMember(scene_names()));
+  cmd->add_option("name", o->name, "scene name (or --file)")->check(CLI::IsMember(scene_names()));
+  cmd->add_option("--file", o->file,
+                  "a scene in JSON: mesh (file or generator), material, constraints (ids/box/plane, rigid or "
+                  "keyframed motion), body_force, initial, solver, output (see data/scenes/)");
   cmd->add_option("--res", o->resolution, "cells across the scene's thickness (0: scene default)");
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
       ->check(CLI::IsMember({"hex8", "tet4"}))

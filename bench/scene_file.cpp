@@ -1,0 +1,287 @@
+#include "scene_file.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+
+#include "fem/rest_state.h"
+#include "snh/error.h"
+#include "snh/mesh_io.h"
+
+namespace snh::bench {
+namespace {
+
+using nlohmann::json;
+
+struct Reader {
+  std::string file;
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw Error(file + ": " + key + ": " + what);
+  }
+  // Rejects keys outside `allowed`.
+  void keys(const json& object, const std::string& key, std::set<std::string> allowed) const {
+    if (!object.is_object()) fail(key, "expected an object");
+    for (const auto& item : object.items())
+      if (!allowed.count(item.key())) fail(key + "." + item.key(), "unknown key");
+  }
+  double number(const json& object, const std::string& key, const std::string& name, double fallback) const {
+    if (!object.contains(name)) return fallback;
+    if (!object[name].is_number()) fail(key + "." + name, "expected a number");
+    return object[name].get<double>();
+  }
+  int integer(const json& object, const std::string& key, const std::string& name, int fallback) const {
+    if (!object.contains(name)) return fallback;
+    if (!object[name].is_number_integer()) fail(key + "." + name, "expected an integer");
+    return object[name].get<int>();
+  }
+  std::string text(const json& object, const std::string& key, const std::string& name,
+                   const std::string& fallback) const {
+    if (!object.contains(name)) return fallback;
+    if (!object[name].is_string()) fail(key + "." + name, "expected a string");
+    return object[name].get<std::string>();
+  }
+  std::array<double, 3> vec3(const json& object, const std::string& key, const std::string& name,
+                             std::array<double, 3> fallback) const {
+    if (!object.contains(name)) return fallback;
+    const json& v = object[name];
+    if (!v.is_array() || v.size() != 3) fail(key + "." + name, "expected an array of 3 numbers");
+    std::array<double, 3> out;
+    for (int i = 0; i < 3; ++i) {
+      if (!v[i].is_number()) fail(key + "." + name, "expected an array of 3 numbers");
+      out[i] = v[i].get<double>();
+    }
+    return out;
+  }
+};
+
+Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path& folder) {
+  r.keys(m, "mesh", {"file", "generator", "cells", "size", "radius", "length", "element"});
+  Mesh mesh;
+  if (m.contains("file")) {
+    const std::string file = r.text(m, "mesh", "file", "");
+    mesh = read_mesh((folder / file).string());
+  } else {
+    const std::string generator = r.text(m, "mesh", "generator", "box");
+    const double h = r.number(m, "mesh", "size", 0.1);
+    if (generator == "box") {
+      if (!m.contains("cells") || !m["cells"].is_array() || m["cells"].size() != 3)
+        r.fail("mesh.cells", "expected an array of 3 integers");
+      int n[3];
+      for (int i = 0; i < 3; ++i) {
+        if (!m["cells"][i].is_number_integer()) r.fail("mesh.cells", "expected an array of 3 integers");
+        n[i] = m["cells"][i].get<int>();
+      }
+      mesh = make_box_lattice(n[0], n[1], n[2], h);
+    } else if (generator == "cylinder") {
+      mesh = make_voxel_cylinder(r.number(m, "mesh", "radius", 0.5), r.number(m, "mesh", "length", 2.0), h);
+    } else {
+      r.fail("mesh.generator", "expected box or cylinder, got '" + generator + "'");
+    }
+  }
+  const std::string element = r.text(m, "mesh", "element", to_string(mesh.type));
+  if (element == "tet4" && mesh.type == ElementType::hex8)
+    mesh = split_hexes_into_tets(mesh);
+  else if (element != to_string(mesh.type))
+    r.fail("mesh.element", "expected hex8 or tet4 matching the mesh");
+  return mesh;
+}
+
+// Vertices selected by ids, an axis-aligned box, or a plane.
+std::vector<int32_t> select(const Reader& r, const json& s, const std::string& key, const Mesh& mesh) {
+  r.keys(s, key, {"ids", "box", "plane"});
+  std::vector<int32_t> out;
+  if (s.contains("ids")) {
+    if (!s["ids"].is_array()) r.fail(key + ".ids", "expected an array of vertex indices");
+    for (const json& id : s["ids"]) {
+      if (!id.is_number_integer()) r.fail(key + ".ids", "expected an array of vertex indices");
+      const long v = id.get<long>();
+      if (v < 0 || static_cast<size_t>(v) >= mesh.vertex_count())
+        r.fail(key + ".ids", "vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                                 std::to_string(mesh.vertex_count()) + " vertices)");
+      out.push_back(static_cast<int32_t>(v));
+    }
+  } else if (s.contains("box")) {
+    r.keys(s["box"], key + ".box", {"min", "max"});
+    const auto lo = r.vec3(s["box"], key + ".box", "min", {0, 0, 0}),
+               hi = r.vec3(s["box"], key + ".box", "max", {0, 0, 0});
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const auto x = mesh.vertex(v);
+      bool inside = true;
+      for (int d = 0; d < 3; ++d) inside = inside && x[d] >= lo[d] && x[d] <= hi[d];
+      if (inside) out.push_back(static_cast<int32_t>(v));
+    }
+  } else if (s.contains("plane")) {
+    const json& p = s["plane"];
+    r.keys(p, key + ".plane", {"axis", "value", "tolerance"});
+    const std::string axis = r.text(p, key + ".plane", "axis", "z");
+    if (axis != "x" && axis != "y" && axis != "z") r.fail(key + ".plane.axis", "expected x, y or z");
+    const int a = axis[0] - 'x';
+    double value = r.number(p, key + ".plane", "value", 0.0);
+    if (p.contains("value") && p["value"].is_string()) value = 0.0;
+    const double tolerance = r.number(p, key + ".plane", "tolerance", 1e-9);
+    for (size_t v = 0; v < mesh.vertex_count(); ++v)
+      if (std::abs(mesh.positions[3 * v + a] - value) <= tolerance) out.push_back(static_cast<int32_t>(v));
+  } else {
+    r.fail(key, "expected one of ids, box, plane");
+  }
+  if (out.empty()) r.fail(key, "selects no vertex");
+  return out;
+}
+
+struct RigidKey {
+  double t = 0.0, angle = 0.0;
+  std::array<double, 3> translation{0, 0, 0};
+};
+
+std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m, const std::string& key) {
+  r.keys(m, key, {"type", "axis", "angle", "center", "translation", "keys"});
+  const std::string type = r.text(m, key, "type", "rigid");
+  const auto axis = r.vec3(m, key, "axis", {0, 0, 1});
+  const auto center = r.vec3(m, key, "center", {0, 0, 0});
+  std::vector<RigidKey> keys;
+  if (type == "rigid") {
+    // Full motion at t = 1, linear in t from rest.
+    keys.push_back({0.0, 0.0, {0, 0, 0}});
+    keys.push_back({1.0, r.number(m, key, "angle", 0.0), r.vec3(m, key, "translation", {0, 0, 0})});
+  } else if (type == "keyframes") {
+    if (!m.contains("keys") || !m["keys"].is_array() || m["keys"].empty())
+      r.fail(key + ".keys", "expected a non-empty array of {t, angle, translation}");
+    for (size_t i = 0; i < m["keys"].size(); ++i) {
+      const std::string k = key + ".keys[" + std::to_string(i) + "]";
+      r.keys(m["keys"][i], k, {"t", "angle", "translation"});
+      keys.push_back({r.number(m["keys"][i], k, "t", 0.0), r.number(m["keys"][i], k, "angle", 0.0),
+                      r.vec3(m["keys"][i], k, "translation", {0, 0, 0})});
+      if (i > 0 && !(keys[i].t > keys[i - 1].t)) r.fail(k + ".t", "key times must increase");
+    }
+  } else {
+    r.fail(key + ".type", "expected rigid or keyframes, got '" + type + "'");
+  }
+  return [keys, axis, center](double t) {
+    size_t i = 0;
+    while (i + 1 < keys.size() && keys[i + 1].t < t) ++i;
+    RigidKey k = keys[i];
+    if (i + 1 < keys.size()) {
+      const double w = std::clamp((t - keys[i].t) / (keys[i + 1].t - keys[i].t), 0.0, 1.0);
+      k.angle = (1 - w) * keys[i].angle + w * keys[i + 1].angle;
+      for (int d = 0; d < 3; ++d) k.translation[d] = (1 - w) * keys[i].translation[d] + w * keys[i + 1].translation[d];
+    }
+    RigidTransform r = RigidTransform::rotation_about(axis, k.angle, center);
+    r.translation = k.translation;
+    return r;
+  };
+}
+
+// Body force density (force per rest volume) lumped to the vertices.
+std::vector<double> lumped_body_force(const Mesh& mesh, const std::array<double, 3>& density) {
+  const fem::RestState rest = fem::compute_rest_state(mesh);
+  std::vector<double> f(mesh.positions.size(), 0.0);
+  const int n = nodes_per_element(mesh.type);
+  for (size_t e = 0; e < mesh.element_count(); ++e) {
+    double volume = 0.0;
+    for (int q = 0; q < rest.quadrature; ++q) volume += rest.weight(e, q);
+    for (int a = 0; a < n; ++a)
+      for (int d = 0; d < 3; ++d) f[3 * mesh.elements[n * e + a] + d] += density[d] * volume / n;
+  }
+  return f;
+}
+
+}  // namespace
+
+SceneFile load_scene_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open the scene file");
+  json doc;
+  try {
+    doc = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw Error(path + ": not valid JSON (" + e.what() + ")");
+  }
+  const Reader r{path};
+  r.keys(doc, "scene",
+         {"name", "description", "mesh", "material", "constraints", "body_force", "initial", "solver", "output"});
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  SceneFile out;
+  Scene& s = out.scene;
+  s.name = r.text(doc, "scene", "name", std::filesystem::path(path).stem().string());
+  s.description = r.text(doc, "scene", "description", "");
+  if (!doc.contains("mesh")) r.fail("mesh", "missing");
+  s.mesh = read_scene_mesh(r, doc["mesh"], folder);
+
+  const json material = doc.value("material", json::object());
+  r.keys(material, "material",
+         {"model", "E", "nu", "barrier", "fung_gamma", "fung_mu1", "ab_beta1", "ab_beta2", "kappa", "j0"});
+  MaterialOptions mo;
+  mo.barrier = parse_barrier(r.text(material, "material", "barrier", "auto"));
+  mo.fung_gamma = r.number(material, "material", "fung_gamma", mo.fung_gamma);
+  mo.fung_mu1 = r.number(material, "material", "fung_mu1", mo.fung_mu1);
+  mo.arruda_boyce_beta1 = r.number(material, "material", "ab_beta1", mo.arruda_boyce_beta1);
+  mo.arruda_boyce_beta2 = r.number(material, "material", "ab_beta2", mo.arruda_boyce_beta2);
+  mo.kikuuwe_kappa = r.number(material, "material", "kappa", mo.kikuuwe_kappa);
+  mo.neohookean_j0 = r.number(material, "material", "j0", mo.neohookean_j0);
+  const double e = r.number(material, "material", "E", 1.0), nu = r.number(material, "material", "nu", 0.45);
+  out.material =
+      Material::from_youngs_modulus(parse_material_model(r.text(material, "material", "model", "snh")), e, nu, mo);
+
+  if (doc.contains("constraints")) {
+    if (!doc["constraints"].is_array()) r.fail("constraints", "expected an array");
+    for (size_t i = 0; i < doc["constraints"].size(); ++i) {
+      const std::string key = "constraints[" + std::to_string(i) + "]";
+      const json& c = doc["constraints"][i];
+      r.keys(c, key, {"name", "select", "motion"});
+      ConstraintSet set;
+      set.name = r.text(c, key, "name", key);
+      if (!c.contains("select")) r.fail(key + ".select", "missing");
+      set.vertices = select(r, c["select"], key + ".select", s.mesh);
+      if (c.contains("motion")) set.motion = read_motion(r, c["motion"], key + ".motion");
+      s.constraints.push_back(set);
+    }
+  }
+  if (doc.contains("body_force"))
+    s.options.external_force = lumped_body_force(s.mesh, r.vec3(doc, "scene", "body_force", {0, 0, 0}));
+  if (doc.contains("initial")) {
+    const json& init = doc["initial"];
+    r.keys(init, "initial", {"scramble_volume_factor", "seed"});
+    const double factor = r.number(init, "initial", "scramble_volume_factor", 2.0);
+    std::mt19937_64 rng(static_cast<unsigned>(r.integer(init, "initial", "seed", 1)));
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (size_t v = 0; v < s.mesh.vertex_count(); ++v)
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], s.mesh.positions[3 * v + d]);
+        hi[d] = std::max(hi[d], s.mesh.positions[3 * v + d]);
+      }
+    const double scale = std::cbrt(factor);
+    s.options.initial_positions.resize(s.mesh.positions.size());
+    for (size_t i = 0; i < s.options.initial_positions.size(); ++i) {
+      const int d = static_cast<int>(i % 3);
+      const double mid = 0.5 * (lo[d] + hi[d]), half = 0.5 * scale * (hi[d] - lo[d]);
+      s.options.initial_positions[i] = std::uniform_real_distribution<double>(mid - half, mid + half)(rng);
+    }
+  }
+  const json solver = doc.value("solver", json::object());
+  r.keys(solver, "solver",
+         {"steps", "precision", "strain_tolerance", "absolute_tolerance", "max_newton_iterations", "preconditioner",
+          "hessian"});
+  s.options.load_steps = r.integer(solver, "solver", "steps", 1);
+  s.options.precision = parse_precision(r.text(solver, "solver", "precision", "double"));
+  s.options.max_newton_iterations = r.integer(solver, "solver", "max_newton_iterations", 200);
+  s.options.block_jacobi = r.text(solver, "solver", "preconditioner", "block-jacobi") == "block-jacobi";
+  s.options.hessian =
+      r.text(solver, "solver", "hessian", "adaptive") == "projected" ? HessianMode::projected : HessianMode::adaptive;
+  // Strain-equivalent tolerance as in make_scene, h from the first element's first edge.
+  const auto a = s.mesh.vertex(s.mesh.elements[0]), b = s.mesh.vertex(s.mesh.elements[1]);
+  const double h =
+      std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+  s.options.absolute_tolerance = r.number(
+      solver, "solver", "absolute_tolerance",
+      r.number(solver, "solver", "strain_tolerance", 1e-6) * e * h * h * std::sqrt(double(s.mesh.vertex_count())));
+  const json output = doc.value("output", json::object());
+  r.keys(output, "output", {"vtu", "json"});
+  out.vtu_dir = r.text(output, "output", "vtu", "");
+  out.json_path = r.text(output, "output", "json", "");
+  return out;
+}
+
+}  // namespace snh::bench
