@@ -116,6 +116,19 @@ TEST(DeviceKernels, EmptyInputGivesEmptyOutput) {
 namespace snh::test {
 namespace {
 
+TEST(DeviceKernels, AllocationBeyondTheDeviceIsAClearError) {
+  device::OpenClContext cl(DeviceOptions{}, Precision::double_);
+  cl_ulong largest = 0;
+  clGetDeviceInfo(cl.device(), CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof largest, &largest, nullptr);
+  try {
+    cl.buffer(CL_MEM_READ_WRITE, static_cast<size_t>(largest) * 4);
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("clCreateBuffer failed"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("memory"), std::string::npos) << e.what();
+  }
+}
+
 TEST(DeviceKernels, KernelBuildFailureCarriesBuildLog) {
   device::OpenClContext cl(DeviceOptions{}, Precision::double_);
   try {

@@ -126,6 +126,24 @@ TEST(Solver, UnusedVertexIsAWarningNotAnError) {
   EXPECT_EQ(r.positions[3 * 27], 5.0);
 }
 
+TEST(Solver, FreeBodyUnderGravityMeetsNegativeCurvatureAndStaysFinite) {
+  // No constraint: the stiffness is singular along rigid motions, so CG meets
+  // zero curvature; Newton must go on with what CG had and stay finite.
+  const Mesh mesh = make_box_lattice(2, 2, 2, 0.5);
+  SolveOptions options;
+  options.max_newton_iterations = 6;
+  options.hessian = HessianMode::projected;
+  options.external_force.assign(3 * mesh.vertex_count(), 0.0);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.external_force[3 * v + 2] = -1e-2;
+  QuasistaticSolver solver(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3), {}, options);
+  const SolveResult r = solver.solve();
+  bool met = false;
+  for (const NewtonIteration& h : r.history) met = met || h.cg_stop.find("negative_curvature") == 0;
+  EXPECT_TRUE(met);
+  for (double x : r.positions) EXPECT_TRUE(std::isfinite(x));
+  EXPECT_FALSE(r.converged);
+}
+
 TEST(Solver, GravityOnPinnedBlockSagsAndBalances) {
   const Mesh mesh = make_box_lattice(4, 2, 2, 0.25);
   ConstraintSet wall{"wall", {}, {}, {}};

@@ -100,6 +100,8 @@ void check(cl_int status, const char* what) {
     std::string hint;
     if (status == CL_OUT_OF_RESOURCES || status == CL_MEM_OBJECT_ALLOCATION_FAILURE || status == CL_OUT_OF_HOST_MEMORY)
       hint = " (the device ran out of memory)";
+    if (status == CL_INVALID_BUFFER_SIZE)
+      hint = " (the buffer exceeds the device's memory or its largest allocation: the mesh is too large for it)";
     throw Error(std::string("OpenCL: ") + what + " failed with error " + std::to_string(status) + hint);
   }
 }
