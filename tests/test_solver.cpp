@@ -144,6 +144,25 @@ TEST(Solver, FreeBodyUnderGravityMeetsNegativeCurvatureAndStaysFinite) {
   EXPECT_FALSE(r.converged);
 }
 
+TEST(Solver, FailedLineSearchRetriesAlongSteepestDescentAndReportsIt) {
+  // A line search allowed no halving fails where the twist needs a half
+  // step (iteration 3 of the first step at this size); the solver retries
+  // along the preconditioned steepest descent.
+  SceneParameters p;
+  p.resolution = 6;
+  const Scene scene = make_scene("twist", p);
+  SolveOptions options = scene.options;
+  options.line_search_halvings = 0;
+  options.max_newton_iterations = 30;
+  QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
+  const SolveResult r = solver.solve();
+  bool retried = false;
+  for (const NewtonIteration& h : r.history)
+    retried = retried || h.recovery.find("line_search_failed -> steepest_descent") != std::string::npos;
+  EXPECT_TRUE(retried);
+  for (double x : r.positions) EXPECT_TRUE(std::isfinite(x));
+}
+
 TEST(Solver, GravityOnPinnedBlockSagsAndBalances) {
   const Mesh mesh = make_box_lattice(4, 2, 2, 0.25);
   ConstraintSet wall{"wall", {}, {}, {}};

@@ -47,7 +47,7 @@ template <typename Real>
 StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, std::vector<NewtonIteration>& history,
                                           Clock::time_point start) {
   constexpr double kArmijo = 1e-4;
-  constexpr int kMaxHalvings = 40;
+  const int max_halvings = options_.line_search_halvings;
   const double eps = std::numeric_limits<Real>::epsilon();
   const size_t n = model_.dofs();
   viennacl::vector<Real> r(n), p(n), trial(n), r_trial(n);
@@ -184,7 +184,7 @@ StepResult NewtonSolver<Real>::solve_step(int step, viennacl::vector<Real>& x, s
     bool non_finite_residual = false;
     auto line_search = [&]() -> double {
       double alpha = 1.0;
-      for (int h = 0; h < kMaxHalvings; ++h, alpha *= 0.5) {
+      for (int h = 0; h <= max_halvings; ++h, alpha *= 0.5) {
         trial = x + static_cast<Real>(alpha) * p;
         trial_energy = model_.energy(trial);
         if (!std::isfinite(trial_energy)) continue;

@@ -101,7 +101,10 @@ struct SolveOptions {
   // capped at eta_max.
   double forcing_gamma = 0.9;
   double forcing_max = 0.5;
-  bool block_jacobi = true;  // false: CG without preconditioner
+  bool block_jacobi = true;
+  // Backtracking halvings the line search may take before it gives up (and
+  // retries once along the preconditioned steepest-descent direction).
+  int line_search_halvings = 40;  // false: CG without preconditioner
   ProductVariant product = ProductVariant::automatic;
   HessianMode hessian = HessianMode::adaptive;
   // Lumped external force, xyz per vertex (e.g. gravity); empty for none.
