@@ -67,27 +67,7 @@ class HostProblem {
 
   size_t dofs() const { return 3 * mesh_.vertex_count(); }
 
-  // Writes the targets of every constrained vertex at load parameter t.
-  void apply_constraints(double t, std::vector<double>& x) const {
-    for (const ConstraintSet& c : constraints_) {
-      if (c.targets) {
-        std::vector<double> xyz(3 * c.vertices.size());
-        c.targets(t, xyz);
-        if (xyz.size() != 3 * c.vertices.size())
-          throw Error("constraint set '" + c.name + "': targets callback returned the wrong size");
-        for (size_t k = 0; k < c.vertices.size(); ++k)
-          for (int d = 0; d < 3; ++d) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
-        continue;
-      }
-      const RigidTransform motion = c.motion ? c.motion(t) : RigidTransform::identity();
-      for (int32_t v : c.vertices) {
-        const auto p = motion.apply(mesh_.vertex(v));
-        for (int d = 0; d < 3; ++d) x[3 * v + d] = p[d];
-      }
-    }
-    for (double v : x)
-      if (!std::isfinite(v)) throw Error("constraints produced a non-finite target position");
-  }
+  void apply_constraints(double t, std::vector<double>& x) const { snh::apply_constraints(mesh_, constraints_, t, x); }
 
   // Total potential energy: elastic energy minus external work.
   double energy(const std::vector<double>& x) const {
@@ -127,29 +107,13 @@ class HostProblem {
 
  private:
   void validate() const {
+    validate_solve_inputs(mesh_, constraints_, options_);
     const size_t n = mesh_.vertex_count();
-    for (const ConstraintSet& c : constraints_) {
-      if (c.vertices.empty()) throw Error("constraint set '" + c.name + "' selects no vertex");
-      for (int32_t v : c.vertices)
-        if (v < 0 || static_cast<size_t>(v) >= n)
-          throw Error("constraint set '" + c.name + "' refers to vertex " + std::to_string(v) + ", but the mesh has " +
-                      std::to_string(n) + " vertices");
-    }
-    if (!options_.initial_positions.empty() && options_.initial_positions.size() != 3 * n)
-      throw Error("solve options: initial_positions has " + std::to_string(options_.initial_positions.size()) +
-                  " entries, expected " + std::to_string(3 * n));
-    for (double v : options_.initial_positions)
-      if (!std::isfinite(v)) throw Error("solve options: initial_positions has a non-finite entry");
     if (!options_.external_force.empty() && options_.external_force.size() != 3 * n)
       throw Error("solver: external force has " + std::to_string(options_.external_force.size()) +
                   " entries, expected " + std::to_string(3 * n));
     for (double f : options_.external_force)
       if (!std::isfinite(f)) throw Error("solver: external force has a non-finite entry");
-    if (options_.load_steps < 1) throw Error("solve options: load_steps must be >= 1");
-    if (options_.max_newton_iterations < 0 || options_.max_cg_iterations < 1)
-      throw Error("solve options: iteration limits must be positive");
-    if (!(options_.absolute_tolerance >= 0.0) || !(options_.relative_tolerance >= 0.0))
-      throw Error("solve options: tolerances must be >= 0");
   }
 
   const Mesh& mesh_;

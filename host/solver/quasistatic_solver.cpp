@@ -66,6 +66,50 @@ DeformationStatistics deformation_statistics(const Mesh& mesh, const std::vector
   return s;
 }
 
+void validate_solve_inputs(const Mesh& mesh, const std::vector<ConstraintSet>& constraints,
+                           const SolveOptions& options) {
+  const size_t n = mesh.vertex_count();
+  for (const ConstraintSet& c : constraints) {
+    if (c.vertices.empty()) throw Error("constraint set '" + c.name + "' selects no vertex");
+    for (int32_t v : c.vertices)
+      if (v < 0 || static_cast<size_t>(v) >= n)
+        throw Error("constraint set '" + c.name + "' refers to vertex " + std::to_string(v) + ", but the mesh has " +
+                    std::to_string(n) + " vertices");
+  }
+  if (!options.initial_positions.empty() && options.initial_positions.size() != 3 * n)
+    throw Error("solve options: initial_positions has " + std::to_string(options.initial_positions.size()) +
+                " entries, expected " + std::to_string(3 * n));
+  for (double v : options.initial_positions)
+    if (!std::isfinite(v)) throw Error("solve options: initial_positions has a non-finite entry");
+  if (options.load_steps < 1) throw Error("solve options: load_steps must be >= 1");
+  if (options.max_newton_iterations < 0 || options.max_cg_iterations < 1)
+    throw Error("solve options: iteration limits must be positive");
+  if (!(options.absolute_tolerance >= 0.0) || !(options.relative_tolerance >= 0.0))
+    throw Error("solve options: tolerances must be >= 0");
+}
+
+void apply_constraints(const Mesh& mesh, const std::vector<ConstraintSet>& constraints, double t,
+                       std::vector<double>& x) {
+  for (const ConstraintSet& c : constraints) {
+    if (c.targets) {
+      std::vector<double> xyz(3 * c.vertices.size());
+      c.targets(t, xyz);
+      if (xyz.size() != 3 * c.vertices.size())
+        throw Error("constraint set '" + c.name + "': targets callback returned the wrong size");
+      for (size_t k = 0; k < c.vertices.size(); ++k)
+        for (int d = 0; d < 3; ++d) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
+      continue;
+    }
+    const RigidTransform motion = c.motion ? c.motion(t) : RigidTransform::identity();
+    for (int32_t v : c.vertices) {
+      const auto p = motion.apply(mesh.vertex(v));
+      for (int d = 0; d < 3; ++d) x[3 * v + d] = p[d];
+    }
+  }
+  for (double v : x)
+    if (!std::isfinite(v)) throw Error("constraints produced a non-finite target position");
+}
+
 struct QuasistaticSolver::Impl {
   Mesh mesh;
   Material material;
@@ -85,50 +129,7 @@ struct QuasistaticSolver::Impl {
         rest(fem::compute_rest_state(mesh)),
         cl(options.device, options.precision),
         viennacl_context_id(device::bind_viennacl(cl)) {
-    validate_inputs();
-  }
-
-  void validate_inputs() const {
-    const size_t n = mesh.vertex_count();
-    for (const ConstraintSet& c : constraints) {
-      if (c.vertices.empty()) throw Error("constraint set '" + c.name + "' selects no vertex");
-      for (int32_t v : c.vertices)
-        if (v < 0 || static_cast<size_t>(v) >= n)
-          throw Error("constraint set '" + c.name + "' refers to vertex " + std::to_string(v) + ", but the mesh has " +
-                      std::to_string(n) + " vertices");
-    }
-    if (!options.initial_positions.empty() && options.initial_positions.size() != 3 * n)
-      throw Error("solve options: initial_positions has " + std::to_string(options.initial_positions.size()) +
-                  " entries, expected " + std::to_string(3 * n));
-    for (double v : options.initial_positions)
-      if (!std::isfinite(v)) throw Error("solve options: initial_positions has a non-finite entry");
-    if (options.load_steps < 1) throw Error("solve options: load_steps must be >= 1");
-    if (options.max_newton_iterations < 0 || options.max_cg_iterations < 1)
-      throw Error("solve options: iteration limits must be positive");
-    if (!(options.absolute_tolerance >= 0.0) || !(options.relative_tolerance >= 0.0))
-      throw Error("solve options: tolerances must be >= 0");
-  }
-
-  // Writes the targets of every constrained vertex at load parameter t.
-  void apply_constraints(double t, std::vector<double>& x) const {
-    for (const ConstraintSet& c : constraints) {
-      if (c.targets) {
-        std::vector<double> xyz(3 * c.vertices.size());
-        c.targets(t, xyz);
-        if (xyz.size() != 3 * c.vertices.size())
-          throw Error("constraint set '" + c.name + "': targets callback returned the wrong size");
-        for (size_t k = 0; k < c.vertices.size(); ++k)
-          for (int d = 0; d < 3; ++d) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
-        continue;
-      }
-      const RigidTransform motion = c.motion ? c.motion(t) : RigidTransform::identity();
-      for (int32_t v : c.vertices) {
-        const auto p = motion.apply(mesh.vertex(v));
-        for (int d = 0; d < 3; ++d) x[3 * v + d] = p[d];
-      }
-    }
-    for (double v : x)
-      if (!std::isfinite(v)) throw Error("constraints produced a non-finite target position");
+    validate_solve_inputs(mesh, constraints, options);
   }
 
   // Double precision state for SolveOptions::fallback_to_double, made on
@@ -186,7 +187,7 @@ struct QuasistaticSolver::Impl {
     std::vector<double> x = options.initial_positions.empty() ? mesh.positions : options.initial_positions;
     result.converged = true;
     for (int s = 1; s <= options.load_steps; ++s) {
-      apply_constraints(static_cast<double>(s) / options.load_steps, x);
+      apply_constraints(mesh, constraints, static_cast<double>(s) / options.load_steps, x);
       const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
       StepResult step;
       if (!in_double) {

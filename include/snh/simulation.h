@@ -181,6 +181,19 @@ class QuasistaticSolver {
   std::unique_ptr<Impl> impl_;
 };
 
+// Checks constraint sets (non-empty, vertices in range) and solve options
+// (initial positions, steps, limits, tolerances); throws snh::Error naming
+// the set or option at fault. QuasistaticSolver calls it on construction.
+void validate_solve_inputs(const Mesh& mesh, const std::vector<ConstraintSet>& constraints,
+                           const SolveOptions& options);
+
+// Writes every constrained vertex's target at load parameter t into x (xyz
+// per vertex): `targets` if set, else `motion(t)` applied to the rest
+// position, else the rest position. Throws snh::Error for a wrong-sized
+// targets callback or a non-finite target.
+void apply_constraints(const Mesh& mesh, const std::vector<ConstraintSet>& constraints, double t,
+                       std::vector<double>& x);
+
 // Deformation statistics of positions x: volume ratio, min/max J over the
 // quadrature points, number of elements with J <= 0 somewhere.
 struct DeformationStatistics {
