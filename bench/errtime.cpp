@@ -94,20 +94,7 @@ double distance(const std::vector<double>& a, const std::vector<double>& b) {
 // The constrained vertices at their targets for load parameter t, as the
 // solver places them at the start of a step.
 void apply_constraints(const Scene& scene, double t, std::vector<double>& x) {
-  for (const ConstraintSet& c : scene.constraints) {
-    if (c.targets) {
-      std::vector<double> xyz(3 * c.vertices.size());
-      c.targets(t, xyz);
-      for (size_t k = 0; k < c.vertices.size() && 3 * k + 2 < xyz.size(); ++k)
-        for (int d = 0; d < 3; ++d) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
-      continue;
-    }
-    const RigidTransform motion = c.motion ? c.motion(t) : RigidTransform::identity();
-    for (int32_t v : c.vertices) {
-      const auto p = motion.apply(scene.mesh.vertex(v));
-      for (int d = 0; d < 3; ++d) x[3 * v + d] = p[d];
-    }
-  }
+  snh::apply_constraints(scene.mesh, scene.constraints, t, x);
 }
 
 std::vector<double> initial_positions(const Scene& scene) {

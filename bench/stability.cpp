@@ -169,21 +169,7 @@ Scene make_case(const std::string& name, Precision precision, int resolution) {
 // constraints at t = 1 / steps.
 std::vector<double> first_step_start(const Scene& s) {
   std::vector<double> x = s.options.initial_positions.empty() ? s.mesh.positions : s.options.initial_positions;
-  const double t = 1.0 / s.options.load_steps;
-  for (const ConstraintSet& c : s.constraints) {
-    if (c.targets) {
-      std::vector<double> xyz(3 * c.vertices.size());
-      c.targets(t, xyz);
-      for (size_t k = 0; k < c.vertices.size(); ++k)
-        for (int d = 0; d < 3; ++d) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
-      continue;
-    }
-    const RigidTransform m = c.motion ? c.motion(t) : RigidTransform::identity();
-    for (int32_t v : c.vertices) {
-      const auto p = m.apply(s.mesh.vertex(v));
-      for (int d = 0; d < 3; ++d) x[3 * v + d] = p[d];
-    }
-  }
+  apply_constraints(s.mesh, s.constraints, 1.0 / s.options.load_steps, x);
   return x;
 }
 
