@@ -31,15 +31,11 @@ struct MaterialsOptions {
   bool plots = true;
 };
 
-reference::MaterialSpec spec_of(const Material& m) {
-  return {static_cast<int>(m.model), m.barrier, m.mu, m.lambda, m.c0, m.c1};
-}
-
 // Homogeneous uniaxial stretch s along x, lateral stretch t free: t minimizes
 // psi(diag(s, t, t)) (golden section on [0.05, 2]); returns P_xx, the
 // nominal stress, and t.
 std::pair<double, double> uniaxial(const Material& m, double s) {
-  const auto spec = spec_of(m);
+  const auto spec = reference::spec_of(m);
   auto psi = [&](double t) { return reference::material_energy<double>({s, 0, 0, 0, t, 0, 0, 0, t}, spec); };
   double a = 0.05, b = 2.0;
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);

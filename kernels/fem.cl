@@ -1,18 +1,17 @@
 /* Finite-element kernels of the Newton-CG engine. Specialized at build time:
  *   SNH_DOUBLE        working precision
  *   SNH_HEX8          element type (1: hex8, 0: tet4)
+ *   SNH_MODEL         material model (materials/material.h ids)
  *   SNH_BARRIER       Stable Neo-Hookean origin barrier (Eq. 14) or not (Eq. 13)
+ *   SNH_NONLINEAR     seed 004 alpha / mixing path (1) or the model as written (0)
+ *   SNH_LAMBDA_MODEL  model of the lambda part when mixing (-1: the same)
  *   SNH_UNIFORM_REST  every element shares element 0's rest gradients (lattices)
  * Element kernels write per-element nodal values; gather kernels sum them per
  * vertex over a fixed adjacency order, so results are bitwise reproducible
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
  * element; gradients: [element][q][a][3]; weights: [element][q]. */
 #include "fem/element.h"
-#include "materials/material.h"
-
-#ifndef SNH_MODEL
-#define SNH_MODEL SNH_MODEL_SNH
-#endif
+#include "materials/kernel_args.h"
 
 #if SNH_UNIFORM_REST
 #define REST_ELEMENT(e) 0
@@ -36,8 +35,8 @@ SNH_FN real load_weight(SNH_GLOBAL const real* weights, int e, int q) {
 
 /* Strain energy of each element, sum_q w_q psi(F_q), and its smallest J. */
 __kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,
-                                 __global const real* weights, const int count, const real mu, const real lambda,
-                                 const real c0, const real c1, __global real* energy, __global real* min_j) {
+                                 __global const real* weights, const int count, MATERIAL_ARGS, __global real* energy,
+                                 __global real* min_j) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
@@ -46,7 +45,7 @@ __kernel void snh_element_energy(__global const real* x, __global const int* ele
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
     const mat3 f = element_deformation_gradient(xs, g);
-    sum += load_weight(weights, e, q) * material_energy(SNH_MODEL, SNH_BARRIER, f, material_make(mu, lambda, c0, c1));
+    sum += load_weight(weights, e, q) * material_energy(MODEL, BARRIER, f, MATERIAL);
     const real j = mat3_det(f);
     smallest = q == 0 ? j : fmin(smallest, j);
   }
@@ -56,8 +55,7 @@ __kernel void snh_element_energy(__global const real* x, __global const int* ele
 
 /* Elastic forces per element node: -sum_q w_q P_q dN_a/dX. */
 __kernel void snh_element_forces(__global const real* x, __global const int* elements, __global const real* gradients,
-                                 __global const real* weights, const int count, const real mu, const real lambda,
-                                 const real c0, const real c1, __global real* out) {
+                                 __global const real* weights, const int count, MATERIAL_ARGS, __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES], f[3 * SNH_NODES];
@@ -65,8 +63,7 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
   for (int i = 0; i < 3 * SNH_NODES; ++i) f[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    const mat3 p =
-        material_pk1(SNH_MODEL, SNH_BARRIER, element_deformation_gradient(xs, g), material_make(mu, lambda, c0, c1));
+    const mat3 p = material_pk1(MODEL, BARRIER, element_deformation_gradient(xs, g), MATERIAL);
     element_scatter(p, g, -load_weight(weights, e, q), f);
   }
   for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = f[i];
@@ -75,16 +72,15 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
 /* Once per Newton iteration: SVD and eigensystem at every point, clamped to
  * PSD when `project` (else the true Hessian, for Newton near a solution). */
 __kernel void snh_element_linearize(__global const real* x, __global const int* elements,
-                                    __global const real* gradients, const int count, const real mu, const real lambda,
-                                    const real c0, const real c1, const int project, __global real* cache) {
+                                    __global const real* gradients, const int count, MATERIAL_ARGS, const int project,
+                                    __global real* cache) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
   load_nodes(x, elements + SNH_NODES * e, xs);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    principal_hessian h = material_principal_hessian(SNH_MODEL, SNH_BARRIER, element_deformation_gradient(xs, g),
-                                                     material_make(mu, lambda, c0, c1));
+    principal_hessian h = material_principal_hessian(MODEL, BARRIER, element_deformation_gradient(xs, g), MATERIAL);
     if (project) h = principal_hessian_project(h);
     linearization_store(&h, cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
   }
@@ -116,8 +112,8 @@ __kernel void snh_element_product_cached(__global const real* p, __global const 
 /* The same, recomputing SVD and eigensystem from x at every product. */
 __kernel void snh_element_product_recompute(__global const real* p, __global const int* elements,
                                             __global const real* gradients, __global const real* weights,
-                                            const int count, __global const real* x, const real mu, const real lambda,
-                                            const real c0, const real c1, const int project, __global real* out) {
+                                            const int count, __global const real* x, MATERIAL_ARGS, const int project,
+                                            __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
@@ -126,8 +122,7 @@ __kernel void snh_element_product_recompute(__global const real* p, __global con
   for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    principal_hessian h = material_principal_hessian(SNH_MODEL, SNH_BARRIER, element_deformation_gradient(xs, g),
-                                                     material_make(mu, lambda, c0, c1));
+    principal_hessian h = material_principal_hessian(MODEL, BARRIER, element_deformation_gradient(xs, g), MATERIAL);
     if (project) h = principal_hessian_project(h);
     element_product(&h, ps, g, load_weight(weights, e, q), y);
   }

@@ -1,30 +1,24 @@
-/* Material probe: the Stable Neo-Hookean energy, PK1, projected Hessian,
- * unprojected eigenvalues and singular values at given deformation gradients.
- * SNH_BARRIER (0 or 1) is fixed at build time, so the unused barrier terms
- * are compiled out. Record layout per F, SNH_PROBE_RECORD reals:
+/* Material probe: any material's energy, PK1, projected Hessian, unprojected
+ * eigenvalues and singular values at given deformation gradients, specialized
+ * like fem.cl (kernel_args.h). Record layout per F, SNH_PROBE_RECORD reals:
  *   psi | P (9, column-major) | H (81, H[9 c + r] = d vec(P)_r / d vec(F)_c)
  *   | eigenvalues (9, ascending) | sigma (3) */
-#include "materials/material.h"
-
-#ifndef SNH_MODEL
-#define SNH_MODEL SNH_MODEL_SNH
-#endif
+#include "materials/kernel_args.h"
 
 #define SNH_PROBE_RECORD 103
 
-__kernel void snh_probe(__global const real* deformation, const int count, const real mu, const real lambda,
-                        const real c0, const real c1, __global real* out) {
+__kernel void snh_probe(__global const real* deformation, const int count, MATERIAL_ARGS, __global real* out) {
   const int n = get_global_id(0);
   if (n >= count) return;
   mat3 f;
   for (int i = 0; i < 9; ++i) f.a[i] = deformation[9 * n + i];
   __global real* record = out + (size_t)SNH_PROBE_RECORD * n;
 
-  record[0] = material_energy(SNH_MODEL, SNH_BARRIER, f, material_make(mu, lambda, c0, c1));
-  const mat3 p = material_pk1(SNH_MODEL, SNH_BARRIER, f, material_make(mu, lambda, c0, c1));
+  record[0] = material_energy(MODEL, BARRIER, f, MATERIAL);
+  const mat3 p = material_pk1(MODEL, BARRIER, f, MATERIAL);
   for (int i = 0; i < 9; ++i) record[1 + i] = p.a[i];
 
-  const principal_hessian h = material_principal_hessian(SNH_MODEL, SNH_BARRIER, f, material_make(mu, lambda, c0, c1));
+  const principal_hessian h = material_principal_hessian(MODEL, BARRIER, f, MATERIAL);
   const principal_hessian projected = principal_hessian_project(h);
   for (int c = 0; c < 9; ++c) {
     mat3 unit = mat3_zero();

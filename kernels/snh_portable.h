@@ -56,11 +56,14 @@ typedef float real;
 using std::acos;
 using std::cos;
 using std::exp;
+using std::expm1;
 using std::fabs;
 using std::fmax;
 using std::fmin;
 using std::isfinite;
 using std::log;
+using std::log1p;
+using std::pow;
 using std::sqrt;
 #endif
 

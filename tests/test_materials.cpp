@@ -18,9 +18,7 @@ namespace {
 struct ModelCase {
   std::string name;
   Material material;
-  reference::MaterialSpec spec() const {
-    return {static_cast<int>(material.model), material.barrier, material.mu, material.lambda, material.c0, material.c1};
-  }
+  reference::MaterialSpec spec() const { return reference::spec_of(material); }
 };
 
 std::vector<ModelCase> model_cases() {
@@ -209,7 +207,8 @@ TEST(Materials, NoNanWhereDefinedAndNeoHookeanWithoutHandlingIsFlagged) {
   none.neohookean_j0 = 0.0;
   const Material raw = Material::from_youngs_modulus(MaterialModel::neohookean, 1.0, 0.3, none);
   EXPECT_FALSE(raw.defined_for_inversion());
-  const reference::MaterialSpec spec{static_cast<int>(raw.model), false, raw.mu, raw.lambda, raw.c0, raw.c1};
+  reference::MaterialSpec spec = reference::spec_of(raw);
+  spec.barrier = false;
   const auto inverted = to_array<double>(Eigen::Vector3d(1.0, 1.0, -0.5).asDiagonal());
   EXPECT_FALSE(std::isfinite(reference::material_energy<double>(inverted, spec)));
 }

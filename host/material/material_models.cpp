@@ -58,6 +58,44 @@ Material Material::from_youngs_modulus(MaterialModel model, double e, double nu,
 }
 
 Material Material::from_lame(MaterialModel model, const LameParameters& l, const MaterialOptions& o) {
+  Material m = from_lame_as_written(model, l, o);
+  const double alpha_lambda = o.alpha_lambda.value_or(o.alpha);
+  require(std::isfinite(o.alpha) && o.alpha > 0.0 && o.alpha <= 10.0,
+          "alpha must lie in (0, 10], got " + number(o.alpha));
+  require(std::isfinite(alpha_lambda) && alpha_lambda > 0.0 && alpha_lambda <= 10.0,
+          "alpha of the lambda part must lie in (0, 10], got " + number(alpha_lambda));
+  m.alpha_mu = o.alpha;
+  m.alpha_lambda = alpha_lambda;
+  if (o.lambda_model && *o.lambda_model != model) {
+    m.lambda_model = o.lambda_model;
+    if (*o.lambda_model == MaterialModel::neohookean) {
+      require(o.neohookean_j0 >= 0.0 && o.neohookean_j0 < 1.0, "neohookean: J0 must lie in [0, 1)");
+      m.lambda_c0 = o.neohookean_j0;
+    }
+  } else if (model == MaterialModel::neohookean) {
+    m.lambda_c0 = m.c0;
+  }
+  return m;
+}
+
+bool Material::adjusted() const { return alpha_lambda != 1.0 || alpha_mu != 1.0 || lambda_model.has_value(); }
+
+bool Material::defined_for_inversion() const {
+  if (model == MaterialModel::neohookean && c0 <= 0.0) return false;
+  return !(lambda_model == MaterialModel::neohookean && lambda_c0 <= 0.0);
+}
+
+std::string Material::description() const {
+  std::string out = to_string(model);
+  if (lambda_model) out += std::string("+lambda:") + to_string(*lambda_model);
+  if (alpha_mu != 1.0 || alpha_lambda != 1.0) {
+    out += " alpha=" + number(alpha_mu);
+    if (alpha_lambda != alpha_mu) out += " alpha_lambda=" + number(alpha_lambda);
+  }
+  return out;
+}
+
+Material Material::from_lame_as_written(MaterialModel model, const LameParameters& l, const MaterialOptions& o) {
   if (model == MaterialModel::stable_neo_hookean) return StableNeoHookean::from_lame(l, o.barrier);
   require(std::isfinite(l.mu) && l.mu > 0.0, "shear modulus mu must be finite and > 0, got " + number(l.mu));
   require(std::isfinite(l.lambda) && l.lambda + 2.0 * l.mu / 3.0 > 0.0,

@@ -1,5 +1,6 @@
 #include <vector>
 
+#include "device/material_args.h"
 #include "device/opencl_context.h"
 #include "snh/error.h"
 #include "snh/probe.h"
@@ -25,20 +26,12 @@ struct MaterialProbe::Impl {
     device::Buffer in =
         cl.buffer(CL_MEM_READ_ONLY, input.size() * sizeof(Real), input.empty() ? nullptr : input.data());
     device::Buffer out = cl.buffer(CL_MEM_WRITE_ONLY, output.size() * sizeof(Real));
-    device::Kernel k = cl.kernel("probe.cl",
-                                 "-DSNH_MODEL=" + std::to_string(static_cast<int>(material.model)) +
-                                     " -DSNH_BARRIER=" + (material.barrier ? "1" : "0"),
-                                 "snh_probe");
-    const Real mu = static_cast<Real>(material.mu), lambda = static_cast<Real>(material.lambda);
-    const Real c0 = static_cast<Real>(material.c0), c1 = static_cast<Real>(material.c1);
+    device::Kernel k = cl.kernel("probe.cl", device::material_defines(material), "snh_probe");
     cl_mem in_mem = in.get(), out_mem = out.get();
     device::check(clSetKernelArg(k.get(), 0, sizeof(cl_mem), &in_mem), "clSetKernelArg");
     device::check(clSetKernelArg(k.get(), 1, sizeof(int), &count), "clSetKernelArg");
-    device::check(clSetKernelArg(k.get(), 2, sizeof(Real), &mu), "clSetKernelArg");
-    device::check(clSetKernelArg(k.get(), 3, sizeof(Real), &lambda), "clSetKernelArg");
-    device::check(clSetKernelArg(k.get(), 4, sizeof(Real), &c0), "clSetKernelArg");
-    device::check(clSetKernelArg(k.get(), 5, sizeof(Real), &c1), "clSetKernelArg");
-    device::check(clSetKernelArg(k.get(), 6, sizeof(cl_mem), &out_mem), "clSetKernelArg");
+    const cl_uint next = device::set_material_args<Real>(k.get(), 2, material);
+    device::check(clSetKernelArg(k.get(), next, sizeof(cl_mem), &out_mem), "clSetKernelArg");
     cl.run(k.get(), fs.size());
     if (!output.empty()) cl.read(out.get(), output.size() * sizeof(Real), output.data());
 

@@ -6,6 +6,8 @@
 
 #include <array>
 
+#include "snh/material.h"
+
 namespace snh::reference {
 
 template <typename Real>
@@ -67,7 +69,13 @@ struct MaterialSpec {
   int model = 0;
   bool barrier = true;
   double mu = 0.0, lambda = 0.0, c0 = 0.0, c1 = 0.0;
+  // Seed 004 path (see snh::Material): lambda part's model (-1: model) and
+  // parameter, nonlinearity of each part.
+  int lambda_model = -1;
+  double lambda_c0 = 0.0, alpha_lambda = 1.0, alpha_mu = 1.0;
 };
+
+MaterialSpec spec_of(const Material& material);
 
 template <typename Real>
 Real material_energy(const Mat3<Real>& f, const MaterialSpec& m);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "device/material_args.h"
 #include "snh/error.h"
 #include "viennacl/linalg/prod.hpp"
 
@@ -25,7 +26,7 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 
 template <typename Real>
 ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
-                                 const Material& material, ProductVariant variant)
+                                 const Material& material, ProductVariant variant, bool general_kernel)
     : cl_(cl),
       vertex_count_(mesh.vertex_count()),
       element_count_(mesh.element_count()),
@@ -35,9 +36,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
       variant_(variant),
       linearized_x_(3 * mesh.vertex_count()) {
   // Build-time specialization: only what this scene uses is compiled in.
-  defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") +
-             " -DSNH_MODEL=" + std::to_string(static_cast<int>(material.model)) +
-             " -DSNH_BARRIER=" + (material.barrier ? "1" : "0") + " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+  defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " +
+             device::material_defines(material, general_kernel) + " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
 
   // Vertex -> (element * nodes + node) slots, in increasing slot order, so
   // every gather sums in the same order on every run.
@@ -83,11 +83,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
 }
 
 template <typename Real>
-void ElasticModel<Real>::set_material_args(cl_kernel k, cl_uint first) const {
-  set_arg(k, first, Real(material_.mu));
-  set_arg(k, first + 1, Real(material_.lambda));
-  set_arg(k, first + 2, Real(material_.c0));
-  set_arg(k, first + 3, Real(material_.c1));
+cl_uint ElasticModel<Real>::set_material_args(cl_kernel k, cl_uint first) const {
+  return device::set_material_args<Real>(k, first, material_);
 }
 
 template <typename Real>
@@ -210,9 +207,9 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   set_arg(k, 2, gradients_.get());
   set_arg(k, 3, weights_.get());
   set_arg(k, 4, count);
-  set_material_args(k, 5);
-  set_arg(k, 9, energies_.get());
-  set_arg(k, 10, min_j_.get());
+  const cl_uint next = set_material_args(k, 5);
+  set_arg(k, next, energies_.get());
+  set_arg(k, next + 1, min_j_.get());
   run_element_kernel(k);
   std::vector<Real> e(element_count_), j(element_count_);
   cl_.read(energies_.get(), e.size() * sizeof(Real), e.data());
@@ -255,8 +252,7 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
   set_arg(k, 2, gradients_.get());
   set_arg(k, 3, weights_.get());
   set_arg(k, 4, count);
-  set_material_args(k, 5);
-  set_arg(k, 9, element_scratch_.get());
+  set_arg(k, set_material_args(k, 5), element_scratch_.get());
   run_element_kernel(k);
   gather(element_scratch_, r, true);
 }
@@ -271,9 +267,9 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   set_arg(k, 1, elements_.get());
   set_arg(k, 2, gradients_.get());
   set_arg(k, 3, count);
-  set_material_args(k, 4);
-  set_arg(k, 8, projected_);
-  set_arg(k, 9, cache_.get());
+  const cl_uint next = set_material_args(k, 4);
+  set_arg(k, next, projected_);
+  set_arg(k, next + 1, cache_.get());
   run_element_kernel(k);
   last_assembly_seconds_ = 0.0;
   if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled) compute_element_matrices();
@@ -318,9 +314,9 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(k, 3, weights_.get());
     set_arg(k, 4, count);
     set_arg(k, 5, mem(linearized_x_));
-    set_material_args(k, 6);
-    set_arg(k, 10, projected_);
-    set_arg(k, 11, element_scratch_.get());
+    const cl_uint next = set_material_args(k, 6);
+    set_arg(k, next, projected_);
+    set_arg(k, next + 1, element_scratch_.get());
   }
   run_element_kernel(k);
   gather(element_scratch_, y, false);

@@ -22,8 +22,11 @@ class ElasticModel {
   using Vector = viennacl::vector<Real>;
   using VectorBase = viennacl::vector_base<Real>;
 
+  // general_kernel: build the one kernel for every material (model, barrier
+  // and seed 004 path read at run time) instead of one specialized to this
+  // material; the specialization benchmark's baseline.
   ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest, const Material& material,
-               ProductVariant variant);
+               ProductVariant variant, bool general_kernel = false);
 
   size_t dofs() const { return 3 * vertex_count_; }
   // 1 for free DOFs, 0 for constrained ones (xyz per vertex).
@@ -65,7 +68,7 @@ class ElasticModel {
   void run_element_kernel(cl_kernel k) const;
   void compute_element_matrices();
   // mu, lambda, c0, c1 as kernel arguments first .. first + 3.
-  void set_material_args(cl_kernel k, cl_uint first) const;
+  cl_uint set_material_args(cl_kernel k, cl_uint first) const;  // returns the next index
   void assemble();
   void gather(const device::Buffer& element_values, VectorBase& out, bool external) const;
 

@@ -3,6 +3,7 @@
 // they map to.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace snh {
@@ -70,6 +71,16 @@ struct MaterialOptions {
   double arruda_boyce_beta2 = 0.01;
   double kikuuwe_kappa = 10.0;  // kappa / mu_Lame
   double neohookean_j0 = 0.1;   // inversion handling below J0; 0: none (J <= 0 is an error)
+
+  // Seed 004 sec. 5: nonlinearity alpha > 0 (Eq. 16: psi(sigma^alpha) / alpha^2;
+  // < 1 softens, > 1 stiffens at large strain; 1: the model as written). It
+  // keeps the small-strain moduli.
+  double alpha = 1.0;
+  // Seed 004 sec. 6 (Eqs. 19-20): take the lambda_Lame part from another
+  // model (the mu_Lame part stays this model's), with its own alpha (default:
+  // `alpha`).
+  std::optional<MaterialModel> lambda_model;
+  std::optional<double> alpha_lambda;
 };
 
 // Any model with its own parameters (mu, lambda and c0, c1: Fung gamma, mu1;
@@ -81,6 +92,14 @@ struct Material {
   double c0 = 0.0;
   double c1 = 0.0;
   bool barrier = true;
+  // Seed 004 extensions: psi = lambda_L / a1^2 psi_lambda^A(sigma^a1) +
+  // mu_L / a2^2 psi_mu^B(sigma^a2), B = model, A = lambda_model (when set)
+  // with its parameter lambda_c0 (Neo-Hookean J0), a1 = alpha_lambda,
+  // a2 = alpha_mu. Defaults: the model as written.
+  double alpha_lambda = 1.0;
+  double alpha_mu = 1.0;
+  std::optional<MaterialModel> lambda_model;
+  double lambda_c0 = 0.0;
 
   Material() = default;
   Material(const StableNeoHookean& snh);  // NOLINT: implicit, every SNH is a Material
@@ -93,9 +112,18 @@ struct Material {
                                       const MaterialOptions& options = {});
 
   LameParameters lame() const;  // the small-strain moduli (closed form per model)
+
+ private:
+  static Material from_lame_as_written(MaterialModel model, const LameParameters& lame, const MaterialOptions& options);
+
+ public:
   // True where the energy is defined for every F (false: Neo-Hookean without
   // inversion handling, undefined for J <= 0).
-  bool defined_for_inversion() const { return model != MaterialModel::neohookean || c0 > 0.0; }
+  bool defined_for_inversion() const;
+  // True where the seed 004 path (alpha or mixing) is in use.
+  bool adjusted() const;
+  // "snh", or e.g. "snh alpha=1.5" / "corotational+lambda:neohookean".
+  std::string description() const;
 };
 
 }  // namespace snh

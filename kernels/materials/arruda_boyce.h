@@ -23,10 +23,15 @@ SNH_FN invariant_terms arruda_boyce_terms(real ic, real j, real mu, real lambda,
   return t;
 }
 
+/* The I_C terms, zero at rest. */
+SNH_FN real arruda_boyce_ic_energy(real ic, real mu, real beta1, real beta2) {
+  return SNH_R(0.5) * mu * (ic - SNH_R(3)) + SNH_R(0.25) * mu * beta1 * (ic * ic - SNH_R(9)) +
+         mu * beta2 / SNH_R(6) * (ic * ic * ic - SNH_R(27));
+}
+
 SNH_FN real arruda_boyce_energy(mat3 f, real mu, real lambda, real beta1, real beta2) {
   const real ic = mat3_ddot(f, f), j = mat3_det(f), alpha = arruda_boyce_alpha(mu, lambda, beta1, beta2);
-  return SNH_R(0.5) * mu * (ic - SNH_R(3)) + SNH_R(0.25) * mu * beta1 * (ic * ic - SNH_R(9)) +
-         mu * beta2 / SNH_R(6) * (ic * ic * ic - SNH_R(27)) +
+  return arruda_boyce_ic_energy(ic, mu, beta1, beta2) +
          SNH_R(0.5) * lambda * (j - SNH_R(1)) * (j + SNH_R(1) - SNH_R(2) * alpha);
 }
 

@@ -10,9 +10,7 @@
 #ifndef SNH_COROTATIONAL_H
 #define SNH_COROTATIONAL_H
 
-#include "materials/principal_hessian.h"
-
-#define SNH_COROTATIONAL_MIN_SUM SNH_R(1e-6)
+#include "materials/stretch_invariants.h"
 
 SNH_FN real corotational_energy_sigma(vec3 s, real mu, real lambda) {
   const real t = s.a[0] + s.a[1] + s.a[2] - SNH_R(3);
@@ -43,6 +41,26 @@ SNH_FN principal_hessian corotational_principal_hessian(mat3 u, vec3 s, mat3 v, 
     h.flip.a[k] = SNH_R(2) * mu;
   }
   return h;
+}
+
+/* Seed 004 Eq. 19, parts with unit Lame moduli: lambda part (I1 - 3)^2 / 2;
+ * mu part sum (s_i - 1)^2 = (I2 - 3) - 2 (I1 - 3) (shared by the fixed
+ * co-rotational model). */
+SNH_FN stretch_terms corotational_lambda_part(stretch_invariants v) {
+  stretch_terms t = stretch_terms_zero();
+  const real d = v.i1 - SNH_R(3);
+  t.value = SNH_R(0.5) * d * d;
+  t.d[0] = d;
+  t.dd[0] = SNH_R(1);
+  return t;
+}
+
+SNH_FN stretch_terms corotational_mu_part(stretch_invariants v) {
+  stretch_terms t = stretch_terms_zero();
+  t.value = (v.i2 - SNH_R(3)) - SNH_R(2) * (v.i1 - SNH_R(3));
+  t.d[0] = SNH_R(-2);
+  t.d[1] = SNH_R(1);
+  return t;
 }
 
 #endif /* SNH_COROTATIONAL_H */

@@ -46,10 +46,14 @@ SNH_FN real fung_energy_exp(real x) {
   return e;
 }
 
+/* The I_C terms, zero at rest. */
+SNH_FN real fung_ic_energy(real ic, real mu0, real gamma, real mu1) {
+  return SNH_R(0.5) * mu0 * (ic - SNH_R(3)) + SNH_R(0.5) * gamma * (fung_energy_exp(mu1 * (ic - SNH_R(3))) - SNH_R(1));
+}
+
 SNH_FN real fung_energy(mat3 f, real mu0, real lambda, real gamma, real mu1) {
   const real ic = mat3_ddot(f, f), j = mat3_det(f), alpha = fung_alpha(mu0, lambda, gamma, mu1);
-  return SNH_R(0.5) * mu0 * (ic - SNH_R(3)) + SNH_R(0.5) * lambda * (j - SNH_R(1)) * (j + SNH_R(1) - SNH_R(2) * alpha) +
-         SNH_R(0.5) * gamma * (fung_energy_exp(mu1 * (ic - SNH_R(3))) - SNH_R(1));
+  return fung_ic_energy(ic, mu0, gamma, mu1) + SNH_R(0.5) * lambda * (j - SNH_R(1)) * (j + SNH_R(1) - SNH_R(2) * alpha);
 }
 
 #endif /* SNH_FUNG_H */

@@ -1,9 +1,19 @@
 /* One entry point for every material: energy, PK1 and the principal-stretch
  * eigensystem of its Hessian, for model ids matching snh::MaterialModel.
  * Kernels pass the build-time SNH_MODEL and SNH_BARRIER, so the compiler
- * keeps only that model's code; the host reference passes them at run time.
+ * keeps only that model's code; the host reference and the general kernel
+ * pass them at run time.
  * Parameters: mu, lambda (the model's own), c0, c1 (model-specific: Fung
- * gamma, mu1; Arruda-Boyce beta1, beta2; StVK kappa; Neo-Hookean J0). */
+ * gamma, mu1; Arruda-Boyce beta1, beta2; StVK kappa; Neo-Hookean J0).
+ *
+ * Seed 004 extensions (the "general path"): the nonlinearity alpha (Eq. 16)
+ * and mixing the lambda_Lame part of one model with the mu_Lame part of
+ * another, each with its own alpha (Eqs. 19-20):
+ *   psi = lambda_L / a1^2 psi_lambda^A(m(sigma; a1)) + mu_L / a2^2 psi_mu^B(m(sigma; a2)),
+ * B = the material's model (its own parameters give lambda_L, mu_L),
+ * A = lambda_model with its parameter c2 (Neo-Hookean J0). The parts are
+ * separable in the stretch invariants (stretch_invariants.h), the map m is in
+ * nonlinearity.h. SNH_NONLINEAR = 0 or 1 fixes the path at build time. */
 #ifndef SNH_MATERIAL_H
 #define SNH_MATERIAL_H
 
@@ -12,6 +22,7 @@
 #include "materials/fixed_corotational.h"
 #include "materials/fung.h"
 #include "materials/neohookean.h"
+#include "materials/nonlinearity.h"
 #include "materials/stable_neo_hookean.h"
 #include "materials/stvk_kikuuwe.h"
 
@@ -25,15 +36,41 @@
 
 typedef struct {
   real mu, lambda, c0, c1;
+  real c2;                     /* parameter of the lambda part's model (Neo-Hookean J0) */
+  real alpha_lambda, alpha_mu; /* nonlinearity of each part (Eq. 20); 1: none */
+  int lambda_model;            /* model of the lambda part; -1: the material's own */
 } material_params;
 
-SNH_FN material_params material_make(real mu, real lambda, real c0, real c1) {
+SNH_FN material_params material_make_general(real mu, real lambda, real c0, real c1, int lambda_model, real c2,
+                                             real alpha_lambda, real alpha_mu) {
   material_params m;
   m.mu = mu;
   m.lambda = lambda;
   m.c0 = c0;
   m.c1 = c1;
+  m.c2 = c2;
+  m.alpha_lambda = alpha_lambda;
+  m.alpha_mu = alpha_mu;
+  m.lambda_model = lambda_model;
   return m;
+}
+
+SNH_FN material_params material_make(real mu, real lambda, real c0, real c1) {
+  return material_make_general(mu, lambda, c0, c1, -1, c0, SNH_R(1), SNH_R(1));
+}
+
+SNH_FN int material_lambda_model(int model, material_params m) { return m.lambda_model < 0 ? model : m.lambda_model; }
+
+/* Whether the seed 004 path is taken (fixed at build time in specialized
+ * kernels). */
+SNH_FN int material_general(int model, material_params m) {
+#if defined(SNH_NONLINEAR) && SNH_NONLINEAR >= 0
+  (void)model;
+  (void)m;
+  return SNH_NONLINEAR;
+#else
+  return material_lambda_model(model, m) != model || m.alpha_lambda != SNH_R(1) || m.alpha_mu != SNH_R(1);
+#endif
 }
 
 /* Models written in I_C and J; the others in principal stretches. */
@@ -55,7 +92,136 @@ SNH_FN vec3 material_stretch_gradient(int model, vec3 s, material_params m) {
   return stvk_kikuuwe_gradient(s, m.mu, m.lambda, m.c0);
 }
 
+/* I_C terms of the I_C-J models (zero at rest). */
+SNH_FN real material_ic_energy(int model, int barrier, real ic, material_params m) {
+  if (model == SNH_MODEL_FUNG) return fung_ic_energy(ic, m.mu, m.c0, m.c1);
+  if (model == SNH_MODEL_ARRUDA_BOYCE) return arruda_boyce_ic_energy(ic, m.mu, m.c0, m.c1);
+  return snh_ic_energy(ic, m.mu, barrier);
+}
+
+/* Small-strain Lame moduli of a model from its own parameters (seed 004
+ * Eqs. 3-4): for psi = f(I_C) + lambda/2 (J - alpha)^2 with P(I) = 0,
+ * mu_L = gamma_I(rest) = 2 f'(3) and lambda_L = lambda + gamma_F(rest) - mu_L;
+ * the principal-stretch models carry them directly. */
+SNH_FN void material_lame(int model, int barrier, material_params m, real* mu_l, real* lambda_l) {
+  if (material_is_invariant(model) && model != SNH_MODEL_NEOHOOKEAN) {
+    const invariant_terms rest = material_invariant_terms(model, barrier, SNH_R(3), SNH_R(1), m);
+    *mu_l = rest.gamma_i;
+    *lambda_l = m.lambda + rest.gamma_f - rest.gamma_i;
+    return;
+  }
+  *mu_l = m.mu;
+  *lambda_l = m.lambda;
+}
+
+/* Seed 004 Eq. 19: the part of unit lambda_Lame of model `model` (c: its
+ * Neo-Hookean J0). */
+SNH_FN stretch_terms material_lambda_part(int model, stretch_invariants v, real c) {
+  if (model == SNH_MODEL_COROTATIONAL) return corotational_lambda_part(v);
+  if (model == SNH_MODEL_STVK_KIKUUWE) return stvk_kikuuwe_lambda_part(v);
+  if (model == SNH_MODEL_NEOHOOKEAN) return neohookean_lambda_part(v, c);
+  return stretch_j_quadratic_part(v);
+}
+
+/* The part of unit mu_Lame: (psi - lambda_L psi_lambda) / mu_L. For the I_C-J
+ * models, with lambda (alpha - 1) = mu_L:
+ *   f(I_C) / mu_L + (1 - gamma_F(rest) / mu_L) (J - 1)^2 / 2 - (J - 1). */
+SNH_FN stretch_terms material_mu_part(int model, int barrier, stretch_invariants v, material_params m) {
+  if (model == SNH_MODEL_COROTATIONAL || model == SNH_MODEL_FIXED_COROTATIONAL) return corotational_mu_part(v);
+  if (model == SNH_MODEL_STVK_KIKUUWE) return stvk_kikuuwe_mu_part(v, m.mu, m.c0);
+  if (model == SNH_MODEL_NEOHOOKEAN) return neohookean_mu_part(v, m.c0);
+  const invariant_terms rest = material_invariant_terms(model, barrier, SNH_R(3), SNH_R(1), m);
+  const invariant_terms here = material_invariant_terms(model, barrier, v.i2, v.i3, m);
+  const real inv_mu = SNH_R(1) / rest.gamma_i, q = SNH_R(1) - rest.gamma_f * inv_mu, dj = v.i3 - SNH_R(1);
+  stretch_terms t = stretch_terms_zero();
+  t.value = material_ic_energy(model, barrier, v.i2, m) * inv_mu + SNH_R(0.5) * q * dj * dj - dj;
+  t.d[1] = SNH_R(0.5) * here.gamma_i * inv_mu;
+  t.dd[1] = SNH_R(0.25) * here.gamma_f * inv_mu;
+  t.d[2] = q * dj - SNH_R(1);
+  t.dd[2] = q;
+  return t;
+}
+
+/* One part of the general path at sigma: its scale (L / alpha^2), the
+ * mapped stretches s = m(sigma) with m', m'', and its invariant terms at s. */
+typedef struct {
+  real scale, alpha;
+  vec3 s, dm, ddm;
+  stretch_terms t;
+} material_part_eval;
+
+SNH_FN material_part_eval material_part_at(int part, int model, int barrier, vec3 sigma, material_params m) {
+  material_part_eval e;
+  real mu_l, lambda_l;
+  material_lame(model, barrier, m, &mu_l, &lambda_l);
+  e.alpha = part ? m.alpha_mu : m.alpha_lambda;
+  e.scale = (part ? mu_l : lambda_l) / (e.alpha * e.alpha);
+  for (int i = 0; i < 3; ++i) nonlinear_map(sigma.a[i], e.alpha, &e.s.a[i], &e.dm.a[i], &e.ddm.a[i]);
+  const stretch_invariants v = stretch_invariants_of(e.s);
+  e.t = part ? material_mu_part(model, barrier, v, m) : material_lambda_part(material_lambda_model(model, m), v, m.c2);
+  return e;
+}
+
+SNH_FN real material_general_energy(int model, int barrier, vec3 sigma, material_params m) {
+  real psi = SNH_R(0);
+  for (int part = 0; part < 2; ++part) {
+    const material_part_eval e = material_part_at(part, model, barrier, sigma, m);
+    psi += e.scale * e.t.value;
+  }
+  return psi;
+}
+
+/* Eq. 17: dpsi/dsigma_i = sum over parts of scale g_i(s) m'(sigma_i). */
+SNH_FN vec3 material_general_gradient(int model, int barrier, vec3 sigma, material_params m) {
+  vec3 out = vec3_make(SNH_R(0), SNH_R(0), SNH_R(0));
+  for (int part = 0; part < 2; ++part) {
+    const material_part_eval e = material_part_at(part, model, barrier, sigma, m);
+    const vec3 g = stretch_gradient(&e.t, e.s);
+    for (int i = 0; i < 3; ++i) out.a[i] += e.scale * g.a[i] * e.dm.a[i];
+  }
+  return out;
+}
+
+/* Eq. 18 for the block, H_ij m'_i m'_j + delta_ij g_i m''_i; twists and flips
+ * by the chain rule on (g_i +- g_j) / (sigma_i +- sigma_j):
+ *   flip  = scale [flip(s) m'_i D[m](sigma_i, sigma_j) + g_j D[m'](sigma_i, sigma_j)]
+ *   twist = scale [twist(s) m'_i D[m](sigma_i, -sigma_j) - g_j D[m'](sigma_i, -sigma_j)]
+ * (m odd, m' even; D the divided differences of nonlinearity.h). */
+SNH_FN principal_hessian material_general_principal_hessian(int model, int barrier, mat3 u, vec3 sigma, mat3 v,
+                                                            material_params m) {
+  principal_hessian h;
+  h.u = u;
+  h.sigma = sigma;
+  h.v = v;
+  for (int n = 0; n < 6; ++n) h.block.a[n] = SNH_R(0);
+  h.twist = h.flip = vec3_make(SNH_R(0), SNH_R(0), SNH_R(0));
+  for (int part = 0; part < 2; ++part) {
+    const material_part_eval e = material_part_at(part, model, barrier, sigma, m);
+    const vec3 g = stretch_gradient(&e.t, e.s);
+    const sym3 b = stretch_block(&e.t, e.s);
+    int n = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j, ++n)
+        h.block.a[n] += e.scale * (b.a[n] * e.dm.a[i] * e.dm.a[j] + (i == j ? g.a[i] * e.ddm.a[i] : SNH_R(0)));
+    for (int k = 0; k < 3; ++k) {
+      const int i = principal_pair_i(k), j = principal_pair_j(k);
+      const real si = sigma.a[i], sj = sigma.a[j];
+      h.flip.a[k] += e.scale * (stretch_flip(&e.t, e.s, k) * e.dm.a[i] * nonlinear_divided(si, sj, e.alpha, 0) +
+                                g.a[j] * nonlinear_divided(si, sj, e.alpha, 1));
+      h.twist.a[k] += e.scale * (stretch_twist(&e.t, e.s, k) * e.dm.a[i] * nonlinear_divided(si, -sj, e.alpha, 0) -
+                                 g.a[j] * nonlinear_divided(si, -sj, e.alpha, 1));
+    }
+  }
+  return h;
+}
+
 SNH_FN real material_energy(int model, int barrier, mat3 f, material_params m) {
+  if (material_general(model, m)) {
+    mat3 u, v;
+    vec3 s;
+    svd3_rv(f, &u, &s, &v);
+    return material_general_energy(model, barrier, s, m);
+  }
   if (model == SNH_MODEL_SNH) return snh_energy(f, m.mu, m.lambda, barrier);
   if (model == SNH_MODEL_FUNG) return fung_energy(f, m.mu, m.lambda, m.c0, m.c1);
   if (model == SNH_MODEL_ARRUDA_BOYCE) return arruda_boyce_energy(f, m.mu, m.lambda, m.c0, m.c1);
@@ -69,6 +235,12 @@ SNH_FN real material_energy(int model, int barrier, mat3 f, material_params m) {
 }
 
 SNH_FN mat3 material_pk1(int model, int barrier, mat3 f, material_params m) {
+  if (material_general(model, m)) {
+    mat3 u, v;
+    vec3 s;
+    svd3_rv(f, &u, &s, &v);
+    return mat3_udvt(u, material_general_gradient(model, barrier, s, m), v);
+  }
   if (material_is_invariant(model))
     return invariant_pk1(f, material_invariant_terms(model, barrier, mat3_ddot(f, f), mat3_det(f), m));
   /* P = U diag(dpsi/dsigma) V^T */
@@ -80,6 +252,7 @@ SNH_FN mat3 material_pk1(int model, int barrier, mat3 f, material_params m) {
 
 SNH_FN principal_hessian material_principal_hessian_from_svd(int model, int barrier, mat3 u, vec3 s, mat3 v,
                                                              material_params m) {
+  if (material_general(model, m)) return material_general_principal_hessian(model, barrier, u, s, v, m);
   if (material_is_invariant(model)) {
     const real s0 = s.a[0], s1 = s.a[1], s2 = s.a[2];
     return invariant_principal_hessian(

@@ -10,6 +10,7 @@
 #define SNH_NEOHOOKEAN_H
 
 #include "materials/invariant_hessian.h"
+#include "materials/stretch_invariants.h"
 
 /* l(J) and its first two derivatives. */
 SNH_FN void neohookean_log(real j, real j0, real* l, real* dl, real* ddl) {
@@ -40,6 +41,29 @@ SNH_FN real neohookean_energy(mat3 f, real mu, real lambda, real j0) {
   real l, dl, ddl;
   neohookean_log(mat3_det(f), j0, &l, &dl, &ddl);
   return SNH_R(0.5) * mu * (mat3_ddot(f, f) - SNH_R(3)) - mu * l + SNH_R(0.5) * lambda * l * l;
+}
+
+/* Seed 004 Eq. 19, parts with unit Lame moduli: lambda part l(J)^2 / 2;
+ * mu part (I_C - 3)/2 - l(J). */
+SNH_FN stretch_terms neohookean_lambda_part(stretch_invariants v, real j0) {
+  stretch_terms t = stretch_terms_zero();
+  real l, dl, ddl;
+  neohookean_log(v.i3, j0, &l, &dl, &ddl);
+  t.value = SNH_R(0.5) * l * l;
+  t.d[2] = l * dl;
+  t.dd[2] = dl * dl + l * ddl;
+  return t;
+}
+
+SNH_FN stretch_terms neohookean_mu_part(stretch_invariants v, real j0) {
+  stretch_terms t = stretch_terms_zero();
+  real l, dl, ddl;
+  neohookean_log(v.i3, j0, &l, &dl, &ddl);
+  t.value = SNH_R(0.5) * (v.i2 - SNH_R(3)) - l;
+  t.d[1] = SNH_R(0.5);
+  t.d[2] = -dl;
+  t.dd[2] = -ddl;
+  return t;
 }
 
 #endif /* SNH_NEOHOOKEAN_H */

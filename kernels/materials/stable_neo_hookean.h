@@ -19,15 +19,19 @@ SNH_FN real snh_alpha(real mu, real lambda, int barrier) {
   return barrier ? SNH_R(1) + SNH_R(0.75) * mu / lambda : SNH_R(1) + mu / lambda;
 }
 
+/* The I_C terms, mu/2 (I_C - 3) - mu/2 log((I_C + 1) / 4), zero at rest. */
+SNH_FN real snh_ic_energy(real ic, real mu, int barrier) {
+  real psi = SNH_R(0.5) * mu * (ic - SNH_R(3));
+  if (barrier) psi -= SNH_R(0.5) * mu * log((ic + SNH_R(1)) / SNH_R(4));
+  return psi;
+}
+
 SNH_FN real snh_energy(mat3 f, real mu, real lambda, int barrier) {
   const real ic = mat3_ddot(f, f);
   const real j = mat3_det(f);
   const real alpha = snh_alpha(mu, lambda, barrier);
   /* (J - alpha)^2 - (1 - alpha)^2 factored so that psi(I) is exactly 0. */
-  real psi =
-      SNH_R(0.5) * mu * (ic - SNH_R(3)) + SNH_R(0.5) * lambda * (j - SNH_R(1)) * (j + SNH_R(1) - SNH_R(2) * alpha);
-  if (barrier) psi -= SNH_R(0.5) * mu * log((ic + SNH_R(1)) / SNH_R(4));
-  return psi;
+  return snh_ic_energy(ic, mu, barrier) + SNH_R(0.5) * lambda * (j - SNH_R(1)) * (j + SNH_R(1) - SNH_R(2) * alpha);
 }
 
 /* The invariant terms of Eq. 52 for this energy (sec. 4.6, App. D):

@@ -12,7 +12,7 @@
 #ifndef SNH_STVK_KIKUUWE_H
 #define SNH_STVK_KIKUUWE_H
 
-#include "materials/principal_hessian.h"
+#include "materials/stretch_invariants.h"
 
 /* K(J), K'(J), K''(J). */
 SNH_FN void kikuuwe_penalty(real j, real kappa, real* k, real* dk, real* ddk) {
@@ -68,6 +68,30 @@ SNH_FN principal_hessian stvk_kikuuwe_principal_hessian(mat3 u, vec3 s, mat3 v, 
     h.flip.a[kk] = mu * (si * si + si * sj + sj * sj - SNH_R(1)) + lambda_t2 - dk * s.a[kk];
   }
   return h;
+}
+
+/* Seed 004 Eq. 19, parts with unit Lame moduli: lambda part (I2 - 3)^2 / 8;
+ * mu part sum (s_i^2 - 1)^2 / 4 = (I4 - 3)/4 - (I2 - 3)/2 plus the Kikuuwe
+ * penalty K(J) / mu (kappa is a multiple of mu, see snh::MaterialOptions). */
+SNH_FN stretch_terms stvk_kikuuwe_lambda_part(stretch_invariants v) {
+  stretch_terms t = stretch_terms_zero();
+  const real d = v.i2 - SNH_R(3);
+  t.value = SNH_R(0.125) * d * d;
+  t.d[1] = SNH_R(0.25) * d;
+  t.dd[1] = SNH_R(0.25);
+  return t;
+}
+
+SNH_FN stretch_terms stvk_kikuuwe_mu_part(stretch_invariants v, real mu, real kappa) {
+  stretch_terms t = stretch_terms_zero();
+  real k, dk, ddk;
+  kikuuwe_penalty(v.i3, kappa / mu, &k, &dk, &ddk);
+  t.value = SNH_R(0.25) * (v.i4 - SNH_R(3)) - SNH_R(0.5) * (v.i2 - SNH_R(3)) + k;
+  t.d[1] = SNH_R(-0.5);
+  t.d[2] = dk;
+  t.dd[2] = ddk;
+  t.d[3] = SNH_R(0.25);
+  return t;
 }
 
 #endif /* SNH_STVK_KIKUUWE_H */
