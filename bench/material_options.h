@@ -1,5 +1,6 @@
 // The material options shared by subcommands: --E/--nu or --mu/--lambda
-// (Lame moduli), --barrier, --precision, --device.
+// (Lame moduli), --barrier, --model and its settings, --alpha / --lambda-model /
+// --alpha-lambda (seed 004), --precision, --device.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -18,6 +19,8 @@ struct MaterialOptions {
   std::string barrier = "auto";
   std::string model = "snh";
   snh::MaterialOptions model_options;
+  std::string lambda_model;
+  double alpha_lambda = 0.0;
   std::string precision = "double";
   std::string device;
 
@@ -48,17 +51,30 @@ struct MaterialOptions {
         .add_option("--j0", model_options.neohookean_j0,
                     "neohookean: inversion handling below J0 (0: none, J <= 0 is an error)")
         ->capture_default_str();
+    command
+        .add_option("--alpha", model_options.alpha,
+                    "nonlinearity (seed 004 Eq. 16): psi(sigma^alpha) / alpha^2, same small-strain E, nu; "
+                    "< 1 softer, > 1 stiffer at large strain")
+        ->capture_default_str();
+    command.add_option("--lambda-model", lambda_model,
+                       "take the lambda_Lame (volume) part from this model, the mu_Lame part stays --model's "
+                       "(seed 004 Eq. 19)");
+    command.add_option("--alpha-lambda", alpha_lambda,
+                       "nonlinearity of the lambda_Lame part (Eq. 20; default --alpha)");
     command.add_option("--precision", precision, "float or double")
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();
     command.add_option("--device", device,
                        "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU, first device)");
     mu_given_ = mu;
+    alpha_lambda_given_ = command.get_option("--alpha-lambda");
   }
 
   Material material() const {
     snh::MaterialOptions o = model_options;
     o.barrier = parse_barrier(barrier);
+    if (!lambda_model.empty()) o.lambda_model = parse_material_model(lambda_model);
+    if (alpha_lambda_given_ && alpha_lambda_given_->count() > 0) o.alpha_lambda = alpha_lambda;
     const MaterialModel m = parse_material_model(model);
     if (mu_given_ && mu_given_->count() > 0) return Material::from_lame(m, {lame_mu, lame_lambda}, o);
     return Material::from_youngs_modulus(m, youngs_modulus, poisson_ratio, o);
@@ -66,6 +82,7 @@ struct MaterialOptions {
 
  private:
   CLI::Option* mu_given_ = nullptr;
+  CLI::Option* alpha_lambda_given_ = nullptr;
 };
 
 }  // namespace snh::bench

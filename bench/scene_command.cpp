@@ -31,6 +31,9 @@ struct SceneOptions {
   double poisson_ratio = 0.49;
   std::string barrier = "auto";
   std::string model = "snh";
+  double alpha = 1.0;
+  std::string lambda_model;
+  double alpha_lambda = 0.0;
   std::string precision = "double";
   int steps = 0;
   unsigned seed = 1;
@@ -137,6 +140,9 @@ int run_scene(const SceneOptions& given) {
     options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
     MaterialOptions material_options;
     material_options.barrier = p.barrier;
+    material_options.alpha = o.alpha;
+    if (!o.lambda_model.empty()) material_options.lambda_model = parse_material_model(o.lambda_model);
+    if (o.alpha_lambda > 0.0) material_options.alpha_lambda = o.alpha_lambda;
     material = Material::from_youngs_modulus(parse_material_model(o.model), o.youngs_modulus, o.poisson_ratio,
                                              material_options);
   }
@@ -183,6 +189,10 @@ int run_scene(const SceneOptions& given) {
     if (!out) throw Error("cannot write " + o.json_path);
     json j = summary_json(scene, options, r);
     j["model"] = to_string(material.model);
+    j["material"] = material.description();
+    j["alpha"] = material.alpha_mu;
+    j["alpha_lambda"] = material.alpha_lambda;
+    if (material.lambda_model) j["lambda_model"] = to_string(*material.lambda_model);
     out << j.dump(2) << '\n';
   }
   return r.converged ? 0 : 3;
@@ -209,6 +219,14 @@ void add_scene_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember(
           {"snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"}))
       ->capture_default_str();
+  cmd->add_option("--alpha", o->alpha,
+                  "nonlinearity (seed 004 Eq. 16): psi(sigma^alpha) / alpha^2 at the same small-strain E, nu")
+      ->capture_default_str();
+  cmd->add_option("--lambda-model", o->lambda_model,
+                  "take the lambda_Lame (volume) part from this model (seed 004 Eq. 19)")
+      ->check(CLI::IsMember(
+          {"snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"}));
+  cmd->add_option("--alpha-lambda", o->alpha_lambda, "nonlinearity of the lambda_Lame part (Eq. 20; default --alpha)");
   cmd->add_option("--barrier", o->barrier, "origin barrier: on, off, auto")
       ->check(CLI::IsMember({"on", "off", "auto"}))
       ->capture_default_str();

@@ -212,7 +212,8 @@ SceneFile load_scene_file(const std::string& path) {
 
   const json material = doc.value("material", json::object());
   r.keys(material, "material",
-         {"model", "E", "nu", "barrier", "fung_gamma", "fung_mu1", "ab_beta1", "ab_beta2", "kappa", "j0"});
+         {"model", "E", "nu", "barrier", "fung_gamma", "fung_mu1", "ab_beta1", "ab_beta2", "kappa", "j0", "alpha",
+          "lambda_model", "alpha_lambda"});
   MaterialOptions mo;
   mo.barrier = parse_barrier(r.text(material, "material", "barrier", "auto"));
   mo.fung_gamma = r.number(material, "material", "fung_gamma", mo.fung_gamma);
@@ -221,6 +222,10 @@ SceneFile load_scene_file(const std::string& path) {
   mo.arruda_boyce_beta2 = r.number(material, "material", "ab_beta2", mo.arruda_boyce_beta2);
   mo.kikuuwe_kappa = r.number(material, "material", "kappa", mo.kikuuwe_kappa);
   mo.neohookean_j0 = r.number(material, "material", "j0", mo.neohookean_j0);
+  mo.alpha = r.number(material, "material", "alpha", mo.alpha);
+  if (material.contains("lambda_model"))
+    mo.lambda_model = parse_material_model(r.text(material, "material", "lambda_model", "snh"));
+  if (material.contains("alpha_lambda")) mo.alpha_lambda = r.number(material, "material", "alpha_lambda", mo.alpha);
   const double e = r.number(material, "material", "E", 1.0), nu = r.number(material, "material", "nu", 0.45);
   out.material =
       Material::from_youngs_modulus(parse_material_model(r.text(material, "material", "model", "snh")), e, nu, mo);
