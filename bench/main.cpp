@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "materials_report.h"
 #include "snh/error.h"
+#include "specialization.h"
 #include "stability.h"
 #include "throughput.h"
 
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   snh::bench::add_errtime_command(app, exit_code);
   snh::bench::add_throughput_command(app, exit_code);
   snh::bench::add_materials_command(app, exit_code);
+  snh::bench::add_specialization_command(app, exit_code);
   snh::bench::add_stability_command(app, exit_code);
   std::string out_dir = "bench-results";
   int samples = 20000;

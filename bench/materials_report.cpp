@@ -24,6 +24,12 @@ struct MaterialsOptions {
   std::vector<std::string> models{"snh",          "fung",      "arruda-boyce", "corotational", "fixed-corotational",
                                   "stvk-kikuuwe", "neohookean"};
   std::vector<double> poisson{0.2, 0.3, 0.4, 0.49};
+  // Seed 004 rows of the stretch table: Stable Neo-Hookean at these alphas,
+  // and these mixtures (MU_MODEL+lambda:LAMBDA_MODEL, Eq. 19).
+  std::vector<double> alphas{0.5, 2.0};
+  std::vector<std::string> mixes{"corotational+lambda:neohookean", "stvk-kikuuwe+lambda:snh"};
+  // Alphas of the per-model uniaxial curves (seed 004 Fig. 3).
+  std::vector<double> curve_alphas{0.5, 0.75, 1.0, 1.5, 2.0};
   int resolution = 4;
   std::string precision = "double";
   std::string device;
@@ -65,7 +71,30 @@ int run_materials(const MaterialsOptions& o) {
   md << '\n';
   std::ofstream csv(o.out + "/materials_stretch.csv");
   csv << "model,nu,converged,volume_change,cg_iterations,newton_iterations,min_j,inverted_elements,seconds\n";
-  for (const std::string& name : o.models) {
+  struct Row {
+    std::string label;
+    MaterialModel model;
+    MaterialOptions options;
+  };
+  std::vector<Row> rows;
+  for (const std::string& name : o.models) rows.push_back({name, parse_material_model(name), {}});
+  for (double alpha : o.alphas) {
+    MaterialOptions mo;
+    mo.alpha = alpha;
+    std::ostringstream label;
+    label << "snh alpha=" << alpha;
+    rows.push_back({label.str(), MaterialModel::stable_neo_hookean, mo});
+  }
+  for (const std::string& mix : o.mixes) {
+    const size_t plus = mix.find("+lambda:");
+    if (plus == std::string::npos)
+      throw Error("materials: a mix reads MU_MODEL+lambda:LAMBDA_MODEL, got '" + mix + "'");
+    MaterialOptions mo;
+    mo.lambda_model = parse_material_model(mix.substr(plus + 8));
+    rows.push_back({mix, parse_material_model(mix.substr(0, plus)), mo});
+  }
+  for (const Row& row : rows) {
+    const std::string& name = row.label;
     md << "| " << name << " |";
     for (double nu : o.poisson) {
       SceneParameters p;
@@ -75,9 +104,9 @@ int run_materials(const MaterialsOptions& o) {
       SolveOptions options = scene.options;
       options.precision = parse_precision(o.precision);
       options.device.match = o.device;
-      const Material material = Material::from_youngs_modulus(parse_material_model(name), 1.0, nu);
       std::string cell;
       try {
+        const Material material = Material::from_youngs_modulus(row.model, 1.0, nu, row.options);
         QuasistaticSolver solver(scene.mesh, material, scene.constraints, options);
         const SolveResult r = solver.solve();
         int cg = 0, newton = 0;
@@ -90,8 +119,8 @@ int run_materials(const MaterialsOptions& o) {
         c << std::showpos << std::fixed << std::setprecision(1) << change << "%" << std::noshowpos << ", " << cg
           << " CG" << (r.converged ? "" : " (not converged)");
         cell = c.str();
-        csv << name << ',' << nu << ',' << r.converged << ',' << change << ',' << cg << ',' << newton << ',' << r.min_j
-            << ',' << r.inverted_elements << ',' << r.seconds << '\n';
+        csv << '"' << name << "\"," << nu << ',' << r.converged << ',' << change << ',' << cg << ',' << newton << ','
+            << r.min_j << ',' << r.inverted_elements << ',' << r.seconds << '\n';
         report["stretch"].push_back({{"model", name},
                                      {"nu", nu},
                                      {"converged", r.converged},
@@ -138,16 +167,37 @@ int run_materials(const MaterialsOptions& o) {
       curves << '"' << c.label << "\"," << s << ',' << stress << ',' << t << '\n';
     }
   curves.close();
+  // Seed 004 Fig. 3: each model's curve per alpha (same slope at stretch 1).
+  std::ofstream alpha_curves(o.out + "/materials_alpha.csv");
+  alpha_curves << "model,alpha,stretch,nominal_stress,lateral_stretch\n";
+  for (const std::string& name : o.models)
+    for (double alpha : o.curve_alphas) {
+      MaterialOptions mo;
+      mo.alpha = alpha;
+      const Material m = Material::from_youngs_modulus(parse_material_model(name), 1.0, 0.45, mo);
+      for (int i = 0; i <= 60; ++i) {
+        const double s = 0.5 + 2.5 * i / 60.0;
+        const auto [stress, t] = uniaxial(m, s);
+        alpha_curves << name << ',' << alpha << ',' << s << ',' << stress << ',' << t << '\n';
+      }
+    }
+  alpha_curves.close();
   std::ofstream(o.out + "/materials.json") << report.dump(2) << '\n';
   std::ofstream(o.out + "/materials.md") << md.str() << "\nUniaxial force-stretch curves (E = 1, nu = 0.45): "
-                                         << "materials_uniaxial.csv, materials_uniaxial.png.\n";
+                                         << "materials_uniaxial.csv, materials_uniaxial.png; per model and "
+                                         << "nonlinearity alpha (seed 004 Fig. 3): materials_alpha.csv, "
+                                         << "materials_alpha.png.\n";
   std::cout << md.str();
   if (o.plots) {
     const std::string cmd = "/usr/bin/python3 " + std::string(SNH_BENCH_SCRIPT_DIR) + "/plot_materials.py " + o.out +
                             "/materials_uniaxial.csv " + o.out + "/materials_uniaxial.png";
-    if (std::system(cmd.c_str()) != 0) std::cerr << "snh-gpu-bench materials: warning: no plot (matplotlib?)\n";
+    const std::string alpha_cmd = "/usr/bin/python3 " + std::string(SNH_BENCH_SCRIPT_DIR) + "/plot_materials.py " +
+                                  o.out + "/materials_alpha.csv " + o.out + "/materials_alpha.png";
+    if (std::system(cmd.c_str()) != 0 || std::system(alpha_cmd.c_str()) != 0)
+      std::cerr << "snh-gpu-bench materials: warning: no plot (matplotlib?)\n";
   }
-  std::cout << "wrote " << o.out << "/materials.{md,json}, materials_stretch.csv, materials_uniaxial.{csv,png}\n";
+  std::cout << "wrote " << o.out
+            << "/materials.{md,json}, materials_stretch.csv, materials_uniaxial.{csv,png}, materials_alpha.{csv,png}\n";
   return 0;
 }
 
@@ -159,6 +209,15 @@ void add_materials_command(CLI::App& app, int& exit_code) {
       "materials", "Stretch comparison of every material model over Poisson's ratios, and uniaxial curves");
   cmd->add_option("--models", o->models, "models (comma list)")->delimiter(',')->capture_default_str();
   cmd->add_option("--nu", o->poisson, "Poisson's ratios (comma list)")->delimiter(',')->capture_default_str();
+  cmd->add_option("--alphas", o->alphas, "alphas of the Stable Neo-Hookean rows (seed 004 Eq. 16; comma list)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--mixes", o->mixes, "mixture rows MU_MODEL+lambda:LAMBDA_MODEL (seed 004 Eq. 19; comma list)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--curve-alphas", o->curve_alphas, "alphas of the per-model uniaxial curves (comma list)")
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--res", o->resolution, "stretch scene resolution")->capture_default_str();
   cmd->add_option("--precision", o->precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))

@@ -142,30 +142,41 @@ SNH_FN stretch_terms material_mu_part(int model, int barrier, stretch_invariants
   return t;
 }
 
-/* One part of the general path at sigma: its scale (L / alpha^2), the
- * mapped stretches s = m(sigma) with m', m'', and its invariant terms at s. */
+/* One part of the general path: its scale (L / alpha^2) and its invariant
+ * terms at the mapped stretches s = m(sigma). */
 typedef struct {
-  real scale, alpha;
-  vec3 s, dm, ddm;
+  real scale;
   stretch_terms t;
 } material_part_eval;
 
-SNH_FN material_part_eval material_part_at(int part, int model, int barrier, vec3 sigma, material_params m) {
+SNH_FN material_part_eval material_part_at(int part, int model, int barrier, const nonlinear_stretches* n,
+                                           material_params m) {
   material_part_eval e;
   real mu_l, lambda_l;
   material_lame(model, barrier, m, &mu_l, &lambda_l);
-  e.alpha = part ? m.alpha_mu : m.alpha_lambda;
-  e.scale = (part ? mu_l : lambda_l) / (e.alpha * e.alpha);
-  for (int i = 0; i < 3; ++i) nonlinear_map(sigma.a[i], e.alpha, &e.s.a[i], &e.dm.a[i], &e.ddm.a[i]);
-  const stretch_invariants v = stretch_invariants_of(e.s);
+  e.scale = (part ? mu_l : lambda_l) / (n->alpha * n->alpha);
+  const stretch_invariants v = stretch_invariants_of(n->m);
   e.t = part ? material_mu_part(model, barrier, v, m) : material_lambda_part(material_lambda_model(model, m), v, m.c2);
   return e;
 }
 
+/* The maps of the two parts (computed once when the alphas agree). */
+typedef struct {
+  nonlinear_stretches part[2];
+} material_stretches;
+
+SNH_FN material_stretches material_stretches_of(vec3 sigma, material_params m) {
+  material_stretches s;
+  s.part[0] = nonlinear_stretches_of(sigma, m.alpha_lambda);
+  s.part[1] = m.alpha_mu == m.alpha_lambda ? s.part[0] : nonlinear_stretches_of(sigma, m.alpha_mu);
+  return s;
+}
+
 SNH_FN real material_general_energy(int model, int barrier, vec3 sigma, material_params m) {
+  const material_stretches ms = material_stretches_of(sigma, m);
   real psi = SNH_R(0);
   for (int part = 0; part < 2; ++part) {
-    const material_part_eval e = material_part_at(part, model, barrier, sigma, m);
+    const material_part_eval e = material_part_at(part, model, barrier, &ms.part[part], m);
     psi += e.scale * e.t.value;
   }
   return psi;
@@ -173,11 +184,13 @@ SNH_FN real material_general_energy(int model, int barrier, vec3 sigma, material
 
 /* Eq. 17: dpsi/dsigma_i = sum over parts of scale g_i(s) m'(sigma_i). */
 SNH_FN vec3 material_general_gradient(int model, int barrier, vec3 sigma, material_params m) {
+  const material_stretches ms = material_stretches_of(sigma, m);
   vec3 out = vec3_make(SNH_R(0), SNH_R(0), SNH_R(0));
   for (int part = 0; part < 2; ++part) {
-    const material_part_eval e = material_part_at(part, model, barrier, sigma, m);
-    const vec3 g = stretch_gradient(&e.t, e.s);
-    for (int i = 0; i < 3; ++i) out.a[i] += e.scale * g.a[i] * e.dm.a[i];
+    const nonlinear_stretches* n = &ms.part[part];
+    const material_part_eval e = material_part_at(part, model, barrier, n, m);
+    const vec3 g = stretch_gradient(&e.t, n->m);
+    for (int i = 0; i < 3; ++i) out.a[i] += e.scale * g.a[i] * n->dm.a[i];
   }
   return out;
 }
@@ -189,27 +202,27 @@ SNH_FN vec3 material_general_gradient(int model, int barrier, vec3 sigma, materi
  * (m odd, m' even; D the divided differences of nonlinearity.h). */
 SNH_FN principal_hessian material_general_principal_hessian(int model, int barrier, mat3 u, vec3 sigma, mat3 v,
                                                             material_params m) {
+  const material_stretches ms = material_stretches_of(sigma, m);
   principal_hessian h;
   h.u = u;
   h.sigma = sigma;
   h.v = v;
-  for (int n = 0; n < 6; ++n) h.block.a[n] = SNH_R(0);
+  for (int k = 0; k < 6; ++k) h.block.a[k] = SNH_R(0);
   h.twist = h.flip = vec3_make(SNH_R(0), SNH_R(0), SNH_R(0));
   for (int part = 0; part < 2; ++part) {
-    const material_part_eval e = material_part_at(part, model, barrier, sigma, m);
-    const vec3 g = stretch_gradient(&e.t, e.s);
-    const sym3 b = stretch_block(&e.t, e.s);
-    int n = 0;
+    const nonlinear_stretches* n = &ms.part[part];
+    const material_part_eval e = material_part_at(part, model, barrier, n, m);
+    const vec3 g = stretch_gradient(&e.t, n->m);
+    const sym3 b = stretch_block(&e.t, n->m);
+    int idx = 0;
     for (int i = 0; i < 3; ++i)
-      for (int j = i; j < 3; ++j, ++n)
-        h.block.a[n] += e.scale * (b.a[n] * e.dm.a[i] * e.dm.a[j] + (i == j ? g.a[i] * e.ddm.a[i] : SNH_R(0)));
+      for (int j = i; j < 3; ++j, ++idx)
+        h.block.a[idx] += e.scale * (b.a[idx] * n->dm.a[i] * n->dm.a[j] + (i == j ? g.a[i] * n->ddm.a[i] : SNH_R(0)));
     for (int k = 0; k < 3; ++k) {
       const int i = principal_pair_i(k), j = principal_pair_j(k);
-      const real si = sigma.a[i], sj = sigma.a[j];
-      h.flip.a[k] += e.scale * (stretch_flip(&e.t, e.s, k) * e.dm.a[i] * nonlinear_divided(si, sj, e.alpha, 0) +
-                                g.a[j] * nonlinear_divided(si, sj, e.alpha, 1));
-      h.twist.a[k] += e.scale * (stretch_twist(&e.t, e.s, k) * e.dm.a[i] * nonlinear_divided(si, -sj, e.alpha, 0) -
-                                 g.a[j] * nonlinear_divided(si, -sj, e.alpha, 1));
+      h.flip.a[k] += e.scale * (stretch_flip(&e.t, n->m, k) * n->dm.a[i] * n->flip_m.a[k] + g.a[j] * n->flip_dm.a[k]);
+      h.twist.a[k] +=
+          e.scale * (stretch_twist(&e.t, n->m, k) * n->dm.a[i] * n->twist_m.a[k] - g.a[j] * n->twist_dm.a[k]);
     }
   }
   return h;

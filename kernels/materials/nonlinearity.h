@@ -19,6 +19,8 @@
 #ifndef SNH_NONLINEARITY_H
 #define SNH_NONLINEARITY_H
 
+#include "math/svd3.h"
+
 #define SNH_NONLINEAR_TAU SNH_R(0.1)
 
 SNH_FN int nonlinear_in_cubic(real x, real alpha) { return alpha < SNH_R(2) && fabs(x) < SNH_NONLINEAR_TAU; }
@@ -28,7 +30,8 @@ SNH_FN void nonlinear_cubic(real alpha, real* a, real* b) {
   *b = (alpha - SNH_R(1)) * pow(SNH_NONLINEAR_TAU, alpha - SNH_R(3)) * SNH_R(0.5);
 }
 
-/* m(x), m'(x), m''(x). */
+/* m(x), m'(x), m''(x): one pow per stretch (m' = alpha m / x, m'' =
+ * (alpha - 1) m' / x away from 0). */
 SNH_FN void nonlinear_map(real x, real alpha, real* m, real* dm, real* ddm) {
   if (alpha == SNH_R(1)) {
     *m = x;
@@ -45,42 +48,86 @@ SNH_FN void nonlinear_map(real x, real alpha, real* m, real* dm, real* ddm) {
     return;
   }
   const real ax = fabs(x), sign = x < SNH_R(0) ? SNH_R(-1) : SNH_R(1);
-  *m = sign * pow(ax, alpha);
-  *dm = alpha * pow(ax, alpha - SNH_R(1));
-  *ddm = sign * alpha * (alpha - SNH_R(1)) * pow(ax, alpha - SNH_R(2));
+  if (ax == SNH_R(0)) { /* alpha >= 2 here */
+    *m = *dm = SNH_R(0);
+    *ddm = alpha == SNH_R(2) ? SNH_R(2) * sign : SNH_R(0);
+    return;
+  }
+  const real p = pow(ax, alpha);
+  *m = sign * p;
+  *dm = alpha * p / ax;
+  *ddm = sign * (alpha - SNH_R(1)) * *dm / ax;
 }
 
-/* Divided difference of m (order 0) or m' (order 1) at x, y. */
-SNH_FN real nonlinear_divided(real x, real y, real alpha, int order) {
-  if (alpha == SNH_R(1)) return order == 0 ? SNH_R(1) : SNH_R(0);
-  real mx, dmx, ddmx, my, dmy, ddmy;
-  nonlinear_map(x, alpha, &mx, &dmx, &ddmx);
-  if (x == y) return order == 0 ? dmx : ddmx;
+/* The map at the three stretches, and per pair k = (i, j) the divided
+ * differences of m and m' at (sigma_i, sigma_j) (flip) and (sigma_i,
+ * -sigma_j) (twist). */
+typedef struct {
+  real alpha;
+  vec3 m, dm, ddm;
+  vec3 flip_m, flip_dm, twist_m, twist_dm;
+} nonlinear_stretches;
+
+/* Divided differences of m (*d0) and m' (*d1) at x, y with their map values. */
+SNH_FN void nonlinear_divided(real x, real mx, real dmx, real ddmx, real y, real my, real dmy, real ddmy, real alpha,
+                              real* d0, real* d1) {
+  if (x == y) {
+    *d0 = dmx;
+    *d1 = ddmx;
+    return;
+  }
   const int cx = nonlinear_in_cubic(x, alpha), cy = nonlinear_in_cubic(y, alpha);
   if (cx && cy) {
     real a, b;
     nonlinear_cubic(alpha, &a, &b);
-    return order == 0 ? a + b * (x * x + x * y + y * y) : SNH_R(3) * b * (x + y);
+    *d0 = a + b * (x * x + x * y + y * y);
+    *d1 = SNH_R(3) * b * (x + y);
+    return;
   }
   if (!cx && !cy && x * y > SNH_R(0)) {
     /* Both powers, one sign: with big >= small > 0, r = small / big,
-     * (big^p - small^p) / (big - small) = big^(p-1) expm1(p log r) / expm1(log r). */
-    const real ax = fabs(x), ay = fabs(y);
-    const real big = fmax(ax, ay), small = fmin(ax, ay);
-    const real log_r = log1p((small - big) / big);
-    const real p = order == 0 ? alpha : alpha - SNH_R(1);
-    const real ratio = expm1(p * log_r) / expm1(log_r);
+     * (big^p - small^p) / (big - small) = big^(p-1) expm1(p log r) / expm1(log r),
+     * p = alpha for m and alpha - 1 for m' / alpha; big^(alpha-1) = m'(big) / alpha. */
+    const int x_big = fabs(x) >= fabs(y);
+    const real big = x_big ? fabs(x) : fabs(y), small = x_big ? fabs(y) : fabs(x);
+    const real big_dm = x_big ? dmx : dmy;
+    const real log_r = log1p((small - big) / big), e = expm1(log_r);
+    *d0 = big_dm / alpha * expm1(alpha * log_r) / e;
     /* m is odd (same value for x, y < 0); m' is even (sign flips). */
-    const real sign = (order == 1 && x < SNH_R(0)) ? SNH_R(-1) : SNH_R(1);
-    return order == 0 ? pow(big, alpha - SNH_R(1)) * ratio : sign * alpha * pow(big, alpha - SNH_R(2)) * ratio;
+    const real sign = x < SNH_R(0) ? SNH_R(-1) : SNH_R(1);
+    *d1 = sign * big_dm / big * expm1((alpha - SNH_R(1)) * log_r) / e;
+    return;
   }
   /* Opposite signs (|x - y| = |x| + |y|: m(x) - m(y) adds two terms of one
    * sign) or the two sides of tau, where x and y closer than sqrt(eps) tau
    * take the mean derivative (error below sqrt(eps) relative). */
-  nonlinear_map(y, alpha, &my, &dmy, &ddmy);
-  if (x * y > SNH_R(0) && fabs(x - y) <= sqrt(SNH_EPS) * SNH_NONLINEAR_TAU)
-    return order == 0 ? SNH_R(0.5) * (dmx + dmy) : SNH_R(0.5) * (ddmx + ddmy);
-  return order == 0 ? (mx - my) / (x - y) : (dmx - dmy) / (x - y);
+  if (x * y > SNH_R(0) && fabs(x - y) <= sqrt(SNH_EPS) * SNH_NONLINEAR_TAU) {
+    *d0 = SNH_R(0.5) * (dmx + dmy);
+    *d1 = SNH_R(0.5) * (ddmx + ddmy);
+    return;
+  }
+  *d0 = (mx - my) / (x - y);
+  *d1 = (dmx - dmy) / (x - y);
+}
+
+SNH_FN nonlinear_stretches nonlinear_stretches_of(vec3 sigma, real alpha) {
+  nonlinear_stretches n;
+  n.alpha = alpha;
+  for (int i = 0; i < 3; ++i) nonlinear_map(sigma.a[i], alpha, &n.m.a[i], &n.dm.a[i], &n.ddm.a[i]);
+  for (int k = 0; k < 3; ++k) {
+    const int i = k == 0 ? 1 : 0, j = k == 2 ? 1 : 2; /* principal_pair_i, _j */
+    if (alpha == SNH_R(1)) {
+      n.flip_m.a[k] = n.twist_m.a[k] = SNH_R(1);
+      n.flip_dm.a[k] = n.twist_dm.a[k] = SNH_R(0);
+      continue;
+    }
+    nonlinear_divided(sigma.a[i], n.m.a[i], n.dm.a[i], n.ddm.a[i], sigma.a[j], n.m.a[j], n.dm.a[j], n.ddm.a[j], alpha,
+                      &n.flip_m.a[k], &n.flip_dm.a[k]);
+    /* m(-x) = -m(x), m'(-x) = m'(x), m''(-x) = -m''(x) */
+    nonlinear_divided(sigma.a[i], n.m.a[i], n.dm.a[i], n.ddm.a[i], -sigma.a[j], -n.m.a[j], n.dm.a[j], -n.ddm.a[j],
+                      alpha, &n.twist_m.a[k], &n.twist_dm.a[k]);
+  }
+  return n;
 }
 
 #endif /* SNH_NONLINEARITY_H */

@@ -1,0 +1,209 @@
+#include "specialization.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "device/opencl_context.h"
+#include "device/viennacl_binding.h"
+#include "fem/rest_state.h"
+#include "snh/error.h"
+#include "snh/mesh.h"
+#include "snh/simulation.h"
+#include "solver/elastic_model.h"
+
+namespace snh::bench {
+namespace {
+
+using json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+// Best time of one call over repeats lasting min_seconds (at least 3, after
+// one warm-up call).
+template <typename F>
+double best_seconds(F&& f, double min_seconds) {
+  f();
+  double best = 1e300, total = 0.0;
+  for (int n = 0; n < 3 || total < min_seconds; ++n) {
+    const auto t0 = Clock::now();
+    f();
+    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+    best = std::min(best, dt);
+    total += dt;
+  }
+  return best;
+}
+
+Material parse_material(const std::string& text) {
+  MaterialOptions o;
+  std::string name = text;
+  const size_t alpha = name.find(" alpha=");
+  if (alpha != std::string::npos) {
+    o.alpha = std::stod(name.substr(alpha + 7));
+    name = name.substr(0, alpha);
+  }
+  const size_t plus = name.find("+lambda:");
+  if (plus != std::string::npos) {
+    o.lambda_model = parse_material_model(name.substr(plus + 8));
+    name = name.substr(0, plus);
+  }
+  return Material::from_youngs_modulus(parse_material_model(name), 1.0, 0.45, o);
+}
+
+// The same rest data stored per element (what a non-lattice mesh needs).
+fem::RestState per_element(const fem::RestState& rest, size_t elements) {
+  fem::RestState out = rest;
+  if (!rest.uniform) return out;
+  out.uniform = false;
+  out.gradients.clear();
+  out.weights.clear();
+  for (size_t e = 0; e < elements; ++e) {
+    out.gradients.insert(out.gradients.end(), rest.gradients.begin(), rest.gradients.end());
+    out.weights.insert(out.weights.end(), rest.weights.begin(), rest.weights.end());
+  }
+  return out;
+}
+
+struct Timing {
+  double energy = 0, residual = 0, linearize = 0, product = 0;  // seconds per call
+};
+
+template <typename Real>
+int run(const SpecializationOptions& o, json& report, std::ostringstream& md) {
+  const Precision precision = parse_precision(o.precision);
+  device::OpenClContext cl(DeviceOptions{o.device}, precision);
+  device::bind_viennacl(cl);
+  report["device"] = cl.info().platform + " / " + cl.info().name;
+  report["precision"] = o.precision;
+  report["size"] = o.size;
+  md << "# Kernel specialization\n\nDevice: " << cl.info().platform << " / " << cl.info().name << "; " << o.precision
+     << "; box lattice " << o.size << "^3, deformed (x 0.9, 0.9, 1.3 plus noise); best of repeats over "
+     << o.min_seconds << " s per operation. Builds: specialized (the engine's default: model, barrier, seed 004 "
+     << "path and, on lattices, the shared rest shape fixed at build time), general material (model, barrier and "
+     << "path read at run time), fully general (that and per-element rest data). Ratios are time(general) / "
+     << "time(specialized): above 1 the specialization wins.\n\n"
+     << "| element | material | op | specialized ms | general material ms | fully general ms | gain (material) | "
+        "gain (all) |\n|---|---|---|---|---|---|---|---|\n";
+  int status = 0;
+  for (const std::string& type : o.element_types) {
+    const int n = o.size;
+    const Mesh mesh = type == "hex8" ? make_box_lattice(n, n, n, 1.0 / n) : make_tet_box(n, n, n, 1.0 / n);
+    const fem::RestState rest = fem::compute_rest_state(mesh);
+    const fem::RestState rest_general = per_element(rest, mesh.element_count());
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-0.1 / n, 0.1 / n), unit(-1.0, 1.0);
+    std::vector<Real> xh(mesh.positions.size()), ph(mesh.positions.size());
+    for (size_t i = 0; i < xh.size(); ++i) {
+      xh[i] = Real((i % 3 == 2 ? 1.3 : 0.9) * mesh.positions[i] + u(rng));
+      ph[i] = Real(unit(rng));
+    }
+    viennacl::vector<Real> x(xh.size()), p(xh.size()), r(xh.size()), y(xh.size());
+    viennacl::copy(xh.begin(), xh.end(), x.begin());
+    viennacl::copy(ph.begin(), ph.end(), p.begin());
+    for (const std::string& name : o.materials) {
+      const Material material = parse_material(name);
+      Timing t[3];
+      std::vector<Real> results[3];
+      for (int b = 0; b < 3; ++b) {
+        solver::ElasticModel<Real> model(cl, mesh, b == 2 ? rest_general : rest, material, ProductVariant::recompute,
+                                         b > 0);
+        t[b].energy = best_seconds([&] { model.energy(x); }, o.min_seconds);
+        t[b].residual = best_seconds([&] { model.residual(x, r); }, o.min_seconds);
+        t[b].linearize = best_seconds([&] { model.linearize(x); }, o.min_seconds);
+        t[b].product = best_seconds([&] { model.product(p, y); }, o.min_seconds);
+        results[b].resize(2 * xh.size());
+        viennacl::copy(r.begin(), r.end(), results[b].begin());
+        viennacl::copy(y.begin(), y.end(), results[b].begin() + static_cast<long>(xh.size()));
+      }
+      // The builds must compute the same thing: same expressions, no
+      // contraction, so bitwise equal on one device.
+      const bool same = results[0] == results[1] && results[0] == results[2];
+      if (!same) status = 1;
+      const std::pair<const char*, double Timing::*> ops[] = {{"energy", &Timing::energy},
+                                                              {"residual", &Timing::residual},
+                                                              {"linearize", &Timing::linearize},
+                                                              {"product (recompute)", &Timing::product}};
+      for (const auto& [op, field] : ops) {
+        const double s = t[0].*field, g = t[1].*field, a = t[2].*field;
+        md << "| " << type << " | " << material.description() << " | " << op << " | " << std::fixed
+           << std::setprecision(3) << 1e3 * s << " | " << 1e3 * g << " | " << 1e3 * a << " | " << std::setprecision(2)
+           << g / s << " | " << a / s << " |\n";
+        report["rows"].push_back({{"element_type", type},
+                                  {"material", material.description()},
+                                  {"operation", op},
+                                  {"elements", mesh.element_count()},
+                                  {"specialized_ms", 1e3 * s},
+                                  {"general_material_ms", 1e3 * g},
+                                  {"fully_general_ms", 1e3 * a},
+                                  {"gain_material", g / s},
+                                  {"gain_all", a / s},
+                                  {"bitwise_equal", same}});
+      }
+      std::cerr << "  " << type << " " << material.description() << ": product gain " << std::fixed
+                << std::setprecision(2) << t[1].product / t[0].product << " (material), " << t[2].product / t[0].product
+                << " (all)" << (same ? "" : "  RESULTS DIFFER") << '\n';
+    }
+  }
+  return status;
+}
+
+}  // namespace
+
+int run_specialization(const SpecializationOptions& o) {
+  std::filesystem::create_directories(o.out);
+  json report;
+  std::ostringstream md;
+  const int status = o.precision == "float" ? run<float>(o, report, md) : run<double>(o, report, md);
+  // Geometric mean of the ratios per operation, over materials and elements.
+  std::map<std::string, std::pair<double, int>> material_gain, all_gain;
+  for (const json& row : report["rows"]) {
+    const std::string op = row["operation"];
+    material_gain[op].first += std::log(row["gain_material"].get<double>());
+    material_gain[op].second += 1;
+    all_gain[op].first += std::log(row["gain_all"].get<double>());
+    all_gain[op].second += 1;
+  }
+  md << "\nGeometric mean of the gains per operation:\n\n| op | gain (material) | gain (all) |\n|---|---|---|\n";
+  for (const auto& [op, g] : material_gain) {
+    const double gm = std::exp(g.first / g.second), ga = std::exp(all_gain[op].first / all_gain[op].second);
+    md << "| " << op << " | " << std::fixed << std::setprecision(2) << gm << " | " << ga << " |\n";
+    report["geometric_mean_gain"][op] = {{"material", gm}, {"all", ga}};
+  }
+  if (status != 0) md << "\n**The builds' results differ** (see bitwise_equal in specialization.json).\n";
+  std::ofstream(o.out + "/specialization.json") << report.dump(2) << '\n';
+  std::ofstream(o.out + "/specialization.md") << md.str();
+  std::cout << md.str() << "wrote " << o.out << "/specialization.{md,json}\n";
+  return status;
+}
+
+void add_specialization_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<SpecializationOptions>();
+  CLI::App* cmd = app.add_subcommand("specialization",
+                                     "Gain of the per-scene specialized kernels over one general kernel, per material");
+  cmd->add_option("--materials", o->materials, "MODEL, 'MODEL alpha=A' or MU_MODEL+lambda:LAMBDA_MODEL (comma list)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--element", o->element_types, "hex8, tet4 (comma list)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"hex8", "tet4"}))
+      ->capture_default_str();
+  cmd->add_option("--size", o->size, "cells per side of the box lattice")->capture_default_str();
+  cmd->add_option("--precision", o->precision, "float or double")
+      ->check(CLI::IsMember({"float", "double"}))
+      ->capture_default_str();
+  cmd->add_option("--min-seconds", o->min_seconds, "time per measured operation")->capture_default_str();
+  cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
+  cmd->add_option("--out", o->out, "output folder")->capture_default_str();
+  cmd->callback([o, &exit_code] { exit_code = run_specialization(*o); });
+}
+
+}  // namespace snh::bench
