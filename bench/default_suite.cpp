@@ -21,6 +21,7 @@
 #include "snh/device.h"
 #include "snh/error.h"
 #include "snh/probe.h"
+#include "specialization.h"
 #include "throughput.h"
 
 namespace snh::bench {
@@ -169,7 +170,8 @@ std::string read_file(const std::string& path) {
 int run_default_suite(const std::string& out_dir, int samples, bool quick) {
   const auto start = Clock::now();
   std::filesystem::create_directories(out_dir);
-  std::cerr << "snh-gpu-bench default suite -> " << out_dir << "/ (element check, throughput, errtime)\n";
+  std::cerr << "snh-gpu-bench default suite -> " << out_dir
+            << "/ (element check, throughput, specialization, errtime)\n";
   json summary;
   std::string element_md;
   int status = run_element_check(out_dir, samples, summary["element"], element_md);
@@ -181,6 +183,17 @@ int run_default_suite(const std::string& out_dir, int samples, bool quick) {
   std::cerr << "throughput\n";
   status = std::max(status, run_throughput(throughput));
 
+  // The gain of per-scene kernels over general ones, on three materials (the
+  // full table: `snh-gpu-bench specialization`).
+  SpecializationOptions specialization;
+  specialization.out = out_dir;
+  specialization.materials = {"snh", "corotational", "snh alpha=2"};
+  specialization.element_types = {"hex8"};
+  specialization.size = quick ? 2 : 12;
+  specialization.min_seconds = quick ? 0.01 : 0.05;
+  std::cerr << "specialization\n";
+  status = std::max(status, run_specialization(specialization));
+
   ErrtimeOptions errtime;
   errtime.out_dir = out_dir;
   if (quick) {
@@ -191,7 +204,7 @@ int run_default_suite(const std::string& out_dir, int samples, bool quick) {
   std::cerr << "errtime\n";
   status = std::max(status, run_errtime(errtime));
 
-  for (const char* part : {"throughput", "errtime"}) {
+  for (const char* part : {"throughput", "specialization", "errtime"}) {
     std::ifstream in(out_dir + "/" + part + ".json");
     if (in) summary[part] = json::parse(in);
   }
@@ -203,8 +216,9 @@ int run_default_suite(const std::string& out_dir, int samples, bool quick) {
                                          << std::setprecision(3) << seconds << " s in all.\n\n## Element kernel\n\n"
                                          << element_md << "\n"
                                          << read_file(out_dir + "/throughput.md") << "\n"
+                                         << read_file(out_dir + "/specialization.md") << "\n"
                                          << read_file(out_dir + "/errtime.md");
-  std::cout << "wrote " << out_dir << "/summary.{json,md} (and element, throughput, errtime files) in "
+  std::cout << "wrote " << out_dir << "/summary.{json,md} (and element, throughput, specialization, errtime files) in "
             << std::setprecision(3) << seconds << " s\n";
   return status;
 }

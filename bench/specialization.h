@@ -4,7 +4,9 @@
 // engine's default: model, barrier, alpha/mixing path and the lattice's
 // shared rest shape fixed at build time), with the material read at run time
 // (one kernel for every material), and fully general (material at run time
-// and per-element rest data). Reports time per call and the ratios.
+// and per-element rest data), and specialized to the model but always through
+// the seed 004 parts (what a kernel carrying every term computes). Reports
+// time per call and the ratios.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -92,6 +92,33 @@ TEST(ProbeCommand, LameParametersAndBarrierOption) {
 TEST(ProbeCommand, RejectsOutOfRangeMaterial) {
   EXPECT_NE(run_bench("probe --E 1 --nu 0.5", "").status, 0);
   EXPECT_NE(run_bench("probe --E -1 --nu 0.3", "").status, 0);
+  EXPECT_NE(run_bench("probe --alpha 0", "").status, 0);
+  EXPECT_NE(run_bench("probe --lambda-model rubber", "").status, 0);
+}
+
+// --alpha (seed 004 Eq. 16) on the device: the co-rotational energy with
+// alpha = 2 is the Seth-Hill / StVK energy mu/4 sum (s^2 - 1)^2 +
+// lambda/8 (sum s^2 - 3)^2, written out here; --lambda-model swaps the
+// volume term (co-rotational mu part + (J - 1)^2 / 2 is fixed co-rotational).
+TEST(ProbeCommand, AlphaAndLambdaModelOptions) {
+  const std::string f = "{\"F\": [[1.5, 0, 0], [0, 0.8, 0], [0, 0, 0.9]]}\n";
+  const double mu = 1.0, lambda = 10.0, s[3] = {1.5, 0.8, 0.9};
+  double shear = 0.0, trace = -3.0, corot = 0.0;
+  for (double x : s) {
+    shear += (x * x - 1.0) * (x * x - 1.0);
+    trace += x * x;
+    corot += (x - 1.0) * (x - 1.0);
+  }
+  const CommandRun a = run_bench("probe --model corotational --mu 1 --lambda 10 --alpha 2", f);
+  ASSERT_EQ(a.status, 0);
+  ASSERT_EQ(a.lines.size(), 1u);
+  const double stvk = mu / 4.0 * shear + lambda / 8.0 * trace * trace;
+  EXPECT_NEAR(nlohmann::json::parse(a.lines[0])["psi"].get<double>(), stvk, 1e-12 * stvk);
+  const CommandRun b =
+      run_bench("probe --model corotational --lambda-model fixed-corotational --mu 1 --lambda 10 --precision float", f);
+  ASSERT_EQ(b.status, 0);
+  const double j = s[0] * s[1] * s[2], fixed = mu * corot + lambda / 2.0 * (j - 1.0) * (j - 1.0);
+  EXPECT_NEAR(nlohmann::json::parse(b.lines[0])["psi"].get<double>(), fixed, 1e-5 * fixed);
 }
 
 TEST(DefaultSuite, WritesWellFormedSummaryAtTinySize) {
@@ -119,8 +146,17 @@ TEST(DefaultSuite, WritesWellFormedSummaryAtTinySize) {
   }
   for (const char* v : {"recompute", "cached", "element-matrices", "assembled", "host-eigen-csr"})
     EXPECT_EQ(variants.count(v), 1u) << v;
+  // Specialization: every build computes the same forces and products.
+  ASSERT_TRUE(summary.contains("specialization"));
+  ASSERT_EQ(summary["specialization"]["rows"].size(), 3u * 4u);  // 3 materials x 4 operations
+  for (const auto& row : summary["specialization"]["rows"]) {
+    EXPECT_TRUE(row["bitwise_equal"].get<bool>()) << row["material"];
+    EXPECT_LT(row["all_terms_relative_difference"].get<double>(), 1e-9) << row["material"];
+    EXPECT_GT(row["gain_material"].get<double>(), 0.0);
+  }
   ASSERT_TRUE(summary.contains("errtime"));
-  for (const char* file : {"summary.md", "element.md", "throughput.csv", "throughput.md", "errtime.csv", "errtime.md"})
+  for (const char* file : {"summary.md", "element.md", "throughput.csv", "throughput.md", "specialization.md",
+                           "errtime.csv", "errtime.md"})
     EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
 }
 
@@ -174,6 +210,30 @@ TEST(SceneCommand, WritesJsonSummaryAndParaViewSeries) {
   EXPECT_TRUE(j["converged"].get<bool>());
   for (const char* file : {"twist.pvd", "twist_0000.vtu", "twist_0001.vtu", "twist_0002.vtu"})
     EXPECT_TRUE(std::filesystem::exists(dir / "vtu" / file)) << file;
+}
+
+// The seed 004 options reach the engine: the kernels are built for them
+// and the JSON names the material.
+TEST(SceneCommand, AlphaAndMixedMaterial) {
+  const std::filesystem::path json_path = std::filesystem::temp_directory_path() / "snh_scene_alpha.json";
+  std::filesystem::remove(json_path);
+  const CommandRun r = run_bench(
+      "scene stretch --res 2 --steps 2 --nu 0.4 --model stvk-kikuuwe --lambda-model snh "
+      "--alpha 1.5 --alpha-lambda 0.8 --json " +
+          json_path.string(),
+      "");
+  EXPECT_EQ(r.status, 0);
+  std::ifstream in(json_path);
+  ASSERT_TRUE(in.good());
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["material"], "stvk-kikuuwe+lambda:snh alpha=1.5 alpha_lambda=0.8");
+  EXPECT_EQ(j["lambda_model"], "snh");
+  EXPECT_DOUBLE_EQ(j["alpha"].get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(j["alpha_lambda"].get<double>(), 0.8);
+  const std::string spec = j["kernel_specialization"];
+  EXPECT_NE(spec.find("-DSNH_NONLINEAR=1"), std::string::npos) << spec;
+  EXPECT_NE(spec.find("-DSNH_LAMBDA_MODEL=0"), std::string::npos) << spec;
+  EXPECT_TRUE(j["converged"].get<bool>());
 }
 
 TEST(SceneCommand, UnknownSceneIsRejected) { EXPECT_NE(run_bench("scene wobble", "").status, 0); }

@@ -4,10 +4,11 @@
 
 namespace snh::device {
 
-std::string material_defines(const Material& m, bool general) {
-  if (general) return "-DSNH_GENERAL_KERNEL=1";
+std::string material_defines(const Material& m, MaterialKernel build) {
+  if (build == MaterialKernel::runtime) return "-DSNH_GENERAL_KERNEL=1";
+  const bool parts = m.adjusted() || build == MaterialKernel::all_terms;
   std::string d = "-DSNH_MODEL=" + std::to_string(static_cast<int>(m.model)) +
-                  " -DSNH_BARRIER=" + (m.barrier ? "1" : "0") + " -DSNH_NONLINEAR=" + (m.adjusted() ? "1" : "0");
+                  " -DSNH_BARRIER=" + (m.barrier ? "1" : "0") + " -DSNH_NONLINEAR=" + (parts ? "1" : "0");
   if (m.lambda_model) d += " -DSNH_LAMBDA_MODEL=" + std::to_string(static_cast<int>(*m.lambda_model));
   return d;
 }

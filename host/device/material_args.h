@@ -11,10 +11,16 @@
 
 namespace snh::device {
 
-// Build switches for a kernel specialized to `material`, or, with `general`,
-// for the one kernel that takes model, barrier and the seed 004 path at run
-// time (the baseline of the specialization benchmark).
-std::string material_defines(const Material& material, bool general = false);
+// How much of the material a kernel build fixes:
+//   specialized   model, barrier, seed 004 path and lambda model at build time
+//                 (the engine's default: only what the scene uses is compiled);
+//   runtime       one kernel for every material, all of it read at run time;
+//   all_terms     specialized to the model, but always through the seed 004
+//                 parts (as a kernel that carries every term would compute).
+// The last two are the baselines of `snh-gpu-bench specialization`.
+enum class MaterialKernel { specialized, runtime, all_terms };
+
+std::string material_defines(const Material& material, MaterialKernel build = MaterialKernel::specialized);
 
 constexpr cl_uint kMaterialArgCount = 10;
 

@@ -4,6 +4,7 @@
 // tests check them against finite differences of psi(sigma)).
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "snh/error.h"
 #include "snh/material.h"
@@ -29,6 +30,17 @@ std::string number(double x) {
   s.precision(17);
   s << x;
   return s.str();
+}
+
+// The shortest decimal that reads back as x (0.8, not 0.80000000000000004).
+std::string shortest(double x) {
+  for (int digits = 1; digits < 17; ++digits) {
+    std::ostringstream s;
+    s.precision(digits);
+    s << x;
+    if (std::stod(s.str()) == x) return s.str();
+  }
+  return number(x);
 }
 
 void require(bool ok, const std::string& what) {
@@ -89,8 +101,8 @@ std::string Material::description() const {
   std::string out = to_string(model);
   if (lambda_model) out += std::string("+lambda:") + to_string(*lambda_model);
   if (alpha_mu != 1.0 || alpha_lambda != 1.0) {
-    out += " alpha=" + number(alpha_mu);
-    if (alpha_lambda != alpha_mu) out += " alpha_lambda=" + number(alpha_lambda);
+    out += " alpha=" + shortest(alpha_mu);
+    if (alpha_lambda != alpha_mu) out += " alpha_lambda=" + shortest(alpha_lambda);
   }
   return out;
 }

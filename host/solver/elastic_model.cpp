@@ -26,7 +26,7 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 
 template <typename Real>
 ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
-                                 const Material& material, ProductVariant variant, bool general_kernel)
+                                 const Material& material, ProductVariant variant, device::MaterialKernel build)
     : cl_(cl),
       vertex_count_(mesh.vertex_count()),
       element_count_(mesh.element_count()),
@@ -37,7 +37,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
       linearized_x_(3 * mesh.vertex_count()) {
   // Build-time specialization: only what this scene uses is compiled in.
   defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " +
-             device::material_defines(material, general_kernel) + " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+             device::material_defines(material, build) + " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
 
   // Vertex -> (element * nodes + node) slots, in increasing slot order, so
   // every gather sums in the same order on every run.

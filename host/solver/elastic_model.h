@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "device/material_args.h"
 #include "device/opencl_context.h"
 #include "fem/rest_state.h"
 #include "snh/material.h"
@@ -22,11 +23,10 @@ class ElasticModel {
   using Vector = viennacl::vector<Real>;
   using VectorBase = viennacl::vector_base<Real>;
 
-  // general_kernel: build the one kernel for every material (model, barrier
-  // and seed 004 path read at run time) instead of one specialized to this
-  // material; the specialization benchmark's baseline.
+  // build: how much of the material the kernels fix at build time (see
+  // device::MaterialKernel; the engine uses `specialized`).
   ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest, const Material& material,
-               ProductVariant variant, bool general_kernel = false);
+               ProductVariant variant, device::MaterialKernel build = device::MaterialKernel::specialized);
 
   size_t dofs() const { return 3 * vertex_count_; }
   // 1 for free DOFs, 0 for constrained ones (xyz per vertex).
