@@ -84,5 +84,20 @@ TEST(SceneFiles, BadFilesNameTheKey) {
   EXPECT_NE(error_of("not json").find("not valid JSON"), std::string::npos);
 }
 
+TEST(SceneFiles, SeedFourMaterialKeys) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_alpha_scene.json";
+  std::ofstream(path) << R"({"mesh": {"generator": "box", "cells": [2, 2, 2], "size": 0.5},
+    "material": {"model": "corotational", "nu": 0.45, "alpha": 1.5, "lambda_model": "neohookean",
+                 "alpha_lambda": 0.75}})";
+  const bench::SceneFile f = bench::load_scene_file(path.string());
+  EXPECT_EQ(f.material.model, MaterialModel::corotational);
+  EXPECT_EQ(f.material.lambda_model, MaterialModel::neohookean);
+  EXPECT_EQ(f.material.alpha_mu, 1.5);
+  EXPECT_EQ(f.material.alpha_lambda, 0.75);
+  const std::string mesh = R"("mesh": {"generator": "box", "cells": [2, 2, 2], "size": 0.5})";
+  EXPECT_NE(error_of("{" + mesh + R"(, "material": {"alpha": -1}})").find("alpha"), std::string::npos);
+  EXPECT_NE(error_of("{" + mesh + R"(, "material": {"lambda_model": "jelly"}})").find("jelly"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace snh::test
