@@ -10,6 +10,8 @@
 
 #include "snh/error.h"
 #include "snh/probe.h"
+#include "snh/scenes.h"
+#include "snh/simulation.h"
 #include "snh_test_support.h"
 
 namespace snh::test {
@@ -430,6 +432,33 @@ TEST(Materials, SeedFourOptionsAreChecked) {
   EXPECT_EQ(m.description(), "corotational+lambda:neohookean");
   const auto inverted = to_array<double>(Eigen::Vector3d(1.0, 1.0, -0.5).asDiagonal());
   EXPECT_FALSE(std::isfinite(reference::material_energy<double>(inverted, reference::spec_of(m))));
+}
+
+// The engine names the problem instead of running into NaN when a material
+// undefined for J <= 0 starts from inverted elements (scramble), for the
+// model itself and for a mixture whose lambda part is log Neo-Hookean.
+TEST(Materials, SolverRejectsInvertedStartForLogNeoHookeanWithoutHandling) {
+  SceneParameters p;
+  p.resolution = 2;
+  const Scene scene = make_scene("scramble", p);
+  MaterialOptions none;
+  none.neohookean_j0 = 0.0;
+  for (const std::optional<MaterialModel> lambda_model :
+       {std::optional<MaterialModel>(), std::optional<MaterialModel>(MaterialModel::neohookean)}) {
+    MaterialOptions o = none;
+    o.lambda_model = lambda_model;
+    const MaterialModel model = lambda_model ? MaterialModel::corotational : MaterialModel::neohookean;
+    const Material material = Material::from_youngs_modulus(model, 1.0, 0.45, o);
+    QuasistaticSolver solver(scene.mesh, material, scene.constraints, scene.options);
+    try {
+      solver.solve();
+      ADD_FAILURE() << "no error for " << material.description();
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("undefined for J <= 0"), std::string::npos) << what;
+      EXPECT_NE(what.find("element"), std::string::npos) << what;
+    }
+  }
 }
 
 TEST(Materials, NamesAndOutOfRangeOptions) {

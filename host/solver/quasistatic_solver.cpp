@@ -153,6 +153,27 @@ struct QuasistaticSolver::Impl {
     return model;
   }
 
+  // A material undefined for J <= 0 (log Neo-Hookean without inversion
+  // handling, as the model or as the lambda part) cannot start a step from
+  // an inverted or flat element: name it instead of returning NaN. (Inside a
+  // step the line search never accepts a non-finite energy.)
+  void require_defined(const std::vector<double>& x, int step) const {
+    if (material.defined_for_inversion()) return;
+    for (size_t e = 0; e < mesh.element_count(); ++e)
+      for (int q = 0; q < rest.quadrature; ++q) {
+        double f[9];
+        fem::deformation_gradient(mesh, rest, x.data(), e, q, f);
+        const double j = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) +
+                         f[6] * (f[1] * f[5] - f[2] * f[4]);
+        if (!(j > 0.0))
+          throw Error("material " + material.description() +
+                      " without inversion handling (neohookean J0 = 0) is undefined for J <= 0, and element " +
+                      std::to_string(e) + " has J = " + std::to_string(j) + " at quadrature point " +
+                      std::to_string(q) + " at the start of load step " + std::to_string(step) +
+                      " (use J0 > 0 or another model)");
+      }
+  }
+
   // Solves load step s from x in precision Real on the current ViennaCL context.
   template <typename Real>
   static StepResult solve_in(solver::NewtonSolver<Real>& newton, int s, std::vector<double>& x,
@@ -188,6 +209,7 @@ struct QuasistaticSolver::Impl {
     result.converged = true;
     for (int s = 1; s <= options.load_steps; ++s) {
       apply_constraints(mesh, constraints, static_cast<double>(s) / options.load_steps, x);
+      require_defined(x, s);
       const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
       StepResult step;
       if (!in_double) {
