@@ -20,28 +20,12 @@
 #include "snh/mesh.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
+#include "timing.h"
 
 namespace snh::bench {
 namespace {
 
 using json = nlohmann::ordered_json;
-using Clock = std::chrono::steady_clock;
-
-// Best time of one call over repeats lasting min_seconds (at least 3, after
-// one warm-up call).
-template <typename F>
-double best_seconds(F&& f, double min_seconds) {
-  f();
-  double best = 1e300, total = 0.0;
-  for (int n = 0; n < 3 || total < min_seconds; ++n) {
-    const auto t0 = Clock::now();
-    f();
-    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-    best = std::min(best, dt);
-    total += dt;
-  }
-  return best;
-}
 
 Material parse_material(const std::string& text) {
   MaterialOptions o;

@@ -21,29 +21,12 @@
 #include "snh/mesh.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
+#include "timing.h"
 
 namespace snh::bench {
 namespace {
 
 using json = nlohmann::ordered_json;
-using Clock = std::chrono::steady_clock;
-
-// Repeats f until min_seconds have passed (at least 3 times, after one
-// warm-up call) and returns the best time of one call.
-template <typename F>
-double best_seconds(F&& f, double min_seconds) {
-  f();
-  double best = 1e300, total = 0.0;
-  for (int n = 0; n < 3 || total < min_seconds; ++n) {
-    const auto t0 = Clock::now();
-    f();
-    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-    best = std::min(best, dt);
-    total += dt;
-    if (n > 10000) break;
-  }
-  return best;
-}
 
 template <typename T>
 void arg(cl_kernel k, cl_uint i, const T& v) {

@@ -46,14 +46,7 @@ SNH_FN principal_hessian corotational_principal_hessian(mat3 u, vec3 s, mat3 v, 
 /* Seed 004 Eq. 19, parts with unit Lame moduli: lambda part (I1 - 3)^2 / 2;
  * mu part sum (s_i - 1)^2 = (I2 - 3) - 2 (I1 - 3) (shared by the fixed
  * co-rotational model). */
-SNH_FN stretch_terms corotational_lambda_part(stretch_invariants v) {
-  stretch_terms t = stretch_terms_zero();
-  const real d = v.i1 - SNH_R(3);
-  t.value = SNH_R(0.5) * d * d;
-  t.d[0] = d;
-  t.dd[0] = SNH_R(1);
-  return t;
-}
+SNH_FN stretch_terms corotational_lambda_part(stretch_invariants v) { return stretch_half_square(0, v.i1 - SNH_R(3)); }
 
 SNH_FN stretch_terms corotational_mu_part(stretch_invariants v) {
   stretch_terms t = stretch_terms_zero();

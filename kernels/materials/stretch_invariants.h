@@ -93,16 +93,18 @@ SNH_FN real stretch_flip(const stretch_terms* t, vec3 s, int k) {
   return SNH_R(2) * t->d[1] - t->d[2] * s.a[k] + SNH_R(4) * t->d[3] * (si * si + si * sj + sj * sj);
 }
 
+/* d^2 / 2 with d = I_a - c: a volume term quadratic in one invariant. */
+SNH_FN stretch_terms stretch_half_square(int a, real d) {
+  stretch_terms t = stretch_terms_zero();
+  t.value = SNH_R(0.5) * d * d;
+  t.d[a] = d;
+  t.dd[a] = SNH_R(1);
+  return t;
+}
+
 /* (J - 1)^2 / 2: the lambda part (unit lambda_Lame) of every model whose
  * volume term is quadratic in J (Stable Neo-Hookean and its Fung and
  * Arruda-Boyce extensions, fixed co-rotational). */
-SNH_FN stretch_terms stretch_j_quadratic_part(stretch_invariants v) {
-  stretch_terms t = stretch_terms_zero();
-  const real d = v.i3 - SNH_R(1);
-  t.value = SNH_R(0.5) * d * d;
-  t.d[2] = d;
-  t.dd[2] = SNH_R(1);
-  return t;
-}
+SNH_FN stretch_terms stretch_j_quadratic_part(stretch_invariants v) { return stretch_half_square(2, v.i3 - SNH_R(1)); }
 
 #endif /* SNH_STRETCH_INVARIANTS_H */
