@@ -2,11 +2,13 @@
 // with a JSON summary and ParaView output on request.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -33,7 +35,7 @@ struct SceneOptions {
   std::string model = "snh";
   double alpha = 1.0;
   std::string lambda_model;
-  double alpha_lambda = 0.0;
+  double alpha_lambda = std::numeric_limits<double>::quiet_NaN();  // NaN: --alpha
   std::string precision = "double";
   int steps = 0;
   unsigned seed = 1;
@@ -142,7 +144,7 @@ int run_scene(const SceneOptions& given) {
     material_options.barrier = p.barrier;
     material_options.alpha = o.alpha;
     if (!o.lambda_model.empty()) material_options.lambda_model = parse_material_model(o.lambda_model);
-    if (o.alpha_lambda > 0.0) material_options.alpha_lambda = o.alpha_lambda;
+    if (!std::isnan(o.alpha_lambda)) material_options.alpha_lambda = o.alpha_lambda;
     material = Material::from_youngs_modulus(parse_material_model(o.model), o.youngs_modulus, o.poisson_ratio,
                                              material_options);
   }
