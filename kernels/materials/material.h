@@ -142,55 +142,50 @@ SNH_FN stretch_terms material_mu_part(int model, int barrier, stretch_invariants
   return t;
 }
 
-/* One part of the general path: its scale (L / alpha^2) and its invariant
- * terms at the mapped stretches s = m(sigma). */
-typedef struct {
-  real scale;
-  stretch_terms t;
-} material_part_eval;
-
-SNH_FN material_part_eval material_part_at(int part, int model, int barrier, const nonlinear_stretches* n,
-                                           material_params m) {
-  material_part_eval e;
-  real mu_l, lambda_l;
-  material_lame(model, barrier, m, &mu_l, &lambda_l);
-  e.scale = (part ? mu_l : lambda_l) / (n->alpha * n->alpha);
-  const stretch_invariants v = stretch_invariants_of(n->m);
-  e.t = part ? material_mu_part(model, barrier, v, m) : material_lambda_part(material_lambda_model(model, m), v, m.c2);
-  return e;
-}
-
-/* The maps of the two parts (computed once when the alphas agree). */
+/* The general path's per-point state: each part's map of the stretches
+ * (computed once when the alphas agree) and its scale L / alpha^2 (the Lame
+ * moduli computed once). */
 typedef struct {
   nonlinear_stretches part[2];
+  real scale[2];
 } material_stretches;
 
-SNH_FN material_stretches material_stretches_of(vec3 sigma, material_params m) {
+SNH_FN material_stretches material_stretches_of(int model, int barrier, vec3 sigma, material_params m) {
   material_stretches s;
   s.part[0] = nonlinear_stretches_of(sigma, m.alpha_lambda);
   s.part[1] = m.alpha_mu == m.alpha_lambda ? s.part[0] : nonlinear_stretches_of(sigma, m.alpha_mu);
+  real mu_l, lambda_l;
+  material_lame(model, barrier, m, &mu_l, &lambda_l);
+  s.scale[0] = lambda_l / (m.alpha_lambda * m.alpha_lambda);
+  s.scale[1] = mu_l / (m.alpha_mu * m.alpha_mu);
   return s;
 }
 
+/* The invariant terms of one part at its mapped stretches s = m(sigma). */
+SNH_FN stretch_terms material_part_at(int part, int model, int barrier, const nonlinear_stretches* n,
+                                      material_params m) {
+  const stretch_invariants v = stretch_invariants_of(n->m);
+  return part ? material_mu_part(model, barrier, v, m) : material_lambda_part(material_lambda_model(model, m), v, m.c2);
+}
+
 SNH_FN real material_general_energy(int model, int barrier, vec3 sigma, material_params m) {
-  const material_stretches ms = material_stretches_of(sigma, m);
+  const material_stretches ms = material_stretches_of(model, barrier, sigma, m);
   real psi = SNH_R(0);
   for (int part = 0; part < 2; ++part) {
-    const material_part_eval e = material_part_at(part, model, barrier, &ms.part[part], m);
-    psi += e.scale * e.t.value;
+    psi += ms.scale[part] * material_part_at(part, model, barrier, &ms.part[part], m).value;
   }
   return psi;
 }
 
 /* Eq. 17: dpsi/dsigma_i = sum over parts of scale g_i(s) m'(sigma_i). */
 SNH_FN vec3 material_general_gradient(int model, int barrier, vec3 sigma, material_params m) {
-  const material_stretches ms = material_stretches_of(sigma, m);
+  const material_stretches ms = material_stretches_of(model, barrier, sigma, m);
   vec3 out = vec3_make(SNH_R(0), SNH_R(0), SNH_R(0));
   for (int part = 0; part < 2; ++part) {
     const nonlinear_stretches* n = &ms.part[part];
-    const material_part_eval e = material_part_at(part, model, barrier, n, m);
-    const vec3 g = stretch_gradient(&e.t, n->m);
-    for (int i = 0; i < 3; ++i) out.a[i] += e.scale * g.a[i] * n->dm.a[i];
+    const stretch_terms t = material_part_at(part, model, barrier, n, m);
+    const vec3 g = stretch_gradient(&t, n->m);
+    for (int i = 0; i < 3; ++i) out.a[i] += ms.scale[part] * g.a[i] * n->dm.a[i];
   }
   return out;
 }
@@ -202,7 +197,7 @@ SNH_FN vec3 material_general_gradient(int model, int barrier, vec3 sigma, materi
  * (m odd, m' even; D the divided differences of nonlinearity.h). */
 SNH_FN principal_hessian material_general_principal_hessian(int model, int barrier, mat3 u, vec3 sigma, mat3 v,
                                                             material_params m) {
-  const material_stretches ms = material_stretches_of(sigma, m);
+  const material_stretches ms = material_stretches_of(model, barrier, sigma, m);
   principal_hessian h;
   h.u = u;
   h.sigma = sigma;
@@ -211,18 +206,18 @@ SNH_FN principal_hessian material_general_principal_hessian(int model, int barri
   h.twist = h.flip = vec3_make(SNH_R(0), SNH_R(0), SNH_R(0));
   for (int part = 0; part < 2; ++part) {
     const nonlinear_stretches* n = &ms.part[part];
-    const material_part_eval e = material_part_at(part, model, barrier, n, m);
-    const vec3 g = stretch_gradient(&e.t, n->m);
-    const sym3 b = stretch_block(&e.t, n->m);
+    const stretch_terms t = material_part_at(part, model, barrier, n, m);
+    const real scale = ms.scale[part];
+    const vec3 g = stretch_gradient(&t, n->m);
+    const sym3 b = stretch_block(&t, n->m);
     int idx = 0;
     for (int i = 0; i < 3; ++i)
       for (int j = i; j < 3; ++j, ++idx)
-        h.block.a[idx] += e.scale * (b.a[idx] * n->dm.a[i] * n->dm.a[j] + (i == j ? g.a[i] * n->ddm.a[i] : SNH_R(0)));
+        h.block.a[idx] += scale * (b.a[idx] * n->dm.a[i] * n->dm.a[j] + (i == j ? g.a[i] * n->ddm.a[i] : SNH_R(0)));
     for (int k = 0; k < 3; ++k) {
       const int i = principal_pair_i(k), j = principal_pair_j(k);
-      h.flip.a[k] += e.scale * (stretch_flip(&e.t, n->m, k) * n->dm.a[i] * n->flip_m.a[k] + g.a[j] * n->flip_dm.a[k]);
-      h.twist.a[k] +=
-          e.scale * (stretch_twist(&e.t, n->m, k) * n->dm.a[i] * n->twist_m.a[k] - g.a[j] * n->twist_dm.a[k]);
+      h.flip.a[k] += scale * (stretch_flip(&t, n->m, k) * n->dm.a[i] * n->flip_m.a[k] + g.a[j] * n->flip_dm.a[k]);
+      h.twist.a[k] += scale * (stretch_twist(&t, n->m, k) * n->dm.a[i] * n->twist_m.a[k] - g.a[j] * n->twist_dm.a[k]);
     }
   }
   return h;
