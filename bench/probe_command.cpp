@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "fem/rest_state.h"
 #include "material_options.h"
 #include "snh/error.h"
 #include "snh/probe.h"
@@ -66,8 +67,7 @@ int run_probe(const MaterialOptions& options) {
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
     try {
       const Matrix3 f = parse_deformation(text);
-      const double j =
-          f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
+      const double j = fem::determinant(f.data());
       if (!material.defined_for_inversion() && !(j > 0.0))
         throw Error("the neohookean model without inversion handling (--j0 0) is undefined for J = det F = " +
                     std::to_string(j) + " <= 0");

@@ -320,8 +320,7 @@ double mesh_volume(const Mesh& mesh, const std::vector<double>& x) {
     for (int q = 0; q < rest.quadrature; ++q) {
       double f[9];
       fem::deformation_gradient(mesh, rest, x.data(), e, q, f);
-      const double det =
-          f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
+      const double det = fem::determinant(f);
       volume += det * rest.weight(e, q);
     }
   return volume;

@@ -40,6 +40,11 @@ struct RestState {
 // point is zero, negative or not finite.
 RestState compute_rest_state(const Mesh& mesh);
 
+// det F of a column-major 3x3 matrix.
+inline double determinant(const double f[9]) {
+  return f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
+}
+
 // F at point q of element e for positions x (xyz per vertex), column-major.
 void deformation_gradient(const Mesh& mesh, const RestState& rest, const double* x, size_t element, int q, double f[9]);
 

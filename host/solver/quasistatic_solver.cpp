@@ -53,8 +53,7 @@ DeformationStatistics deformation_statistics(const Mesh& mesh, const std::vector
     for (int q = 0; q < rest.quadrature; ++q) {
       double f[9];
       fem::deformation_gradient(mesh, rest, x.data(), e, q, f);
-      const double j =
-          f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) + f[6] * (f[1] * f[5] - f[2] * f[4]);
+      const double j = fem::determinant(f);
       s.min_j = std::min(s.min_j, j);
       s.max_j = std::max(s.max_j, j);
       inverted = inverted || !(j > 0.0);
@@ -163,8 +162,7 @@ struct QuasistaticSolver::Impl {
       for (int q = 0; q < rest.quadrature; ++q) {
         double f[9];
         fem::deformation_gradient(mesh, rest, x.data(), e, q, f);
-        const double j = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[3] * (f[1] * f[8] - f[2] * f[7]) +
-                         f[6] * (f[1] * f[5] - f[2] * f[4]);
+        const double j = fem::determinant(f);
         if (!(j > 0.0))
           throw Error("material " + material.description() +
                       " without inversion handling (neohookean J0 = 0) is undefined for J <= 0, and element " +
