@@ -5,11 +5,34 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "snh/device.h"
 #include "snh/material.h"
 
 namespace snh::bench {
+
+// The --model / --lambda-model choices (snh::parse_material_model's names).
+inline const std::vector<std::string> kModelNames = {
+    "snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"};
+
+// A material written "MODEL", "MODEL alpha=A" or "MU_MODEL+lambda:LAMBDA_MODEL"
+// (seed 004 Eqs. 16, 19; both may combine): its model, with alpha and the
+// lambda part's model set in `options`.
+inline MaterialModel parse_material_label(const std::string& text, snh::MaterialOptions& options) {
+  std::string name = text;
+  const size_t alpha = name.find(" alpha=");
+  if (alpha != std::string::npos) {
+    options.alpha = std::stod(name.substr(alpha + 7));
+    name = name.substr(0, alpha);
+  }
+  const size_t plus = name.find("+lambda:");
+  if (plus != std::string::npos) {
+    options.lambda_model = parse_material_model(name.substr(plus + 8));
+    name = name.substr(0, plus);
+  }
+  return parse_material_model(name);
+}
 
 struct MaterialOptions {
   double youngs_modulus = 1.0e5;
@@ -38,8 +61,7 @@ struct MaterialOptions {
         .add_option("--model", model,
                     "material: snh, fung, arruda-boyce, corotational, fixed-corotational, stvk-kikuuwe, neohookean "
                     "(all normalized to the same small-strain E, nu)")
-        ->check(CLI::IsMember(
-            {"snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"}))
+        ->check(CLI::IsMember(kModelNames))
         ->capture_default_str();
     command.add_option("--fung-gamma", model_options.fung_gamma, "fung: gamma / mu_Lame")->capture_default_str();
     command.add_option("--fung-mu1", model_options.fung_mu1, "fung: exponent rate mu1")->capture_default_str();

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "material_options.h"
 #include "reference/element_reference.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
@@ -74,24 +75,23 @@ int run_materials(const MaterialsOptions& o) {
   struct Row {
     std::string label;
     MaterialModel model;
-    MaterialOptions options;
+    snh::MaterialOptions options;
   };
   std::vector<Row> rows;
   for (const std::string& name : o.models) rows.push_back({name, parse_material_model(name), {}});
   for (double alpha : o.alphas) {
-    MaterialOptions mo;
+    snh::MaterialOptions mo;
     mo.alpha = alpha;
     std::ostringstream label;
     label << "snh alpha=" << alpha;
     rows.push_back({label.str(), MaterialModel::stable_neo_hookean, mo});
   }
   for (const std::string& mix : o.mixes) {
-    const size_t plus = mix.find("+lambda:");
-    if (plus == std::string::npos)
+    if (mix.find("+lambda:") == std::string::npos)
       throw Error("materials: a mix reads MU_MODEL+lambda:LAMBDA_MODEL, got '" + mix + "'");
-    MaterialOptions mo;
-    mo.lambda_model = parse_material_model(mix.substr(plus + 8));
-    rows.push_back({mix, parse_material_model(mix.substr(0, plus)), mo});
+    snh::MaterialOptions mo;
+    const MaterialModel model = parse_material_label(mix, mo);
+    rows.push_back({mix, model, mo});
   }
   for (const Row& row : rows) {
     const std::string& name = row.label;
@@ -149,13 +149,13 @@ int run_materials(const MaterialsOptions& o) {
   for (const std::string& name : o.models)
     list.push_back({name, Material::from_youngs_modulus(parse_material_model(name), 1.0, 0.45)});
   for (double g : {0.1, 0.3}) {
-    MaterialOptions mo;
+    snh::MaterialOptions mo;
     mo.fung_gamma = g;
     list.push_back({"fung gamma=" + std::to_string(g).substr(0, 3),
                     Material::from_youngs_modulus(MaterialModel::fung, 1.0, 0.45, mo)});
   }
   for (double b : {0.05, 0.3}) {
-    MaterialOptions mo;
+    snh::MaterialOptions mo;
     mo.arruda_boyce_beta1 = b;
     list.push_back({"arruda-boyce beta1=" + std::to_string(b).substr(0, 4),
                     Material::from_youngs_modulus(MaterialModel::arruda_boyce, 1.0, 0.45, mo)});
@@ -172,7 +172,7 @@ int run_materials(const MaterialsOptions& o) {
   alpha_curves << "model,alpha,stretch,nominal_stress,lateral_stretch\n";
   for (const std::string& name : o.models)
     for (double alpha : o.curve_alphas) {
-      MaterialOptions mo;
+      snh::MaterialOptions mo;
       mo.alpha = alpha;
       const Material m = Material::from_youngs_modulus(parse_material_model(name), 1.0, 0.45, mo);
       for (int i = 0; i <= 60; ++i) {

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "commands.h"
+#include "material_options.h"
 #include "scene_file.h"
 #include "snh/error.h"
 #include "snh/io.h"
@@ -140,7 +141,7 @@ int run_scene(const SceneOptions& given) {
     if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
     if (o.forcing_max > 0.0) options.forcing_max = o.forcing_max;
     options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
-    MaterialOptions material_options;
+    snh::MaterialOptions material_options;
     material_options.barrier = p.barrier;
     material_options.alpha = o.alpha;
     if (!o.lambda_model.empty()) material_options.lambda_model = parse_material_model(o.lambda_model);
@@ -218,16 +219,14 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--model", o->model,
                   "material: snh, fung, arruda-boyce, corotational, fixed-corotational, stvk-kikuuwe, neohookean "
                   "(normalized to the same small-strain E, nu; model settings at their defaults)")
-      ->check(CLI::IsMember(
-          {"snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"}))
+      ->check(CLI::IsMember(kModelNames))
       ->capture_default_str();
   cmd->add_option("--alpha", o->alpha,
                   "nonlinearity (seed 004 Eq. 16): psi(sigma^alpha) / alpha^2 at the same small-strain E, nu")
       ->capture_default_str();
   cmd->add_option("--lambda-model", o->lambda_model,
                   "take the lambda_Lame (volume) part from this model (seed 004 Eq. 19)")
-      ->check(CLI::IsMember(
-          {"snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"}));
+      ->check(CLI::IsMember(kModelNames));
   cmd->add_option("--alpha-lambda", o->alpha_lambda, "nonlinearity of the lambda_Lame part (Eq. 20; default --alpha)");
   cmd->add_option("--barrier", o->barrier, "origin barrier: on, off, auto")
       ->check(CLI::IsMember({"on", "off", "auto"}))

@@ -16,6 +16,7 @@
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
 #include "fem/rest_state.h"
+#include "material_options.h"
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/simulation.h"
@@ -28,19 +29,9 @@ namespace {
 using json = nlohmann::ordered_json;
 
 Material parse_material(const std::string& text) {
-  MaterialOptions o;
-  std::string name = text;
-  const size_t alpha = name.find(" alpha=");
-  if (alpha != std::string::npos) {
-    o.alpha = std::stod(name.substr(alpha + 7));
-    name = name.substr(0, alpha);
-  }
-  const size_t plus = name.find("+lambda:");
-  if (plus != std::string::npos) {
-    o.lambda_model = parse_material_model(name.substr(plus + 8));
-    name = name.substr(0, plus);
-  }
-  return Material::from_youngs_modulus(parse_material_model(name), 1.0, 0.45, o);
+  snh::MaterialOptions o;
+  const MaterialModel model = parse_material_label(text, o);
+  return Material::from_youngs_modulus(model, 1.0, 0.45, o);
 }
 
 // The same rest data stored per element (what a non-lattice mesh needs).

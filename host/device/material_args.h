@@ -22,8 +22,6 @@ enum class MaterialKernel { specialized, runtime, all_terms };
 
 std::string material_defines(const Material& material, MaterialKernel build = MaterialKernel::specialized);
 
-constexpr cl_uint kMaterialArgCount = 10;
-
 // Sets MATERIAL_ARGS from index `first`; returns the index after them.
 template <typename Real>
 cl_uint set_material_args(cl_kernel kernel, cl_uint first, const Material& material);
