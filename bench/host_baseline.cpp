@@ -1,7 +1,7 @@
-// The host CPU baseline: QuasistaticSolver's load stepping and Newton loop
-// (host/solver/quasistatic_solver.cpp, host/solver/newton.cpp) on the host in
-// double, with the stiffness assembled by Eigen and solved by Eigen's
-// diagonally preconditioned ConjugateGradient.
+// The host CPU baseline: the engine's Newton driver (solver/newton_driver.h,
+// the very loop the device solver runs) over a host problem in double, with
+// the stiffness assembled by Eigen and solved by Eigen's diagonally
+// preconditioned ConjugateGradient.
 #include "host_baseline.h"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -15,6 +15,10 @@
 #include "fem/rest_state.h"
 #include "reference/fem_reference.h"
 #include "snh/error.h"
+#include "snh/loads.h"
+#include "snh/regions.h"
+#include "solver/constraint_checks.h"
+#include "solver/newton_driver.h"
 
 namespace snh::bench {
 
@@ -33,12 +37,6 @@ double norm(const std::vector<double>& v) {
   return std::sqrt(s);
 }
 
-double dot(const Vector& a, const std::vector<double>& b) {
-  double s = 0.0;
-  for (size_t i = 0; i < b.size(); ++i) s += a[static_cast<Eigen::Index>(i)] * b[i];
-  return s;
-}
-
 // Throws snh::Error for a bad mesh, as the device solver's constructor does.
 fem::RestState validated_rest_state(const Mesh& mesh) {
   validate_mesh(mesh);
@@ -55,9 +53,15 @@ class HostProblem {
         rest_(validated_rest_state(scene.mesh)) {
     validate();
     const size_t n = mesh_.vertex_count();
-    fixed_.assign(3 * n, 0);
-    for (const ConstraintSet& c : constraints_)
-      for (int32_t v : c.vertices) fixed_[3 * v] = fixed_[3 * v + 1] = fixed_[3 * v + 2] = 1;
+    fixed_ = solver::prescribed_dofs(mesh_, constraints_);
+    full_force_.assign(3 * n, 0.0);
+    for (size_t i = 0; i < options_.external_force.size(); ++i) full_force_[i] += options_.external_force[i];
+    const auto& b = options_.body_force;
+    if (b[0] != 0.0 || b[1] != 0.0 || b[2] != 0.0) {
+      const std::vector<double> lumped = lump_body_force(mesh_, b);
+      for (size_t i = 0; i < lumped.size(); ++i) full_force_[i] += lumped[i];
+    }
+    force_ = full_force_;
     // Vertices of no element have no stiffness: identity rows, like fixed ones.
     std::vector<char> used(n, 0);
     for (int32_t v : mesh_.elements) used[v] = 1;
@@ -67,22 +71,24 @@ class HostProblem {
 
   size_t dofs() const { return 3 * mesh_.vertex_count(); }
 
-  void apply_constraints(double t, std::vector<double>& x) const { snh::apply_constraints(mesh_, constraints_, t, x); }
+  // Constraint targets and, with SolveOptions::ramp_loads, forces at load parameter t.
+  void apply_load(double t, std::vector<double>& x) {
+    snh::apply_constraints(mesh_, constraints_, t, x);
+    for (size_t i = 0; i < force_.size(); ++i) force_[i] = options_.ramp_loads ? t * full_force_[i] : full_force_[i];
+  }
 
   // Total potential energy: elastic energy minus external work.
   double energy(const std::vector<double>& x) const {
     double e = reference::assembled_energy(mesh_, rest_, material_, x);
-    const std::vector<double>& f = options_.external_force;
-    for (size_t i = 0; i < f.size(); ++i) e -= f[i] * x[i];
+    for (size_t i = 0; i < force_.size(); ++i) e -= force_[i] * x[i];
     return e;
   }
 
   // r = mask * (elastic forces + external force).
   void residual(const std::vector<double>& x, std::vector<double>& r) const {
     r = reference::assembled_forces(mesh_, rest_, material_, x);
-    const std::vector<double>& f = options_.external_force;
     for (size_t i = 0; i < r.size(); ++i) {
-      if (!f.empty()) r[i] += f[i];
+      r[i] += force_[i];
       if (fixed_[i]) r[i] = 0.0;
     }
   }
@@ -106,197 +112,92 @@ class HostProblem {
   bool fixed(size_t i) const { return fixed_[i] != 0; }
 
  private:
-  void validate() const {
-    validate_solve_inputs(mesh_, constraints_, options_);
-    const size_t n = mesh_.vertex_count();
-    if (!options_.external_force.empty() && options_.external_force.size() != 3 * n)
-      throw Error("solver: external force has " + std::to_string(options_.external_force.size()) +
-                  " entries, expected " + std::to_string(3 * n));
-    for (double f : options_.external_force)
-      if (!std::isfinite(f)) throw Error("solver: external force has a non-finite entry");
-  }
+  void validate() const { validate_solve_inputs(mesh_, constraints_, options_); }
 
   const Mesh& mesh_;
   const StableNeoHookean& material_;
   const std::vector<ConstraintSet>& constraints_;
   const SolveOptions& options_;
   fem::RestState rest_;
-  std::vector<char> fixed_;     // per DOF: constrained
-  std::vector<char> identity_;  // per DOF: identity row and column in the stiffness
+  std::vector<double> full_force_, force_;  // lumped external and body force; at the current load
+  std::vector<char> fixed_;                 // per DOF: constrained
+  std::vector<char> identity_;              // per DOF: identity row and column in the stiffness
 };
 
 using IterationCallback = std::function<void(const NewtonIteration&, const std::vector<double>&)>;
 
-class HostNewton {
+// The host problem behind solver::NewtonDriver: the same Newton loop as the
+// device solver's, over Eigen's assembled stiffness and diagonally
+// preconditioned ConjugateGradient.
+class HostNewtonProblem {
  public:
-  HostNewton(const HostProblem& problem, const SolveOptions& options, const IterationCallback& on_iteration,
-             HostBaselineResult& out)
-      : problem_(problem), options_(options), on_iteration_(on_iteration), out_(out) {}
+  using Vector = std::vector<double>;
 
-  // Wall time since `start`, less the time spent in on_iteration callbacks.
-  double elapsed(Clock::time_point start) const { return seconds_since(start) - callback_seconds_; }
+  HostNewtonProblem(const HostProblem& problem, HostBaselineResult& out) : problem_(problem), out_(out) {}
 
-  // Mirrors solver::NewtonSolver::solve_step with Real = double.
-  StepResult solve_step(int step, std::vector<double>& x, Clock::time_point start) {
-    constexpr double kArmijo = 1e-4;
-    constexpr int kMaxHalvings = 40;
-    const double eps = std::numeric_limits<double>::epsilon();
-    const size_t n = problem_.dofs();
-    std::vector<double> r(n), trial(n), r_trial(n);
-    std::vector<NewtonIteration>& history = out_.history;
-
-    StepResult result;
-    result.step = step;
-    problem_.residual(x, r);
-    double rn = norm(r);
-    double energy = problem_.energy(x);
-    const double tolerance = std::max(options_.absolute_tolerance, options_.relative_tolerance * rn);
-    double eta = options_.forcing_max, previous_rn = rn;
-    constexpr size_t kStagnation = 8;
-    std::vector<double> residuals, energies;
-
-    for (int it = 0;; ++it) {
-      NewtonIteration rec;
-      rec.step = step;
-      rec.iteration = it;
-      rec.residual_norm = rn;
-      rec.energy = energy;
-      rec.projected = true;
-      if (!std::isfinite(rn) || !std::isfinite(energy)) {
-        result.status = "non_finite_state";
-        rec.seconds = elapsed(start);
-        history.push_back(rec);
-        break;
-      }
-      if (rn <= tolerance) {
-        result.converged = true;
-        result.status = "converged";
-        rec.seconds = elapsed(start);
-        history.push_back(rec);
-        break;
-      }
-      // The precision floor: in the last kStagnation iterations neither a 1%
-      // drop of the residual norm nor an energy decrease above rounding noise.
-      residuals.push_back(rn);
-      energies.push_back(energy);
-      if (residuals.size() > kStagnation) {
-        const size_t old = residuals.size() - 1 - kStagnation;
-        const double best = *std::min_element(residuals.begin() + old + 1, residuals.end());
-        const double noise = 64.0 * eps * std::abs(energies[old]);
-        if (best > 0.99 * residuals[old] && energies[old] - energy <= noise) {
-          result.status = "stagnated";
-          rec.seconds = elapsed(start);
-          history.push_back(rec);
-          break;
-        }
-      }
-      if (it >= options_.max_newton_iterations) {
-        result.status = "max_newton_iterations";
-        rec.seconds = elapsed(start);
-        history.push_back(rec);
-        break;
-      }
-
-      // Eisenstat-Walker choice 2 with its safeguards and floors.
-      if (it > 0) {
-        const double candidate = options_.forcing_gamma * (rn / previous_rn) * (rn / previous_rn);
-        const double safeguard = options_.forcing_gamma * eta * eta;
-        eta = safeguard > 0.1 ? std::max(candidate, safeguard) : candidate;
-        eta = std::min(eta, options_.forcing_max);
-        eta = std::max(eta, 0.5 * tolerance / rn);
-      }
-      eta = std::max(eta, 100.0 * eps);
-
-      const Clock::time_point assembly_start = Clock::now();
-      const SparseMatrix k = problem_.stiffness(x);
-      out_.assembly_seconds += seconds_since(assembly_start);
-
-      const Clock::time_point cg_start = Clock::now();
-      Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper> cg;
-      cg.setTolerance(eta);
-      cg.setMaxIterations(options_.max_cg_iterations);
-      cg.compute(k);
-      const Eigen::Map<const Vector> rhs(r.data(), static_cast<Eigen::Index>(n));
-      Vector p = cg.solve(rhs);
-      out_.cg_seconds += seconds_since(cg_start);
-      rec.cg_relative_residual = cg.error();
-      const bool cg_converged = cg.info() == Eigen::Success;
-      rec.cg_stop = cg_converged ? "converged" : "max_iterations";
-      // Matrix-vector products, as ViennaCL counts: Eigen's count leaves out
-      // the iteration in which the residual fell below the tolerance (unless
-      // it returned at once, with p = 0, for eta >= 1).
-      rec.cg_iterations = static_cast<int>(cg.iterations()) + (cg_converged && !p.isZero(0.0) ? 1 : 0);
-      for (size_t i = 0; i < n; ++i)
-        if (problem_.fixed(i)) p[static_cast<Eigen::Index>(i)] = 0.0;
-
-      // A usable descent direction: CG's, else the (diagonally) preconditioned residual.
-      double slope = dot(p, r);  // -dE/dalpha at alpha = 0
-      if (!std::isfinite(slope) || !(slope > 0.0)) {
-        rec.cg_stop += "+steepest_descent";
-        const Vector diagonal = k.diagonal();
-        for (size_t i = 0; i < n; ++i) {
-          const auto index = static_cast<Eigen::Index>(i);
-          const double d = diagonal[index];
-          p[index] = d != 0.0 && std::isfinite(d) ? r[i] / d : r[i];
-        }
-        slope = dot(p, r);
-      }
-
-      // Backtracking on the energy; never accept a non-finite energy. Where
-      // the energy change is below its rounding noise, a decrease of the
-      // residual norm decides instead.
-      double alpha = 1.0, accepted = 0.0, trial_energy = energy;
-      for (int h = 0; h < kMaxHalvings; ++h, alpha *= 0.5) {
-        for (size_t i = 0; i < n; ++i) trial[i] = x[i] + alpha * p[static_cast<Eigen::Index>(i)];
-        trial_energy = problem_.energy(trial);
-        if (!std::isfinite(trial_energy)) continue;
-        const double noise = 64.0 * eps * std::max(std::abs(energy), std::abs(trial_energy));
-        if (trial_energy <= energy - kArmijo * alpha * slope) {
-          accepted = alpha;
-          break;
-        }
-        if (std::abs(trial_energy - energy) <= noise) {
-          problem_.residual(trial, r_trial);
-          if (norm(r_trial) < rn) {
-            accepted = alpha;
-            break;
-          }
-        }
-      }
-      rec.step_length = accepted;
-      if (accepted == 0.0) {
-        result.status = "line_search_failed";
-        rec.seconds = elapsed(start);
-        history.push_back(rec);
-        result.cg_iterations += rec.cg_iterations;
-        break;
-      }
-      x = trial;
-      energy = trial_energy;
-      previous_rn = rn;
-      problem_.residual(x, r);
-      rn = norm(r);
-      result.newton_iterations = it + 1;
-      result.cg_iterations += rec.cg_iterations;
-      rec.seconds = elapsed(start);
-      history.push_back(rec);
-      if (on_iteration_) {
-        const Clock::time_point paused = Clock::now();
-        on_iteration_(rec, x);
-        callback_seconds_ += seconds_since(paused);
-      }
-    }
-    result.residual_norm = rn;
-    result.seconds = elapsed(start);
-    return result;
+  size_t dofs() const { return problem_.dofs(); }
+  double epsilon() const { return std::numeric_limits<double>::epsilon(); }
+  Vector vector() const { return Vector(problem_.dofs(), 0.0); }
+  double energy(const Vector& x) { return problem_.energy(x); }
+  double last_min_j() const { return 1.0; }  // only asked for with a true Hessian
+  void residual(const Vector& x, Vector& r) { problem_.residual(x, r); }
+  double norm(const Vector& v) const { return bench::norm(v); }
+  double dot(const Vector& a, const Vector& b) const {
+    double s = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+    return s;
   }
+  // The host reference assembles the projected stiffness only: adaptive
+  // Hessians fall back to the projection here.
+  bool has_true_hessian() const { return false; }
+
+  void linearize(const Vector& x, bool) {
+    const Clock::time_point start = Clock::now();
+    k_ = problem_.stiffness(x);
+    out_.assembly_seconds += seconds_since(start);
+  }
+
+  solver::LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations) {
+    const Clock::time_point start = Clock::now();
+    Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper> cg;
+    cg.setTolerance(eta);
+    cg.setMaxIterations(max_iterations);
+    cg.compute(k_);
+    const Eigen::Map<const Eigen::VectorXd> rhs(r.data(), static_cast<Eigen::Index>(r.size()));
+    const Eigen::VectorXd solution = cg.solve(rhs);
+    out_.cg_seconds += seconds_since(start);
+    solver::LinearSolve s;
+    s.relative_residual = cg.error();
+    const bool converged = cg.info() == Eigen::Success;
+    // Matrix-vector products, as ViennaCL counts: Eigen's count leaves out
+    // the iteration in which the residual fell below the tolerance (unless
+    // it returned at once, with p = 0, for eta >= 1).
+    s.iterations = static_cast<int>(cg.iterations()) + (converged && !solution.isZero(0.0) ? 1 : 0);
+    p.assign(solution.data(), solution.data() + solution.size());
+    for (size_t i = 0; i < p.size(); ++i)
+      if (problem_.fixed(i)) p[i] = 0.0;
+    return s;
+  }
+
+  // The diagonal (Jacobi) preconditioner Eigen's CG uses.
+  void precondition(const Vector& r, Vector& p) {
+    const Eigen::VectorXd diagonal = k_.diagonal();
+    p.resize(r.size());
+    for (size_t i = 0; i < r.size(); ++i) {
+      const double d = diagonal[static_cast<Eigen::Index>(i)];
+      p[i] = d != 0.0 && std::isfinite(d) ? r[i] / d : r[i];
+    }
+  }
+  void step(const Vector& x, double alpha, const Vector& p, Vector& out) {
+    out.resize(x.size());
+    for (size_t i = 0; i < x.size(); ++i) out[i] = x[i] + alpha * p[i];
+  }
+  void swap(Vector& a, Vector& b) { a.swap(b); }
 
  private:
   const HostProblem& problem_;
-  const SolveOptions& options_;
-  const IterationCallback& on_iteration_;
   HostBaselineResult& out_;
-  double callback_seconds_ = 0.0;
+  SparseMatrix k_;
 };
 
 }  // namespace
@@ -304,16 +205,24 @@ class HostNewton {
 HostBaselineResult solve_on_host(const Scene& scene, const SolveOptions& options,
                                  const IterationCallback& on_iteration) {
   const Clock::time_point start = Clock::now();
-  const HostProblem problem(scene, options);
+  HostProblem problem(scene, options);
   HostBaselineResult result;
   const IterationCallback& callback = on_iteration ? on_iteration : options.on_iteration;
-  HostNewton newton(problem, options, callback, result);
+  HostNewtonProblem newton_problem(problem, result);
+  solver::NewtonDriver<HostNewtonProblem> newton(newton_problem, options);
+  solver::NewtonDriver<HostNewtonProblem>::Observer observe;
+  if (callback)
+    observe = [&callback](const NewtonIteration& rec, const std::vector<double>& x) {
+      callback(rec, x);
+      return true;
+    };
+  const double tolerance = residual_tolerance(scene.mesh, uniform_material(scene.mesh, scene.material), options);
 
   std::vector<double> x = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
   result.converged = true;
   for (int s = 1; s <= options.load_steps; ++s) {
-    problem.apply_constraints(static_cast<double>(s) / options.load_steps, x);
-    const StepResult step = newton.solve_step(s, x, start);
+    problem.apply_load(static_cast<double>(s) / options.load_steps, x);
+    const StepResult step = newton.solve_step(s, x, tolerance, result.history, start, observe);
     result.converged = result.converged && step.converged;
     result.steps.push_back(step);
   }

@@ -26,8 +26,8 @@ MaterialMap make_material_map(const Mesh& mesh, const Material& base, const std:
       int32_t& slot = map.element_material[static_cast<size_t>(e)];
       if (slot == id) continue;  // listed twice in the same region
       if (slot != 0)
-        throw Error("element " + std::to_string(e) + " is in material regions '" + regions[slot - 1].name +
-                    "' and '" + region.name + "'");
+        throw Error("element " + std::to_string(e) + " is in material regions '" + regions[slot - 1].name + "' and '" +
+                    region.name + "'");
       slot = id;
     }
     map.materials.push_back(region.material);

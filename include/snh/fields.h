@@ -53,9 +53,8 @@ struct Reaction {
 // components: per vertex of `vertices`, which of x, y, z are prescribed
 // (empty: all three for every vertex). external_force: lumped, xyz per
 // vertex, or empty. about: the reference point of the torque.
-Reaction reaction(const std::string& name, const std::vector<int32_t>& vertices,
-                  const std::array<bool, 3>& components, const std::vector<double>& x,
-                  const std::vector<double>& elastic_force, const std::vector<double>& external_force,
-                  const std::array<double, 3>& about);
+Reaction reaction(const std::string& name, const std::vector<int32_t>& vertices, const std::array<bool, 3>& components,
+                  const std::vector<double>& x, const std::vector<double>& elastic_force,
+                  const std::vector<double>& external_force, const std::array<double, 3>& about);
 
 }  // namespace snh

@@ -1,19 +1,27 @@
-// Quasistatic simulation: a mesh, a material and kinematic constraints in;
+// Quasistatic simulation: a mesh, materials and kinematic constraints in;
 // equilibrium positions and the solver's history out. Newton with a
 // backtracking line search on the energy; each linear system solved by
 // ViennaCL's conjugate gradient through the matrix-free, eigen-projected
 // Hessian on the OpenCL device.
+//
+// Simulation is the object a host application keeps: built once (kernels
+// compiled, mesh uploaded), then driven frame by frame (new constraint
+// targets and forces, solve from the current state, read positions, fields
+// and reaction forces). QuasistaticSolver is the one-shot convenience on top.
 #pragma once
 
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "snh/device.h"
+#include "snh/fields.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
+#include "snh/regions.h"
 
 namespace snh {
 
@@ -35,11 +43,16 @@ struct RigidTransform {
 // (0, 1] (step s of n has t = s / n) each vertex sits at motion(t) applied to
 // its rest position; without a motion the vertices stay at rest. `targets`,
 // when set, overrides `motion`: it fills xyz per vertex of the set.
+// `components` says which of x, y, z the set prescribes; the others stay
+// free: {false, false, true} lets the vertices slide on their planes
+// z = const (per-component constraints; a sliding plane's normal is a
+// coordinate axis). A vertex component may belong to one set only.
 struct ConstraintSet {
   std::string name;
   std::vector<int32_t> vertices;
   std::function<RigidTransform(double t)> motion;
   std::function<void(double t, std::vector<double>& xyz)> targets;
+  std::array<bool, 3> components{true, true, true};
 };
 
 enum class ProductVariant {
@@ -92,9 +105,19 @@ struct SolveOptions {
   DeviceOptions device;
   int load_steps = 1;
   int max_newton_iterations = 50;
-  // Stop when the L2 norm of the free-DOF force residual is below
-  // max(absolute_tolerance, relative_tolerance * initial norm of the step).
-  double absolute_tolerance = 1e-2;
+  // Newton stops when the L2 norm of the free-DOF force residual is below
+  //   max(strain_tolerance * E * h^2 * sqrt(n), absolute_tolerance,
+  //       relative_tolerance * the step's initial residual norm),
+  // n the vertices in elements, h = (rest volume / n)^(1/3) their spacing and
+  // E the smallest Young's modulus of the materials: the residual of a
+  // strain error of strain_tolerance (a vertex force is about a stress times
+  // h^2), the same for the same physics at any scale of E or of the mesh.
+  // strain_tolerance unset: 1e-6 in double, 1e-4 in float (float's floor for
+  // nearly incompressible materials), unless an absolute or relative
+  // tolerance is given, which then stands alone. Each criterion is off at 0;
+  // SolveResult::tolerance reports the absolute value used.
+  std::optional<double> strain_tolerance;
+  double absolute_tolerance = 0.0;
   double relative_tolerance = 0.0;
   int max_cg_iterations = 20000;
   // Eisenstat-Walker (choice 2) forcing terms: eta_k = gamma (|r_k| / |r_k-1|)^2,
@@ -107,8 +130,15 @@ struct SolveOptions {
   int line_search_halvings = 40;  // false: CG without preconditioner
   ProductVariant product = ProductVariant::automatic;
   HessianMode hessian = HessianMode::adaptive;
-  // Lumped external force, xyz per vertex (e.g. gravity); empty for none.
+  // Lumped external force, xyz per vertex; empty for none.
   std::vector<double> external_force;
+  // Body force per rest volume (e.g. density times gravity), lumped to the
+  // vertices with each element's own quadrature; added to external_force.
+  std::array<double, 3> body_force{0, 0, 0};
+  // Forces grow with the load: at step s of n they are the previous solve's
+  // plus s/n of the change (the first solve starts from none). false: the
+  // full force from the first step.
+  bool ramp_loads = true;
   // Float only: when a load step does not converge in float (stagnated above
   // the tolerance, line search failed, non-finite state or the iteration
   // limit), re-solve it in double from the step's starting positions and run
@@ -131,7 +161,8 @@ struct StepResult {
   bool converged = false;
   double residual_norm = 0.0;
   // "converged", "max_newton_iterations", "line_search_failed", "stagnated"
-  // (no 1% residual decrease in 8 iterations: the precision floor), "non_finite_state"
+  // (no 1% residual decrease in 8 iterations: the precision floor),
+  // "non_finite_state", "cancelled" (the progress callback returned false)
   std::string status;
   double seconds = 0.0;
   // "float" or "double": the precision of the solve this result reports.
@@ -147,7 +178,9 @@ struct SolveResult {
   std::vector<NewtonIteration> history;
   std::vector<StepResult> steps;
   bool converged = false;
+  bool cancelled = false;  // the progress callback stopped the solve; later steps were not run
   double final_residual_norm = 0.0;
+  double tolerance = 0.0;     // the absolute residual norm Newton stopped at (see SolveOptions)
   double volume_ratio = 0.0;  // deformed / rest volume
   double min_j = 0.0;         // over quadrature points
   double max_j = 0.0;
@@ -161,36 +194,109 @@ struct SolveResult {
 
 // Called after each load step with the step's positions (e.g. to write a .vtu).
 using StepCallback = std::function<void(int step, const std::vector<double>& positions)>;
+// Called after every Newton update; return false to cancel the solve (the
+// positions stay those of the last update, SolveResult::cancelled is set).
+using ProgressCallback = std::function<bool(const NewtonIteration&)>;
 
-class QuasistaticSolver {
+// A simulation a host application drives frame by frame. Construction
+// validates everything (snh::Error naming the input), builds the kernels and
+// uploads the mesh once. The state starts at SolveOptions::initial_positions
+// (else rest). Each solve() moves the constrained vertices from where they
+// are to their targets in load steps and brings the body to equilibrium from
+// the current state (a warm start).
+//
+// Targets: until set_transform/set_positions is called for it, a set follows
+// its own motion/targets callback with the load parameter t = s/n of each
+// solve (so the first solve does what QuasistaticSolver does). An absolute
+// transform (x = T(X), X the rest position) is interpolated as a rigid motion
+// from the set's previous transform (slerp of the rotation about the new
+// centre, linear translation); absolute positions, and transforms whose
+// matrix is not a rotation, linearly from where the vertices are.
+class Simulation {
  public:
-  // Validates the mesh (snh::Error on bad input) and prepares the device.
-  QuasistaticSolver(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints,
-                    SolveOptions options = {});
-  ~QuasistaticSolver();
-  QuasistaticSolver(QuasistaticSolver&&) noexcept;
-  QuasistaticSolver& operator=(QuasistaticSolver&&) noexcept;
+  Simulation(Mesh mesh, const MaterialMap& materials, std::vector<ConstraintSet> constraints,
+             SolveOptions options = {});
+  Simulation(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints, SolveOptions options = {});
+  ~Simulation();
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
 
-  SolveResult solve(const StepCallback& on_step = {});
+  // Targets and loads of the next solve (snh::Error naming the set or input).
+  void set_transform(const std::string& set, const RigidTransform& transform);
+  void set_positions(const std::string& set, const std::vector<double>& xyz);  // xyz per vertex of the set
+  void set_external_force(const std::vector<double>& lumped);                  // xyz per vertex; empty: none
+  void set_body_force(const std::array<double, 3>& per_rest_volume);
+  // Replaces the state (xyz per vertex), e.g. to restart from a saved frame.
+  void set_state(const std::vector<double>& positions);
+  // Back to the start: SolveOptions::initial_positions (else rest), every set
+  // following its own callbacks, no force applied yet.
+  void restart();
+
+  // load_steps: 0 for SolveOptions::load_steps.
+  SolveResult solve(int load_steps = 0, const ProgressCallback& progress = {}, const StepCallback& on_step = {});
+
+  const std::vector<double>& positions() const;
+  // Per element F, J, stresses and energy density at the current state.
+  ElementFields fields() const;
+  // Per constraint set, the force and torque it exerts on the body at the
+  // current state (torque about the set's current centroid).
+  std::vector<Reaction> reactions() const;
+  // The lumped external force (external_force plus body force) of the last
+  // solve's final step, xyz per vertex.
+  const std::vector<double>& applied_force() const;
 
   const Mesh& mesh() const;
+  const MaterialMap& materials() const;
+  const std::vector<ConstraintSet>& constraints() const;
   const DeviceInfo& device() const;
+  double tolerance() const;  // the absolute residual tolerance (SolveOptions)
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
-// Checks constraint sets (non-empty, vertices in range) and solve options
-// (initial positions, steps, limits, tolerances); throws snh::Error naming
-// the set or option at fault. QuasistaticSolver calls it on construction.
+// One solve through the load steps from the initial state, as a one-shot
+// call: a thin layer over Simulation. Every solve() starts again from
+// SolveOptions::initial_positions (else rest).
+class QuasistaticSolver {
+ public:
+  // Validates the mesh (snh::Error on bad input) and prepares the device.
+  QuasistaticSolver(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints,
+                    SolveOptions options = {});
+  QuasistaticSolver(Mesh mesh, const MaterialMap& materials, std::vector<ConstraintSet> constraints,
+                    SolveOptions options = {});
+  ~QuasistaticSolver();
+  QuasistaticSolver(QuasistaticSolver&&) noexcept;
+  QuasistaticSolver& operator=(QuasistaticSolver&&) noexcept;
+
+  SolveResult solve(const StepCallback& on_step = {}, const ProgressCallback& progress = {});
+
+  const Mesh& mesh() const;
+  const DeviceInfo& device() const;
+  Simulation& simulation();  // the state after the last solve: fields, reactions
+
+ private:
+  Simulation simulation_;
+};
+
+// Checks constraint sets (non-empty, vertices in range, a vertex component
+// prescribed by two sets, duplicate names) and solve options (initial
+// positions, external and body force, steps, limits, tolerances); throws
+// snh::Error naming the set or option at fault. Simulation calls it on
+// construction.
 void validate_solve_inputs(const Mesh& mesh, const std::vector<ConstraintSet>& constraints,
                            const SolveOptions& options);
 
+// The absolute residual tolerance SolveOptions asks for on this mesh and
+// these materials, before the relative criterion (see SolveOptions).
+double residual_tolerance(const Mesh& mesh, const MaterialMap& materials, const SolveOptions& options);
+
 // Writes every constrained vertex's target at load parameter t into x (xyz
-// per vertex): `targets` if set, else `motion(t)` applied to the rest
-// position, else the rest position. Throws snh::Error for a wrong-sized
-// targets callback or a non-finite target.
+// per vertex; the set's prescribed components only): `targets` if set, else
+// `motion(t)` applied to the rest position, else the rest position. Throws
+// snh::Error naming the set for a wrong-sized targets callback or a
+// non-finite target.
 void apply_constraints(const Mesh& mesh, const std::vector<ConstraintSet>& constraints, double t,
                        std::vector<double>& x);
 

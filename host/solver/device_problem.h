@@ -1,0 +1,91 @@
+// The device model as a Newton problem (solver/newton_driver.h): energies,
+// residuals and the matrix-free Hessian on the OpenCL device, linear solves by
+// ViennaCL's CG with the block-Jacobi preconditioner. Norms and dot products
+// are summed on the host in double and in index order: deterministic.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "solver/elastic_model.h"
+#include "solver/matrix_free.h"
+#include "solver/newton_driver.h"
+#include "viennacl/linalg/cg.hpp"
+
+namespace snh::solver {
+
+template <typename Real>
+class DeviceProblem {
+ public:
+  using Vector = viennacl::vector<Real>;
+
+  DeviceProblem(ElasticModel<Real>& model, bool block_jacobi)
+      : model_(model), op_(model), precond_(model, block_jacobi), block_jacobi_(block_jacobi) {}
+
+  size_t dofs() const { return model_.dofs(); }
+  double epsilon() const { return std::numeric_limits<Real>::epsilon(); }
+  Vector vector() const { return Vector(viennacl::scalar_vector<Real>(model_.dofs(), Real(0))); }
+  double energy(const Vector& x) { return model_.energy(x); }
+  double last_min_j() const { return model_.last_min_j(); }
+  void residual(const Vector& x, Vector& r) { model_.residual(x, r); }
+  bool has_true_hessian() const { return true; }
+
+  double norm(const Vector& v) const {
+    download(v, a_);
+    double s = 0.0;
+    for (Real x : a_) s += static_cast<double>(x) * static_cast<double>(x);
+    return std::sqrt(s);
+  }
+  double dot(const Vector& u, const Vector& v) const {
+    download(u, a_);
+    download(v, b_);
+    double s = 0.0;
+    for (size_t i = 0; i < a_.size(); ++i) s += static_cast<double>(a_[i]) * static_cast<double>(b_[i]);
+    return s;
+  }
+
+  void linearize(const Vector& x, bool projected) {
+    model_.linearize(x, projected);
+    if (block_jacobi_) model_.setup_preconditioner();
+  }
+
+  LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations) {
+    op_.reset();
+    viennacl::linalg::cg_tag tag(static_cast<Real>(eta), static_cast<unsigned>(max_iterations));
+    viennacl::linalg::cg_solver<Vector> cg(tag);
+    cg.set_monitor(&DeviceProblem::stop_cg, this);
+    p = cg(op_, r, precond_);
+    LinearSolve s;
+    s.iterations = static_cast<int>(cg.tag().iters());
+    s.relative_residual = cg.tag().error();
+    s.negative_curvature = op_.negative_curvature();
+    s.breakdown = op_.breakdown();
+    return s;
+  }
+
+  void precondition(const Vector& r, Vector& p) {
+    p = r;
+    precond_.apply(p);
+  }
+  void step(const Vector& x, double alpha, const Vector& p, Vector& out) { out = x + static_cast<Real>(alpha) * p; }
+  void swap(Vector& u, Vector& v) { u.fast_swap(v); }
+
+ private:
+  static bool stop_cg(const Vector&, Real relative_residual, void* self) {
+    const DeviceProblem* problem = static_cast<DeviceProblem*>(self);
+    return problem->op_.negative_curvature() || problem->op_.breakdown() ||
+           !std::isfinite(static_cast<double>(relative_residual));
+  }
+  static void download(const Vector& v, std::vector<Real>& out) {
+    out.resize(v.size());
+    viennacl::copy(v.begin(), v.end(), out.begin());
+  }
+
+  ElasticModel<Real>& model_;
+  HessianOperator<Real> op_;
+  BlockJacobiPreconditioner<Real> precond_;
+  bool block_jacobi_;
+  mutable std::vector<Real> a_, b_;
+};
+
+}  // namespace snh::solver

@@ -1,0 +1,274 @@
+// Newton's method for one load step, written once over a problem interface
+// (as PETSc SNES and Ratel keep one loop for every backend): the device model
+// (solver/device_problem.h) and the host Eigen baseline (bench/host_baseline.cpp)
+// both implement it, so a comparison between them measures two backends, not
+// two algorithms.
+//
+// The loop: Eisenstat-Walker forcing terms (choice 2 with its safeguards), an
+// inexact linear solve of the (projected or true) Hessian, a descent-direction
+// check with the preconditioned steepest descent as fallback, and Armijo
+// backtracking on the energy that never accepts a non-finite energy or
+// residual; a failed line search is retried once along the steepest descent.
+//
+// A Problem provides, with `Vector` its vector type:
+//   size_t dofs() const;                 double epsilon() const;  // working precision
+//   Vector vector() const;                                        // a zero vector of dofs()
+//   double energy(const Vector& x);      double last_min_j() const;  // of the last energy()
+//   void residual(const Vector& x, Vector& r);                    // -mask * dE/dx
+//   double norm(const Vector& v) const;  double dot(const Vector& a, const Vector& b) const;
+//   void linearize(const Vector& x, bool projected);              // projected: PSD per element
+//   LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations);
+//   void precondition(const Vector& r, Vector& p);                // p = M^-1 r
+//   void step(const Vector& x, double alpha, const Vector& p, Vector& out);  // out = x + alpha p
+//   void swap(Vector& a, Vector& b);
+//   bool has_true_hessian() const;       // whether linearize(x, false) is available
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "snh/simulation.h"
+
+namespace snh::solver {
+
+// What a problem's linear solve reports.
+struct LinearSolve {
+  int iterations = 0;  // operator applications
+  double relative_residual = 0.0;
+  bool negative_curvature = false;  // the operator showed p^T K p <= 0 (true Hessian, or rounding)
+  bool breakdown = false;           // non-finite curvature
+};
+
+template <typename Problem>
+class NewtonDriver {
+ public:
+  using Vector = typename Problem::Vector;
+  using Clock = std::chrono::steady_clock;
+  // Called after every accepted Newton update with its record and the new x;
+  // returning false ends the step with status "cancelled". Its time is not
+  // counted in the records' seconds.
+  using Observer = std::function<bool(const NewtonIteration&, const Vector& x)>;
+
+  NewtonDriver(Problem& problem, const SolveOptions& options) : problem_(problem), options_(options) {}
+
+  // Solves from x (constrained entries already at their targets, kept fixed)
+  // until |r| <= max(tolerance, relative_tolerance * |r_0|), appending one
+  // record per iteration to `history`.
+  StepResult solve_step(int step, Vector& x, double tolerance, std::vector<NewtonIteration>& history,
+                        Clock::time_point start, const Observer& observe = {});
+
+  // Wall time since `start`, less the time spent in observers.
+  double elapsed(Clock::time_point start) const {
+    return std::chrono::duration<double>(Clock::now() - start).count() - observer_seconds_;
+  }
+
+ private:
+  Problem& problem_;
+  const SolveOptions& options_;
+  double observer_seconds_ = 0.0;
+};
+
+template <typename Problem>
+StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double tolerance_floor,
+                                             std::vector<NewtonIteration>& history, Clock::time_point start,
+                                             const Observer& observe) {
+  constexpr double kArmijo = 1e-4;
+  constexpr size_t kStagnation = 8;
+  constexpr int kProjectionCooldown = 3;
+  const int max_halvings = options_.line_search_halvings;
+  const double eps = problem_.epsilon();
+  Vector r = problem_.vector(), p = problem_.vector(), trial = problem_.vector(), r_trial = problem_.vector();
+
+  StepResult result;
+  result.step = step;
+  problem_.residual(x, r);
+  double rn = problem_.norm(r);
+  double energy = problem_.energy(x);
+  const double tolerance = std::max(tolerance_floor, options_.relative_tolerance * rn);
+  double eta = options_.forcing_max, previous_rn = rn;
+  std::vector<double> residuals, energies;
+  int projection_cooldown = 0;
+  double last_alpha = 0.0;
+
+  for (int it = 0;; ++it) {
+    NewtonIteration rec;
+    rec.step = step;
+    rec.iteration = it;
+    rec.residual_norm = rn;
+    rec.energy = energy;
+    auto finish = [&](const char* status) {
+      result.status = status;
+      rec.seconds = elapsed(start);
+      history.push_back(rec);
+    };
+    if (!std::isfinite(rn) || !std::isfinite(energy)) {
+      finish("non_finite_state");
+      break;
+    }
+    if (rn <= tolerance) {
+      result.converged = true;
+      finish("converged");
+      break;
+    }
+    // The working precision's floor: in the last kStagnation iterations
+    // neither a 1% drop of the residual norm nor an energy decrease above
+    // rounding noise. (Far from the solution the residual may plateau while
+    // the energy still falls; that is progress.)
+    residuals.push_back(rn);
+    energies.push_back(energy);
+    if (residuals.size() > kStagnation) {
+      const size_t old = residuals.size() - 1 - kStagnation;
+      const double best = *std::min_element(residuals.begin() + old + 1, residuals.end());
+      const double noise = 64.0 * eps * std::abs(energies[old]);
+      if (best > 0.99 * residuals[old] && energies[old] - energy <= noise) {
+        finish("stagnated");
+        break;
+      }
+    }
+    if (it >= options_.max_newton_iterations) {
+      finish("max_newton_iterations");
+      break;
+    }
+
+    // Eisenstat-Walker choice 2 with its safeguards, floored where the
+    // working precision cannot resolve a smaller relative residual.
+    if (it > 0) {
+      const double candidate = options_.forcing_gamma * (rn / previous_rn) * (rn / previous_rn);
+      const double safeguard = options_.forcing_gamma * eta * eta;
+      eta = safeguard > 0.1 ? std::max(candidate, safeguard) : candidate;
+      eta = std::min(eta, options_.forcing_max);
+      eta = std::max(eta, 0.5 * tolerance / rn);
+    }
+    eta = std::max(eta, 100.0 * eps);
+
+    // The true Hessian only where Newton is converging (full steps, falling
+    // residual), no element is inverted and it has not just shown negative
+    // curvature; the linear solve on it stops at negative curvature, and the
+    // iteration is then redone with the projection. (An inverted element is
+    // where the projection's robustness matters: Newton on the true Hessian
+    // could be drawn to a tangled stationary point.)
+    const bool true_hessian = options_.hessian == HessianMode::adaptive && problem_.has_true_hessian() && it > 0 &&
+                              last_alpha == 1.0 && rn < previous_rn && projection_cooldown == 0 &&
+                              problem_.last_min_j() > 0.0;
+    if (projection_cooldown > 0) --projection_cooldown;
+    LinearSolve solve;
+    for (bool projected : {!true_hessian, true}) {
+      problem_.linearize(x, projected);
+      solve = problem_.solve(r, p, eta, options_.max_cg_iterations);
+      rec.cg_iterations += solve.iterations;
+      rec.cg_relative_residual = solve.relative_residual;
+      rec.projected = projected;
+      rec.cg_stop = solve.breakdown            ? "breakdown"
+                    : solve.negative_curvature ? "negative_curvature"
+                                               : (solve.relative_residual <= eta ? "converged" : "max_iterations");
+      if (projected || !(solve.negative_curvature || solve.breakdown)) break;
+      projection_cooldown = kProjectionCooldown;
+    }
+
+    // A usable descent direction: the linear solve's, else the
+    // preconditioned residual (else, with a broken preconditioner, the
+    // residual itself).
+    bool steepest = false;
+    double slope = 0.0;
+    auto use_steepest_descent = [&] {
+      problem_.precondition(r, p);
+      slope = problem_.dot(r, p);
+      if (!std::isfinite(slope) || !(slope > 0.0)) {
+        problem_.step(r, 0.0, r, p);  // p = r
+        slope = rn * rn;
+      }
+      steepest = true;
+    };
+    slope = problem_.dot(r, p);  // -dE/dalpha at alpha = 0; non-finite when p has a non-finite entry
+    if (!std::isfinite(slope) || !(slope > 0.0)) {
+      rec.recovery = std::string(rec.cg_stop == "breakdown" ? "cg_breakdown"
+                                 : !std::isfinite(slope)    ? "non_finite_direction"
+                                                            : "non_descent") +
+                     " -> steepest_descent";
+      rec.cg_stop += "+steepest_descent";
+      use_steepest_descent();
+    } else if (rec.cg_stop == "breakdown") {
+      rec.recovery = "cg_breakdown -> partial_cg_direction";
+    }
+
+    // Backtracking on the energy; never accept a non-finite energy or a
+    // trial whose residual is non-finite. Where the energy change is below
+    // its rounding noise (float near the solution), a decrease of the
+    // residual norm decides instead. On acceptance r_trial holds the
+    // trial's residual.
+    double trial_energy = energy, trial_rn = rn;
+    bool non_finite_residual = false;
+    auto line_search = [&]() -> double {
+      double alpha = 1.0;
+      for (int h = 0; h <= max_halvings; ++h, alpha *= 0.5) {
+        problem_.step(x, alpha, p, trial);
+        trial_energy = problem_.energy(trial);
+        if (!std::isfinite(trial_energy)) continue;
+        const double noise = 64.0 * eps * std::max(std::abs(energy), std::abs(trial_energy));
+        bool residual_known = false;
+        if (!(trial_energy <= energy - kArmijo * alpha * slope)) {
+          if (!(std::abs(trial_energy - energy) <= noise)) continue;
+          problem_.residual(trial, r_trial);
+          trial_rn = problem_.norm(r_trial);
+          if (!(trial_rn < rn)) continue;
+          residual_known = true;
+        }
+        if (!residual_known) {
+          problem_.residual(trial, r_trial);
+          trial_rn = problem_.norm(r_trial);
+        }
+        if (!std::isfinite(trial_rn)) {
+          non_finite_residual = true;
+          continue;
+        }
+        return alpha;
+      }
+      return 0.0;
+    };
+    double accepted = line_search();
+    if (accepted == 0.0 && !steepest) {
+      // Once more along the preconditioned steepest descent before giving up.
+      const std::string before = rec.recovery;
+      use_steepest_descent();
+      accepted = line_search();
+      rec.recovery = (before.empty() ? "" : before + "; ") + "line_search_failed -> steepest_descent" +
+                     (accepted == 0.0 ? " failed" : "");
+    }
+    if (non_finite_residual)
+      rec.recovery += std::string(rec.recovery.empty() ? "" : "; ") + "non_finite_residual -> shorter_step";
+    rec.step_length = accepted;
+    if (accepted == 0.0) {
+      result.cg_iterations += rec.cg_iterations;
+      finish("line_search_failed");
+      break;
+    }
+    problem_.swap(x, trial);
+    last_alpha = accepted;
+    energy = trial_energy;
+    previous_rn = rn;
+    problem_.swap(r, r_trial);
+    rn = trial_rn;
+    result.newton_iterations = it + 1;
+    result.cg_iterations += rec.cg_iterations;
+    rec.seconds = elapsed(start);
+    history.push_back(rec);
+    if (observe) {
+      const auto paused = Clock::now();
+      const bool go_on = observe(rec, x);
+      observer_seconds_ += std::chrono::duration<double>(Clock::now() - paused).count();
+      if (!go_on) {
+        result.status = "cancelled";
+        break;
+      }
+    }
+  }
+  result.residual_norm = rn;
+  result.seconds = elapsed(start);
+  return result;
+}
+
+}  // namespace snh::solver

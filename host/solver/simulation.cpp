@@ -1,0 +1,490 @@
+// Simulation: the per-frame driver. Constraint targets and loads per load
+// step, the float-to-double fallback, and one Newton driver
+// (solver/newton_driver.h) over the device problem.
+#include "snh/simulation.h"
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "device/opencl_context.h"
+#include "device/viennacl_binding.h"
+#include "fem/rest_state.h"
+#include "snh/error.h"
+#include "snh/loads.h"
+#include "solver/constraint_checks.h"
+#include "solver/device_problem.h"
+#include "solver/elastic_model.h"
+#include "solver/newton_driver.h"
+
+namespace snh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// x = A X + b of a transform.
+struct Affine {
+  Eigen::Matrix3d a;
+  Eigen::Vector3d b;
+};
+
+Affine affine_of(const RigidTransform& t) {
+  Affine f;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) f.a(r, c) = t.rotation[3 * c + r];
+  const Eigen::Vector3d center(t.center[0], t.center[1], t.center[2]);
+  f.b = center + Eigen::Vector3d(t.translation[0], t.translation[1], t.translation[2]) - f.a * center;
+  return f;
+}
+
+bool is_rotation(const Eigen::Matrix3d& a) {
+  return (a.transpose() * a - Eigen::Matrix3d::Identity()).norm() < 1e-9 && a.determinant() > 0.0;
+}
+
+// The rigid motion at fraction s from `from` to `to`, both rotations: the
+// relative rotation's angle scaled by s (slerp) about `to`'s centre, whose
+// image moves on a straight line.
+Affine interpolate(const RigidTransform& from, const RigidTransform& to, double s) {
+  const Affine f = affine_of(from), g = affine_of(to);
+  const Eigen::AngleAxisd relative(Eigen::Matrix3d(g.a * f.a.transpose()));
+  const Eigen::Matrix3d a = Eigen::AngleAxisd(s * relative.angle(), relative.axis()).toRotationMatrix() * f.a;
+  const Eigen::Vector3d c(to.center[0], to.center[1], to.center[2]);
+  const Eigen::Vector3d image = (1.0 - s) * (f.a * c + f.b) + s * (g.a * c + g.b);
+  return {a, image - a * c};
+}
+
+}  // namespace
+
+struct Simulation::Impl {
+  // Where a set's vertices go in the coming solve.
+  struct Target {
+    enum class Kind { callback, transform, positions } kind = Kind::callback;
+    RigidTransform from, to;    // transform: the last reached and the new one
+    bool from_known = false;    // `from` is a transform the set reached
+    std::vector<double> xyz;    // positions: the targets, xyz per vertex of the set
+    std::vector<double> start;  // positions of the set's vertices at the solve's start
+  };
+
+  template <typename Real>
+  struct Engine {
+    std::unique_ptr<device::OpenClContext> own_context;  // the fallback's; null for the main engine
+    long viennacl_context_id = 0;
+    std::unique_ptr<solver::ElasticModel<Real>> model;
+    std::unique_ptr<solver::DeviceProblem<Real>> problem;
+    std::unique_ptr<solver::NewtonDriver<solver::DeviceProblem<Real>>> newton;
+  };
+
+  Mesh mesh;
+  MaterialMap materials;
+  std::vector<ConstraintSet> constraints;
+  SolveOptions options;
+  MeshWarnings mesh_warnings;
+  fem::RestState rest;
+  device::OpenClContext cl;
+  long viennacl_context_id;
+  ProductVariant product;
+  double tolerance;
+  std::vector<char> prescribed;  // per DOF
+  std::vector<std::string> warnings;
+  std::vector<double> x;
+  std::vector<Target> targets;
+  std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
+  std::vector<double> body_force_lumped;
+  std::vector<double> user_force;
+  std::array<double, 3> body_force{0, 0, 0};
+  std::unique_ptr<Engine<float>> single;
+  std::unique_ptr<Engine<double>> dual;  // double: the main engine or the float fallback
+
+  Impl(Mesh m, const MaterialMap& map, std::vector<ConstraintSet> c, SolveOptions o)
+      : mesh(std::move(m)),
+        materials(map),
+        constraints(std::move(c)),
+        options(std::move(o)),
+        mesh_warnings(validate_mesh(mesh)),
+        rest(fem::compute_rest_state(mesh)),
+        cl(options.device, options.precision),
+        viennacl_context_id(device::bind_viennacl(cl)),
+        product(options.product == ProductVariant::automatic
+                    ? default_product_variant(mesh.type, options.precision, cl.info().is_gpu)
+                    : options.product),
+        tolerance(0.0) {
+    validate_solve_inputs(mesh, constraints, options);
+    validate_material_map(mesh, materials);
+    tolerance = residual_tolerance(mesh, materials, options);
+    prescribed = solver::prescribed_dofs(mesh, constraints);
+    user_force = options.external_force;
+    body_force = options.body_force;
+    update_body_force();
+    total_force(force_to);
+    force_from.assign(force_to.size(), 0.0);
+    if (!options.ramp_loads) force_from = force_to;
+    solver::check_rigid_modes(mesh, prescribed, force_to, warnings);
+    if (!mesh_warnings.unused_vertices.empty())
+      warnings.push_back("mesh: " + std::to_string(mesh_warnings.unused_vertices.size()) +
+                         " vertices belong to no element (first: " +
+                         std::to_string(mesh_warnings.unused_vertices.front()) + "); they do not move");
+    x = options.initial_positions.empty() ? mesh.positions : options.initial_positions;
+    targets.resize(constraints.size());
+    if (options.precision == Precision::double_)
+      dual = make_engine<double>(nullptr, product);
+    else
+      single = make_engine<float>(nullptr, product);
+  }
+
+  static void validate_material_map(const Mesh& mesh, const MaterialMap& map) {
+    if (map.materials.empty()) throw Error("material map: no material");
+    if (map.element_material.size() != mesh.element_count())
+      throw Error("material map: " + std::to_string(map.element_material.size()) + " element entries for " +
+                  std::to_string(mesh.element_count()) + " elements");
+    for (size_t e = 0; e < map.element_material.size(); ++e) {
+      const int32_t k = map.element_material[e];
+      if (k < 0 || static_cast<size_t>(k) >= map.materials.size())
+        throw Error("material map: element " + std::to_string(e) + " refers to material " + std::to_string(k) +
+                    ", but the map has " + std::to_string(map.materials.size()));
+    }
+  }
+
+  void update_body_force() {
+    const bool any = body_force[0] != 0.0 || body_force[1] != 0.0 || body_force[2] != 0.0;
+    body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
+  }
+
+  void total_force(std::vector<double>& f) const {
+    f.assign(3 * mesh.vertex_count(), 0.0);
+    for (size_t i = 0; i < user_force.size(); ++i) f[i] += user_force[i];
+    for (size_t i = 0; i < body_force_lumped.size(); ++i) f[i] += body_force_lumped[i];
+  }
+
+  template <typename Real>
+  std::unique_ptr<Engine<Real>> make_engine(std::unique_ptr<device::OpenClContext> context, ProductVariant variant) {
+    auto engine = std::make_unique<Engine<Real>>();
+    device::OpenClContext& ctx = context ? *context : cl;
+    engine->viennacl_context_id = context ? device::bind_viennacl(*context) : viennacl_context_id;
+    engine->own_context = std::move(context);
+    device::use_viennacl(engine->viennacl_context_id);
+    if (!materials.uniform()) throw Error("material regions: not in this build yet");  // FIXME(regions merge)
+    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials.materials[0], variant);
+    std::vector<Real> mask(prescribed.size());
+    for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
+    engine->model->set_mask(mask);
+    engine->problem = std::make_unique<solver::DeviceProblem<Real>>(*engine->model, options.block_jacobi);
+    engine->newton = std::make_unique<solver::NewtonDriver<solver::DeviceProblem<Real>>>(*engine->problem, options);
+    device::use_viennacl(viennacl_context_id);
+    return engine;
+  }
+
+  Engine<double>& fallback_engine() {
+    if (!dual) {
+      auto context = std::make_unique<device::OpenClContext>(options.device, Precision::double_);
+      const ProductVariant variant =
+          options.product == ProductVariant::automatic
+              ? default_product_variant(mesh.type, Precision::double_, context->info().is_gpu)
+              : options.product;
+      dual = make_engine<double>(std::move(context), variant);
+    }
+    return *dual;
+  }
+
+  int set_index(const std::string& name) const {
+    for (size_t k = 0; k < constraints.size(); ++k)
+      if (constraints[k].name == name) return static_cast<int>(k);
+    std::string known;
+    for (const ConstraintSet& c : constraints) known += (known.empty() ? "'" : ", '") + c.name + "'";
+    throw Error("no constraint set named '" + name + "' (sets: " + (known.empty() ? "none" : known) + ")");
+  }
+
+  // A material undefined for J <= 0 (log Neo-Hookean without inversion
+  // handling, as the model or as the lambda part) cannot start a step from
+  // an inverted or flat element: name it instead of returning NaN. (Inside a
+  // step the line search never accepts a non-finite energy.)
+  void require_defined(const std::vector<double>& positions, int step) const {
+    for (size_t e = 0; e < mesh.element_count(); ++e) {
+      const Material& material = materials.of_element(e);
+      if (material.defined_for_inversion()) continue;
+      for (int q = 0; q < rest.quadrature; ++q) {
+        double f[9];
+        fem::deformation_gradient(mesh, rest, positions.data(), e, q, f);
+        const double j = fem::determinant(f);
+        if (!(j > 0.0)) {
+          const std::string region =
+              materials.uniform() ? "" : " (region '" + materials.names[materials.element_material[e]] + "')";
+          throw Error("material " + material.description() + region +
+                      " without inversion handling (neohookean J0 = 0) is undefined for J <= 0, and element " +
+                      std::to_string(e) + " has J = " + std::to_string(j) + " at quadrature point " +
+                      std::to_string(q) + " at the start of load step " + std::to_string(step) +
+                      " (use J0 > 0 or another model)");
+        }
+      }
+    }
+  }
+
+  // Writes set k's targets at fraction s of this solve into x.
+  void place(size_t k, double s, int steps, std::vector<double>& positions) const {
+    const ConstraintSet& c = constraints[k];
+    const Target& t = targets[k];
+    auto put = [&](size_t i, const double p[3]) {
+      for (int d = 0; d < 3; ++d)
+        if (c.components[d]) positions[3 * c.vertices[i] + d] = p[d];
+    };
+    switch (t.kind) {
+      case Target::Kind::callback:
+        (void)steps;
+        solver::place_by_callback(mesh, c, s, positions);
+        break;
+      case Target::Kind::transform: {
+        const bool rigid = t.from_known && is_rotation(affine_of(t.from).a) && is_rotation(affine_of(t.to).a);
+        const Affine f = rigid ? interpolate(t.from, t.to, s) : affine_of(t.to);
+        for (size_t i = 0; i < c.vertices.size(); ++i) {
+          const auto rest_position = mesh.vertex(c.vertices[i]);
+          const Eigen::Vector3d image =
+              f.a * Eigen::Vector3d(rest_position[0], rest_position[1], rest_position[2]) + f.b;
+          double p[3];
+          for (int d = 0; d < 3; ++d) p[d] = rigid ? image[d] : (1.0 - s) * t.start[3 * i + d] + s * image[d];
+          put(i, p);
+        }
+        break;
+      }
+      case Target::Kind::positions:
+        for (size_t i = 0; i < c.vertices.size(); ++i) {
+          double p[3];
+          for (int d = 0; d < 3; ++d) p[d] = (1.0 - s) * t.start[3 * i + d] + s * t.xyz[3 * i + d];
+          put(i, p);
+        }
+        break;
+    }
+    for (size_t i = 0; i < c.vertices.size(); ++i)
+      for (int d = 0; d < 3; ++d)
+        if (!std::isfinite(positions[3 * c.vertices[i] + d]))
+          throw Error("constraint set '" + c.name + "': non-finite target position for vertex " +
+                      std::to_string(c.vertices[i]));
+  }
+
+  template <typename Real>
+  StepResult solve_in(Engine<Real>& engine, int s, std::vector<NewtonIteration>& history, Clock::time_point start,
+                      const ProgressCallback& progress) {
+    device::use_viennacl(engine.viennacl_context_id);
+    engine.model->set_external_force(force_applied);
+    const std::vector<Real> xr(x.begin(), x.end());
+    viennacl::vector<Real> xd(x.size());
+    viennacl::copy(xr.begin(), xr.end(), xd.begin());
+    typename solver::NewtonDriver<solver::DeviceProblem<Real>>::Observer observe;
+    if (options.on_iteration || progress)
+      observe = [&](const NewtonIteration& rec, const viennacl::vector<Real>& xi) {
+        if (options.on_iteration) {
+          std::vector<Real> host(xi.size());
+          viennacl::copy(xi.begin(), xi.end(), host.begin());
+          options.on_iteration(rec, std::vector<double>(host.begin(), host.end()));
+        }
+        return progress ? progress(rec) : true;
+      };
+    StepResult step = engine.newton->solve_step(s, xd, tolerance, history, start, observe);
+    std::vector<Real> back(x.size());
+    viennacl::copy(xd.begin(), xd.end(), back.begin());
+    std::copy(back.begin(), back.end(), x.begin());
+    device::use_viennacl(viennacl_context_id);
+    return step;
+  }
+
+  SolveResult solve(int load_steps, const ProgressCallback& progress, const StepCallback& on_step) {
+    const int steps = load_steps > 0 ? load_steps : options.load_steps;
+    if (steps < 1) throw Error("solve: load_steps must be >= 1");
+    const auto start = Clock::now();
+    SolveResult result;
+    result.device = cl.info();
+    result.product = product;
+    result.tolerance = tolerance;
+    result.kernel_specialization = (single ? single->model->specialization() : dual->model->specialization()) +
+                                   " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
+    result.warnings = warnings;
+    for (size_t k = 0; k < constraints.size(); ++k) {
+      Target& t = targets[k];
+      t.start.resize(3 * constraints[k].vertices.size());
+      for (size_t i = 0; i < constraints[k].vertices.size(); ++i)
+        for (int d = 0; d < 3; ++d) t.start[3 * i + d] = x[3 * constraints[k].vertices[i] + d];
+    }
+    const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
+    bool in_double = options.precision == Precision::double_;
+    bool fell_back = false;
+    result.converged = true;
+    for (int s = 1; s <= steps; ++s) {
+      const double fraction = static_cast<double>(s) / steps;
+      for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+      force_applied.resize(force_to.size());
+      for (size_t i = 0; i < force_to.size(); ++i)
+        force_applied[i] = force_from[i] + fraction * (force_to[i] - force_from[i]);
+      require_defined(x, s);
+      const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
+      StepResult step;
+      if (!in_double) {
+        step = solve_in(*single, s, result.history, start, progress);
+        step.precision_used = to_string(options.precision);
+      }
+      const bool failed = !in_double && !step.converged && step.status != "cancelled";
+      if (may_fall_back && (fell_back || failed)) {
+        if (!fell_back && !cl.info().has_fp64) {
+          result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + step.status +
+                                    ") and fallback_to_double was asked, but the device has no fp64");
+        } else {
+          std::string note;
+          if (!fell_back) {
+            std::ostringstream why;
+            why << "float " << step.status << " after " << step.newton_iterations << " Newton / " << step.cg_iterations
+                << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
+            note = why.str();
+            x = step_start;
+          }
+          const size_t first_record = result.history.size();
+          StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress);
+          redo.precision_used = "double";
+          if (!fell_back) {
+            if (first_record < result.history.size()) {
+              std::string& r = result.history[first_record].recovery;
+              r = "float " + step.status + " -> double" + (r.empty() ? "" : "; " + r);
+            }
+            redo.newton_iterations += step.newton_iterations;
+            redo.cg_iterations += step.cg_iterations;
+            redo.fallback = note;
+            result.warnings.push_back("step " + std::to_string(s) + ": " + note +
+                                      (redo.converged ? " (converged)" : " (did not converge: " + redo.status + ")") +
+                                      (s < steps ? "; the remaining steps run in double" : ""));
+          } else {
+            redo.fallback = "double (after a float failure in an earlier step)";
+          }
+          fell_back = true;
+          step = redo;
+        }
+      } else if (in_double) {
+        step = solve_in(*dual, s, result.history, start, progress);
+        step.precision_used = "double";
+      }
+      result.converged = result.converged && step.converged;
+      result.final_residual_norm = step.residual_norm;
+      result.steps.push_back(step);
+      if (on_step) on_step(s, x);
+      if (step.status == "cancelled") {
+        result.cancelled = true;
+        break;
+      }
+    }
+    // What this solve reached becomes where the next one starts from.
+    for (size_t k = 0; k < constraints.size(); ++k) {
+      Target& t = targets[k];
+      if (t.kind == Target::Kind::transform && !result.cancelled) {
+        t.from = t.to;
+        t.from_known = true;
+      }
+    }
+    if (!result.cancelled) force_from = force_to;
+    result.positions = x;
+    const DeformationStatistics stats = deformation_statistics(mesh, x);
+    result.volume_ratio = stats.volume_ratio;
+    result.min_j = stats.min_j;
+    result.max_j = stats.max_j;
+    result.inverted_elements = stats.inverted_elements;
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
+  }
+};
+
+Simulation::Simulation(Mesh mesh, const MaterialMap& materials, std::vector<ConstraintSet> constraints,
+                       SolveOptions options)
+    : impl_(std::make_unique<Impl>(std::move(mesh), materials, std::move(constraints), std::move(options))) {}
+
+Simulation::Simulation(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints,
+                       SolveOptions options)
+    : Simulation(mesh, uniform_material(mesh, material), std::move(constraints), std::move(options)) {}
+
+Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+
+void Simulation::set_transform(const std::string& set, const RigidTransform& transform) {
+  for (double v : transform.rotation)
+    if (!std::isfinite(v)) throw Error("set_transform('" + set + "'): non-finite matrix entry");
+  for (int d = 0; d < 3; ++d)
+    if (!std::isfinite(transform.translation[d]) || !std::isfinite(transform.center[d]))
+      throw Error("set_transform('" + set + "'): non-finite translation or centre");
+  Impl::Target& t = impl_->targets[impl_->set_index(set)];
+  if (t.kind != Impl::Target::Kind::transform) {
+    // A set that has not followed a transform yet starts from the identity
+    // (its rest placement) if it is still there; else it moves linearly.
+    t.from = RigidTransform::identity();
+    const ConstraintSet& c = impl_->constraints[impl_->set_index(set)];
+    bool at_rest = true;
+    for (int32_t v : c.vertices)
+      for (int d = 0; d < 3; ++d) at_rest = at_rest && impl_->x[3 * v + d] == impl_->mesh.positions[3 * v + d];
+    t.from_known = at_rest;
+  }
+  t.kind = Impl::Target::Kind::transform;
+  t.to = transform;
+}
+
+void Simulation::set_positions(const std::string& set, const std::vector<double>& xyz) {
+  const int k = impl_->set_index(set);
+  const ConstraintSet& c = impl_->constraints[k];
+  if (xyz.size() != 3 * c.vertices.size())
+    throw Error("set_positions('" + set + "'): " + std::to_string(xyz.size()) + " values, expected " +
+                std::to_string(3 * c.vertices.size()) + " (xyz per vertex of the set)");
+  for (double v : xyz)
+    if (!std::isfinite(v)) throw Error("set_positions('" + set + "'): non-finite value");
+  Impl::Target& t = impl_->targets[k];
+  t.kind = Impl::Target::Kind::positions;
+  t.xyz = xyz;
+  t.from_known = false;
+}
+
+void Simulation::set_external_force(const std::vector<double>& lumped) {
+  SolveOptions check;
+  check.external_force = lumped;
+  validate_solve_inputs(impl_->mesh, {}, check);
+  impl_->user_force = lumped;
+  impl_->total_force(impl_->force_to);
+  solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
+}
+
+void Simulation::set_body_force(const std::array<double, 3>& per_rest_volume) {
+  SolveOptions check;
+  check.body_force = per_rest_volume;
+  validate_solve_inputs(impl_->mesh, {}, check);
+  impl_->body_force = per_rest_volume;
+  impl_->update_body_force();
+  impl_->total_force(impl_->force_to);
+  solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
+}
+
+void Simulation::set_state(const std::vector<double>& positions) {
+  SolveOptions check;
+  check.initial_positions = positions;
+  validate_solve_inputs(impl_->mesh, {}, check);
+  impl_->x = positions;
+}
+
+void Simulation::restart() {
+  Impl& m = *impl_;
+  m.x = m.options.initial_positions.empty() ? m.mesh.positions : m.options.initial_positions;
+  m.targets.assign(m.constraints.size(), Impl::Target());
+  m.user_force = m.options.external_force;
+  m.body_force = m.options.body_force;
+  m.update_body_force();
+  m.total_force(m.force_to);
+  m.force_from.assign(m.force_to.size(), 0.0);
+  if (!m.options.ramp_loads) m.force_from = m.force_to;
+  m.force_applied.clear();
+}
+
+SolveResult Simulation::solve(int load_steps, const ProgressCallback& progress, const StepCallback& on_step) {
+  return impl_->solve(load_steps, progress, on_step);
+}
+
+const std::vector<double>& Simulation::positions() const { return impl_->x; }
+const std::vector<double>& Simulation::applied_force() const { return impl_->force_applied; }
+const Mesh& Simulation::mesh() const { return impl_->mesh; }
+const MaterialMap& Simulation::materials() const { return impl_->materials; }
+const std::vector<ConstraintSet>& Simulation::constraints() const { return impl_->constraints; }
+const DeviceInfo& Simulation::device() const { return impl_->cl.info(); }
+double Simulation::tolerance() const { return impl_->tolerance; }
+
+}  // namespace snh
