@@ -1,13 +1,18 @@
-# Installs snh into a scratch prefix, builds examples/host_app against it with
-# find_package(snh), and runs it: the install tree works for a host application.
+# Installs snh into a scratch prefix, builds examples/host_app and
+# examples/flex_frames against it with find_package(snh), and runs them: the
+# install tree works for a host application.
 set(prefix ${BINARY_DIR}/install-test)
 set(app_build ${BINARY_DIR}/host-app-build)
-file(REMOVE_RECURSE ${prefix} ${app_build})
+set(frames_build ${BINARY_DIR}/flex-frames-build)
+file(REMOVE_RECURSE ${prefix} ${app_build} ${frames_build})
 foreach(step
     "${CMAKE_COMMAND};--install;${BINARY_DIR};--prefix;${prefix}"
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/host_app;-B;${app_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
     "${CMAKE_COMMAND};--build;${app_build}"
-    "${app_build}/host_app")
+    "${app_build}/host_app"
+    "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/flex_frames;-B;${frames_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
+    "${CMAKE_COMMAND};--build;${frames_build}"
+    "${frames_build}/flex_frames;${frames_build}/out")
   execute_process(COMMAND ${step} RESULT_VARIABLE status)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "failed (${status}): ${step}")
