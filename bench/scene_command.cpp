@@ -17,6 +17,7 @@
 #include "material_options.h"
 #include "scene_file.h"
 #include "snh/error.h"
+#include "snh/fields.h"
 #include "snh/io.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
@@ -99,6 +100,32 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   return j;
 }
 
+// Per step, the force and torque every constraint set exerts on the body,
+// the torque about the set's current centroid (fields.h).
+json reactions_json(const std::vector<Reaction>& reactions) {
+  json out = json::array();
+  for (const Reaction& r : reactions)
+    out.push_back({{"name", r.name}, {"force", r.force}, {"torque", r.torque}, {"about", r.about}});
+  return out;
+}
+
+// Displacement per vertex and the element fields (F, J, P, Cauchy, von
+// Mises, energy density) of positions x, for ParaView. Where the fields are
+// undefined (a non-finite state, or an inverted element of a material
+// undefined for J <= 0) the file still shows the positions, without them.
+void write_step_vtu(const std::string& path, const Mesh& mesh, const MaterialMap& materials,
+                    const std::vector<double>& x) {
+  std::vector<double> displacement(x.size());
+  for (size_t i = 0; i < x.size(); ++i) displacement[i] = x[i] - mesh.positions[i];
+  std::vector<VtuCellField> cell_fields;
+  try {
+    cell_fields = element_fields_for_vtu(compute_element_fields(mesh, materials, x), materials);
+  } catch (const Error& e) {
+    std::cerr << "warning: " << path << " has no element fields: " << e.what() << '\n';
+  }
+  write_vtu(path, mesh, x, {{"displacement", 3, displacement}}, cell_fields);
+}
+
 int run_scene(const SceneOptions& given) {
   SceneOptions o = given;
   if (o.name.empty() == o.file.empty()) throw Error("scene: give either a scene NAME or --file FILE");
@@ -154,25 +181,28 @@ int run_scene(const SceneOptions& given) {
   std::cerr << "scene " << scene.name << ": " << scene.description << "; " << scene.mesh.element_count() << " "
             << to_string(scene.mesh.type) << " elements, " << 3 * scene.mesh.vertex_count() << " dofs, "
             << to_string(options.precision) << '\n';
+  const MaterialMap materials = uniform_material(scene.mesh, material);
   std::vector<std::pair<double, std::string>> written;
   if (!o.vtu_dir.empty()) {
     std::filesystem::create_directories(o.vtu_dir);
     const std::vector<double>& x0 =
         options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
     const std::string file = scene.name + "_0000.vtu";
-    write_vtu(o.vtu_dir + "/" + file, scene.mesh, x0);
+    write_step_vtu(o.vtu_dir + "/" + file, scene.mesh, materials, x0);
     written.push_back({0.0, file});
   }
   QuasistaticSolver solver(scene.mesh, material, scene.constraints, options);
   const Mesh& mesh = solver.mesh();
+  // Each step's positions, for the reactions computed after the solve (so
+  // that they do not count in its time).
+  std::vector<std::vector<double>> step_positions;
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
     if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
+    if (!o.json_path.empty()) step_positions.push_back(x);
     if (o.vtu_dir.empty()) return;
     char file[256];
     std::snprintf(file, sizeof file, "%s_%04d.vtu", scene.name.c_str(), step);
-    std::vector<double> displacement(x.size());
-    for (size_t i = 0; i < x.size(); ++i) displacement[i] = x[i] - mesh.positions[i];
-    write_vtu(o.vtu_dir + "/" + file, mesh, x, {{"displacement", 3, displacement}});
+    write_step_vtu(o.vtu_dir + "/" + file, mesh, materials, x);
     written.push_back({static_cast<double>(step), file});
   });
   if (!o.vtu_dir.empty()) write_pvd(o.vtu_dir + "/" + scene.name + ".pvd", written);
@@ -196,6 +226,12 @@ int run_scene(const SceneOptions& given) {
     j["alpha"] = material.alpha_mu;
     j["alpha_lambda"] = material.alpha_lambda;
     if (material.lambda_model) j["lambda_model"] = to_string(*material.lambda_model);
+    for (size_t i = 0; i < step_positions.size() && i < j["steps"].size(); ++i) try {
+        j["steps"][i]["reactions"] = reactions_json(
+            constraint_reactions(mesh, materials, scene.constraints, step_positions[i], options.external_force));
+      } catch (const Error& e) {
+        std::cerr << "warning: step " << i + 1 << " has no reactions: " << e.what() << '\n';
+      }
     out << j.dump(2) << '\n';
   }
   return r.converged ? 0 : 3;
@@ -236,8 +272,11 @@ void add_scene_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--steps", o->steps, "load steps (0: scene default)");
   cmd->add_option("--seed", o->seed, "random seed (scramble)")->capture_default_str();
-  cmd->add_option("--json", o->json_path, "write a JSON summary with the per-iteration history here");
-  cmd->add_option("--vtu", o->vtu_dir, "write ASCII .vtu per step and a .pvd into this folder");
+  cmd->add_option("--json", o->json_path,
+                  "write a JSON summary with the per-iteration history and each step's constraint reactions here");
+  cmd->add_option("--vtu", o->vtu_dir,
+                  "write ASCII .vtu per step (displacement; F, J, P, Cauchy, von Mises, energy density per element) "
+                  "and a .pvd into this folder");
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
   cmd->add_option("--variant", o->variant,
                   "Hessian product: automatic (measured default), cached, recompute, element-matrices, assembled")

@@ -13,8 +13,12 @@ namespace snh::bench {
 struct SceneFile {
   Scene scene;
   Material material;
-  std::string vtu_dir;    // "output.vtu", empty for none
-  std::string json_path;  // "output.json", empty for none
+  // "output.vtu": a folder for a .vtu per step (displacement and the element
+  // fields of snh/fields.h) and a .pvd; empty for none.
+  std::string vtu_dir;
+  // "output.json": the run's JSON summary, each step with its constraint
+  // sets' reactions; empty for none.
+  std::string json_path;
 };
 
 // Paths inside the file (mesh files) are relative to the file's folder.

@@ -17,6 +17,7 @@
 #include "snh/error.h"
 #include "snh/io.h"
 #include "snh/mesh.h"
+#include "vtu_test_support.h"
 
 namespace snh {
 namespace {
@@ -77,24 +78,8 @@ class TempDir {
   fs::path path_;
 };
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// The numbers of the DataArray named `name` in a .vtu written by write_vtu.
-std::vector<double> read_array(const std::string& vtu, const std::string& name) {
-  const size_t at = vtu.find("Name=\"" + name + "\"");
-  if (at == std::string::npos) return {};
-  const size_t begin = vtu.find('>', at) + 1, end = vtu.find("</DataArray>", at);
-  std::istringstream in(vtu.substr(begin, end - begin));
-  std::vector<double> values;
-  double v;
-  while (in >> v) values.push_back(v);
-  return values;
-}
+using test::read_array;
+using test::read_text;
 
 TEST(Mesh, ElementTypeProperties) {
   EXPECT_STREQ(to_string(ElementType::hex8), "hex8");
@@ -409,6 +394,29 @@ TEST(VtuWriter, SizeErrorsNameTheField) {
   const std::string unwritable = (dir.path() / "missing" / "out.vtu").string();
   message = error_of([&] { write_vtu(unwritable, mesh, mesh.positions); });
   EXPECT_TRUE(contains(message, "cannot write " + unwritable)) << message;
+}
+
+TEST(VtuWriter, CellVectorsAndTensorsCarryTheirComponents) {
+  TempDir dir("vtu");
+  const Mesh mesh = make_box_lattice(2, 1, 1, 0.1);
+  const fs::path path = dir.path() / "cells.vtu";
+  std::vector<double> tensor(18), vector(6);
+  for (size_t i = 0; i < tensor.size(); ++i) tensor[i] = 0.5 + static_cast<double>(i);
+  for (size_t i = 0; i < vector.size(); ++i) vector[i] = -1.0 / (1.0 + static_cast<double>(i));
+  write_vtu(path.string(), mesh, mesh.positions, {}, {{"stress", tensor, 9}, {"traction", vector, 3}, {"J", {1, 2}}});
+  const std::string vtu = read_text(path);
+  EXPECT_TRUE(contains(vtu, "Name=\"stress\" NumberOfComponents=\"9\"")) << vtu;
+  EXPECT_TRUE(contains(vtu, "Name=\"traction\" NumberOfComponents=\"3\"")) << vtu;
+  EXPECT_TRUE(contains(vtu, "Name=\"J\" format=\"ascii\"")) << vtu;  // scalars as before
+  EXPECT_EQ(read_array(vtu, "stress"), tensor);
+  EXPECT_EQ(read_array(vtu, "traction"), vector);
+
+  const std::string bad = (dir.path() / "bad.vtu").string();
+  std::string message = error_of([&] { write_vtu(bad, mesh, mesh.positions, {}, {{"F", std::vector<double>(9), 9}}); });
+  EXPECT_TRUE(contains(message, "\"F\" has 9 values, but 2 elements x 9 components need 18")) << message;
+  message = error_of([&] { write_vtu(bad, mesh, mesh.positions, {}, {{"q", std::vector<double>(8), 4}}); });
+  EXPECT_TRUE(contains(message, "\"q\" has 4 components; 1, 3 or 9")) << message;
+  EXPECT_FALSE(fs::exists(bad));
 }
 
 TEST(VtuWriter, FieldNamesAreEscaped) {

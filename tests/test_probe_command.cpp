@@ -236,6 +236,78 @@ TEST(SceneCommand, AlphaAndMixedMaterial) {
   EXPECT_TRUE(j["converged"].get<bool>());
 }
 
+// Every step's JSON record carries each constraint set's reaction, and every
+// .vtu the element fields.
+TEST(SceneCommand, StepsCarryReactionsAndVtuFilesCarryElementFields) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "snh_scene_fields";
+  std::filesystem::remove_all(dir);
+  const std::string json_path = (dir / "stretch.json").string();
+  const CommandRun r = run_bench(
+      "scene stretch --res 2 --steps 2 --precision double --json " + json_path + " --vtu " + (dir / "vtu").string(),
+      "");
+  EXPECT_EQ(r.status, 0);
+  std::ifstream in(json_path);
+  ASSERT_TRUE(in.good());
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["steps"].size(), 2u);
+  for (int s = 0; s < 2; ++s) {
+    SCOPED_TRACE(s);
+    const auto& reactions = j["steps"][s]["reactions"];
+    ASSERT_EQ(reactions.size(), 2u);
+    EXPECT_EQ(reactions[0]["name"], "bottom_cap");
+    EXPECT_EQ(reactions[1]["name"], "top_cap");
+    const auto bottom = reactions[0]["force"].get<std::vector<double>>();
+    const auto top = reactions[1]["force"].get<std::vector<double>>();
+    ASSERT_EQ(top.size(), 3u);
+    EXPECT_EQ(reactions[1]["torque"].size(), 3u);
+    // The top cap is pulled up (+z) and the bottom holds it: they balance up
+    // to the free DOFs' residual (strain tolerance 1e-6: far below 1e-3 of
+    // the pull).
+    EXPECT_GT(top[2], 0.0);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(top[i] + bottom[i], 0.0, 1e-3 * top[2]);
+    // About the cap's current centroid: at z = 2 + 4.8 t, t = step / 2.
+    EXPECT_NEAR(reactions[1]["about"][2].get<double>(), 2.0 + 4.8 * (s + 1) / 2.0, 1e-9);
+  }
+  for (const char* file : {"stretch_0000.vtu", "stretch_0002.vtu"}) {
+    std::ifstream vtu(dir / "vtu" / file);
+    std::stringstream text;
+    text << vtu.rdbuf();
+    for (const char* field : {"Name=\"F\" NumberOfComponents=\"9\"", "Name=\"cauchy\" NumberOfComponents=\"9\"",
+                              "Name=\"von_mises\"", "Name=\"energy_density\"", "Name=\"displacement\""})
+      EXPECT_NE(text.str().find(field), std::string::npos) << file << " " << field;
+    EXPECT_EQ(text.str().find("nan"), std::string::npos) << file;
+  }
+}
+
+// A scene file's output key writes the same: a block held at x = 0 under
+// its own weight, whose wall carries minus the weight.
+TEST(SceneCommand, SceneFileOutputCarriesTheWallsReaction) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "snh_scene_file_fields";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string json_path = (dir / "out" / "sag.json").string();
+  std::ofstream(dir / "sag.json") << R"({"name": "sag", "mesh": {"generator": "box", "cells": [2, 1, 1], "size": 0.5},
+             "material": {"model": "snh", "E": 1000.0, "nu": 0.3},
+             "constraints": [{"name": "wall", "select": {"plane": {"axis": "x", "value": 0.0, "tolerance": 1e-9}}}],
+             "body_force": [0.0, 0.0, -8.0],
+             "solver": {"steps": 1, "absolute_tolerance": 1e-11},
+             "output": {"vtu": ")" << (dir / "out" / "vtu").string()
+                                  << R"(", "json": ")" << json_path << R"("}})";
+  const CommandRun r = run_bench("scene --file " + (dir / "sag.json").string(), "");
+  EXPECT_EQ(r.status, 0);
+  std::ifstream in(json_path);
+  ASSERT_TRUE(in.good());
+  const auto j = nlohmann::json::parse(in);
+  const auto& wall = j["steps"][0]["reactions"][0];
+  EXPECT_EQ(wall["name"], "wall");
+  // Weight: 8 N/m^3 over 1 x 0.5 x 0.5 m = 2 N down; the wall pushes up.
+  // The residual (1e-11) over 24 free DOFs bounds the imbalance far below 1e-9.
+  EXPECT_NEAR(wall["force"][0].get<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(wall["force"][1].get<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(wall["force"][2].get<double>(), 2.0, 1e-9);
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "vtu" / "sag_0001.vtu"));
+}
+
 TEST(SceneCommand, UnknownSceneIsRejected) { EXPECT_NE(run_bench("scene wobble", "").status, 0); }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "reference/element_reference.h"
 #include "snh/error.h"
+#include "snh/fields.h"
 #include "snh/loads.h"
 #include "snh/simulation.h"
 
@@ -199,6 +200,14 @@ TEST(Simulation, PerComponentConstraintsGiveHomogeneousUniaxialStress) {
   const auto p = reference::material_pk1(f, reference::spec_of(Material(material)));
   EXPECT_LT(std::abs(p[0]), 1e-7 * std::abs(p[8]));
   EXPECT_LT(p[8], 0.0);  // compressive
+  // The plate pushes on the unit-area top with the force P_zz; the floor
+  // pushes back; the symmetry planes carry nothing (no lateral stress).
+  const std::vector<Reaction> reactions = solver.simulation().reactions();
+  ASSERT_EQ(reactions.size(), 4u);
+  EXPECT_NEAR(reactions[1].force[2], p[8], 1e-6 * std::abs(p[8]));
+  EXPECT_NEAR(reactions[0].force[2], -p[8], 1e-6 * std::abs(p[8]));
+  for (int k : {2, 3})
+    for (int d = 0; d < 3; ++d) EXPECT_LT(std::abs(reactions[k].force[d]), 1e-6 * std::abs(p[8])) << k;
 }
 
 TEST(Simulation, BodyForceEqualsItsLumpedExternalForceAndRampsWithTheLoad) {

@@ -111,10 +111,16 @@ void check_sizes(const std::string& path, const Mesh& mesh, const std::vector<do
   }
   for (const VtuCellField& f : cell_fields) {
     if (f.name.empty()) throw Error("write_vtu " + path + ": a cell field has no name");
-    if (f.values.size() != elements) {
+    if (f.components != 1 && f.components != 3 && f.components != 9) {
       std::ostringstream s;
-      s << "write_vtu " << path << ": cell field \"" << f.name << "\" has " << f.values.size()
-        << " values, but the mesh has " << elements << " elements";
+      s << "write_vtu " << path << ": cell field \"" << f.name << "\" has " << f.components
+        << " components; 1, 3 or 9 are supported";
+      throw Error(s.str());
+    }
+    if (f.values.size() != elements * f.components) {
+      std::ostringstream s;
+      s << "write_vtu " << path << ": cell field \"" << f.name << "\" has " << f.values.size() << " values, but "
+        << elements << " elements x " << f.components << " components need " << elements * f.components;
       throw Error(s.str());
     }
   }
@@ -151,8 +157,12 @@ void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<doub
   if (!cell_fields.empty()) {
     file << "      <CellData>\n";
     for (const VtuCellField& f : cell_fields) {
-      file << "        <DataArray type=\"Float64\" Name=\"" << xml_escape(f.name) << "\" format=\"ascii\">";
-      write_values(file, f.values.data(), f.values.size(), 6);
+      // Scalars without NumberOfComponents, as before it existed here
+      // (meshio then reads them as (cells,) rather than (cells, 1)).
+      file << "        <DataArray type=\"Float64\" Name=\"" << xml_escape(f.name) << "\"";
+      if (f.components != 1) file << " NumberOfComponents=\"" << f.components << "\"";
+      file << " format=\"ascii\">";
+      write_values(file, f.values.data(), f.values.size(), f.components == 1 ? 6 : f.components);
       file << "        </DataArray>\n";
     }
     file << "      </CellData>\n";

@@ -487,4 +487,10 @@ const std::vector<ConstraintSet>& Simulation::constraints() const { return impl_
 const DeviceInfo& Simulation::device() const { return impl_->cl.info(); }
 double Simulation::tolerance() const { return impl_->tolerance; }
 
+ElementFields Simulation::fields() const { return compute_element_fields(impl_->mesh, impl_->materials, impl_->x); }
+
+std::vector<Reaction> Simulation::reactions() const {
+  return constraint_reactions(impl_->mesh, impl_->materials, impl_->constraints, impl_->x, impl_->force_applied);
+}
+
 }  // namespace snh

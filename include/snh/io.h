@@ -17,7 +17,10 @@ struct VtuPointField {
 
 struct VtuCellField {
   std::string name;
-  std::vector<double> values;  // one per element
+  std::vector<double> values;  // components per element
+  // 1 (scalar), 3 (vector) or 9 (3x3 tensor, row-major: XX XY XZ YX ...,
+  // VTK's order). After `values` so that {name, values} stays a scalar.
+  int components = 1;
 };
 
 // Writes `mesh` with vertex positions `x` (xyz per vertex) to `path`.
