@@ -7,8 +7,10 @@
 #include <random>
 #include <set>
 
-#include "fem/rest_state.h"
+#include "scene_json.h"
+#include "scene_selection.h"
 #include "snh/error.h"
+#include "snh/loads.h"
 #include "snh/mesh_io.h"
 
 namespace snh::bench {
@@ -16,46 +18,7 @@ namespace {
 
 using nlohmann::json;
 
-struct Reader {
-  std::string file;
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw Error(file + ": " + key + ": " + what);
-  }
-  // Rejects keys outside `allowed`.
-  void keys(const json& object, const std::string& key, std::set<std::string> allowed) const {
-    if (!object.is_object()) fail(key, "expected an object");
-    for (const auto& item : object.items())
-      if (!allowed.count(item.key())) fail(key + "." + item.key(), "unknown key");
-  }
-  double number(const json& object, const std::string& key, const std::string& name, double fallback) const {
-    if (!object.contains(name)) return fallback;
-    if (!object[name].is_number()) fail(key + "." + name, "expected a number");
-    return object[name].get<double>();
-  }
-  int integer(const json& object, const std::string& key, const std::string& name, int fallback) const {
-    if (!object.contains(name)) return fallback;
-    if (!object[name].is_number_integer()) fail(key + "." + name, "expected an integer");
-    return object[name].get<int>();
-  }
-  std::string text(const json& object, const std::string& key, const std::string& name,
-                   const std::string& fallback) const {
-    if (!object.contains(name)) return fallback;
-    if (!object[name].is_string()) fail(key + "." + name, "expected a string");
-    return object[name].get<std::string>();
-  }
-  std::array<double, 3> vec3(const json& object, const std::string& key, const std::string& name,
-                             std::array<double, 3> fallback) const {
-    if (!object.contains(name)) return fallback;
-    const json& v = object[name];
-    if (!v.is_array() || v.size() != 3) fail(key + "." + name, "expected an array of 3 numbers");
-    std::array<double, 3> out;
-    for (int i = 0; i < 3; ++i) {
-      if (!v[i].is_number()) fail(key + "." + name, "expected an array of 3 numbers");
-      out[i] = v[i].get<double>();
-    }
-    return out;
-  }
-};
+using Reader = SceneJson;
 
 Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path& folder) {
   r.keys(m, "mesh", {"file", "generator", "cells", "size", "radius", "length", "element"});
@@ -87,48 +50,6 @@ Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path
   else if (element != to_string(mesh.type))
     r.fail("mesh.element", "expected hex8 or tet4 matching the mesh");
   return mesh;
-}
-
-// Vertices selected by ids, an axis-aligned box, or a plane.
-std::vector<int32_t> select(const Reader& r, const json& s, const std::string& key, const Mesh& mesh) {
-  r.keys(s, key, {"ids", "box", "plane"});
-  std::vector<int32_t> out;
-  if (s.contains("ids")) {
-    if (!s["ids"].is_array()) r.fail(key + ".ids", "expected an array of vertex indices");
-    for (const json& id : s["ids"]) {
-      if (!id.is_number_integer()) r.fail(key + ".ids", "expected an array of vertex indices");
-      const long v = id.get<long>();
-      if (v < 0 || static_cast<size_t>(v) >= mesh.vertex_count())
-        r.fail(key + ".ids", "vertex " + std::to_string(v) + " is out of range (the mesh has " +
-                                 std::to_string(mesh.vertex_count()) + " vertices)");
-      out.push_back(static_cast<int32_t>(v));
-    }
-  } else if (s.contains("box")) {
-    r.keys(s["box"], key + ".box", {"min", "max"});
-    const auto lo = r.vec3(s["box"], key + ".box", "min", {0, 0, 0}),
-               hi = r.vec3(s["box"], key + ".box", "max", {0, 0, 0});
-    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-      const auto x = mesh.vertex(v);
-      bool inside = true;
-      for (int d = 0; d < 3; ++d) inside = inside && x[d] >= lo[d] && x[d] <= hi[d];
-      if (inside) out.push_back(static_cast<int32_t>(v));
-    }
-  } else if (s.contains("plane")) {
-    const json& p = s["plane"];
-    r.keys(p, key + ".plane", {"axis", "value", "tolerance"});
-    const std::string axis = r.text(p, key + ".plane", "axis", "z");
-    if (axis != "x" && axis != "y" && axis != "z") r.fail(key + ".plane.axis", "expected x, y or z");
-    const int a = axis[0] - 'x';
-    double value = r.number(p, key + ".plane", "value", 0.0);
-    if (p.contains("value") && p["value"].is_string()) value = 0.0;
-    const double tolerance = r.number(p, key + ".plane", "tolerance", 1e-9);
-    for (size_t v = 0; v < mesh.vertex_count(); ++v)
-      if (std::abs(mesh.positions[3 * v + a] - value) <= tolerance) out.push_back(static_cast<int32_t>(v));
-  } else {
-    r.fail(key, "expected one of ids, box, plane");
-  }
-  if (out.empty()) r.fail(key, "selects no vertex");
-  return out;
 }
 
 struct RigidKey {
@@ -172,20 +93,6 @@ std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m
     r.translation = k.translation;
     return r;
   };
-}
-
-// Body force density (force per rest volume) lumped to the vertices.
-std::vector<double> lumped_body_force(const Mesh& mesh, const std::array<double, 3>& density) {
-  const fem::RestState rest = fem::compute_rest_state(mesh);
-  std::vector<double> f(mesh.positions.size(), 0.0);
-  const int n = nodes_per_element(mesh.type);
-  for (size_t e = 0; e < mesh.element_count(); ++e) {
-    double volume = 0.0;
-    for (int q = 0; q < rest.quadrature; ++q) volume += rest.weight(e, q);
-    for (int a = 0; a < n; ++a)
-      for (int d = 0; d < 3; ++d) f[3 * mesh.elements[n * e + a] + d] += density[d] * volume / n;
-  }
-  return f;
 }
 
 }  // namespace
@@ -239,13 +146,14 @@ SceneFile load_scene_file(const std::string& path) {
       ConstraintSet set;
       set.name = r.text(c, key, "name", key);
       if (!c.contains("select")) r.fail(key + ".select", "missing");
-      set.vertices = select(r, c["select"], key + ".select", s.mesh);
+      set.vertices = parse_vertex_selection(r, c["select"], key + ".select", s.mesh);
+      if (set.vertices.empty()) r.fail(key + ".select", "selects no vertex");
       if (c.contains("motion")) set.motion = read_motion(r, c["motion"], key + ".motion");
       s.constraints.push_back(set);
     }
   }
   if (doc.contains("body_force"))
-    s.options.external_force = lumped_body_force(s.mesh, r.vec3(doc, "scene", "body_force", {0, 0, 0}));
+    s.options.external_force = lump_body_force(s.mesh, r.vec3(doc, "scene", "body_force", {0, 0, 0}));
   if (doc.contains("initial")) {
     const json& init = doc["initial"];
     r.keys(init, "initial", {"scramble_volume_factor", "seed"});

@@ -1,6 +1,7 @@
 // Scenes described in JSON files (`snh-gpu-bench scene --file F`): mesh (a
-// file or a generator), material, constraint vertex sets selected by ids, box
-// or plane with rigid or keyframed motion, body force, solver options, output.
+// file or a generator), material, constraint vertex sets (selectors:
+// scene_selection.h) with rigid or keyframed motion, body force, solver
+// options, output.
 // Unknown keys and wrong types are errors naming the key's path.
 #pragma once
 

@@ -43,10 +43,10 @@ int main(int argc, char** argv) {
 
     snh::SolveOptions options;
     options.body_force = {0.0, 0.0, -1000.0 * 9.81};  // density 1000 kg/m^3 times gravity
-    snh::Simulation sim(limb, materials,
-                        {snh::ConstraintSet{"upper_bone", upper_bone, {}, {}},
-                         snh::ConstraintSet{"lower_bone", lower_bone, {}, {}}},
-                        options);
+    snh::Simulation sim(
+        limb, materials,
+        {snh::ConstraintSet{"upper_bone", upper_bone, {}, {}}, snh::ConstraintSet{"lower_bone", lower_bone, {}, {}}},
+        options);
     std::cout << "device: " << sim.device().name << ", " << limb.element_count() << " hexes, "
               << 3 * limb.vertex_count() << " DOF\n";
 
@@ -70,8 +70,8 @@ int main(int argc, char** argv) {
                   angle * 180 / M_PI, r.history.size(), r.converged ? "converged" : r.steps.back().status.c_str(),
                   r.min_j, carried, weight);
       for (const snh::Reaction& b : reactions)
-        std::printf("  %-10s force (%8.3f %8.3f %8.3f) N  torque (%8.4f %8.4f %8.4f) N m\n", b.name.c_str(),
-                    b.force[0], b.force[1], b.force[2], b.torque[0], b.torque[1], b.torque[2]);
+        std::printf("  %-10s force (%8.3f %8.3f %8.3f) N  torque (%8.4f %8.4f %8.4f) N m\n", b.name.c_str(), b.force[0],
+                    b.force[1], b.force[2], b.torque[0], b.torque[1], b.torque[2]);
 
       const snh::ElementFields fields = sim.fields();
       const std::string name = "frame_" + std::to_string(frame) + ".vtu";

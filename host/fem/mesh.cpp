@@ -100,6 +100,37 @@ MeshWarnings validate_mesh(const Mesh& mesh) {
   // point; the rest-state code names the element.
   fem::compute_rest_state(mesh);
 
+  for (const MeshGroup& g : mesh.groups) {
+    const std::string who = "mesh: group " + (g.name.empty() ? std::string() : "'" + g.name + "' ") + "(tag " +
+                            std::to_string(g.tag) + ", dimension " + std::to_string(g.dimension) + ")";
+    if (g.dimension < 0 || g.dimension > 3) throw Error(who + " has a dimension outside 0..3");
+    if (g.dimension != 3 && !g.elements.empty()) throw Error(who + " holds elements but is not a volume group");
+    const auto check = [&](const std::vector<int32_t>& list, size_t limit, const char* noun, const char* nouns) {
+      for (size_t i = 0; i < list.size(); ++i) {
+        if (list[i] < 0 || static_cast<size_t>(list[i]) >= limit) {
+          std::ostringstream s;
+          s << who << " holds " << noun << " " << list[i] << ", but the mesh has " << limit << " " << nouns;
+          throw Error(s.str());
+        }
+        if (i > 0 && list[i] <= list[i - 1])
+          throw Error(who + ": its " + nouns + " are not sorted ascending without repeats");
+      }
+    };
+    check(g.vertices, vertices, "vertex", "vertices");
+    check(g.elements, elements, "element", "elements");
+  }
+  const auto check_arrays = [](const std::vector<MeshArray>& arrays, size_t count, const char* kind) {
+    for (const MeshArray& a : arrays)
+      if (a.components < 1 || a.values.size() != count * static_cast<size_t>(a.components)) {
+        std::ostringstream s;
+        s << "mesh: " << kind << " array '" << a.name << "' has " << a.values.size() << " values for " << a.components
+          << " components, but the mesh has " << count << " " << kind << "s";
+        throw Error(s.str());
+      }
+  };
+  check_arrays(mesh.point_arrays, vertices, "point");
+  check_arrays(mesh.cell_arrays, elements, "cell");
+
   MeshWarnings warnings;
   for (size_t v = 0; v < vertices; ++v)
     if (!used[v]) warnings.unused_vertices.push_back(static_cast<int32_t>(v));
@@ -301,6 +332,26 @@ Mesh split_hexes_into_tets(const Mesh& hexes) {
       if (det < 0.0) std::swap(v[1], v[2]);
       mesh.elements.insert(mesh.elements.end(), v, v + 4);
     }
+  constexpr int32_t kTetsPerHex = 6;
+  static_assert(sizeof(KuhnTets::tets) / sizeof(KuhnTets::tets[0]) == kTetsPerHex, "six tets per hex");
+  mesh.point_arrays = hexes.point_arrays;
+  mesh.groups = hexes.groups;
+  for (MeshGroup& g : mesh.groups) {
+    std::vector<int32_t> tets;
+    tets.reserve(kTetsPerHex * g.elements.size());
+    for (int32_t e : g.elements)
+      for (int32_t t = 0; t < kTetsPerHex; ++t) tets.push_back(kTetsPerHex * e + t);
+    g.elements = std::move(tets);
+  }
+  for (const MeshArray& a : hexes.cell_arrays) {
+    MeshArray split{a.name, a.components, {}};
+    split.values.reserve(kTetsPerHex * a.values.size());
+    for (size_t e = 0; e < hexes.element_count(); ++e)
+      for (int t = 0; t < kTetsPerHex; ++t)
+        split.values.insert(split.values.end(), a.values.begin() + static_cast<std::ptrdiff_t>(a.components * e),
+                            a.values.begin() + static_cast<std::ptrdiff_t>(a.components * (e + 1)));
+    mesh.cell_arrays.push_back(std::move(split));
+  }
   return mesh;
 }
 

@@ -1,7 +1,16 @@
 // Gmsh .msh 2.2 and 4.1, ASCII and binary. Gmsh numbers first-order
 // hexahedron nodes as VTK does; tetrahedra may come either way round and are
-// turned over by the builder. Point, line and surface elements are skipped.
+// turned over by the builder. Point, line and surface elements become no
+// mesh elements; their vertices make the physical groups of dimension 0..2.
+//
+// Physical groups: in 2.2 an element's first tag is its physical group (0:
+// none), and gmsh writes an element once per group it belongs to, under a
+// new number; the copies of a volume element become one element. In 4.1 the
+// $Entities section lists each entity's physical groups and every element
+// block names its entity. $PhysicalNames names groups by (dimension, tag).
+#include <array>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -92,6 +101,27 @@ GmshType gmsh_type(int64_t type) {
   }
 }
 
+struct NodesKey {
+  std::array<int32_t, 8> v{};
+  bool operator==(const NodesKey& o) const { return v == o.v; }
+};
+
+struct NodesHash {
+  size_t operator()(const NodesKey& k) const {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (int32_t x : k.v) h = (h ^ static_cast<uint32_t>(x)) * 0x100000001b3ull;
+    return static_cast<size_t>(h);
+  }
+};
+
+using GroupKey = std::pair<int, int64_t>;  // (dimension, physical tag)
+
+const char* const kEntityKinds[4] = {"point", "curve", "surface", "volume"};
+
+std::string group_words(const GroupKey& key) {
+  return std::string("physical ") + kEntityKinds[key.first] + " " + std::to_string(key.second);
+}
+
 class GmshReader {
  public:
   GmshReader(const std::string& path, const std::string& data) : path_(path), s_(path, data), builder_(path) {}
@@ -120,8 +150,22 @@ class GmshReader {
         s_.rest_of_line();
         version4_ ? read_elements4() : read_elements2();
         s_.expect("$EndElements", "after the elements (does the element count match?)");
+      } else if (section == "$PhysicalNames") {
+        if (have_names_) fail(path_, line_at(line), "a second $PhysicalNames section");
+        have_names_ = true;
+        s_.rest_of_line();
+        read_physical_names();
+        s_.expect("$EndPhysicalNames", "after the physical names (does their count match?)");
+      } else if (section == "$Entities" && version4_) {
+        if (have_entities_) fail(path_, line_at(line), "a second $Entities section");
+        if (have_elements)
+          fail(path_, line_at(line), "the $Entities section comes after $Elements (gmsh writes it before $Nodes)");
+        have_entities_ = true;
+        s_.rest_of_line();
+        read_entities();
+        s_.expect("$EndEntities", "after the entities (do their counts match?)");
       } else if (section.size() > 1 && section[0] == '$' && section.substr(0, 4) != "$End") {
-        // Skipped: $PhysicalNames, $Entities, $NodeData, ...
+        // Skipped: $NodeData, $ElementData, $PartitionedEntities, ...
         const std::string end = "$End" + std::string(section.substr(1));
         const size_t found = s_.data().find(end, s_.pos());
         if (found == std::string::npos)
@@ -133,6 +177,15 @@ class GmshReader {
     }
     if (!have_nodes) fail(path_, "the file has no $Nodes section");
     if (!have_elements) fail(path_, "the file has no $Elements section");
+    for (const auto& [key, named] : names_) {
+      const auto it = groups_.find(key);
+      if (it == groups_.end())
+        fail(path_, named.where,
+             "$PhysicalNames names " + group_words(key) + " " + quote(named.name) + ", but no " +
+                 (version4_ ? "entity" : "element") + " belongs to it");
+      it->second.name = named.name;
+    }
+    for (auto& [key, group] : groups_) builder_.groups.push_back(std::move(group));
     return builder_.finish();
   }
 
@@ -211,28 +264,56 @@ class GmshReader {
     builder_.add_vertex(tag, xyz, where);
   }
 
+  int32_t vertex_of(int64_t element, int64_t node, Location where) {
+    const auto it = index_.find(node);
+    if (it == index_.end()) {
+      std::ostringstream m;
+      m << "element " << element << " refers to node " << node << ", which the $Nodes section does not define";
+      fail(path_, where, m.str());
+    }
+    return it->second;
+  }
+
+  MeshGroup& group(int dimension, int64_t physical, Location where) {
+    if (physical < std::numeric_limits<int>::min() || physical > std::numeric_limits<int>::max())
+      fail(path_, where, "physical tag " + std::to_string(physical) + " is out of range");
+    MeshGroup& g = groups_[{dimension, physical}];
+    g.tag = static_cast<int>(physical);
+    g.dimension = dimension;
+    return g;
+  }
+
   // Node tags of an element to vertex indices, then the element (volume
-  // elements of our types) or nothing (lower dimensions).
-  void add_element(int64_t tag, int64_t type, const int64_t* nodes, Location where) {
+  // elements of our types) or only its vertices in its physical groups
+  // (lower dimensions).
+  void add_element(int64_t tag, int64_t type, const int64_t* nodes, Location where,
+                   const std::vector<int64_t>& physicals) {
     const GmshType t = gmsh_type(type);
-    if (t.dimension < 3) return;
+    if (t.dimension < 3) {
+      if (physicals.empty()) return;
+      for (int a = 0; a < t.nodes; ++a) {
+        const int32_t v = vertex_of(tag, nodes[a], where);
+        for (int64_t p : physicals) group(t.dimension, p, where).vertices.push_back(v);
+      }
+      return;
+    }
     if (type != 4 && type != 5) {
       std::ostringstream m;
       m << "element " << tag << " has unsupported type " << type << " (" << t.name
         << "); only 4-node tetrahedra (type 4) and 8-node hexahedra (type 5) are supported";
       fail(path_, where, m.str());
     }
-    int32_t v[8];
-    for (int a = 0; a < t.nodes; ++a) {
-      const auto it = index_.find(nodes[a]);
-      if (it == index_.end()) {
-        std::ostringstream m;
-        m << "element " << tag << " refers to node " << nodes[a] << ", which the $Nodes section does not define";
-        fail(path_, where, m.str());
-      }
-      v[a] = it->second;
+    NodesKey key;
+    for (int a = 0; a < t.nodes; ++a) key.v[a] = vertex_of(tag, nodes[a], where);
+    int32_t element = static_cast<int32_t>(builder_.element_count());
+    if (!version4_ && !physicals.empty()) {
+      // A 2.2 copy of an element already read, written for another group.
+      const auto [it, inserted] = copies_.emplace(key, element);
+      if (!inserted) element = it->second;
     }
-    builder_.add_element(type == 4 ? ElementType::tet4 : ElementType::hex8, tag, v, where);
+    if (element == static_cast<int32_t>(builder_.element_count()))
+      builder_.add_element(type == 4 ? ElementType::tet4 : ElementType::hex8, tag, key.v.data(), where);
+    for (int64_t p : physicals) group(3, p, where).elements.push_back(element);
   }
 
   void known_type(int64_t type, const std::string& who, Location where) {
@@ -278,7 +359,7 @@ class GmshReader {
     const int64_t n = count(int_token(header[0], "the element count", line), "the element count", line_at(line),
                             static_cast<int64_t>(s_.remaining()));
     int64_t read = 0;
-    std::vector<int64_t> nodes;
+    std::vector<int64_t> nodes, physicals;
     while (read < n) {
       if (binary_) {
         const Location block = here();
@@ -300,9 +381,13 @@ class GmshReader {
         for (int64_t e = 0; e < in_block; ++e) {
           const Location where = here();
           const int64_t tag = s_.binary<int32_t>(swap_, "an element tag");
-          for (int64_t k = 0; k < tags; ++k) s_.binary<int32_t>(swap_, "an element tag");
+          physicals.clear();
+          for (int64_t k = 0; k < tags; ++k) {
+            const int64_t value = s_.binary<int32_t>(swap_, "an element tag");
+            if (k == 0 && value != 0) physicals.push_back(value);
+          }
           for (int64_t& v : nodes) v = s_.binary<int32_t>(swap_, "an element node");
-          add_element(tag, type, nodes.data(), where);
+          add_element(tag, type, nodes.data(), where, physicals);
         }
         read += in_block;
       } else {
@@ -326,7 +411,12 @@ class GmshReader {
         }
         nodes.resize(static_cast<size_t>(nn));
         for (int a = 0; a < nn; ++a) nodes[a] = int_token(t[3 + tags + a], "a node tag", line);
-        add_element(tag, type, nodes.data(), line_at(line));
+        physicals.clear();
+        if (tags > 0) {
+          const int64_t physical = int_token(t[3], "a physical tag", line);
+          if (physical != 0) physicals.push_back(physical);
+        }
+        add_element(tag, type, nodes.data(), line_at(line), physicals);
         ++read;
       }
     }
@@ -449,6 +539,7 @@ class GmshReader {
       const int64_t type = bh[2];
       const int64_t n = count(bh[3], "the element count of a block", block, total - read);
       known_type(type, "an element block", block);
+      const std::vector<int64_t>& physicals = block_physicals(bh[0], bh[1], block);
       const int nn = gmsh_type(type).nodes;
       nodes.resize(static_cast<size_t>(nn));
       if (binary_)
@@ -478,7 +569,7 @@ class GmshReader {
           }
           for (int a = 0; a < nn; ++a) nodes[a] = int_token(t[1 + a], "a node tag", line);
         }
-        add_element(tag, type, nodes.data(), where);
+        add_element(tag, type, nodes.data(), where, physicals);
       }
       read += n;
     }
@@ -489,11 +580,140 @@ class GmshReader {
     }
   }
 
+  // ---- Physical groups ----
+
+  // "dim tag \"name\"" lines, ASCII in binary files too.
+  void read_physical_names() {
+    uint64_t line = 0;
+    auto header = line_tokens("the physical name count", line);
+    if (header.size() != 1) fail(path_, line_at(line), "expected the physical name count alone on the line");
+    const int64_t n = count(int_token(header[0], "the physical name count", line), "the physical name count",
+                            line_at(line), static_cast<int64_t>(s_.remaining()));
+    for (int64_t i = 0; i < n; ++i) {
+      std::string_view text;
+      if (!s_.next_line(text, line))
+        fail(path_, line_at(s_.line()), "the file ends where physical name " + std::to_string(i + 1) + " was expected");
+      const auto t = split(text);
+      if (t.size() < 3 || t[0].substr(0, 4) == "$End") {
+        std::ostringstream m;
+        m << "physical name " << i + 1 << " of " << n
+          << " should read: dimension tag \"name\" (does the count match?), found " << quote(text);
+        fail(path_, line_at(line), m.str());
+      }
+      const int64_t dimension = int_token(t[0], "the dimension of a physical group", line);
+      const int64_t tag = int_token(t[1], "the tag of a physical group", line);
+      if (dimension < 0 || dimension > 3)
+        fail(path_, line_at(line),
+             "physical group " + std::to_string(tag) + " has dimension " + std::to_string(dimension) + ", not 0 to 3");
+      const size_t open = text.find('"', static_cast<size_t>(t[2].data() - text.data()));
+      const size_t close = text.rfind('"');
+      if (t[2][0] != '"' || close == open || text.find_first_not_of(" \t\r", close + 1) != std::string_view::npos)
+        fail(path_, line_at(line), "the name of physical group " + std::to_string(tag) + " is not in double quotes");
+      const GroupKey key{static_cast<int>(dimension), tag};
+      const auto [it, inserted] =
+          names_.emplace(key, PhysicalName{std::string(text.substr(open + 1, close - open - 1)), line_at(line)});
+      if (!inserted)
+        fail(path_, line_at(line),
+             group_words(key) + " is named twice (first " + quote(it->second.name) + ", line " +
+                 std::to_string(it->second.where.value) + ")");
+    }
+  }
+
+  // 4.1 $Entities: each point, curve, surface and volume with its physical
+  // tags (bounding boxes and bounding entities are skipped).
+  void read_entities() {
+    int64_t h[4];
+    const Location at = here();
+    header4(h, "the $Entities header");
+    const int64_t limit = static_cast<int64_t>(s_.remaining());
+    for (int dimension = 0; dimension < 4; ++dimension) {
+      const int64_t n = count(h[dimension], "an entity count", at, limit);
+      for (int64_t i = 0; i < n; ++i) {
+        Location where = here();
+        int64_t tag = 0;
+        std::vector<int64_t> physicals;
+        const int reals = dimension == 0 ? 3 : 6;
+        if (binary_) {
+          tag = s_.binary<int32_t>(swap_, "an entity tag");
+          for (int k = 0; k < reals; ++k) s_.binary<double>(swap_, "an entity's coordinates");
+          const uint64_t np = s_.binary<uint64_t>(swap_, "an entity's physical tag count");
+          if (np > s_.remaining() / 4) fail(path_, where, "an entity's physical tag count is larger than the file");
+          for (uint64_t k = 0; k < np; ++k) physicals.push_back(s_.binary<int32_t>(swap_, "a physical tag"));
+          if (dimension > 0) {
+            const uint64_t nb = s_.binary<uint64_t>(swap_, "an entity's bounding entity count");
+            if (nb > s_.remaining() / 4)
+              fail(path_, where, "an entity's bounding entity count is larger than the file");
+            s_.advance(nb * 4);
+          }
+        } else {
+          uint64_t line = 0;
+          const std::string what = std::string("a ") + kEntityKinds[dimension] + " entity";
+          const auto t = line_tokens(what, line);
+          where = line_at(line);
+          // tag, coordinates, physical count and tags, then (curves and
+          // above) the bounding count and tags.
+          const auto check_size = [&](size_t at_least, bool exact) {
+            if (exact ? t.size() != at_least : t.size() < at_least) {
+              std::ostringstream m;
+              m << what << " has " << t.size() << " values, " << (exact ? "expected " : "at least ") << at_least
+                << " are needed (do the $Entities counts match?)";
+              fail(path_, where, m.str());
+            }
+          };
+          size_t k = static_cast<size_t>(reals) + 2;
+          check_size(k, false);
+          tag = int_token(t[0], "an entity tag", line);
+          for (int r = 1; r <= reals; ++r) real_token(t[r], "an entity coordinate", line);
+          const int64_t np = int_token(t[k - 1], "a physical tag count", line);
+          if (np < 0 || np > static_cast<int64_t>(t.size())) fail(path_, where, what + " has a bad physical tag count");
+          check_size(k + static_cast<size_t>(np) + (dimension > 0 ? 1 : 0), false);
+          for (int64_t p = 0; p < np; ++p) physicals.push_back(int_token(t[k++], "a physical tag", line));
+          if (dimension > 0) {
+            const int64_t nb = int_token(t[k++], "a bounding entity count", line);
+            if (nb < 0 || nb > static_cast<int64_t>(t.size())) fail(path_, where, what + " has a bad bounding count");
+            k += static_cast<size_t>(nb);
+          }
+          check_size(k, true);
+        }
+        for (int64_t p : physicals) group(dimension, p, where);
+        const auto [it, inserted] = entities_.emplace(GroupKey{dimension, tag}, std::move(physicals));
+        if (!inserted)
+          fail(path_, where,
+               "entity " + std::to_string(tag) + " of dimension " + std::to_string(dimension) + " is defined twice");
+      }
+    }
+  }
+
+  // The physical groups of the entity a 4.1 element block belongs to (none
+  // when the file has no $Entities).
+  const std::vector<int64_t>& block_physicals(int64_t dimension, int64_t entity, Location where) {
+    static const std::vector<int64_t> none;
+    if (!have_entities_) return none;
+    const auto it = entities_.find({static_cast<int>(dimension), entity});
+    if (it == entities_.end() || dimension < 0 || dimension > 3) {
+      std::ostringstream m;
+      m << "an element block belongs to entity " << entity << " of dimension " << dimension
+        << ", which the $Entities section does not define";
+      fail(path_, where, m.str());
+    }
+    return it->second;
+  }
+
+  struct PhysicalName {
+    std::string name;
+    Location where;
+  };
+
   const std::string& path_;
   Scanner s_;
   MeshBuilder builder_;
   bool version4_ = false, binary_ = false, swap_ = false;
+  bool have_names_ = false, have_entities_ = false;
   std::unordered_map<int64_t, int32_t> index_;
+  std::map<GroupKey, PhysicalName> names_;
+  std::map<GroupKey, MeshGroup> groups_;
+  std::map<GroupKey, std::vector<int64_t>> entities_;
+  std::unordered_map<NodesKey, int32_t, NodesHash> copies_;  // 2.2: element by its vertices
 };
 
 }  // namespace

@@ -2,7 +2,12 @@
 // Tetrahedra and Hexahedra, 1-based indices, each entry ending with a
 // reference number. Other 0D-2D keywords are skipped; other volume elements
 // are rejected. Medit's own orientation convention is not relied on: the
-// builder turns mirrored elements over.
+// builder turns mirrored elements over. The reference numbers of
+// tetrahedra and hexahedra become volume groups, those of triangles and
+// quadrilaterals surface groups and those of edges curve groups, each named
+// by its number (as gmsh writes them, the elementary entity tags).
+#include <limits>
+#include <map>
 #include <sstream>
 
 #include "io/readers.h"
@@ -14,7 +19,8 @@ namespace {
 struct Keyword {
   const char* name;
   int values;  // per entry
-  int kind;    // 0 skip, 1 vertices, 2 tetrahedra, 3 hexahedra, 4 unsupported volume
+  int kind;    // 0 skip, 1 vertices, 2 tetrahedra, 3 hexahedra, 4 unsupported volume,
+               // 5 edges, 6 triangles, 7 quadrilaterals
 };
 
 // Entry sizes, including the trailing reference where the format has one.
@@ -22,9 +28,9 @@ constexpr Keyword kKeywords[] = {
     {"Vertices", 4, 1},
     {"Tetrahedra", 5, 2},
     {"Hexahedra", 9, 3},
-    {"Edges", 3, 0},
-    {"Triangles", 4, 0},
-    {"Quadrilaterals", 5, 0},
+    {"Edges", 3, 5},
+    {"Triangles", 4, 6},
+    {"Quadrilaterals", 5, 7},
     {"Corners", 1, 0},
     {"RequiredVertices", 1, 0},
     {"Ridges", 1, 0},
@@ -95,11 +101,12 @@ class MeditReader {
         fail(path_, line_at(line), m.str());
       }
       if (k->kind == 1 && builder_.vertex_count() > 0) fail(path_, line_at(line), "a second Vertices section");
-      if ((k->kind == 2 || k->kind == 3) && builder_.vertex_count() == 0 && n > 0)
+      if (k->kind >= 2 && k->kind != 4 && builder_.vertex_count() == 0 && n > 0)
         fail(path_, line_at(line), std::string(k->name) + " come before any Vertices");
       for (int64_t i = 0; i < n; ++i) entry(*k, i + 1, n);
     }
     if (!have_version) fail(path_, "not a Medit mesh: no MeshVersionFormatted keyword");
+    for (auto& [key, group] : groups_) builder_.groups.push_back(std::move(group));
     return builder_.finish();
   }
 
@@ -114,8 +121,8 @@ class MeditReader {
       builder_.add_vertex(number, xyz, line_at(line));
       return;
     }
-    if (k.kind == 2 || k.kind == 3) {
-      const int nodes = k.kind == 2 ? 4 : 8;
+    if (k.kind == 2 || k.kind == 3 || k.kind >= 5) {
+      const int nodes = k.values - 1;
       int32_t v[8];
       uint64_t line = 0;
       for (int a = 0; a < nodes; ++a) {
@@ -123,14 +130,28 @@ class MeditReader {
         if (a == 0) line = s_.token_line();
         if (index < 1 || static_cast<uint64_t>(index) > builder_.vertex_count()) {
           std::ostringstream m;
-          m << (k.kind == 2 ? "tetrahedron " : "hexahedron ") << number << " refers to vertex " << index
-            << ", but the file has " << builder_.vertex_count() << " Vertices (numbered from 1)";
+          static const char* const kNouns[8] = {"", "",     "tetrahedron", "hexahedron",
+                                                "", "edge", "triangle",    "quadrilateral"};
+          m << kNouns[k.kind] << " " << number << " refers to vertex " << index << ", but the file has "
+            << builder_.vertex_count() << " Vertices (numbered from 1)";
           fail(path_, line_at(s_.token_line()), m.str());
         }
         v[a] = static_cast<int32_t>(index - 1);
       }
-      s_.integer("the reference of " + what, '#');
-      builder_.add_element(k.kind == 2 ? ElementType::tet4 : ElementType::hex8, number, v, line_at(line));
+      const int64_t reference = s_.integer("the reference of " + what, '#');
+      if (reference < std::numeric_limits<int>::min() || reference > std::numeric_limits<int>::max())
+        fail(path_, line_at(s_.token_line()), "the reference of " + what + " is out of range");
+      const int dimension = k.kind == 5 ? 1 : (k.kind >= 6 ? 2 : 3);
+      MeshGroup& group = groups_[{dimension, reference}];
+      group.name = std::to_string(reference);
+      group.tag = static_cast<int>(reference);
+      group.dimension = dimension;
+      if (dimension == 3) {
+        group.elements.push_back(static_cast<int32_t>(builder_.element_count()));
+        builder_.add_element(k.kind == 2 ? ElementType::tet4 : ElementType::hex8, number, v, line_at(line));
+      } else {
+        group.vertices.insert(group.vertices.end(), v, v + nodes);
+      }
       return;
     }
     for (int i = 0; i < k.values; ++i) s_.real("value " + std::to_string(i + 1) + " of " + what, '#');
@@ -139,6 +160,7 @@ class MeditReader {
   const std::string& path_;
   Scanner s_;
   MeshBuilder builder_;
+  std::map<std::pair<int, int64_t>, MeshGroup> groups_;  // by (dimension, reference)
 };
 
 }  // namespace

@@ -362,16 +362,66 @@ Mesh MeshBuilder::finish() {
     }
   }
 
+  for (MeshGroup& group : groups) {
+    std::vector<int32_t>& in = group.elements;
+    std::sort(in.begin(), in.end());
+    in.erase(std::unique(in.begin(), in.end()), in.end());
+    std::vector<int32_t>& v = group.vertices;
+    for (int32_t e : in) v.insert(v.end(), &elements_[n * e], &elements_[n * e] + n);
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+
   Mesh mesh;
   mesh.type = type_;
   mesh.positions = std::move(positions_);
   mesh.elements = std::move(elements_);
+  mesh.groups = std::move(groups);
+  mesh.point_arrays = std::move(point_arrays);
+  mesh.cell_arrays = std::move(cell_arrays);
   try {
     validate_mesh(mesh);
   } catch (const Error& e) {
     fail(path_, e.what());
   }
   return mesh;
+}
+
+namespace {
+
+void add_array(std::vector<MeshArray>& arrays, const std::string& path, Location where, MeshArray array, size_t tuples,
+               const char* kind) {
+  for (const MeshArray& a : arrays)
+    if (a.name == array.name) fail(path, where, std::string("a second ") + kind + " array named " + quote(a.name));
+  if (array.components < 1 || array.values.size() != tuples * static_cast<size_t>(array.components)) {
+    std::ostringstream s;
+    s << kind << " array " << quote(array.name) << " has " << array.values.size() << " values, but " << tuples << " "
+      << kind << "s of " << array.components << " components need " << tuples * static_cast<size_t>(array.components);
+    fail(path, where, s.str());
+  }
+  arrays.push_back(std::move(array));
+}
+
+}  // namespace
+
+void add_point_array(MeshBuilder& builder, const std::string& path, Location where, MeshArray array, size_t points) {
+  add_array(builder.point_arrays, path, where, std::move(array), points, "point");
+}
+
+void add_cell_array(MeshBuilder& builder, const std::string& path, Location where, MeshArray array,
+                    const std::vector<char>& kept) {
+  add_array(builder.cell_arrays, path, where, array, kept.size(), "cell");
+  MeshArray& added = builder.cell_arrays.back();
+  const size_t c = static_cast<size_t>(added.components);
+  size_t out = 0;
+  for (size_t cell = 0; cell < kept.size(); ++cell)
+    if (kept[cell]) {
+      std::copy(added.values.begin() + static_cast<std::ptrdiff_t>(c * cell),
+                added.values.begin() + static_cast<std::ptrdiff_t>(c * (cell + 1)),
+                added.values.begin() + static_cast<std::ptrdiff_t>(c * out));
+      ++out;
+    }
+  added.values.resize(c * out);
 }
 
 std::string read_file(const std::string& path) {

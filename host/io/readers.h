@@ -117,6 +117,13 @@ class MeshBuilder {
   // What the file calls its elements in messages ("element", "cell").
   void set_element_noun(const std::string& noun) { noun_ = noun; }
 
+  // Groups and arrays as the reader finds them. Group element indices and
+  // cell-array entries follow the elements added (the file's volume cells,
+  // in order); finish() sorts each group's lists, removes repeats and gives
+  // volume groups the vertices of their elements.
+  std::vector<MeshGroup> groups;
+  std::vector<MeshArray> point_arrays, cell_arrays;
+
   // Checks for no elements, repeated nodes, duplicate vertices, fixes
   // mirrored elements, rejects degenerate ones, and validates the mesh.
   Mesh finish();
@@ -142,7 +149,8 @@ const char* element_noun(ElementType type);  // "tetrahedron" / "hexahedron"
 // VTK cell types shared by the legacy and XML readers: appends the cells
 // (tetra, hexahedron, voxel) to the builder, skips cells of lower dimension
 // and throws for other volume cells. `where` gives each cell's location.
-void add_vtk_cell(MeshBuilder& builder, const std::string& path, int64_t cell, int64_t vtk_type, const int64_t* nodes,
+// Returns whether the cell became an element.
+bool add_vtk_cell(MeshBuilder& builder, const std::string& path, int64_t cell, int64_t vtk_type, const int64_t* nodes,
                   int64_t count, size_t vertices, Location where);
 
 template <class T>
@@ -156,6 +164,13 @@ T Scanner::binary(bool swap, const char* what) {
   advance(sizeof(T));
   return value;
 }
+
+// Checks that a data array read from a file has one tuple per point or cell
+// and a name not used before among `existing`, then appends it (cell arrays:
+// only the entries of cells that became elements, `kept[c]`).
+void add_point_array(MeshBuilder& builder, const std::string& path, Location where, MeshArray array, size_t points);
+void add_cell_array(MeshBuilder& builder, const std::string& path, Location where, MeshArray array,
+                    const std::vector<char>& kept);
 
 // The readers, on a file's whole contents.
 Mesh read_gmsh(const std::string& path, const std::string& data);

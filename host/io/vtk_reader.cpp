@@ -1,6 +1,9 @@
 // VTK legacy .vtk unstructured grids, ASCII and BINARY (big-endian), with
 // the classic CELLS layout (count, then indices) or the 5.x OFFSETS and
 // CONNECTIVITY arrays; and the VTK cell types both VTK readers share.
+// POINT_DATA and CELL_DATA attributes (SCALARS, COLOR_SCALARS, VECTORS,
+// NORMALS, TEXTURE_COORDINATES, TENSORS, FIELD arrays) become the mesh's
+// point and cell arrays; lookup tables are skipped.
 #include <cmath>
 #include <sstream>
 
@@ -71,9 +74,9 @@ bool lower_dimensional(int64_t type) {
 
 }  // namespace
 
-void add_vtk_cell(MeshBuilder& builder, const std::string& path, int64_t cell, int64_t vtk_type, const int64_t* nodes,
+bool add_vtk_cell(MeshBuilder& builder, const std::string& path, int64_t cell, int64_t vtk_type, const int64_t* nodes,
                   int64_t count, size_t vertices, Location where) {
-  if (lower_dimensional(vtk_type)) return;
+  if (lower_dimensional(vtk_type)) return false;
   if (vtk_type != 10 && vtk_type != 11 && vtk_type != 12) {
     std::ostringstream m;
     m << "cell " << cell << " has unsupported VTK cell type " << vtk_type << " (" << vtk_cell_name(vtk_type)
@@ -101,6 +104,7 @@ void add_vtk_cell(MeshBuilder& builder, const std::string& path, int64_t cell, i
     std::swap(v[6], v[7]);
   }
   builder.add_element(vtk_type == 10 ? ElementType::tet4 : ElementType::hex8, cell, v, where);
+  return true;
 }
 
 namespace {
@@ -140,7 +144,7 @@ class VtkLegacyReader {
     s_.rest_of_line();
 
     bool points = false, cells = false, types = false;
-    while (!(points && cells && types)) {
+    for (;;) {
       const std::string_view key = s_.token();
       const uint64_t line = s_.token_line();
       if (key.empty()) break;
@@ -159,14 +163,32 @@ class VtkLegacyReader {
         read_array(n, "int", nullptr, &types_, &type_where_, "a cell type");
         types = true;
       } else if (iequals(key, "metadata")) {
-        std::string_view text;
-        s_.rest_of_line();
-        while (!s_.at_end() && !(text = s_.rest_of_line()).empty()) {
-        }
-      } else if (iequals(key, "field")) {
+        skip_metadata();
+      } else if (iequals(key, "field") && data_ == Data::none) {
         skip_field(line);
       } else if (iequals(key, "point_data") || iequals(key, "cell_data")) {
-        break;
+        const bool point = iequals(key, "point_data");
+        if (point ? !points : !cells)
+          fail(path_, line_at(line),
+               std::string(point ? "POINT_DATA comes before POINTS" : "CELL_DATA comes before CELLS"));
+        bool& seen = point ? seen_point_data_ : seen_cell_data_;
+        if (seen)
+          fail(path_, line_at(line), "a second " + std::string(point ? "POINT_DATA" : "CELL_DATA") + " section");
+        seen = true;
+        // Not bounded by the bytes left: a section may hold no arrays.
+        const int64_t n = s_.integer(point ? "the POINT_DATA count" : "the CELL_DATA count");
+        const size_t expected = point ? builder_.vertex_count() : cell_count_;
+        if (n < 0 || static_cast<uint64_t>(n) != expected) {
+          std::ostringstream m;
+          m << (point ? "POINT_DATA" : "CELL_DATA") << " is for " << n << " " << (point ? "points" : "cells")
+            << ", but the file has " << expected;
+          fail(path_, line_at(line), m.str());
+        }
+        s_.rest_of_line();
+        data_ = point ? Data::point : Data::cell;
+        tuples_ = n;
+      } else if (data_ != Data::none) {
+        read_attribute(key, line);
       } else {
         fail(path_, line_at(line), "unexpected keyword " + quote(key) + " in an unstructured grid");
       }
@@ -179,13 +201,165 @@ class VtkLegacyReader {
       m << "CELL_TYPES has " << types_.size() << " entries, but CELLS has " << cell_count_ << " cells";
       fail(path_, type_where_.empty() ? line_at(s_.line()) : type_where_.front(), m.str());
     }
+    std::vector<char> kept(cell_count_, 0);
     for (size_t c = 0; c < cell_count_; ++c)
-      add_vtk_cell(builder_, path_, static_cast<int64_t>(c), types_[c], connectivity_.data() + cell_start_[c],
-                   static_cast<int64_t>(cell_start_[c + 1] - cell_start_[c]), builder_.vertex_count(), cell_where_[c]);
+      kept[c] = add_vtk_cell(builder_, path_, static_cast<int64_t>(c), types_[c], connectivity_.data() + cell_start_[c],
+                             static_cast<int64_t>(cell_start_[c + 1] - cell_start_[c]), builder_.vertex_count(),
+                             cell_where_[c]);
+    for (auto& [array, where, point] : arrays_) {
+      if (point)
+        add_point_array(builder_, path_, where, std::move(array), builder_.vertex_count());
+      else
+        add_cell_array(builder_, path_, where, std::move(array), kept);
+    }
     return builder_.finish();
   }
 
  private:
+  enum class Data { none, point, cell };
+
+  // Legacy names encode spaces and other bytes as %XX.
+  static std::string decode_name(std::string_view name) {
+    std::string out;
+    for (size_t i = 0; i < name.size(); ++i) {
+      int64_t byte = 0;
+      if (name[i] == '%' && i + 2 < name.size() && parse_hex(name.substr(i + 1, 2), byte)) {
+        out += static_cast<char>(byte);
+        i += 2;
+      } else {
+        out += name[i];
+      }
+    }
+    return out;
+  }
+  static bool parse_hex(std::string_view two, int64_t& value) {
+    value = 0;
+    for (char c : two) {
+      const int d = (c >= '0' && c <= '9')   ? c - '0'
+                    : (c >= 'a' && c <= 'f') ? c - 'a' + 10
+                    : (c >= 'A' && c <= 'F') ? c - 'A' + 10
+                                             : -1;
+      if (d < 0) return false;
+      value = 16 * value + d;
+    }
+    return true;
+  }
+
+  void skip_metadata() {
+    // Up to the first blank line.
+    std::string_view text;
+    s_.rest_of_line();
+    while (!s_.at_end() && !(text = s_.rest_of_line()).empty()) {
+    }
+  }
+
+  std::string array_name(const char* what) {
+    const std::string_view name = s_.token();
+    if (name.empty())
+      fail(path_, line_at(s_.token_line()), std::string("the file ends where the name of ") + what + " was expected");
+    return decode_name(name);
+  }
+
+  // A data type token, lower-cased.
+  std::string data_type() {
+    const std::string_view t = s_.token();
+    std::string type(t);
+    for (char& c : type)
+      if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return type;
+  }
+
+  // One attribute of the current POINT_DATA or CELL_DATA section.
+  void read_attribute(std::string_view key, uint64_t line) {
+    const bool point = data_ == Data::point;
+    const std::string kind = point ? "point" : "cell";
+    auto add = [&](std::string name, int64_t components, const std::string& type, const std::string& what) {
+      if (components < 1 || components > 64)
+        fail(path_, line_at(line), what + " " + quote(name) + " has " + std::to_string(components) + " components");
+      if (tuples_ > static_cast<int64_t>(s_.remaining()) / components)
+        fail(path_, line_at(line), what + " " + quote(name) + " is larger than the file");
+      MeshArray a{std::move(name), static_cast<int>(components), {}};
+      read_array(tuples_ * components, type, &a.values, nullptr, nullptr, "a value of " + what + " " + quote(a.name));
+      arrays_.push_back({std::move(a), line_at(line), point});
+    };
+    if (iequals(key, "scalars")) {
+      std::string name = array_name("a SCALARS array");
+      const std::string type = data_type();
+      int64_t components = 1;
+      const std::string_view rest = s_.rest_of_line();
+      const auto extra = split(rest);
+      if (extra.size() > 1 || (extra.size() == 1 && !parse_int(extra[0], components)))
+        fail(path_, line_at(line),
+             "SCALARS " + quote(name) + ": expected an optional component count, found " + quote(rest));
+      if (!binary_) s_.skip_space();  // binary values may start with a space byte
+      if (s_.data().compare(s_.pos(), 12, "LOOKUP_TABLE") == 0) {
+        s_.token();
+        s_.rest_of_line();
+      }
+      add(std::move(name), components, type, kind + " SCALARS");
+    } else if (iequals(key, "vectors") || iequals(key, "normals")) {
+      std::string name = array_name("a VECTORS array");
+      const std::string type = data_type();
+      s_.rest_of_line();
+      add(std::move(name), 3, type, kind + " " + std::string(key));
+    } else if (iequals(key, "tensors") || iequals(key, "tensors6")) {
+      std::string name = array_name("a TENSORS array");
+      const std::string type = data_type();
+      s_.rest_of_line();
+      add(std::move(name), iequals(key, "tensors") ? 9 : 6, type, kind + " " + std::string(key));
+    } else if (iequals(key, "texture_coordinates")) {
+      std::string name = array_name("a TEXTURE_COORDINATES array");
+      const int64_t dimension = s_.integer("the TEXTURE_COORDINATES dimension");
+      const std::string type = data_type();
+      s_.rest_of_line();
+      add(std::move(name), dimension, type, kind + " TEXTURE_COORDINATES");
+    } else if (iequals(key, "color_scalars")) {
+      std::string name = array_name("a COLOR_SCALARS array");
+      const int64_t components = s_.integer("the COLOR_SCALARS value count");
+      s_.rest_of_line();
+      const size_t before = arrays_.size();
+      add(std::move(name), components, binary_ ? "unsigned_char" : "float", kind + " COLOR_SCALARS");
+      if (binary_ && arrays_.size() > before)
+        for (double& v : arrays_.back().array.values) v /= 255.0;
+    } else if (iequals(key, "lookup_table")) {
+      array_name("a LOOKUP_TABLE");
+      const int64_t n = count("the LOOKUP_TABLE size", line);
+      s_.rest_of_line();
+      std::vector<double> ignored;
+      read_array(4 * n, binary_ ? "unsigned_char" : "float", &ignored, nullptr, nullptr, "a LOOKUP_TABLE value");
+    } else if (iequals(key, "field")) {
+      s_.token();  // the field's name
+      const int64_t arrays = count("the FIELD array count", line);
+      s_.rest_of_line();
+      for (int64_t i = 0; i < arrays; ++i) {
+        s_.skip_space();
+        if (s_.data().compare(s_.pos(), 8, "METADATA") == 0) {
+          s_.token();
+          skip_metadata();
+        }
+        std::string name = array_name("a FIELD array");
+        const uint64_t at = s_.token_line();
+        const int64_t components = count("a FIELD array's component count", at);
+        const int64_t tuples = count("a FIELD array's tuple count", at);
+        const std::string type = data_type();
+        s_.rest_of_line();
+        if (tuples != tuples_) {
+          std::ostringstream m;
+          m << "FIELD array " << quote(name) << " has " << tuples << " tuples, but its "
+            << (point ? "POINT_DATA" : "CELL_DATA") << " section is for " << tuples_ << " " << kind << "s";
+          fail(path_, line_at(at), m.str());
+        }
+        line = at;
+        add(std::move(name), components, type, kind + " FIELD array");
+      }
+    } else {
+      fail(path_, line_at(line),
+           "unexpected keyword " + quote(key) + " in " + (point ? "POINT_DATA" : "CELL_DATA") +
+               " (expected SCALARS, VECTORS, NORMALS, TENSORS, TEXTURE_COORDINATES, "
+               "COLOR_SCALARS, LOOKUP_TABLE or FIELD)");
+    }
+  }
+
   int64_t count(const std::string& what, uint64_t line) {
     const int64_t n = s_.integer(what);
     if (n < 0 || static_cast<uint64_t>(n) > s_.remaining())
@@ -370,6 +544,15 @@ class VtkLegacyReader {
   std::vector<size_t> cell_start_;  // cell c: [cell_start_[c], cell_start_[c + 1])
   std::vector<Location> cell_where_, type_where_;
   size_t cell_count_ = 0;
+  Data data_ = Data::none;  // the POINT_DATA or CELL_DATA section being read
+  int64_t tuples_ = 0;
+  bool seen_point_data_ = false, seen_cell_data_ = false;
+  struct PendingArray {
+    MeshArray array;
+    Location where;
+    bool point;
+  };
+  std::vector<PendingArray> arrays_;  // added once the cells are known
 };
 
 }  // namespace

@@ -1,6 +1,8 @@
 // VTK XML unstructured grids (.vtu): DataArrays in ascii, inline base64
 // ("binary") or appended (raw or base64) form, uncompressed. Reads what
 // write_vtu writes, and what ParaView and meshio write without compression.
+// The Piece's PointData and CellData arrays become the mesh's point and cell
+// arrays (cell arrays keep the entries of the volume cells only).
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -37,6 +39,7 @@ class VtuReader {
 
   Mesh read() {
     bool in_points = false, in_cells = false, in_piece = false, seen_file = false, seen_piece = false;
+    bool in_point_data = false, in_cell_data = false;
     int64_t points = -1, cells = -1;
     Array* open_array = nullptr;
     Array ignored;
@@ -77,6 +80,14 @@ class VtuReader {
         in_cells = !tag.self_closing;
       } else if (tag.name == "/Cells") {
         in_cells = false;
+      } else if (tag.name == "PointData" && in_piece) {
+        in_point_data = !tag.self_closing;
+      } else if (tag.name == "/PointData") {
+        in_point_data = false;
+      } else if (tag.name == "CellData" && in_piece) {
+        in_cell_data = !tag.self_closing;
+      } else if (tag.name == "/CellData") {
+        in_cell_data = false;
       } else if (tag.name == "DataArray") {
         Array a;
         a.present = true;
@@ -101,6 +112,10 @@ class VtuReader {
           if (slot.present) fail(path_, line_at(tag.line), "a second " + quote(a.name) + " array");
           slot = a;
           open_array = &slot;
+        } else if (in_point_data || in_cell_data) {
+          std::vector<Array>& list = in_point_data ? point_data_ : cell_data_;
+          list.push_back(a);
+          open_array = &list.back();  // arrays do not nest: valid until the next push
         }
         if (tag.self_closing) open_array = nullptr;
       } else if (tag.name == "/DataArray") {
@@ -135,6 +150,7 @@ class VtuReader {
     decode(types_, static_cast<uint64_t>(cells), nullptr, &types, "the types array");
     decode(connectivity_, UINT64_MAX, nullptr, &connectivity, "the connectivity array");
     int64_t start = 0;
+    std::vector<char> kept(static_cast<size_t>(cells), 0);
     for (int64_t c = 0; c < cells; ++c) {
       const int64_t end = offsets[c];
       if (end < start || end > static_cast<int64_t>(connectivity.size())) {
@@ -143,10 +159,15 @@ class VtuReader {
           << " connectivity entries";
         fail(path_, line_at(offsets_.line), m.str());
       }
-      add_vtk_cell(builder_, path_, c, types[c], connectivity.data() + start, end - start, builder_.vertex_count(),
-                   line_at(connectivity_.line));
+      kept[static_cast<size_t>(c)] = add_vtk_cell(builder_, path_, c, types[c], connectivity.data() + start,
+                                                  end - start, builder_.vertex_count(), line_at(connectivity_.line));
       start = end;
     }
+    for (const Array& a : point_data_)
+      add_point_array(builder_, path_, line_at(a.line), data_array(a, static_cast<uint64_t>(points), "PointData"),
+                      builder_.vertex_count());
+    for (const Array& a : cell_data_)
+      add_cell_array(builder_, path_, line_at(a.line), data_array(a, static_cast<uint64_t>(cells), "CellData"), kept);
     return builder_.finish();
   }
 
@@ -408,6 +429,23 @@ class VtuReader {
     if (ints) *ints = std::move(k);
   }
 
+  // A PointData or CellData array of `tuples` tuples.
+  MeshArray data_array(const Array& a, uint64_t tuples, const char* section) {
+    MeshArray out{a.name, static_cast<int>(a.components), {}};
+    const std::string what = std::string(section) + " array " + quote(a.name);
+    if (a.name.empty()) fail(path_, line_at(a.line), std::string("a ") + section + " DataArray has no Name");
+    if (a.components < 1 || a.components > 64)
+      fail(path_, line_at(a.line), what + " has " + std::to_string(a.components) + " components");
+    decode(a, UINT64_MAX, &out.values, nullptr, what);
+    if (out.values.size() != tuples * static_cast<uint64_t>(a.components)) {
+      std::ostringstream m;
+      m << what << " holds " << out.values.size() << " values, but " << tuples << " tuples of " << a.components
+        << " components need " << tuples * static_cast<uint64_t>(a.components);
+      fail(path_, line_at(a.line), m.str());
+    }
+    return out;
+  }
+
   uint64_t read_header(const std::string& bytes, int header) const {
     unsigned char b[8];
     std::memcpy(b, bytes.data(), static_cast<size_t>(header));
@@ -432,6 +470,7 @@ class VtuReader {
   size_t tag_start_ = 0;
   uint64_t piece_line_ = 0;
   Array points_, connectivity_, offsets_, types_;
+  std::vector<Array> point_data_, cell_data_;
 };
 
 }  // namespace

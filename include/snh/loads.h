@@ -1,4 +1,6 @@
-// Loads in the user's terms.
+// Loads on a mesh in the user's terms: a body force (gravity, a uniform
+// acceleration times density) turned into the nodal forces the solver takes
+// as its external force.
 #pragma once
 
 #include <array>
@@ -8,9 +10,12 @@
 
 namespace snh {
 
-// A body force per rest volume (e.g. density times gravity) lumped to the
-// vertices with each element's own quadrature: f_a = sum_q w_q N_a(xi_q) b
-// (hex8: 2x2x2 Gauss; tet4: a quarter of the volume per node). xyz per vertex.
+// Nodal forces (xyz per vertex) of a uniform body force given per unit rest
+// volume, b: f_a = sum over elements and their quadrature points of
+// w_q N_a(xi_q) b, with each element's own rule and the rest volume at each
+// point (hex8: 2x2x2 Gauss; tet4: V / 4 per node). The forces sum to b times
+// the rest volume; for a lattice of cubes of side h an interior vertex gets
+// b h^3. Throws snh::Error for an invalid mesh (validate_mesh).
 std::vector<double> lump_body_force(const Mesh& mesh, const std::array<double, 3>& force_per_rest_volume);
 
 }  // namespace snh

@@ -1,6 +1,7 @@
 // Volumetric meshes in the user's terms: vertex positions and elements
-// (8-node hexahedra with 2x2x2 Gauss quadrature, or 4-node tetrahedra), plus
-// generators for the lattices the paper's scenes use.
+// (8-node hexahedra with 2x2x2 Gauss quadrature, or 4-node tetrahedra), the
+// named groups and data arrays a mesh file carries, plus generators for the
+// lattices the paper's scenes use.
 #pragma once
 
 #include <array>
@@ -16,6 +17,31 @@ const char* to_string(ElementType type);
 int nodes_per_element(ElementType type);
 int quadrature_points(ElementType type);  // 8 for hex8 (2x2x2 Gauss), 1 for tet4
 
+// A named set of a mesh's vertices and elements from the file: a Gmsh
+// physical group, or a Medit reference number. Both lists are sorted
+// ascending without repeats.
+struct MeshGroup {
+  std::string name;  // empty for an unnamed Gmsh physical group
+  int tag = 0;       // the file's number for it (physical tag, Medit reference)
+  // 3: a volume group, whose elements are the mesh elements in it and whose
+  // vertices are theirs. 0, 1, 2: a point, curve or surface group, which
+  // holds no mesh elements, only the vertices of its points, lines or faces.
+  // Gmsh numbers groups per dimension, so a surface and a volume group may
+  // share a tag.
+  int dimension = 3;
+  std::vector<int32_t> vertices;
+  std::vector<int32_t> elements;
+};
+
+// Values attached to every vertex (point array) or every element (cell
+// array): `components` values per vertex or element, vertex- or
+// element-major (a vector array is x0 y0 z0 x1 y1 z1 ...).
+struct MeshArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+
 struct Mesh {
   ElementType type = ElementType::hex8;
   // Rest positions, xyz per vertex.
@@ -25,6 +51,12 @@ struct Mesh {
   // +z, then the top face; tet4 nodes are positively oriented
   // ((x1 - x0) x (x2 - x0)) . (x3 - x0) > 0.
   std::vector<int32_t> elements;
+  // Groups and arrays as the file names them (empty for generated meshes).
+  // Cell arrays and groups follow `elements`: readers drop the file's lower-
+  // dimensional cells and keep the order of its volume cells.
+  std::vector<MeshGroup> groups;
+  std::vector<MeshArray> point_arrays;
+  std::vector<MeshArray> cell_arrays;
 
   size_t vertex_count() const { return positions.size() / 3; }
   size_t element_count() const { return elements.size() / nodes_per_element(type); }
@@ -41,8 +73,9 @@ struct MeshWarnings {
 // Throws snh::Error naming the element or vertex for: a wrong element array
 // length, indices out of range, repeated vertices within an element,
 // non-finite coordinates, and rest elements with zero or negative volume at
-// any quadrature point (inverted or degenerate). Unused vertices are only
-// reported.
+// any quadrature point (inverted or degenerate), groups with indices out of
+// range or unsorted, and arrays whose length is not components times the
+// vertex (element) count. Unused vertices are only reported.
 MeshWarnings validate_mesh(const Mesh& mesh);
 
 // nx * ny * nz cubes of side h, from `origin`.
@@ -61,7 +94,9 @@ Mesh make_tet_box(int nx, int ny, int nz, double h, std::array<double, 3> origin
 // Each hex of a lattice-like hex8 mesh (all elements with the same
 // orientation, as every generator here makes) split into six tetrahedra
 // around its 0-6 diagonal, conforming across hexes. Tets come out positively
-// oriented; throws snh::Error for a mesh that is not hex8.
+// oriented; throws snh::Error for a mesh that is not hex8. Hex e becomes tets
+// 6e .. 6e + 5: groups keep their vertices and hold the tets of their hexes,
+// point arrays are kept and each hex's cell-array values go to its six tets.
 Mesh split_hexes_into_tets(const Mesh& hexes);
 
 // Volume of the mesh at positions `x` (xyz per vertex): the sum over
