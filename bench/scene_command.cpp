@@ -195,10 +195,13 @@ int run_scene(const SceneOptions& given) {
   const Mesh& mesh = solver.mesh();
   // Each step's positions, for the reactions computed after the solve (so
   // that they do not count in its time).
-  std::vector<std::vector<double>> step_positions;
+  std::vector<std::vector<double>> step_positions, step_forces;
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
     if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
-    if (!o.json_path.empty()) step_positions.push_back(x);
+    if (!o.json_path.empty()) {
+      step_positions.push_back(x);
+      step_forces.push_back(solver.simulation().applied_force());  // ramped with the load
+    }
     if (o.vtu_dir.empty()) return;
     char file[256];
     std::snprintf(file, sizeof file, "%s_%04d.vtu", scene.name.c_str(), step);
@@ -221,6 +224,7 @@ int run_scene(const SceneOptions& given) {
     std::ofstream out(o.json_path);
     if (!out) throw Error("cannot write " + o.json_path);
     json j = summary_json(scene, options, r);
+    j["tolerance"] = r.tolerance;
     j["model"] = to_string(material.model);
     j["material"] = material.description();
     j["alpha"] = material.alpha_mu;
@@ -228,7 +232,7 @@ int run_scene(const SceneOptions& given) {
     if (material.lambda_model) j["lambda_model"] = to_string(*material.lambda_model);
     for (size_t i = 0; i < step_positions.size() && i < j["steps"].size(); ++i) try {
         j["steps"][i]["reactions"] = reactions_json(
-            constraint_reactions(mesh, materials, scene.constraints, step_positions[i], options.external_force));
+            constraint_reactions(mesh, materials, scene.constraints, step_positions[i], step_forces[i]));
       } catch (const Error& e) {
         std::cerr << "warning: step " << i + 1 << " has no reactions: " << e.what() << '\n';
       }
