@@ -230,12 +230,16 @@ int run_scene(const SceneOptions& given) {
     j["alpha"] = material.alpha_mu;
     j["alpha_lambda"] = material.alpha_lambda;
     if (material.lambda_model) j["lambda_model"] = to_string(*material.lambda_model);
-    for (size_t i = 0; i < step_positions.size() && i < j["steps"].size(); ++i) try {
+    // A step without defined forces (a non-finite state) keeps its record
+    // without "reactions".
+    for (size_t i = 0; i < step_positions.size() && i < j["steps"].size(); ++i) {
+      try {
         j["steps"][i]["reactions"] = reactions_json(
             constraint_reactions(mesh, materials, scene.constraints, step_positions[i], step_forces[i]));
       } catch (const Error& e) {
         std::cerr << "warning: step " << i + 1 << " has no reactions: " << e.what() << '\n';
       }
+    }
     out << j.dump(2) << '\n';
   }
   return r.converged ? 0 : 3;
