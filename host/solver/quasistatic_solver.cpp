@@ -111,7 +111,7 @@ void apply_constraints(const Mesh& mesh, const std::vector<ConstraintSet>& const
 
 struct QuasistaticSolver::Impl {
   Mesh mesh;
-  Material material;
+  MaterialMap materials;
   std::vector<ConstraintSet> constraints;
   SolveOptions options;
   MeshWarnings mesh_warnings;
@@ -119,9 +119,9 @@ struct QuasistaticSolver::Impl {
   device::OpenClContext cl;
   long viennacl_context_id;
 
-  Impl(Mesh m, const Material& mat, std::vector<ConstraintSet> c, SolveOptions o)
+  Impl(Mesh m, MaterialMap mat, std::vector<ConstraintSet> c, SolveOptions o)
       : mesh(std::move(m)),
-        material(mat),
+        materials(std::move(mat)),
         constraints(std::move(c)),
         options(std::move(o)),
         mesh_warnings(validate_mesh(mesh)),
@@ -129,6 +129,7 @@ struct QuasistaticSolver::Impl {
         cl(options.device, options.precision),
         viennacl_context_id(device::bind_viennacl(cl)) {
     validate_solve_inputs(mesh, constraints, options);
+    validate_material_map(mesh, materials);
   }
 
   // Double precision state for SolveOptions::fallback_to_double, made on
@@ -143,7 +144,7 @@ struct QuasistaticSolver::Impl {
 
   template <typename Real>
   std::unique_ptr<solver::ElasticModel<Real>> make_model(device::OpenClContext& context, ProductVariant product) {
-    auto model = std::make_unique<solver::ElasticModel<Real>>(context, mesh, rest, material, product);
+    auto model = std::make_unique<solver::ElasticModel<Real>>(context, mesh, rest, materials, product);
     std::vector<Real> mask(3 * mesh.vertex_count(), Real(1));
     for (const ConstraintSet& c : constraints)
       for (int32_t v : c.vertices) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = Real(0);
@@ -157,19 +158,23 @@ struct QuasistaticSolver::Impl {
   // an inverted or flat element: name it instead of returning NaN. (Inside a
   // step the line search never accepts a non-finite energy.)
   void require_defined(const std::vector<double>& x, int step) const {
-    if (material.defined_for_inversion()) return;
-    for (size_t e = 0; e < mesh.element_count(); ++e)
+    for (size_t e = 0; e < mesh.element_count(); ++e) {
+      const Material& material = materials.of_element(e);
+      if (material.defined_for_inversion()) continue;
+      const std::string region =
+          materials.uniform() ? "" : " of region '" + materials.names[materials.element_material[e]] + "'";
       for (int q = 0; q < rest.quadrature; ++q) {
         double f[9];
         fem::deformation_gradient(mesh, rest, x.data(), e, q, f);
         const double j = fem::determinant(f);
         if (!(j > 0.0))
-          throw Error("material " + material.description() +
+          throw Error("material " + material.description() + region +
                       " without inversion handling (neohookean J0 = 0) is undefined for J <= 0, and element " +
                       std::to_string(e) + " has J = " + std::to_string(j) + " at quadrature point " +
                       std::to_string(q) + " at the start of load step " + std::to_string(step) +
                       " (use J0 > 0 or another model)");
       }
+    }
   }
 
   // Solves load step s from x in precision Real on the current ViennaCL context.
@@ -282,7 +287,13 @@ struct QuasistaticSolver::Impl {
 
 QuasistaticSolver::QuasistaticSolver(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints,
                                      SolveOptions options)
-    : impl_(std::make_unique<Impl>(std::move(mesh), material, std::move(constraints), std::move(options))) {}
+    // The map is made before Impl's constructor moves the mesh.
+    : impl_(std::make_unique<Impl>(std::move(mesh), uniform_material(mesh, material), std::move(constraints),
+                                   std::move(options))) {}
+QuasistaticSolver::QuasistaticSolver(Mesh mesh, MaterialMap materials, std::vector<ConstraintSet> constraints,
+                                     SolveOptions options)
+    : impl_(std::make_unique<Impl>(std::move(mesh), std::move(materials), std::move(constraints), std::move(options))) {
+}
 QuasistaticSolver::~QuasistaticSolver() = default;
 QuasistaticSolver::QuasistaticSolver(QuasistaticSolver&&) noexcept = default;
 QuasistaticSolver& QuasistaticSolver::operator=(QuasistaticSolver&&) noexcept = default;

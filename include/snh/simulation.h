@@ -14,6 +14,7 @@
 #include "snh/device.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
+#include "snh/regions.h"
 
 namespace snh {
 
@@ -166,6 +167,9 @@ class QuasistaticSolver {
  public:
   // Validates the mesh (snh::Error on bad input) and prepares the device.
   QuasistaticSolver(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints,
+                    SolveOptions options = {});
+  // Regions with their own materials (snh/regions.h); also validates the map.
+  QuasistaticSolver(Mesh mesh, MaterialMap materials, std::vector<ConstraintSet> constraints,
                     SolveOptions options = {});
   ~QuasistaticSolver();
   QuasistaticSolver(QuasistaticSolver&&) noexcept;
