@@ -89,6 +89,20 @@ Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path
   return mesh;
 }
 
+struct Box {
+  std::array<double, 3> min, max;
+  bool contains(const std::array<double, 3>& x) const {
+    for (int d = 0; d < 3; ++d)
+      if (!(x[d] >= min[d] && x[d] <= max[d])) return false;
+    return true;
+  }
+};
+
+Box read_box(const Reader& r, const json& b, const std::string& key) {
+  r.keys(b, key, {"min", "max"});
+  return {r.vec3(b, key, "min", {0, 0, 0}), r.vec3(b, key, "max", {0, 0, 0})};
+}
+
 // Vertices selected by ids, an axis-aligned box, or a plane.
 std::vector<int32_t> select(const Reader& r, const json& s, const std::string& key, const Mesh& mesh) {
   r.keys(s, key, {"ids", "box", "plane"});
@@ -104,15 +118,9 @@ std::vector<int32_t> select(const Reader& r, const json& s, const std::string& k
       out.push_back(static_cast<int32_t>(v));
     }
   } else if (s.contains("box")) {
-    r.keys(s["box"], key + ".box", {"min", "max"});
-    const auto lo = r.vec3(s["box"], key + ".box", "min", {0, 0, 0}),
-               hi = r.vec3(s["box"], key + ".box", "max", {0, 0, 0});
-    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-      const auto x = mesh.vertex(v);
-      bool inside = true;
-      for (int d = 0; d < 3; ++d) inside = inside && x[d] >= lo[d] && x[d] <= hi[d];
-      if (inside) out.push_back(static_cast<int32_t>(v));
-    }
+    const Box box = read_box(r, s["box"], key + ".box");
+    for (size_t v = 0; v < mesh.vertex_count(); ++v)
+      if (box.contains(mesh.vertex(v))) out.push_back(static_cast<int32_t>(v));
   } else if (s.contains("plane")) {
     const json& p = s["plane"];
     r.keys(p, key + ".plane", {"axis", "value", "tolerance"});
@@ -129,6 +137,92 @@ std::vector<int32_t> select(const Reader& r, const json& s, const std::string& k
   }
   if (out.empty()) r.fail(key, "selects no vertex");
   return out;
+}
+
+// Elements selected by ids, or by an axis-aligned box around their
+// centroids (the mean of their vertices).
+std::vector<int32_t> select_elements(const Reader& r, const json& s, const std::string& key, const Mesh& mesh) {
+  r.keys(s, key, {"elements", "box"});
+  std::vector<int32_t> out;
+  if (s.contains("elements")) {
+    if (!s["elements"].is_array()) r.fail(key + ".elements", "expected an array of element indices");
+    for (const json& id : s["elements"]) {
+      if (!id.is_number_integer()) r.fail(key + ".elements", "expected an array of element indices");
+      const long e = id.get<long>();
+      if (e < 0 || static_cast<size_t>(e) >= mesh.element_count())
+        r.fail(key + ".elements", "element " + std::to_string(e) + " is out of range (the mesh has " +
+                                      std::to_string(mesh.element_count()) + " elements)");
+      out.push_back(static_cast<int32_t>(e));
+    }
+  } else if (s.contains("box")) {
+    const Box box = read_box(r, s["box"], key + ".box");
+    const int n = nodes_per_element(mesh.type);
+    for (size_t e = 0; e < mesh.element_count(); ++e) {
+      std::array<double, 3> centroid{0, 0, 0};
+      for (int a = 0; a < n; ++a) {
+        const auto x = mesh.vertex(mesh.elements[n * e + a]);
+        for (int d = 0; d < 3; ++d) centroid[d] += x[d] / n;
+      }
+      if (box.contains(centroid)) out.push_back(static_cast<int32_t>(e));
+    }
+  } else {
+    r.fail(key, "expected one of elements, box");
+  }
+  if (out.empty()) r.fail(key, "selects no element");
+  return out;
+}
+
+// A material's keys ("material" and each region's), defaults as in
+// snh::MaterialOptions; E defaults to 1 and nu to 0.45.
+Material read_material(const Reader& r, const json& material, const std::string& key) {
+  r.keys(material, key,
+         {"model", "E", "nu", "barrier", "fung_gamma", "fung_mu1", "ab_beta1", "ab_beta2", "kappa", "j0", "alpha",
+          "lambda_model", "alpha_lambda"});
+  MaterialOptions mo;
+  const std::string barrier = r.text(material, key, "barrier", "auto");
+  mo.fung_gamma = r.number(material, key, "fung_gamma", mo.fung_gamma);
+  mo.fung_mu1 = r.number(material, key, "fung_mu1", mo.fung_mu1);
+  mo.arruda_boyce_beta1 = r.number(material, key, "ab_beta1", mo.arruda_boyce_beta1);
+  mo.arruda_boyce_beta2 = r.number(material, key, "ab_beta2", mo.arruda_boyce_beta2);
+  mo.kikuuwe_kappa = r.number(material, key, "kappa", mo.kikuuwe_kappa);
+  mo.neohookean_j0 = r.number(material, key, "j0", mo.neohookean_j0);
+  mo.alpha = r.number(material, key, "alpha", mo.alpha);
+  const std::string lambda_model = r.text(material, key, "lambda_model", "");
+  if (material.contains("alpha_lambda")) mo.alpha_lambda = r.number(material, key, "alpha_lambda", mo.alpha);
+  const double e = r.number(material, key, "E", 1.0), nu = r.number(material, key, "nu", 0.45);
+  const std::string model = r.text(material, key, "model", "snh");
+  try {
+    mo.barrier = parse_barrier(barrier);
+    if (material.contains("lambda_model")) mo.lambda_model = parse_material_model(lambda_model);
+    return Material::from_youngs_modulus(parse_material_model(model), e, nu, mo);
+  } catch (const Error& error) {
+    r.fail(key, error.what());
+  }
+}
+
+// "regions": [{"name", "select", "material"}], over the base material.
+MaterialMap read_regions(const Reader& r, const json& doc, const Mesh& mesh, const Material& base) {
+  std::vector<MaterialRegion> regions;
+  if (doc.contains("regions")) {
+    if (!doc["regions"].is_array()) r.fail("regions", "expected an array");
+    for (size_t i = 0; i < doc["regions"].size(); ++i) {
+      const std::string key = "regions[" + std::to_string(i) + "]";
+      const json& g = doc["regions"][i];
+      r.keys(g, key, {"name", "select", "material"});
+      MaterialRegion region;
+      region.name = r.text(g, key, "name", key);
+      if (!g.contains("select")) r.fail(key + ".select", "missing");
+      region.elements = select_elements(r, g["select"], key + ".select", mesh);
+      if (!g.contains("material")) r.fail(key + ".material", "missing");
+      region.material = read_material(r, g["material"], key + ".material");
+      regions.push_back(std::move(region));
+    }
+  }
+  try {
+    return make_material_map(mesh, base, regions);
+  } catch (const Error& e) {
+    r.fail("regions", e.what());
+  }
 }
 
 struct RigidKey {
@@ -201,7 +295,8 @@ SceneFile load_scene_file(const std::string& path) {
   }
   const Reader r{path};
   r.keys(doc, "scene",
-         {"name", "description", "mesh", "material", "constraints", "body_force", "initial", "solver", "output"});
+         {"name", "description", "mesh", "material", "regions", "constraints", "body_force", "initial", "solver",
+          "output"});
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   SceneFile out;
   Scene& s = out.scene;
@@ -211,24 +306,9 @@ SceneFile load_scene_file(const std::string& path) {
   s.mesh = read_scene_mesh(r, doc["mesh"], folder);
 
   const json material = doc.value("material", json::object());
-  r.keys(material, "material",
-         {"model", "E", "nu", "barrier", "fung_gamma", "fung_mu1", "ab_beta1", "ab_beta2", "kappa", "j0", "alpha",
-          "lambda_model", "alpha_lambda"});
-  MaterialOptions mo;
-  mo.barrier = parse_barrier(r.text(material, "material", "barrier", "auto"));
-  mo.fung_gamma = r.number(material, "material", "fung_gamma", mo.fung_gamma);
-  mo.fung_mu1 = r.number(material, "material", "fung_mu1", mo.fung_mu1);
-  mo.arruda_boyce_beta1 = r.number(material, "material", "ab_beta1", mo.arruda_boyce_beta1);
-  mo.arruda_boyce_beta2 = r.number(material, "material", "ab_beta2", mo.arruda_boyce_beta2);
-  mo.kikuuwe_kappa = r.number(material, "material", "kappa", mo.kikuuwe_kappa);
-  mo.neohookean_j0 = r.number(material, "material", "j0", mo.neohookean_j0);
-  mo.alpha = r.number(material, "material", "alpha", mo.alpha);
-  if (material.contains("lambda_model"))
-    mo.lambda_model = parse_material_model(r.text(material, "material", "lambda_model", "snh"));
-  if (material.contains("alpha_lambda")) mo.alpha_lambda = r.number(material, "material", "alpha_lambda", mo.alpha);
-  const double e = r.number(material, "material", "E", 1.0), nu = r.number(material, "material", "nu", 0.45);
-  out.material =
-      Material::from_youngs_modulus(parse_material_model(r.text(material, "material", "model", "snh")), e, nu, mo);
+  out.material = read_material(r, material, "material");
+  const double e = r.number(material, "material", "E", 1.0);
+  out.materials = read_regions(r, doc, s.mesh, out.material);
 
   if (doc.contains("constraints")) {
     if (!doc["constraints"].is_array()) r.fail("constraints", "expected an array");
