@@ -2,6 +2,7 @@
 // with a JSON summary and ParaView output on request.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -126,11 +127,29 @@ void write_step_vtu(const std::string& path, const Mesh& mesh, const MaterialMap
   write_vtu(path, mesh, x, {{"displacement", 3, displacement}}, cell_fields);
 }
 
+// The regions of a scene file: name, material, small-strain E and nu, and
+// element count.
+json regions_json(const MaterialMap& materials) {
+  json out = json::array();
+  for (size_t k = 1; k < materials.materials.size(); ++k) {
+    const Material& m = materials.materials[k];
+    const LameParameters l = m.lame();
+    out.push_back({{"name", materials.names[k]},
+                   {"material", m.description()},
+                   {"youngs_modulus", l.mu * (3 * l.lambda + 2 * l.mu) / (l.lambda + l.mu)},
+                   {"poisson_ratio", l.lambda / (2 * (l.lambda + l.mu))},
+                   {"elements", std::count(materials.element_material.begin(), materials.element_material.end(),
+                                           static_cast<int32_t>(k))}});
+  }
+  return out;
+}
+
 int run_scene(const SceneOptions& given) {
   SceneOptions o = given;
   if (o.name.empty() == o.file.empty()) throw Error("scene: give either a scene NAME or --file FILE");
   Scene scene;
   Material material;
+  MaterialMap materials;  // a scene file's regions; else uniform
   SolveOptions options;
   if (!o.file.empty()) {
     // A scene file carries its own material and solver settings; --json and
@@ -138,6 +157,7 @@ int run_scene(const SceneOptions& given) {
     const SceneFile f = load_scene_file(o.file);
     scene = f.scene;
     material = f.material;
+    materials = f.materials;
     options = scene.options;
     if (o.json_path.empty()) o.json_path = f.json_path;
     if (o.vtu_dir.empty()) o.vtu_dir = f.vtu_dir;
@@ -175,13 +195,13 @@ int run_scene(const SceneOptions& given) {
     if (!std::isnan(o.alpha_lambda)) material_options.alpha_lambda = o.alpha_lambda;
     material = Material::from_youngs_modulus(parse_material_model(o.model), o.youngs_modulus, o.poisson_ratio,
                                              material_options);
+    materials = uniform_material(scene.mesh, material);
   }
 
   const bool terminal = isatty(STDERR_FILENO);
   std::cerr << "scene " << scene.name << ": " << scene.description << "; " << scene.mesh.element_count() << " "
             << to_string(scene.mesh.type) << " elements, " << 3 * scene.mesh.vertex_count() << " dofs, "
             << to_string(options.precision) << '\n';
-  const MaterialMap materials = uniform_material(scene.mesh, material);
   std::vector<std::pair<double, std::string>> written;
   if (!o.vtu_dir.empty()) {
     std::filesystem::create_directories(o.vtu_dir);
@@ -191,7 +211,7 @@ int run_scene(const SceneOptions& given) {
     write_step_vtu(o.vtu_dir + "/" + file, scene.mesh, materials, x0);
     written.push_back({0.0, file});
   }
-  QuasistaticSolver solver(scene.mesh, material, scene.constraints, options);
+  QuasistaticSolver solver(scene.mesh, materials, scene.constraints, options);
   const Mesh& mesh = solver.mesh();
   // Each step's positions, for the reactions computed after the solve (so
   // that they do not count in its time).
@@ -230,12 +250,13 @@ int run_scene(const SceneOptions& given) {
     j["alpha"] = material.alpha_mu;
     j["alpha_lambda"] = material.alpha_lambda;
     if (material.lambda_model) j["lambda_model"] = to_string(*material.lambda_model);
+    if (!materials.uniform()) j["regions"] = regions_json(materials);
     // A step without defined forces (a non-finite state) keeps its record
     // without "reactions".
     for (size_t i = 0; i < step_positions.size() && i < j["steps"].size(); ++i) {
       try {
-        j["steps"][i]["reactions"] = reactions_json(
-            constraint_reactions(mesh, materials, scene.constraints, step_positions[i], step_forces[i]));
+        j["steps"][i]["reactions"] =
+            reactions_json(constraint_reactions(mesh, materials, scene.constraints, step_positions[i], step_forces[i]));
       } catch (const Error& e) {
         std::cerr << "warning: step " << i + 1 << " has no reactions: " << e.what() << '\n';
       }

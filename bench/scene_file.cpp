@@ -52,6 +52,60 @@ Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path
   return mesh;
 }
 
+// A material's keys ("material" and each region's), defaults as in
+// snh::MaterialOptions; E defaults to 1 and nu to 0.45.
+Material read_material(const Reader& r, const json& material, const std::string& key) {
+  r.keys(material, key,
+         {"model", "E", "nu", "barrier", "fung_gamma", "fung_mu1", "ab_beta1", "ab_beta2", "kappa", "j0", "alpha",
+          "lambda_model", "alpha_lambda"});
+  MaterialOptions mo;
+  const std::string barrier = r.text(material, key, "barrier", "auto");
+  mo.fung_gamma = r.number(material, key, "fung_gamma", mo.fung_gamma);
+  mo.fung_mu1 = r.number(material, key, "fung_mu1", mo.fung_mu1);
+  mo.arruda_boyce_beta1 = r.number(material, key, "ab_beta1", mo.arruda_boyce_beta1);
+  mo.arruda_boyce_beta2 = r.number(material, key, "ab_beta2", mo.arruda_boyce_beta2);
+  mo.kikuuwe_kappa = r.number(material, key, "kappa", mo.kikuuwe_kappa);
+  mo.neohookean_j0 = r.number(material, key, "j0", mo.neohookean_j0);
+  mo.alpha = r.number(material, key, "alpha", mo.alpha);
+  const std::string lambda_model = r.text(material, key, "lambda_model", "");
+  if (material.contains("alpha_lambda")) mo.alpha_lambda = r.number(material, key, "alpha_lambda", mo.alpha);
+  const double e = r.number(material, key, "E", 1.0), nu = r.number(material, key, "nu", 0.45);
+  const std::string model = r.text(material, key, "model", "snh");
+  try {
+    mo.barrier = parse_barrier(barrier);
+    if (material.contains("lambda_model")) mo.lambda_model = parse_material_model(lambda_model);
+    return Material::from_youngs_modulus(parse_material_model(model), e, nu, mo);
+  } catch (const Error& error) {
+    r.fail(key, error.what());
+  }
+}
+
+// "regions": [{"name", "select", "material"}], over the base material.
+MaterialMap read_regions(const Reader& r, const json& doc, const Mesh& mesh, const Material& base) {
+  std::vector<MaterialRegion> regions;
+  if (doc.contains("regions")) {
+    if (!doc["regions"].is_array()) r.fail("regions", "expected an array");
+    for (size_t i = 0; i < doc["regions"].size(); ++i) {
+      const std::string key = "regions[" + std::to_string(i) + "]";
+      const json& g = doc["regions"][i];
+      r.keys(g, key, {"name", "select", "material"});
+      MaterialRegion region;
+      region.name = r.text(g, key, "name", key);
+      if (!g.contains("select")) r.fail(key + ".select", "missing");
+      region.elements = parse_element_selection(r, g["select"], key + ".select", mesh);
+      if (region.elements.empty()) r.fail(key + ".select", "selects no element");
+      if (!g.contains("material")) r.fail(key + ".material", "missing");
+      region.material = read_material(r, g["material"], key + ".material");
+      regions.push_back(std::move(region));
+    }
+  }
+  try {
+    return make_material_map(mesh, base, regions);
+  } catch (const Error& e) {
+    r.fail("regions", e.what());
+  }
+}
+
 struct RigidKey {
   double t = 0.0, angle = 0.0;
   std::array<double, 3> translation{0, 0, 0};
@@ -108,7 +162,8 @@ SceneFile load_scene_file(const std::string& path) {
   }
   const Reader r{path};
   r.keys(doc, "scene",
-         {"name", "description", "mesh", "material", "constraints", "body_force", "initial", "solver", "output"});
+         {"name", "description", "mesh", "material", "regions", "constraints", "body_force", "initial", "solver",
+          "output"});
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   SceneFile out;
   Scene& s = out.scene;
@@ -118,24 +173,9 @@ SceneFile load_scene_file(const std::string& path) {
   s.mesh = read_scene_mesh(r, doc["mesh"], folder);
 
   const json material = doc.value("material", json::object());
-  r.keys(material, "material",
-         {"model", "E", "nu", "barrier", "fung_gamma", "fung_mu1", "ab_beta1", "ab_beta2", "kappa", "j0", "alpha",
-          "lambda_model", "alpha_lambda"});
-  MaterialOptions mo;
-  mo.barrier = parse_barrier(r.text(material, "material", "barrier", "auto"));
-  mo.fung_gamma = r.number(material, "material", "fung_gamma", mo.fung_gamma);
-  mo.fung_mu1 = r.number(material, "material", "fung_mu1", mo.fung_mu1);
-  mo.arruda_boyce_beta1 = r.number(material, "material", "ab_beta1", mo.arruda_boyce_beta1);
-  mo.arruda_boyce_beta2 = r.number(material, "material", "ab_beta2", mo.arruda_boyce_beta2);
-  mo.kikuuwe_kappa = r.number(material, "material", "kappa", mo.kikuuwe_kappa);
-  mo.neohookean_j0 = r.number(material, "material", "j0", mo.neohookean_j0);
-  mo.alpha = r.number(material, "material", "alpha", mo.alpha);
-  if (material.contains("lambda_model"))
-    mo.lambda_model = parse_material_model(r.text(material, "material", "lambda_model", "snh"));
-  if (material.contains("alpha_lambda")) mo.alpha_lambda = r.number(material, "material", "alpha_lambda", mo.alpha);
-  const double e = r.number(material, "material", "E", 1.0), nu = r.number(material, "material", "nu", 0.45);
-  out.material =
-      Material::from_youngs_modulus(parse_material_model(r.text(material, "material", "model", "snh")), e, nu, mo);
+  out.material = read_material(r, material, "material");
+  const double e = r.number(material, "material", "E", 1.0);
+  out.materials = read_regions(r, doc, s.mesh, out.material);
 
   if (doc.contains("constraints")) {
     if (!doc["constraints"].is_array()) r.fail("constraints", "expected an array");

@@ -1,5 +1,6 @@
 // Scenes described in JSON files (`snh-gpu-bench scene --file F`): mesh (a
-// file or a generator), material, constraint vertex sets (selectors:
+// file or a generator), material, regions with their own materials (element
+// selectors: scene_selection.h), constraint vertex sets (selectors:
 // scene_selection.h) with rigid or keyframed motion, body force, solver
 // options, output.
 // Unknown keys and wrong types are errors naming the key's path.
@@ -7,13 +8,15 @@
 
 #include <string>
 
+#include "snh/regions.h"
 #include "snh/scenes.h"
 
 namespace snh::bench {
 
 struct SceneFile {
   Scene scene;
-  Material material;
+  Material material;      // the base material ("material")
+  MaterialMap materials;  // every element's: the base and the "regions"
   // "output.vtu": a folder for a .vtu per step (displacement and the element
   // fields of snh/fields.h) and a .pvd; empty for none.
   std::string vtu_dir;

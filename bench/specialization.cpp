@@ -97,8 +97,8 @@ int run(const SpecializationOptions& o, json& report, std::ostringstream& md) {
       Timing t[4];
       std::vector<Real> results[4];
       for (int b = 0; b < 4; ++b) {
-        solver::ElasticModel<Real> model(cl, mesh, *builds[b].rest, material, ProductVariant::recompute,
-                                         builds[b].kernel);
+        solver::ElasticModel<Real> model(cl, mesh, *builds[b].rest, uniform_material(mesh, material),
+                                         ProductVariant::recompute, builds[b].kernel);
         t[b].energy = best_seconds([&] { model.energy(x); }, o.min_seconds);
         t[b].residual = best_seconds([&] { model.residual(x, r); }, o.min_seconds);
         t[b].linearize = best_seconds([&] { model.linearize(x); }, o.min_seconds);

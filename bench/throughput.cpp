@@ -178,7 +178,7 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
       std::uniform_real_distribution<double> u(-1.0, 1.0);
       for (Real& v : ph) v = Real(u(rng));
       viennacl::copy(ph.begin(), ph.end(), p.begin());
-      solver::ElasticModel<Real> model(cl, mesh, rest, material, ProductVariant::cached);
+      solver::ElasticModel<Real> model(cl, mesh, rest, uniform_material(mesh, material), ProductVariant::cached);
       std::cerr << "  " << type << " " << n << "^3 (" << mesh.element_count() << " elements, " << pname << ")\n";
       const size_t ne = mesh.element_count();
       ops.push_back({type, pname, "residual", n, ne, best_seconds([&] { model.residual(x, r); }, o.min_seconds)});

@@ -6,6 +6,7 @@
  *   SNH_NONLINEAR     seed 004 alpha / mixing path (1) or the model as written (0)
  *   SNH_LAMBDA_MODEL  model of the lambda part when mixing (-1: the same)
  *   SNH_UNIFORM_REST  every element shares element 0's rest gradients (lattices)
+ *   SNH_REGIONS       per-element materials from a table (kernel_args.h)
  * Element kernels write per-element nodal values; gather kernels sum them per
  * vertex over a fixed adjacency order, so results are bitwise reproducible
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
@@ -45,7 +46,7 @@ __kernel void snh_element_energy(__global const real* x, __global const int* ele
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
     const mat3 f = element_deformation_gradient(xs, g);
-    sum += load_weight(weights, e, q) * material_energy(MODEL, BARRIER, f, MATERIAL);
+    sum += load_weight(weights, e, q) * material_energy(ELEMENT_MODEL(e), ELEMENT_BARRIER(e), f, ELEMENT_MATERIAL(e));
     const real j = mat3_det(f);
     smallest = q == 0 ? j : fmin(smallest, j);
   }
@@ -63,7 +64,8 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
   for (int i = 0; i < 3 * SNH_NODES; ++i) f[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    const mat3 p = material_pk1(MODEL, BARRIER, element_deformation_gradient(xs, g), MATERIAL);
+    const mat3 p =
+        material_pk1(ELEMENT_MODEL(e), ELEMENT_BARRIER(e), element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
     element_scatter(p, g, -load_weight(weights, e, q), f);
   }
   for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = f[i];
@@ -80,7 +82,8 @@ __kernel void snh_element_linearize(__global const real* x, __global const int* 
   load_nodes(x, elements + SNH_NODES * e, xs);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    principal_hessian h = material_principal_hessian(MODEL, BARRIER, element_deformation_gradient(xs, g), MATERIAL);
+    principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
+                                                     element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
     if (project) h = principal_hessian_project(h);
     linearization_store(&h, cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
   }
@@ -122,7 +125,8 @@ __kernel void snh_element_product_recompute(__global const real* p, __global con
   for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    principal_hessian h = material_principal_hessian(MODEL, BARRIER, element_deformation_gradient(xs, g), MATERIAL);
+    principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
+                                                     element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
     if (project) h = principal_hessian_project(h);
     element_product(&h, ps, g, load_weight(weights, e, q), y);
   }

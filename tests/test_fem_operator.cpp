@@ -33,6 +33,7 @@
 #include "reference/fem_reference.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
+#include "snh/regions.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
 #include "viennacl/ocl/backend.hpp"
@@ -293,8 +294,8 @@ void check_energy() {
   Tolerance<Real> tolerance;
   for (const Case& c : cases()) {
     const Scene& s = *c.scene;
-    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest, s.material,
-                                     ProductVariant::cached);
+    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest,
+                                     uniform_material(s.mesh, s.material), ProductVariant::cached);
     const std::vector<double> x = rounded<Real>(c.x);
     const double reference = reference::assembled_energy(s.mesh, s.rest, s.material, x);
     const double device = model.energy(upload<Real>(x));
@@ -310,8 +311,8 @@ void check_residual() {
   Tolerance<Real> tolerance;
   for (const Case& c : cases()) {
     const Scene& s = *c.scene;
-    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest, s.material,
-                                     ProductVariant::cached);
+    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest,
+                                     uniform_material(s.mesh, s.material), ProductVariant::cached);
     const std::vector<double> x = rounded<Real>(c.x);
     viennacl::vector<Real> r(model.dofs());
     model.residual(upload<Real>(x), r);
@@ -327,8 +328,8 @@ void check_product() {
   Tolerance<Real> tolerance;
   for (const Case& c : cases()) {
     const Scene& s = *c.scene;
-    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest, s.material,
-                                     ProductVariant::cached);
+    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest,
+                                     uniform_material(s.mesh, s.material), ProductVariant::cached);
     const std::vector<double> x = rounded<Real>(c.x), p = rounded<Real>(random_vector(c.x.size(), 1.0, 777));
     const std::vector<double> expected =
         multiply(reference::assembled_projected_stiffness(s.mesh, s.rest, s.material, x), p);
@@ -359,8 +360,8 @@ void check_mask() {
   Tolerance<Real> tolerance;
   for (const Case& c : cases()) {
     const Scene& s = *c.scene;
-    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest, s.material,
-                                     ProductVariant::cached);
+    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest,
+                                     uniform_material(s.mesh, s.material), ProductVariant::cached);
     const std::vector<double> mask = constraint_mask(s.mesh);
     model.set_mask(std::vector<Real>(mask.begin(), mask.end()));
     const std::vector<double> x = rounded<Real>(c.x), p = rounded<Real>(random_vector(c.x.size(), 1.0, 31));
@@ -405,8 +406,8 @@ void check_external_force() {
   Tolerance<Real> tolerance;
   for (const Case& c : cases()) {
     const Scene& s = *c.scene;
-    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest, s.material,
-                                     ProductVariant::cached);
+    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest,
+                                     uniform_material(s.mesh, s.material), ProductVariant::cached);
     const std::vector<double> mask = constraint_mask(s.mesh);
     model.set_mask(std::vector<Real>(mask.begin(), mask.end()));
     const std::vector<double> x = rounded<Real>(c.x);
@@ -444,8 +445,8 @@ void check_preconditioner() {
   Tolerance<Real> tolerance;
   for (const Case& c : cases()) {
     const Scene& s = *c.scene;
-    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest, s.material,
-                                     ProductVariant::cached);
+    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest,
+                                     uniform_material(s.mesh, s.material), ProductVariant::cached);
     const std::vector<double> mask = constraint_mask(s.mesh);
     model.set_mask(std::vector<Real>(mask.begin(), mask.end()));
     const std::vector<double> x = rounded<Real>(c.x);
@@ -498,8 +499,8 @@ TEST(FemOperator, ProductMatchesFiniteDifferencesNearRest) {
     std::vector<double> x = perturbed(s.mesh, 0.01 * kH, 555);
     for (double& c : x) c *= 1.03;
     ASSERT_GT(min_hessian_eigenvalue(s, x), 0.0) << "the projection would change the Hessian here";
-    solver::ElasticModel<double> model(device_for(Precision::double_), s.mesh, s.rest, s.material,
-                                       ProductVariant::cached);
+    solver::ElasticModel<double> model(device_for(Precision::double_), s.mesh, s.rest,
+                                       uniform_material(s.mesh, s.material), ProductVariant::cached);
     const std::vector<double> p = random_vector(x.size(), 1.0, 8);
     model.linearize(upload<double>(x));
     viennacl::vector<double> y(model.dofs()), rp(model.dofs()), rm(model.dofs());
@@ -532,8 +533,8 @@ void check_determinism() {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     const Scene& s = *c.scene;
-    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest, s.material,
-                                     ProductVariant::cached);
+    solver::ElasticModel<Real> model(device_for(precision_of<Real>), s.mesh, s.rest,
+                                     uniform_material(s.mesh, s.material), ProductVariant::cached);
     const viennacl::vector<Real> xd = upload<Real>(c.x), pd = upload<Real>(random_vector(c.x.size(), 1.0, 3));
     viennacl::vector<Real> a(model.dofs()), b(model.dofs());
     model.residual(xd, a);

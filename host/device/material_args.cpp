@@ -1,6 +1,6 @@
 #include "device/material_args.h"
 
-#include "device/opencl_context.h"
+#include "materials/material_record.h"
 
 namespace snh::device {
 
@@ -13,9 +13,42 @@ std::string material_defines(const Material& m, MaterialKernel build) {
   return d;
 }
 
+bool same_specialization(const Material& a, const Material& b) {
+  return a.model == b.model && a.barrier == b.barrier && a.adjusted() == b.adjusted() &&
+         a.lambda_model == b.lambda_model;
+}
+
+std::string material_defines(const MaterialMap& map, MaterialKernel build) {
+  if (map.uniform()) return material_defines(map.materials.front(), build);
+  bool shared = build != MaterialKernel::runtime;
+  for (const Material& m : map.materials) shared = shared && same_specialization(m, map.materials.front());
+  return (shared ? material_defines(map.materials.front(), build) : std::string("-DSNH_GENERAL_KERNEL=1")) +
+         " -DSNH_REGIONS=1";
+}
+
+template <typename Real>
+std::vector<Real> material_table(const MaterialMap& map) {
+  std::vector<Real> table(SNH_MATERIAL_RECORD * map.materials.size());
+  for (size_t k = 0; k < map.materials.size(); ++k) {
+    const Material& m = map.materials[k];
+    Real* r = table.data() + SNH_MATERIAL_RECORD * k;
+    r[SNH_MATERIAL_MU] = Real(m.mu);
+    r[SNH_MATERIAL_LAMBDA] = Real(m.lambda);
+    r[SNH_MATERIAL_C0] = Real(m.c0);
+    r[SNH_MATERIAL_C1] = Real(m.c1);
+    r[SNH_MATERIAL_C2] = Real(m.lambda_c0);
+    r[SNH_MATERIAL_ALPHA_LAMBDA] = Real(m.alpha_lambda);
+    r[SNH_MATERIAL_ALPHA_MU] = Real(m.alpha_mu);
+    r[SNH_MATERIAL_MODEL] = Real(static_cast<int>(m.model));
+    r[SNH_MATERIAL_BARRIER] = Real(m.barrier ? 1 : 0);
+    r[SNH_MATERIAL_LAMBDA_MODEL] = Real(m.lambda_model ? static_cast<int>(*m.lambda_model) : -1);
+  }
+  return table;
+}
+
 namespace {
 template <typename T>
-void set(cl_kernel k, cl_uint index, const T& value) {
+void set_arg(cl_kernel k, cl_uint index, const T& value) {
   check(clSetKernelArg(k, index, sizeof(T), &value), "clSetKernelArg");
 }
 }  // namespace
@@ -25,14 +58,36 @@ cl_uint set_material_args(cl_kernel k, cl_uint first, const Material& m) {
   const Real reals[] = {Real(m.mu),        Real(m.lambda),       Real(m.c0),      Real(m.c1),
                         Real(m.lambda_c0), Real(m.alpha_lambda), Real(m.alpha_mu)};
   cl_uint i = first;
-  for (Real r : reals) set(k, i++, r);
-  set(k, i++, static_cast<int>(m.model));
-  set(k, i++, m.barrier ? 1 : 0);
-  set(k, i++, m.lambda_model ? static_cast<int>(*m.lambda_model) : -1);
+  for (Real r : reals) set_arg(k, i++, r);
+  set_arg(k, i++, static_cast<int>(m.model));
+  set_arg(k, i++, m.barrier ? 1 : 0);
+  set_arg(k, i++, m.lambda_model ? static_cast<int>(*m.lambda_model) : -1);
   return i;
+}
+
+template <typename Real>
+MaterialArgs<Real>::MaterialArgs(OpenClContext& cl, const MaterialMap& map, MaterialKernel build)
+    : defines_(material_defines(map, build)), uniform_(map.materials.front()) {
+  if (map.uniform()) return;
+  const std::vector<Real> table = material_table<Real>(map);
+  table_ = cl.buffer(CL_MEM_READ_ONLY, table.size() * sizeof(Real), table.data());
+  element_material_ =
+      cl.buffer(CL_MEM_READ_ONLY, map.element_material.size() * sizeof(int32_t), map.element_material.data());
+}
+
+template <typename Real>
+cl_uint MaterialArgs<Real>::set(cl_kernel k, cl_uint first) const {
+  if (!table_) return set_material_args<Real>(k, first, uniform_);
+  set_arg(k, first, table_.get());
+  set_arg(k, first + 1, element_material_.get());
+  return first + 2;
 }
 
 template cl_uint set_material_args<float>(cl_kernel, cl_uint, const Material&);
 template cl_uint set_material_args<double>(cl_kernel, cl_uint, const Material&);
+template std::vector<float> material_table<float>(const MaterialMap&);
+template std::vector<double> material_table<double>(const MaterialMap&);
+template class MaterialArgs<float>;
+template class MaterialArgs<double>;
 
 }  // namespace snh::device

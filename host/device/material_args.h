@@ -1,13 +1,16 @@
 // The material's part of a kernel build and launch, in the order of
 // kernels/materials/kernel_args.h (MATERIAL_ARGS): its build switches and its
-// ten kernel arguments. Shared by the engine's and the probe's kernels.
+// kernel arguments. Shared by the engine's and the probe's kernels.
 #pragma once
 
 #include <CL/cl.h>
 
 #include <string>
+#include <vector>
 
+#include "device/opencl_context.h"
 #include "snh/material.h"
+#include "snh/regions.h"
 
 namespace snh::device {
 
@@ -22,8 +25,44 @@ enum class MaterialKernel { specialized, runtime, all_terms };
 
 std::string material_defines(const Material& material, MaterialKernel build = MaterialKernel::specialized);
 
-// Sets MATERIAL_ARGS from index `first`; returns the index after them.
+// The switches for a map. A uniform map: those of its one material, nothing
+// more. Otherwise -DSNH_REGIONS=1 (materials per element from a table) with,
+// when every material shares model, barrier, seed 004 path and lambda model,
+// the specialized switches of the first one; else the run-time material
+// (-DSNH_GENERAL_KERNEL=1).
+std::string material_defines(const MaterialMap& map, MaterialKernel build = MaterialKernel::specialized);
+
+// Whether two materials build the same specialized kernels (model, barrier,
+// seed 004 path, lambda model), so that only their parameters differ.
+bool same_specialization(const Material& a, const Material& b);
+
+// The table of an SNH_REGIONS build: SNH_MATERIAL_RECORD reals per material
+// of the map (kernels/materials/material_record.h).
+template <typename Real>
+std::vector<Real> material_table(const MaterialMap& map);
+
+// Sets MATERIAL_ARGS of a uniform build from index `first`; returns the index
+// after them.
 template <typename Real>
 cl_uint set_material_args(cl_kernel kernel, cl_uint first, const Material& material);
+
+// The material arguments of a map's kernels, ready to set: the scalars of a
+// uniform map's material, or the table and per-element index buffers of an
+// SNH_REGIONS build, uploaded once.
+template <typename Real>
+class MaterialArgs {
+ public:
+  MaterialArgs(OpenClContext& cl, const MaterialMap& map, MaterialKernel build);
+
+  const std::string& defines() const { return defines_; }
+  bool per_element() const { return static_cast<bool>(table_); }
+  // Sets MATERIAL_ARGS from index `first`; returns the index after them.
+  cl_uint set(cl_kernel kernel, cl_uint first) const;
+
+ private:
+  std::string defines_;
+  Material uniform_;
+  Buffer table_, element_material_;
+};
 
 }  // namespace snh::device

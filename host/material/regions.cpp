@@ -36,4 +36,20 @@ MaterialMap make_material_map(const Mesh& mesh, const Material& base, const std:
   return map;
 }
 
+void validate_material_map(const Mesh& mesh, const MaterialMap& map) {
+  if (map.materials.empty()) throw Error("material map: no material (materials[0] is the base material)");
+  if (map.names.size() != map.materials.size())
+    throw Error("material map: " + std::to_string(map.names.size()) + " names for " +
+                std::to_string(map.materials.size()) + " materials");
+  if (map.element_material.size() != mesh.element_count())
+    throw Error("material map: element_material has " + std::to_string(map.element_material.size()) +
+                " entries, but the mesh has " + std::to_string(mesh.element_count()) + " elements");
+  for (size_t e = 0; e < map.element_material.size(); ++e) {
+    const int32_t k = map.element_material[e];
+    if (k < 0 || static_cast<size_t>(k) >= map.materials.size())
+      throw Error("material map: element " + std::to_string(e) + " has material " + std::to_string(k) +
+                  ", but the map has " + std::to_string(map.materials.size()) + " materials");
+  }
+}
+
 }  // namespace snh

@@ -89,4 +89,9 @@ HessianEigensystem<Real> material_hessian_eigensystem(const Mat3<Real>& f, const
 template <typename Real>
 Mat3<Real> material_projected_action(const Mat3<Real>& f, const Mat3<Real>& df, const MaterialSpec& m);
 
+// The same from a given factorization F = U diag(sigma) V^T (one SVD per
+// point for all columns of an element matrix).
+template <typename Real>
+Mat3<Real> material_projected_action_from_svd(const Svd<Real>& svd, const Mat3<Real>& df, const MaterialSpec& m);
+
 }  // namespace snh::reference

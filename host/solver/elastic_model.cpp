@@ -17,6 +17,11 @@ void set_arg(cl_kernel k, cl_uint index, const T& value) {
   device::check(clSetKernelArg(k, index, sizeof(T), &value), "clSetKernelArg");
 }
 
+const MaterialMap& validated(const Mesh& mesh, const MaterialMap& map) {
+  validate_material_map(mesh, map);
+  return map;
+}
+
 template <typename Real>
 cl_mem mem(const viennacl::vector_base<Real>& v) {
   return v.handle().opencl_handle().get();
@@ -26,18 +31,18 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 
 template <typename Real>
 ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
-                                 const Material& material, ProductVariant variant, device::MaterialKernel build)
+                                 const MaterialMap& materials, ProductVariant variant, device::MaterialKernel build)
     : cl_(cl),
       vertex_count_(mesh.vertex_count()),
       element_count_(mesh.element_count()),
       nodes_(rest.nodes),
       quadrature_(rest.quadrature),
-      material_(material),
+      material_(cl, validated(mesh, materials), build),
       variant_(variant),
       linearized_x_(3 * mesh.vertex_count()) {
   // Build-time specialization: only what this scene uses is compiled in.
-  defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " +
-             device::material_defines(material, build) + " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+  defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " + material_.defines() +
+             " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
 
   // Vertex -> (element * nodes + node) slots, in increasing slot order, so
   // every gather sums in the same order on every run.
@@ -84,7 +89,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
 
 template <typename Real>
 cl_uint ElasticModel<Real>::set_material_args(cl_kernel k, cl_uint first) const {
-  return device::set_material_args<Real>(k, first, material_);
+  return material_.set(k, first);
 }
 
 template <typename Real>

@@ -1,6 +1,7 @@
-// The elastic model on the device: buffers of one mesh and material and the
-// kernels of kernels/fem.cl, operating on ViennaCL vectors so that ViennaCL's
-// CG can drive the matrix-free product. Internal to the library.
+// The elastic model on the device: buffers of one mesh and its materials
+// (one, or one per region) and the kernels of kernels/fem.cl, operating on
+// ViennaCL vectors so that ViennaCL's CG can drive the matrix-free product.
+// Internal to the library.
 #pragma once
 
 #include <string>
@@ -11,6 +12,7 @@
 #include "fem/rest_state.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
+#include "snh/regions.h"
 #include "snh/simulation.h"
 #include "viennacl/compressed_matrix.hpp"
 #include "viennacl/vector.hpp"
@@ -24,8 +26,10 @@ class ElasticModel {
   using VectorBase = viennacl::vector_base<Real>;
 
   // build: how much of the material the kernels fix at build time (see
-  // device::MaterialKernel; the engine uses `specialized`).
-  ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest, const Material& material,
+  // device::MaterialKernel; the engine uses `specialized`). A map with
+  // regions builds the SNH_REGIONS kernels (device::material_defines).
+  // Throws snh::Error when the map does not fit the mesh.
+  ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest, const MaterialMap& materials,
                ProductVariant variant, device::MaterialKernel build = device::MaterialKernel::specialized);
 
   size_t dofs() const { return 3 * vertex_count_; }
@@ -67,15 +71,15 @@ class ElasticModel {
  private:
   void run_element_kernel(cl_kernel k) const;
   void compute_element_matrices();
-  // mu, lambda, c0, c1 as kernel arguments first .. first + 3.
-  cl_uint set_material_args(cl_kernel k, cl_uint first) const;  // returns the next index
+  // MATERIAL_ARGS from index first; returns the next index.
+  cl_uint set_material_args(cl_kernel k, cl_uint first) const;
   void assemble();
   void gather(const device::Buffer& element_values, VectorBase& out, bool external) const;
 
   device::OpenClContext& cl_;
   size_t vertex_count_, element_count_;
   int nodes_, quadrature_;
-  Material material_;
+  device::MaterialArgs<Real> material_;
   ProductVariant variant_;
   std::string defines_;
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,

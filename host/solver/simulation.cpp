@@ -134,19 +134,6 @@ struct Simulation::Impl {
       single = make_engine<float>(nullptr, product);
   }
 
-  static void validate_material_map(const Mesh& mesh, const MaterialMap& map) {
-    if (map.materials.empty()) throw Error("material map: no material");
-    if (map.element_material.size() != mesh.element_count())
-      throw Error("material map: " + std::to_string(map.element_material.size()) + " element entries for " +
-                  std::to_string(mesh.element_count()) + " elements");
-    for (size_t e = 0; e < map.element_material.size(); ++e) {
-      const int32_t k = map.element_material[e];
-      if (k < 0 || static_cast<size_t>(k) >= map.materials.size())
-        throw Error("material map: element " + std::to_string(e) + " refers to material " + std::to_string(k) +
-                    ", but the map has " + std::to_string(map.materials.size()));
-    }
-  }
-
   void update_body_force() {
     const bool any = body_force[0] != 0.0 || body_force[1] != 0.0 || body_force[2] != 0.0;
     body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
@@ -165,8 +152,7 @@ struct Simulation::Impl {
     engine->viennacl_context_id = context ? device::bind_viennacl(*context) : viennacl_context_id;
     engine->own_context = std::move(context);
     device::use_viennacl(engine->viennacl_context_id);
-    if (!materials.uniform()) throw Error("material regions: not in this build yet");  // FIXME(regions merge)
-    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials.materials[0], variant);
+    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant);
     std::vector<Real> mask(prescribed.size());
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
     engine->model->set_mask(mask);
@@ -210,7 +196,7 @@ struct Simulation::Impl {
         const double j = fem::determinant(f);
         if (!(j > 0.0)) {
           const std::string region =
-              materials.uniform() ? "" : " (region '" + materials.names[materials.element_material[e]] + "')";
+              materials.uniform() ? "" : " of region '" + materials.names[materials.element_material[e]] + "'";
           throw Error("material " + material.description() + region +
                       " without inversion handling (neohookean J0 = 0) is undefined for J <= 0, and element " +
                       std::to_string(e) + " has J = " + std::to_string(j) + " at quadrature point " +

@@ -37,4 +37,9 @@ MaterialMap uniform_material(const Mesh& mesh, const Material& material);
 // element index out of range, an element in two regions (naming both).
 MaterialMap make_material_map(const Mesh& mesh, const Material& base, const std::vector<MaterialRegion>& regions);
 
+// Throws snh::Error naming the problem unless `map` fits `mesh`: at least one
+// material, one name per material, one entry per element, every entry an
+// index into `materials`.
+void validate_material_map(const Mesh& mesh, const MaterialMap& map);
+
 }  // namespace snh
