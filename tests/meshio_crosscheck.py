@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Reads every mesh under a folder with meshio and with snh (snh-mesh-info)
-and compares the point count, the count of tetrahedra or hexahedra, and the
-total volume. Usage: meshio_crosscheck.py SNH_MESH_INFO DATA_MESHES_DIR
+and compares the point count, the count of tetrahedra or hexahedra, the
+total volume, the named Gmsh physical groups (vertex and element counts) and
+the point and cell arrays (components and sum of values). Gmsh 2.2 writes an
+element once per physical group it is in: identical volume cells count once.
+Usage: meshio_crosscheck.py SNH_MESH_INFO DATA_MESHES_DIR
 
 Exits 1 on any disagreement, and when meshio cannot be imported (Debian's
 python3-meshio, installed by scripts/setup.sh)."""
@@ -42,6 +45,46 @@ def hex_volume(points, cells):
     return float(np.sum(np.abs(total)))
 
 
+DIMENSION = {"vertex": 0, "line": 1, "triangle": 2, "quad": 2, "tetra": 3, "hexahedron": 3}
+
+
+def unique_cells(data):
+    """Volume cells without the copies gmsh 2.2 writes for overlapping groups."""
+    return np.unique(data, axis=0) if len(data) else data
+
+
+def meshio_groups(mesh):
+    """{(name, tag, dimension): (vertices, elements)} for the named physical groups."""
+    groups = {}
+    physical = mesh.cell_data.get("gmsh:physical")
+    for name, (tag, dimension) in mesh.field_data.items():
+        if name in (mesh.cell_sets or {}):  # 4.1: sets by name, one index array per block
+            blocks = [c.data[np.asarray(idx, dtype=int)] for c, idx in zip(mesh.cells, mesh.cell_sets[name])
+                      if idx is not None and len(idx) and DIMENSION.get(c.type) == dimension]
+        elif physical is not None:  # 2.2: each cell's physical tag
+            blocks = [c.data[p == tag] for c, p in zip(mesh.cells, physical) if DIMENSION.get(c.type) == dimension]
+        else:
+            continue
+        blocks = [b for b in blocks if len(b)]
+        vertices = len(np.unique(np.concatenate([b.ravel() for b in blocks]))) if blocks else 0
+        elements = sum(len(unique_cells(b)) for b in blocks) if dimension == 3 else 0
+        groups[(name, int(tag), int(dimension))] = (vertices, elements)
+    return groups
+
+
+def meshio_arrays(data, cells):
+    """[(name, components, sum)] over the volume cells (cell data) or points."""
+    out = []
+    for name, value in data.items():
+        if name.startswith("gmsh:"):
+            continue
+        if cells is not None:
+            value = np.concatenate([v for v, c in zip(value, cells) if c.type in ("tetra", "hexahedron")])
+        value = np.asarray(value, dtype=float)
+        out.append((name, 1 if value.ndim == 1 else value.shape[1], float(value.sum())))
+    return sorted(out)
+
+
 def main():
     if len(sys.argv) != 3:
         print(__doc__)
@@ -55,7 +98,7 @@ def main():
     for name in files:
         path = os.path.join(folder, name)
         mesh = meshio.read(path)
-        volume_cells = [(c.type, c.data) for c in mesh.cells if c.type in ("tetra", "hexahedron")]
+        volume_cells = [(c.type, unique_cells(c.data)) for c in mesh.cells if c.type in ("tetra", "hexahedron")]
         count = sum(len(data) for _, data in volume_cells)
         volume = sum(tet_volume(mesh.points, data) if kind == "tetra" else hex_volume(mesh.points, data)
                      for kind, data in volume_cells)
@@ -72,8 +115,25 @@ def main():
             problems.append(f"cells: snh {snh['elements']}, meshio {count}")
         if abs(snh["volume"] - volume) > 1e-9 * max(1.0, abs(volume)):
             problems.append(f"volume: snh {snh['volume']!r}, meshio {volume!r}")
+        if name.endswith(".msh"):
+            theirs = meshio_groups(mesh)
+            ours = {(g["name"], g["tag"], g["dimension"]): (g["vertices"], g["elements"])
+                    for g in snh["groups"] if g["name"]}
+            if ours != theirs:
+                problems.append(f"groups: snh {ours}, meshio {theirs}")
+        for kind, data, cells in (("point_arrays", mesh.point_data, None), ("cell_arrays", mesh.cell_data, mesh.cells)):
+            if name.endswith((".vtu", ".vtk")):
+                theirs = meshio_arrays(data, cells)
+                ours = sorted((a["name"], a["components"], a["sum"]) for a in snh[kind])
+                if [(n, c) for n, c, _ in ours] != [(n, c) for n, c, _ in theirs] or any(
+                        abs(a[2] - b[2]) > 1e-9 * max(1.0, abs(b[2])) for a, b in zip(ours, theirs)):
+                    problems.append(f"{kind}: snh {ours}, meshio {theirs}")
         status = "FAIL" if problems else "ok"
+        extras = f", {len(snh['groups'])} groups" if snh["groups"] else ""
+        extras += f", {len(snh['point_arrays'])} + {len(snh['cell_arrays'])} arrays" if (
+            snh["point_arrays"] or snh["cell_arrays"]) else ""
         print(f"{status:4} {name}: {snh['vertices']} points, {snh['elements']} {snh['type']}, volume {snh['volume']:.15g}"
+              + extras
               + ("; " + "; ".join(problems) if problems else ""))
         failures += bool(problems)
     print(f"meshio_crosscheck: {len(files) - failures} of {len(files)} files agree with meshio {meshio.__version__}")

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -26,6 +27,7 @@
 #include "snh/io.h"
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
+#include "snh/selection.h"
 
 namespace snh {
 namespace {
@@ -808,6 +810,220 @@ TEST(MeshIoSurface, BadArguments) {
   EXPECT_NE(e.find("the positions have 2 values, but the mesh has 8 vertices"), std::string::npos) << e;
   const std::string d = error_of([&] { write_ply_surface((dir / "no" / "such" / "a.ply").string(), mesh); });
   EXPECT_NE(d.find("cannot be opened"), std::string::npos) << d;
+}
+
+// ---- Groups and arrays ----
+
+std::array<double, 3> centroid(const Mesh& m, size_t e) {
+  const int n = nodes_per_element(m.type);
+  std::array<double, 3> c{0, 0, 0};
+  for (int a = 0; a < n; ++a)
+    for (int d = 0; d < 3; ++d) c[d] += m.positions[3 * m.elements[n * e + a] + d] / n;
+  return c;
+}
+
+TEST(MeshIoGroups, GmshPhysicalGroupsInEveryVersion) {
+  struct Expected {
+    const char* name;
+    int tag, dimension;
+    size_t vertices, elements;
+  };
+  // As gmsh wrote them (and meshio reads them: tests/meshio_crosscheck.py).
+  const Expected expected[] = {{"fixed", 1, 2, 28, 0},
+                               {"", 7, 2, 28, 0},
+                               {"left", 1, 3, 153, 398},
+                               {"right", 2, 3, 154, 405},
+                               {"all", 3, 3, 279, 803}};
+  const Mesh first = read_mesh((kData / "box_groups.msh41.msh").string());
+  for (const char* file :
+       {"box_groups.msh22.msh", "box_groups.msh22_binary.msh", "box_groups.msh41.msh", "box_groups.msh41_binary.msh"}) {
+    SCOPED_TRACE(file);
+    const Mesh m = read_mesh((kData / file).string());
+    // 2.2 writes each tet twice (its side's group and "all"): one element each.
+    EXPECT_EQ(m.element_count(), 803u);
+    ASSERT_EQ(m.groups.size(), 5u);
+    for (size_t i = 0; i < 5; ++i) {
+      const MeshGroup& g = m.groups[i];
+      EXPECT_EQ(g.name, expected[i].name) << i;
+      EXPECT_EQ(g.tag, expected[i].tag) << i;
+      EXPECT_EQ(g.dimension, expected[i].dimension) << i;
+      EXPECT_EQ(g.vertices.size(), expected[i].vertices) << i;
+      EXPECT_EQ(g.elements.size(), expected[i].elements) << i;
+      EXPECT_EQ(g.vertices, first.groups[i].vertices) << i;
+      EXPECT_EQ(g.elements, first.groups[i].elements) << i;
+    }
+    // The surfaces hold the mesh's vertices on their faces.
+    EXPECT_EQ(vertices_in_group(m, "fixed"), vertices_on_plane(m, {0, 0, 0}, {1, 0, 0}));
+    EXPECT_EQ(vertices_in_group(m, 7), vertices_on_plane(m, {1, 0, 0}, {1, 0, 0}));
+    // The volumes split the box at x = 0.5.
+    EXPECT_EQ(elements_in_group(m, "left"), elements_in_box(m, {0, 0, 0}, {0.5, 1, 1}));
+    EXPECT_EQ(elements_in_group(m, "right"), elements_in_box(m, {0.5, 0, 0}, {1, 1, 1}));
+    for (int32_t e : elements_in_group(m, 1)) EXPECT_LT(centroid(m, e)[0], 0.5);
+    EXPECT_EQ(elements_in_group(m, "all").size(), m.element_count());
+    EXPECT_EQ(m.elements, first.elements);
+  }
+  // The old files without physical groups have none.
+  EXPECT_TRUE(read_mesh((kData / "box_tet.msh41.msh").string()).groups.empty());
+  EXPECT_TRUE(read_mesh((kData / "box_tet.msh22.msh").string()).groups.empty());
+}
+
+TEST(MeshIoGroups, MeditReferencesBecomeGroupsNamedByTheirNumber) {
+  const Mesh m = read_mesh((kData / "box_tet.mesh").string());
+  // gmsh writes the elementary entity tags: volume 1, surfaces 1..6 (x = 0,
+  // x = 1, y = 0, y = 1, z = 0, z = 1 for an OpenCASCADE box), curves 1..12.
+  EXPECT_EQ(elements_in_group(m, "1").size(), 627u);
+  EXPECT_EQ(vertices_in_group(m, "1", 2), vertices_on_plane(m, {0, 0, 0}, {1, 0, 0}));
+  EXPECT_EQ(vertices_in_group(m, 6, 2), vertices_on_plane(m, {0, 0, 0.25}, {0, 0, 1}));
+}
+
+TEST(MeshIoArrays, VtkAndVtuArraysMatchTheirDefinitions) {
+  const Mesh groups = read_mesh((kData / "box_groups.msh41.msh").string());
+  for (const char* file : {"box_groups_arrays.vtu", "box_groups_arrays_base64.vtu", "box_groups_arrays.vtk",
+                           "box_groups_arrays_binary.vtk"}) {
+    SCOPED_TRACE(file);
+    const Mesh m = read_mesh((kData / file).string());
+    ASSERT_EQ(m.point_arrays.size(), 2u);
+    ASSERT_EQ(m.cell_arrays.size(), 2u);
+    const MeshArray &t = m.point_arrays[0], &u = m.point_arrays[1];
+    EXPECT_EQ(t.name, "temperature");
+    EXPECT_EQ(t.components, 1);
+    EXPECT_EQ(u.name, "displacement");
+    EXPECT_EQ(u.components, 3);
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      // meshio writes ASCII data with 12 significant digits.
+      EXPECT_NEAR(t.values[v], m.positions[3 * v] + 2 * m.positions[3 * v + 1], 1e-11) << v;
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(u.values[3 * v + d], 0.1 * m.positions[3 * v + d], 1e-11) << v;
+    }
+    const MeshArray &material = m.cell_arrays[0], &stiffness = m.cell_arrays[1];
+    EXPECT_EQ(material.name, "material");
+    EXPECT_EQ(stiffness.name, "stiffness");
+    for (size_t e = 0; e < m.element_count(); ++e) {
+      EXPECT_EQ(material.values[e], centroid(m, e)[0] < 0.5 ? 1.0 : 2.0) << e;
+      EXPECT_NEAR(stiffness.values[e], 1 + centroid(m, e)[0], 1e-11) << e;
+    }
+    EXPECT_EQ(m.elements, groups.elements);
+    EXPECT_EQ(elements_with_value(m, "material", 1), elements_in_group(groups, "left"));
+    // x + 2y = 0 on the edge x = y = 0 only.
+    EXPECT_EQ(vertices_with_value(m, "temperature", 0.0), vertices_in_box(m, {0, 0, 0}, {0, 0, 1}));
+    EXPECT_GT(vertices_with_value(m, "temperature", 0.0).size(), 2u);
+  }
+}
+
+TEST_F(MeshIoBadInput, CellArraysFollowTheKeptVolumeCells) {
+  // A triangle, a line and a vertex among two tets (the second mirrored):
+  // cell arrays keep the entries of the tets, in order.
+  const std::string points =
+      "POINTS 5 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n"
+      "CELLS 5 19\n3 0 1 2\n4 0 1 2 3\n2 3 4\n4 1 2 4 3\n1 4\nCELL_TYPES 5\n5\n10\n3\n10\n1\n";
+  const std::string text = "# vtk DataFile Version 4.2\narrays\nASCII\nDATASET UNSTRUCTURED_GRID\n" + points +
+                           "CELL_DATA 5\nSCALARS id int 1\nLOOKUP_TABLE default\n10 20 30 40 50\n"
+                           "VECTORS v float\n0 0 0 1 2 3 0 0 0 4 5 6 0 0 0\n"
+                           "POINT_DATA 5\nSCALARS t double\nLOOKUP_TABLE default\n0 1 2 3 4\n"
+                           "NORMALS my%20normals float\n1 0 0 0 1 0 0 0 1 1 0 0 0 1 0\n"
+                           "LOOKUP_TABLE colours 1\n0 0 0 1\n"
+                           "FIELD FieldData 1\nw 2 5 double\n0 1 2 3 4 5 6 7 8 9\n";
+  write_text(dir_ / "arrays.vtk", text);
+  const Mesh m = read_mesh((dir_ / "arrays.vtk").string());
+  ASSERT_EQ(m.element_count(), 2u);
+  ASSERT_EQ(m.cell_arrays.size(), 2u);
+  EXPECT_EQ(m.cell_arrays[0].values, (std::vector<double>{20, 40}));
+  EXPECT_EQ(m.cell_arrays[1].values, (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  ASSERT_EQ(m.point_arrays.size(), 3u);
+  EXPECT_EQ(m.point_arrays[0].values, (std::vector<double>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(m.point_arrays[1].name, "my normals");
+  EXPECT_EQ(m.point_arrays[1].components, 3);
+  EXPECT_EQ(m.point_arrays[2].name, "w");
+  EXPECT_EQ(m.point_arrays[2].components, 2);
+  EXPECT_EQ(m.point_arrays[2].values[9], 9.0);
+  // Split into tets, the arrays and (none here) groups go along.
+  EXPECT_EQ(elements_with_value(m, "id", 40), std::vector<int32_t>{1});
+
+  // The same in VTU: CellData of the volume cells only.
+  const std::string vtu =
+      "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n"
+      "<Piece NumberOfPoints=\"5\" NumberOfCells=\"4\">\n"
+      "<PointData><DataArray type=\"Float32\" Name=\"t\" format=\"ascii\">0 1 2 3 4</DataArray></PointData>\n"
+      "<CellData><DataArray type=\"Int32\" Name=\"id\" format=\"ascii\">10 20 30 40</DataArray>\n"
+      "<DataArray type=\"Float64\" Name=\"v\" NumberOfComponents=\"2\" format=\"ascii\">0 0 1 2 0 0 3 4"
+      "</DataArray></CellData>\n"
+      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+      "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1</DataArray></Points>\n<Cells>\n"
+      "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 0 1 2 3 3 4 1 2 4 3</DataArray>\n"
+      "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3 7 9 13</DataArray>\n"
+      "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">5 10 3 10</DataArray>\n"
+      "</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  write_text(dir_ / "arrays.vtu", vtu);
+  const Mesh x = read_mesh((dir_ / "arrays.vtu").string());
+  ASSERT_EQ(x.cell_arrays.size(), 2u);
+  EXPECT_EQ(x.cell_arrays[0].values, (std::vector<double>{20, 40}));
+  EXPECT_EQ(x.cell_arrays[1].values, (std::vector<double>{1, 2, 3, 4}));
+  EXPECT_EQ(x.point_arrays[0].values, (std::vector<double>{0, 1, 2, 3, 4}));
+}
+
+TEST_F(MeshIoBadInput, BinaryScalarsStartingWithASpaceByte) {
+  const Mesh m = make_tet_box(1, 1, 1, 1.0);
+  write_vtk(dir_ / "binary.vtk", m, true, false);
+  // 0x20 is ' ': the reader must not skip it as whitespace.
+  double first = 0.0;
+  const uint64_t bits = 0x2000000000000001ull;
+  std::memcpy(&first, &bits, 8);
+  {
+    std::ofstream f(dir_ / "binary.vtk", std::ios::binary | std::ios::app);
+    f << "SCALARS s double 1\nLOOKUP_TABLE default\n";
+    for (size_t e = 0; e < m.element_count(); ++e) put<double>(f, e == 0 ? first : double(e), true);
+    f << "\n";
+  }
+  const Mesh r = read_mesh((dir_ / "binary.vtk").string());
+  ASSERT_EQ(r.cell_arrays.size(), 1u);
+  EXPECT_EQ(r.cell_arrays[0].values[0], first);
+  EXPECT_EQ(r.cell_arrays[0].values[5], 5.0);
+}
+
+TEST_F(MeshIoBadInput, MalformedGroupsAndArrays) {
+  const std::string msh22 = text_of(kData / "box_groups.msh22.msh");
+  std::string m = error("count.msh", replaced(msh22, "$PhysicalNames\n4\n", "$PhysicalNames\n5\n"));
+  EXPECT_NE(m.find("count.msh:10: physical name 5 of 5 should read"), std::string::npos) << m;
+  m = error("unknown.msh", replaced(msh22, "3 3 \"all\"", "3 9 \"all\""));
+  EXPECT_NE(m.find("unknown.msh:9: $PhysicalNames names physical volume 9 'all', but no element belongs to it"),
+            std::string::npos)
+      << m;
+  m = error("twice.msh", replaced(msh22, "3 3 \"all\"", "3 2 \"all\""));
+  EXPECT_NE(m.find("twice.msh:9: physical volume 2 is named twice (first 'right', line 8)"), std::string::npos) << m;
+  m = error("quotes.msh", replaced(msh22, "3 3 \"all\"", "3 3 all"));
+  EXPECT_NE(m.find("quotes.msh:9: the name of physical group 3 is not in double quotes"), std::string::npos) << m;
+  m = error("dimension.msh", replaced(msh22, "3 3 \"all\"", "4 3 \"all\""));
+  EXPECT_NE(m.find("dimension.msh:9: physical group 3 has dimension 4"), std::string::npos) << m;
+  const std::string msh41 = text_of(kData / "box_groups.msh41.msh");
+  m = error("entity.msh", replaced(msh41, "\n3 1 4 398\n", "\n3 5 4 398\n"));
+  EXPECT_NE(m.find("entity.msh:745: an element block belongs to entity 5 of dimension 3, which the $Entities "
+                   "section does not define"),
+            std::string::npos)
+      << m;
+  m = error("entities.msh", replaced(msh41, "$Entities\n12 20 11 2\n", "$Entities\n12 20 11 3\n"));
+  EXPECT_NE(m.find("entities.msh:"), std::string::npos) << m;
+
+  const std::string vtk = text_of(kData / "box_groups_arrays.vtk");
+  m = error("points.vtk", replaced(vtk, "POINT_DATA 279", "POINT_DATA 278"));
+  EXPECT_NE(m.find("POINT_DATA is for 278 points, but the file has 279"), std::string::npos) << m;
+  m = error("tuples.vtk", replaced(vtk, "temperature 1 279 double", "temperature 1 278 double"));
+  EXPECT_NE(m.find("FIELD array 'temperature' has 278 tuples, but its POINT_DATA section is for 279 points"),
+            std::string::npos)
+      << m;
+  m = error("keyword.vtk", replaced(vtk, "CELL_DATA 803\nFIELD", "CELL_DATA 803\nFILED"));
+  EXPECT_NE(m.find("unexpected keyword 'FILED' in CELL_DATA"), std::string::npos) << m;
+  m = error("short.vtk", vtk.substr(0, vtk.size() - 2000));
+  EXPECT_NE(m.find("short.vtk:"), std::string::npos) << m;
+  m = error("before.vtk", replaced(vtk, "POINTS 279", "POINT_DATA 279\nPOINTS 279"));
+  EXPECT_NE(m.find("POINT_DATA comes before POINTS"), std::string::npos) << m;
+
+  const std::string vtu = text_of(kData / "box_groups_arrays.vtu");
+  m = error("components.vtu", replaced(vtu, "Name=\"displacement\" NumberOfComponents=\"3\"",
+                                       "Name=\"displacement\" NumberOfComponents=\"1\""));
+  EXPECT_NE(m.find("PointData array 'displacement' holds 837 values, but 279 tuples of 1 components need 279"),
+            std::string::npos)
+      << m;
+  m = error("twice.vtu", replaced(vtu, "Name=\"stiffness\"", "Name=\"material\""));
+  EXPECT_NE(m.find("a second cell array named 'material'"), std::string::npos) << m;
 }
 
 }  // namespace

@@ -655,8 +655,8 @@ class GmshReader {
           const auto check_size = [&](size_t at_least, bool exact) {
             if (exact ? t.size() != at_least : t.size() < at_least) {
               std::ostringstream m;
-              m << what << " has " << t.size() << " values, " << (exact ? "expected " : "at least ") << at_least
-                << " are needed (do the $Entities counts match?)";
+              m << what << " has " << t.size() << " values, " << (exact ? "expected " : "too few for ") << at_least
+                << " (do the $Entities counts match?)";
               fail(path_, where, m.str());
             }
           };

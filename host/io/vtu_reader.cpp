@@ -319,8 +319,11 @@ class VtuReader {
       Scanner t(path_, data_);
       t.seek(a.begin);
       for (uint64_t i = 0; i < expected; ++i) {
-        const std::string_view token = t.token();
-        if (t.pos() > a.end || token.empty()) {
+        std::string_view token = t.token();
+        // The last value may touch the closing tag: "... 4</DataArray>".
+        const size_t start = static_cast<size_t>(token.data() - data_.data());
+        if (t.pos() > a.end && start < a.end) token = token.substr(0, a.end - start);
+        if (start >= a.end || token.empty()) {
           if (expected == UINT64_MAX) break;
           std::ostringstream m;
           m << what << " holds " << i << " values, but " << expected << " are needed";

@@ -17,6 +17,13 @@ namespace snh {
 // rejected (surface and line elements are skipped). Elements are
 // re-oriented where the file's convention differs from ours (mesh.h), and a
 // mesh is validated (validate_mesh) before it is returned.
+//
+// Groups and arrays (Mesh::groups, point_arrays, cell_arrays): Gmsh physical
+// groups with their $PhysicalNames (volume groups hold elements, lower ones
+// the vertices of their points, lines and faces); Medit reference numbers,
+// named by their number; VTK legacy POINT_DATA/CELL_DATA attributes and FIELD
+// arrays; VTU PointData/CellData arrays. Cell arrays keep the entries of the
+// volume cells, in file order. TetGen attributes and markers are not read.
 Mesh read_mesh(const std::string& path);
 
 // The boundary surface (faces used by one element), triangles for tet4 and
