@@ -11,12 +11,12 @@ foreach(step
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/host_app;-B;${app_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
     "${CMAKE_COMMAND};--build;${app_build}"
     "${app_build}/host_app"
-    "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/flex_frames;-B;${frames_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
-    "${CMAKE_COMMAND};--build;${frames_build}"
-    "${frames_build}/flex_frames;${frames_build}/out"
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/arm_rig;-B;${rig_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
     "${CMAKE_COMMAND};--build;${rig_build}"
-    "${rig_build}/arm_rig;${SOURCE_DIR}/data/arm;6;${rig_build}/out")
+    "${rig_build}/arm_rig;${SOURCE_DIR}/data/arm;6;${rig_build}/out"
+    "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/flex_frames;-B;${frames_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
+    "${CMAKE_COMMAND};--build;${frames_build}"
+    "${frames_build}/flex_frames;${frames_build}/out")
   execute_process(COMMAND ${step} RESULT_VARIABLE status)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "failed (${status}): ${step}")

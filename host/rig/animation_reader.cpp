@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <locale>
 #include <map>
@@ -209,8 +210,7 @@ Animation read_animation(const std::string& path) {
   if (!in) throw Error(path + ": cannot open the animation file");
   std::ostringstream text;
   text << in.rdbuf();
-  const std::string extension =
-      lower(path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.')));
+  const std::string extension = lower(std::filesystem::path(path).extension().string());
   if (extension == ".json") return parse_animation_json(text.str(), path);
   if (extension == ".csv") return parse_animation_csv(text.str(), path);
   throw Error(path + ": unknown animation format '" + extension + "' (expected .json or .csv)");
