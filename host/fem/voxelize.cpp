@@ -57,6 +57,33 @@ struct Crossing {
   int sign;  // +1 where the surface faces +axis (the line leaves the inside)
 };
 
+// Whether the line parallel to `a` through (pb, pc) in the other two axes
+// crosses triangle v, and where.
+bool crosses(const double* p, const int32_t* v, int a, double pb, double pc, Crossing& crossing) {
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  int side[3];
+  for (int e = 0; e < 3; ++e) {
+    const int32_t u = v[e], w = v[(e + 1) % 3];
+    side[e] = u < w ? edge_side(p + 3 * u, p + 3 * w, pb, pc, b, c) : -edge_side(p + 3 * w, p + 3 * u, pb, pc, b, c);
+  }
+  if (side[0] == 0 || side[0] != side[1] || side[1] != side[2]) return false;
+  // Where the line meets the triangle's plane, kept within the triangle's
+  // extent along the axis (it is there in exact arithmetic).
+  const double* x0 = p + 3 * v[0];
+  const double* x1 = p + 3 * v[1];
+  const double* x2 = p + 3 * v[2];
+  const double e1[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+  const double e2[3] = {x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]};
+  const double normal_a = e1[b] * e2[c] - e1[c] * e2[b];
+  const double normal_b = e1[c] * e2[a] - e1[a] * e2[c];
+  const double normal_c = e1[a] * e2[b] - e1[b] * e2[a];
+  const double lo = std::min({x0[a], x1[a], x2[a]}), hi = std::max({x0[a], x1[a], x2[a]});
+  const double t =
+      normal_a != 0.0 ? x0[a] - (normal_b * (pb - x0[b]) + normal_c * (pc - x0[c])) / normal_a : 0.5 * (lo + hi);
+  crossing = {std::min(hi, std::max(lo, t)), side[0]};
+  return true;
+}
+
 // Fills kInside (axis 0 only) and kCut << axis for every row parallel to `axis`.
 void sweep(const TriangleSurface& surface, const Grid& grid, int axis, std::vector<uint8_t>& flags) {
   const int a = axis, b = (axis + 1) % 3, c = (axis + 2) % 3;
@@ -102,28 +129,8 @@ void sweep(const TriangleSurface& surface, const Grid& grid, int axis, std::vect
       const double pb = grid.centre(b, jb), pc = grid.centre(c, jc);
       crossings.clear();
       for (size_t m = offsets[row]; m < offsets[row + 1]; ++m) {
-        const int32_t* v = tri + 3 * members[m];
-        int side[3];
-        for (int e = 0; e < 3; ++e) {
-          const int32_t u = v[e], w = v[(e + 1) % 3];
-          side[e] =
-              u < w ? edge_side(p + 3 * u, p + 3 * w, pb, pc, b, c) : -edge_side(p + 3 * w, p + 3 * u, pb, pc, b, c);
-        }
-        if (side[0] == 0 || side[0] != side[1] || side[1] != side[2]) continue;
-        // Where the line meets the triangle's plane, kept within the
-        // triangle's extent along the axis (it is there in exact arithmetic).
-        const double* x0 = p + 3 * v[0];
-        const double* x1 = p + 3 * v[1];
-        const double* x2 = p + 3 * v[2];
-        const double e1[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
-        const double e2[3] = {x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]};
-        const double na_ = e1[b] * e2[c] - e1[c] * e2[b];
-        const double nb_ = e1[c] * e2[a] - e1[a] * e2[c];
-        const double nc_ = e1[a] * e2[b] - e1[b] * e2[a];
-        const double lo = std::min({x0[a], x1[a], x2[a]}), hi = std::max({x0[a], x1[a], x2[a]});
-        double t = na_ != 0.0 ? x0[a] - (nb_ * (pb - x0[b]) + nc_ * (pc - x0[c])) / na_ : 0.5 * (lo + hi);
-        t = std::min(hi, std::max(lo, t));
-        crossings.push_back({t, side[0]});
+        Crossing x;
+        if (crosses(p, tri + 3 * members[m], a, pb, pc, x)) crossings.push_back(x);
       }
       std::sort(crossings.begin(), crossings.end(), [](const Crossing& x, const Crossing& y) { return x.t < y.t; });
       int total = 0;
