@@ -103,7 +103,15 @@ struct Embedding {
   std::vector<double> weights;   // 8 per surface vertex, summing to 1
 };
 
-// Throws snh::Error naming a surface vertex that lies in no element.
+// Each vertex goes to the nearest element (grid cell) by its distance to the
+// closed cube, distances below 1e-9 cells counting as 0; ties (a vertex on a
+// face, edge or corner shared by elements) go to the cell with the smallest
+// grid index i + dims[0] (j + dims[1] k). A vertex outside every element (the
+// centre-inside rule drops cells the surface passes through) is extrapolated
+// from its nearest element: its weights are that cell's trilinear functions
+// at its unclamped local coordinates (still summing to 1), so the surface is
+// reproduced exactly at rest and under affine maps of the lattice. Throws
+// snh::Error naming a surface vertex more than one cell from every element.
 Embedding embed(const Voxelization& voxels, const TriangleSurface& surface);
 
 // The surface's vertex positions (xyz per vertex) for lattice positions x.
