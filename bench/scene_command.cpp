@@ -12,16 +12,20 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "commands.h"
 #include "material_options.h"
+#include "rig_frames.h"
 #include "scene_file.h"
+#include "scene_output.h"
 #include "snh/error.h"
 #include "snh/fields.h"
 #include "snh/io.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
+#include "snh/surface.h"
 
 namespace snh::bench {
 namespace {
@@ -45,6 +49,8 @@ struct SceneOptions {
   std::string json_path;
   std::string file;
   std::string vtu_dir;
+  std::string surface_prefix;
+  int frames = 0;
   std::string device;
   std::string variant = "automatic";
   std::string preconditioner = "block-jacobi";
@@ -110,23 +116,6 @@ json reactions_json(const std::vector<Reaction>& reactions) {
   return out;
 }
 
-// Displacement per vertex and the element fields (F, J, P, Cauchy, von
-// Mises, energy density) of positions x, for ParaView. Where the fields are
-// undefined (a non-finite state, or an inverted element of a material
-// undefined for J <= 0) the file still shows the positions, without them.
-void write_step_vtu(const std::string& path, const Mesh& mesh, const MaterialMap& materials,
-                    const std::vector<double>& x) {
-  std::vector<double> displacement(x.size());
-  for (size_t i = 0; i < x.size(); ++i) displacement[i] = x[i] - mesh.positions[i];
-  std::vector<VtuCellField> cell_fields;
-  try {
-    cell_fields = element_fields_for_vtu(compute_element_fields(mesh, materials, x), materials);
-  } catch (const Error& e) {
-    std::cerr << "warning: " << path << " has no element fields: " << e.what() << '\n';
-  }
-  write_vtu(path, mesh, x, {{"displacement", 3, displacement}}, cell_fields);
-}
-
 // The regions of a scene file: name, material, small-strain E and nu, and
 // element count.
 json regions_json(const MaterialMap& materials) {
@@ -151,18 +140,24 @@ int run_scene(const SceneOptions& given) {
   Material material;
   MaterialMap materials;  // a scene file's regions; else uniform
   SolveOptions options;
+  std::optional<SceneFile> from_file;
   if (!o.file.empty()) {
-    // A scene file carries its own material and solver settings; --json and
-    // --vtu on the command line override its outputs.
-    const SceneFile f = load_scene_file(o.file);
+    // A scene file carries its own material and solver settings; --json,
+    // --vtu and --surface on the command line override its outputs.
+    from_file = load_scene_file(o.file);
+    const SceneFile& f = *from_file;
     scene = f.scene;
     material = f.material;
     materials = f.materials;
     options = scene.options;
     if (o.json_path.empty()) o.json_path = f.json_path;
     if (o.vtu_dir.empty()) o.vtu_dir = f.vtu_dir;
+    if (o.surface_prefix.empty()) o.surface_prefix = f.surface_prefix;
+    if (!o.surface_prefix.empty() && !f.embedded) throw Error("scene: --surface needs a scene with \"embed\"");
     options.device.match = o.device;
+    if (f.rig) return run_rig_scene(f, options, {o.vtu_dir, o.json_path, o.surface_prefix, o.frames});
   } else {
+    if (!o.surface_prefix.empty()) throw Error("scene: --surface needs a scene file with \"embed\"");
     SceneParameters p;
     p.resolution = o.resolution;
     p.youngs_modulus = o.youngs_modulus;
@@ -211,6 +206,16 @@ int run_scene(const SceneOptions& given) {
     write_step_vtu(o.vtu_dir + "/" + file, scene.mesh, materials, x0);
     written.push_back({0.0, file});
   }
+  // The embedded surface per step as OBJ (scene files with "embed").
+  auto write_surface = [&](int step, const std::vector<double>& x) {
+    if (o.surface_prefix.empty()) return;
+    const SceneFile::Embedded& e = *from_file->embedded;
+    const std::string obj = surface_obj_path(o.surface_prefix, scene.name, step);
+    const auto parent = std::filesystem::path(obj).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    write_obj(obj, e.surface, embedded_positions(e.embedding, scene.mesh, x));
+  };
+  write_surface(0, options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions);
   QuasistaticSolver solver(scene.mesh, materials, scene.constraints, options);
   const Mesh& mesh = solver.mesh();
   // Each step's positions, for the reactions computed after the solve (so
@@ -218,6 +223,7 @@ int run_scene(const SceneOptions& given) {
   std::vector<std::vector<double>> step_positions, step_forces;
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
     if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
+    write_surface(step, x);
     if (!o.json_path.empty()) {
       step_positions.push_back(x);
       step_forces.push_back(solver.simulation().applied_force());  // ramped with the load
@@ -273,8 +279,9 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex)");
   cmd->add_option("name", o->name, "scene name (or --file)")->check(CLI::IsMember(scene_names()));
   cmd->add_option("--file", o->file,
-                  "a scene in JSON: mesh (file or generator), material, constraints (ids/box/plane, rigid or "
-                  "keyframed motion), body_force, initial, solver, output (see data/scenes/)");
+                  "a scene in JSON: mesh (file or generator) or embed (a surface voxelized), material, constraints "
+                  "(ids/box/plane, rigid or keyframed motion), rig (bones and an animation: run frame by frame), "
+                  "body_force, initial, solver, output (see data/scenes/)");
   cmd->add_option("--res", o->resolution, "cells across the scene's thickness (0: scene default)");
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
       ->check(CLI::IsMember({"hex8", "tet4"}))
@@ -306,6 +313,10 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--vtu", o->vtu_dir,
                   "write ASCII .vtu per step (displacement; F, J, P, Cauchy, von Mises, energy density per element) "
                   "and a .pvd into this folder");
+  cmd->add_option("--surface", o->surface_prefix,
+                  "scene files with \"embed\": write the embedded surface per step or frame as OBJ, to FOLDER/ "
+                  "(<scene>_NNNN.obj) or PREFIX_NNNN.obj");
+  cmd->add_option("--frames", o->frames, "scene files with \"rig\": run only the first N frames (0: all)");
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
   cmd->add_option("--variant", o->variant,
                   "Hessian product: automatic (measured default), cached, recompute, element-matrices, assembled")

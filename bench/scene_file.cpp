@@ -1,6 +1,8 @@
 #include "scene_file.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -12,6 +14,7 @@
 #include "snh/error.h"
 #include "snh/loads.h"
 #include "snh/mesh_io.h"
+#include "snh/rig.h"
 
 namespace snh::bench {
 namespace {
@@ -149,7 +152,53 @@ std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m
   };
 }
 
+SceneFile::Embedded read_embed(const Reader& r, const json& e, const std::filesystem::path& folder) {
+  r.keys(e, "embed", {"surface", "cell"});
+  if (!e.contains("surface")) r.fail("embed.surface", "missing (a closed surface: .obj, .ply or .stl)");
+  SceneFile::Embedded out;
+  out.surface = read_surface((folder / r.text(e, "embed", "surface", "")).string());
+  const double cell = r.required_number(e, "embed", "cell");
+  if (!(cell > 0.0)) r.fail("embed.cell", "expected a cube side > 0");
+  out.voxels = voxelize(out.surface, cell);
+  out.embedding = embed(out.voxels, out.surface);
+  return out;
+}
+
+std::vector<Bone> read_bones(const Reader& r, const json& rig, const std::filesystem::path& folder) {
+  if (!rig.contains("bones") || !rig["bones"].is_array() || rig["bones"].empty())
+    r.fail("rig.bones", "expected a non-empty array of {name, capsule | surface}");
+  std::vector<Bone> bones;
+  for (size_t i = 0; i < rig["bones"].size(); ++i) {
+    const std::string key = "rig.bones[" + std::to_string(i) + "]";
+    const json& b = rig["bones"][i];
+    r.keys(b, key, {"name", "capsule", "surface"});
+    Bone bone;
+    if (!b.contains("name")) r.fail(key + ".name", "missing");
+    bone.name = r.text(b, key, "name", "");
+    if (b.contains("capsule") == b.contains("surface")) r.fail(key, "expected one of \"capsule\" and \"surface\"");
+    if (b.contains("capsule")) {
+      const json& c = b["capsule"];
+      const std::string ck = key + ".capsule";
+      r.keys(c, ck, {"a", "b", "radius"});
+      bone.shape =
+          Capsule{r.required_vec3(c, ck, "a"), r.required_vec3(c, ck, "b"), r.required_number(c, ck, "radius")};
+    } else {
+      bone.shape = read_surface((folder / r.text(b, key, "surface", "")).string());
+    }
+    bones.push_back(std::move(bone));
+  }
+  return bones;
+}
+
 }  // namespace
+
+std::string surface_obj_path(const std::string& prefix, const std::string& scene, int index) {
+  char number[16];
+  std::snprintf(number, sizeof number, "_%04d.obj", index);
+  if (!prefix.empty() && (prefix.back() == '/' || std::filesystem::is_directory(prefix)))
+    return (std::filesystem::path(prefix) / (scene + number)).string();
+  return prefix + number;
+}
 
 SceneFile load_scene_file(const std::string& path) {
   std::ifstream in(path);
@@ -162,15 +211,21 @@ SceneFile load_scene_file(const std::string& path) {
   }
   const Reader r{path};
   r.keys(doc, "scene",
-         {"name", "description", "mesh", "material", "regions", "constraints", "body_force", "initial", "solver",
-          "output"});
+         {"name", "description", "mesh", "embed", "material", "regions", "constraints", "rig", "body_force", "initial",
+          "solver", "output"});
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   SceneFile out;
   Scene& s = out.scene;
   s.name = r.text(doc, "scene", "name", std::filesystem::path(path).stem().string());
   s.description = r.text(doc, "scene", "description", "");
-  if (!doc.contains("mesh")) r.fail("mesh", "missing");
-  s.mesh = read_scene_mesh(r, doc["mesh"], folder);
+  if (doc.contains("mesh") == doc.contains("embed"))
+    r.fail("mesh", doc.contains("mesh") ? "give \"mesh\" or \"embed\", not both" : "missing (or \"embed\")");
+  if (doc.contains("embed")) {
+    out.embedded = read_embed(r, doc["embed"], folder);
+    s.mesh = out.embedded->voxels.lattice;
+  } else {
+    s.mesh = read_scene_mesh(r, doc["mesh"], folder);
+  }
 
   const json material = doc.value("material", json::object());
   out.material = read_material(r, material, "material");
@@ -191,6 +246,23 @@ SceneFile load_scene_file(const std::string& path) {
       if (c.contains("motion")) set.motion = read_motion(r, c["motion"], key + ".motion");
       s.constraints.push_back(set);
     }
+  }
+  if (doc.contains("rig")) {
+    const json& rig = doc["rig"];
+    r.keys(rig, "rig", {"bones", "animation"});
+    SceneFile::Rig out_rig;
+    out_rig.bones = read_bones(r, rig, folder);
+    try {
+      for (ConstraintSet& set : bone_constraints(s.mesh, out_rig.bones)) s.constraints.push_back(std::move(set));
+    } catch (const Error& e) {
+      r.fail("rig.bones", e.what());
+    }
+    if (!rig.contains("animation")) r.fail("rig.animation", "missing (a .json or .csv animation file)");
+    out_rig.animation = read_animation((folder / r.text(rig, "rig", "animation", "")).string());
+    for (const std::string& bone : out_rig.animation.bones)
+      if (std::none_of(out_rig.bones.begin(), out_rig.bones.end(), [&](const Bone& b) { return b.name == bone; }))
+        r.fail("rig.animation", "the animation moves bone '" + bone + "', which is not in rig.bones");
+    out.rig = std::move(out_rig);
   }
   if (doc.contains("body_force"))
     s.options.external_force = lump_body_force(s.mesh, r.vec3(doc, "scene", "body_force", {0, 0, 0}));
@@ -231,9 +303,11 @@ SceneFile load_scene_file(const std::string& path) {
       solver, "solver", "absolute_tolerance",
       r.number(solver, "solver", "strain_tolerance", 1e-6) * e * h * h * std::sqrt(double(s.mesh.vertex_count())));
   const json output = doc.value("output", json::object());
-  r.keys(output, "output", {"vtu", "json"});
+  r.keys(output, "output", {"vtu", "json", "surface"});
   out.vtu_dir = r.text(output, "output", "vtu", "");
   out.json_path = r.text(output, "output", "json", "");
+  out.surface_prefix = r.text(output, "output", "surface", "");
+  if (!out.surface_prefix.empty() && !out.embedded) r.fail("output.surface", "needs \"embed\" (a surface to write)");
   return out;
 }
 

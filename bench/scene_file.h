@@ -1,15 +1,34 @@
 // Scenes described in JSON files (`snh-gpu-bench scene --file F`): mesh (a
-// file or a generator), material, regions with their own materials (element
-// selectors: scene_selection.h), constraint vertex sets (selectors:
-// scene_selection.h) with rigid or keyframed motion, body force, solver
-// options, output.
+// file or a generator) or an embedded surface, material, regions with their
+// own materials (element selectors: scene_selection.h), constraint vertex
+// sets (selectors: scene_selection.h) with rigid or keyframed motion, a rig of
+// bones and its animation, body force, solver options, output.
 // Unknown keys and wrong types are errors naming the key's path.
+//
+// Surfaces and rigs:
+//   "embed": {"surface": "arm.obj", "cell": 0.125}
+//       the mesh is the voxelization of that closed surface (.obj, .ply,
+//       .stl) with cubes of side `cell`, and the surface is embedded in it
+//       (instead of "mesh").
+//   "rig": {"bones": [{"name": "upper", "capsule": {"a": [x, y, z], "b": [x, y, z], "radius": r}},
+//                     {"name": "fore", "surface": "fore_bone.obj"}],
+//           "animation": "flexion.json"}
+//       each bone a constraint set of the vertices inside it (snh/rig.h: the
+//       first listed bone wins a vertex inside two), after "constraints";
+//       the animation (snh/animation.h, .json or .csv) gives each frame's
+//       bone matrices. The scene then runs frame by frame, solver.steps load
+//       steps per frame.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "snh/animation.h"
 #include "snh/regions.h"
+#include "snh/rig.h"
 #include "snh/scenes.h"
+#include "snh/surface.h"
 
 namespace snh::bench {
 
@@ -23,7 +42,32 @@ struct SceneFile {
   // "output.json": the run's JSON summary, each step with its constraint
   // sets' reactions; empty for none.
   std::string json_path;
+  // "output.surface": where the embedded surface goes per step or frame as
+  // OBJ: a folder (ending in '/', or an existing folder) for
+  // <folder>/<scene>_NNNN.obj, else a prefix for <prefix>_NNNN.obj; empty
+  // for none. Needs "embed".
+  std::string surface_prefix;
+
+  // "embed": the surface, the lattice's grid (scene.mesh is its lattice) and
+  // the surface's embedding in it.
+  struct Embedded {
+    TriangleSurface surface;
+    Voxelization voxels;
+    Embedding embedding;
+  };
+  std::optional<Embedded> embedded;
+
+  // "rig": the bones (their sets are the last entries of scene.constraints)
+  // and the animation.
+  struct Rig {
+    std::vector<Bone> bones;
+    Animation animation;
+  };
+  std::optional<Rig> rig;
 };
+
+// The OBJ of step or frame `index` under a surface prefix ("output.surface").
+std::string surface_obj_path(const std::string& prefix, const std::string& scene, int index);
 
 // Paths inside the file (mesh files) are relative to the file's folder.
 // Throws snh::Error "<file>: <key path>: <what>".

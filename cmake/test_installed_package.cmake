@@ -1,15 +1,19 @@
-# Installs snh into a scratch prefix, builds examples/host_app and
-# examples/flex_frames against it with find_package(snh), and runs them: the
-# install tree works for a host application.
+# Installs snh into a scratch prefix, builds examples/host_app,
+# examples/flex_frames and examples/arm_rig against it with find_package(snh),
+# and runs them: the install tree works for a host application.
 set(prefix ${BINARY_DIR}/install-test)
 set(app_build ${BINARY_DIR}/host-app-build)
 set(frames_build ${BINARY_DIR}/flex-frames-build)
-file(REMOVE_RECURSE ${prefix} ${app_build} ${frames_build})
+set(rig_build ${BINARY_DIR}/arm-rig-build)
+file(REMOVE_RECURSE ${prefix} ${app_build} ${frames_build} ${rig_build})
 foreach(step
     "${CMAKE_COMMAND};--install;${BINARY_DIR};--prefix;${prefix}"
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/host_app;-B;${app_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
     "${CMAKE_COMMAND};--build;${app_build}"
     "${app_build}/host_app"
+    "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/arm_rig;-B;${rig_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
+    "${CMAKE_COMMAND};--build;${rig_build}"
+    "${rig_build}/arm_rig;${SOURCE_DIR}/data/arm;6;${rig_build}/out"
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/flex_frames;-B;${frames_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
     "${CMAKE_COMMAND};--build;${frames_build}"
     "${frames_build}/flex_frames;${frames_build}/out")

@@ -443,5 +443,43 @@ TEST(PvdWriter, ListsTheSteps) {
   EXPECT_THROW(write_pvd(path.string(), {{std::nan(""), "a.vtu"}}), Error);
 }
 
+TEST(PvdWriter, PartsOfOneStepShareItsTime) {
+  TempDir dir("pvd");
+  const fs::path path = dir.path() / "frames.pvd";
+  write_pvd_parts(path.string(),
+                  {{0.0, "lattice_0000.vtu", 0}, {0.0, "surface_0000.vtu", 1}, {1.0, "lattice_0001.vtu", 0}});
+  const std::string pvd = read_text(path);
+  EXPECT_TRUE(contains(pvd, "<DataSet timestep=\"0\" group=\"\" part=\"0\" file=\"lattice_0000.vtu\"/>")) << pvd;
+  EXPECT_TRUE(contains(pvd, "<DataSet timestep=\"0\" group=\"\" part=\"1\" file=\"surface_0000.vtu\"/>")) << pvd;
+  EXPECT_TRUE(contains(error_of([&] { write_pvd_parts(path.string(), {{0.0, "a.vtu", -1}}); }), "part -1"));
+}
+
+TEST(VtuWriter, WritesATriangleSurface) {
+  TempDir dir("vtu");
+  const fs::path path = dir.path() / "surface.vtu";
+  // A tetrahedron's boundary, moved by x.
+  TriangleSurface s;
+  s.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  s.triangles = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+  std::vector<double> x = s.positions;
+  x[9 + 2] = 2.0;
+  write_surface_vtu(path.string(), s, x, {{"lift", 1, {0, 0, 0, 1}}});
+  const std::string vtu = read_text(path);
+  EXPECT_TRUE(contains(vtu, "NumberOfPoints=\"4\" NumberOfCells=\"4\""));
+  EXPECT_EQ(read_array(vtu, "Points"), x);
+  EXPECT_EQ(read_array(vtu, "connectivity"), std::vector<double>(s.triangles.begin(), s.triangles.end()));
+  EXPECT_EQ(read_array(vtu, "offsets"), (std::vector<double>{3, 6, 9, 12}));
+  EXPECT_EQ(read_array(vtu, "types"), (std::vector<double>{5, 5, 5, 5}));  // VTK_TRIANGLE
+  EXPECT_EQ(read_array(vtu, "lift"), (std::vector<double>{0, 0, 0, 1}));
+  write_surface_vtu(path.string(), s);  // at its own positions
+  EXPECT_EQ(read_array(read_text(path), "Points"), s.positions);
+
+  EXPECT_TRUE(contains(error_of([&] { write_surface_vtu(path.string(), s, {1.0}); }), "write_surface_vtu"));
+  TriangleSurface bad = s;
+  bad.triangles[4] = 9;
+  EXPECT_TRUE(contains(error_of([&] { write_surface_vtu(path.string(), bad); }), "triangle 1 refers to vertex 9"));
+  EXPECT_THROW(write_surface_vtu(path.string(), s, {}, {{"short", 1, {0, 1}}}), Error);
+}
+
 }  // namespace
 }  // namespace snh

@@ -15,6 +15,7 @@ namespace snh {
 namespace {
 
 // VTK cell type ids (vtkCellType.h).
+constexpr int kVtkTriangle = 5;
 constexpr int kVtkTetra = 10;
 constexpr int kVtkHexahedron = 12;
 
@@ -126,23 +127,18 @@ void check_sizes(const std::string& path, const Mesh& mesh, const std::vector<do
   }
 }
 
-}  // namespace
-
-void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<double>& x,
-               const std::vector<VtuPointField>& point_fields, const std::vector<VtuCellField>& cell_fields) {
-  // Everything is checked before the file is touched, so a bad call leaves no
-  // half-written file behind.
-  check_sizes(path, mesh, x, point_fields, cell_fields);
-  const int n = nodes_per_element(mesh.type);
-  const size_t vertices = mesh.vertex_count(), elements = mesh.element_count();
-  const int cell_type = mesh.type == ElementType::hex8 ? kVtkHexahedron : kVtkTetra;
-
+// The <Piece> of an unstructured grid of one cell type, after the sizes are
+// checked: `nodes` vertices per cell in `connectivity`.
+void write_grid(const std::string& path, const std::vector<double>& x, const std::vector<int32_t>& connectivity,
+                int nodes, int cell_type, const std::vector<VtuPointField>& point_fields,
+                const std::vector<VtuCellField>& cell_fields) {
+  const size_t vertices = x.size() / 3, cells = connectivity.size() / nodes;
   std::ofstream file;
   open_for_writing(file, path);
   file << "<?xml version=\"1.0\"?>\n"
        << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
        << "  <UnstructuredGrid>\n"
-       << "    <Piece NumberOfPoints=\"" << vertices << "\" NumberOfCells=\"" << elements << "\">\n";
+       << "    <Piece NumberOfPoints=\"" << vertices << "\" NumberOfCells=\"" << cells << "\">\n";
 
   if (!point_fields.empty()) {
     file << "      <PointData>\n";
@@ -176,16 +172,16 @@ void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<doub
 
   file << "      <Cells>\n"
        << "        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">";
-  for (size_t e = 0; e < elements; ++e) {
+  for (size_t e = 0; e < cells; ++e) {
     file << "\n         ";
-    for (int a = 0; a < n; ++a) file << ' ' << mesh.elements[n * e + a];
+    for (int a = 0; a < nodes; ++a) file << ' ' << connectivity[nodes * e + a];
   }
   file << "\n        </DataArray>\n"
        << "        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">";
-  for (size_t e = 0; e < elements; ++e) file << ((e % 12 == 0) ? "\n          " : " ") << n * (e + 1);
+  for (size_t e = 0; e < cells; ++e) file << ((e % 12 == 0) ? "\n          " : " ") << nodes * (e + 1);
   file << "\n        </DataArray>\n"
        << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">";
-  for (size_t e = 0; e < elements; ++e) file << ((e % 24 == 0) ? "\n          " : " ") << cell_type;
+  for (size_t e = 0; e < cells; ++e) file << ((e % 24 == 0) ? "\n          " : " ") << cell_type;
   file << "\n        </DataArray>\n"
        << "      </Cells>\n"
        << "    </Piece>\n"
@@ -194,17 +190,72 @@ void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<doub
   finish(file, path);
 }
 
-void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {
-  for (size_t i = 0; i < steps.size(); ++i) {
-    if (!std::isfinite(steps[i].first)) {
+}  // namespace
+
+void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<double>& x,
+               const std::vector<VtuPointField>& point_fields, const std::vector<VtuCellField>& cell_fields) {
+  // Everything is checked before the file is touched, so a bad call leaves no
+  // half-written file behind.
+  check_sizes(path, mesh, x, point_fields, cell_fields);
+  write_grid(path, x, mesh.elements, nodes_per_element(mesh.type),
+             mesh.type == ElementType::hex8 ? kVtkHexahedron : kVtkTetra, point_fields, cell_fields);
+}
+
+void write_surface_vtu(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x,
+                       const std::vector<VtuPointField>& point_fields) {
+  const std::vector<double>& points = x.empty() ? surface.positions : x;
+  // The checks of write_vtu on the triangles as a mesh of 3-node cells.
+  if (points.size() != surface.positions.size() || surface.positions.size() % 3 != 0 ||
+      surface.triangles.size() % 3 != 0) {
+    std::ostringstream s;
+    s << "write_surface_vtu " << path << ": the positions have " << points.size() << " values for a surface of "
+      << surface.vertex_count() << " vertices (" << surface.positions.size() << " values) and "
+      << surface.triangles.size() << " triangle indices";
+    throw Error(s.str());
+  }
+  for (size_t i = 0; i < surface.triangles.size(); ++i)
+    if (surface.triangles[i] < 0 || static_cast<size_t>(surface.triangles[i]) >= surface.vertex_count()) {
       std::ostringstream s;
-      s << "write_pvd " << path << ": step " << i << " (" << steps[i].second << ") has a non-finite time "
-        << steps[i].first;
+      s << "write_surface_vtu " << path << ": triangle " << i / 3 << " refers to vertex " << surface.triangles[i]
+        << ", but the surface has " << surface.vertex_count() << " vertices";
       throw Error(s.str());
     }
-    if (steps[i].second.empty()) {
+  for (const VtuPointField& f : point_fields)
+    if (f.name.empty() || (f.components != 1 && f.components != 3) ||
+        f.values.size() != surface.vertex_count() * f.components) {
+      std::ostringstream s;
+      s << "write_surface_vtu " << path << ": point field \"" << f.name << "\" has " << f.values.size() << " values in "
+        << f.components << " components for " << surface.vertex_count()
+        << " vertices (a name and 1 or 3 components needed)";
+      throw Error(s.str());
+    }
+  write_grid(path, points, surface.triangles, 3, kVtkTriangle, point_fields, {});
+}
+
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {
+  std::vector<PvdDataSet> datasets;
+  datasets.reserve(steps.size());
+  for (const auto& [time, file] : steps) datasets.push_back({time, file, 0});
+  write_pvd_parts(path, datasets);
+}
+
+void write_pvd_parts(const std::string& path, const std::vector<PvdDataSet>& datasets) {
+  for (size_t i = 0; i < datasets.size(); ++i) {
+    if (!std::isfinite(datasets[i].time)) {
+      std::ostringstream s;
+      s << "write_pvd " << path << ": step " << i << " (" << datasets[i].file << ") has a non-finite time "
+        << datasets[i].time;
+      throw Error(s.str());
+    }
+    if (datasets[i].file.empty()) {
       std::ostringstream s;
       s << "write_pvd " << path << ": step " << i << " has no file name";
+      throw Error(s.str());
+    }
+    if (datasets[i].part < 0) {
+      std::ostringstream s;
+      s << "write_pvd " << path << ": step " << i << " (" << datasets[i].file << ") has part " << datasets[i].part
+        << " (parts are numbered from 0)";
       throw Error(s.str());
     }
   }
@@ -213,8 +264,9 @@ void write_pvd(const std::string& path, const std::vector<std::pair<double, std:
   file << "<?xml version=\"1.0\"?>\n"
        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
        << "  <Collection>\n";
-  for (const auto& [time, vtu] : steps)
-    file << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << xml_escape(vtu) << "\"/>\n";
+  for (const PvdDataSet& d : datasets)
+    file << "    <DataSet timestep=\"" << d.time << "\" group=\"\" part=\"" << d.part << "\" file=\""
+         << xml_escape(d.file) << "\"/>\n";
   file << "  </Collection>\n"
        << "</VTKFile>\n";
   finish(file, path);

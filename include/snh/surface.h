@@ -30,21 +30,71 @@ TriangleSurface read_surface(const std::string& path);
 // as OBJ.
 void write_obj(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x = {});
 
+// Throws snh::Error unless the surface is closed and consistently oriented:
+// every edge is shared by exactly two triangles that traverse it in opposite
+// directions. The message counts the open edges (used by one triangle),
+// non-manifold edges (more than two) and edges traversed twice in the same
+// direction (a flipped triangle), and names the first few of each with
+// their vertex indices and positions. Also rejects indices out of range,
+// non-finite positions, and a surface whose enclosed volume is not positive
+// (triangles facing inwards).
+void validate_closed_surface(const TriangleSurface& surface);
+
+// The volume a closed surface encloses, by the divergence theorem:
+// sum over triangles of x0 . (x1 x x2) / 6 (negative when it faces inwards).
+double enclosed_volume(const TriangleSurface& surface);
+
+// The sum of the triangles' areas.
+double surface_area(const TriangleSurface& surface);
+
 // A hex8 lattice covering a closed surface's interior.
 struct Voxelization {
-  Mesh lattice;                   // hex8, VTK node order, elements of one rest shape (cubes of side `cell`)
-  double cell = 0.0;              // the cube side
-  std::array<double, 3> origin{}; // the corner of grid cell (0, 0, 0)
-  std::array<int, 3> dims{};      // grid cells per axis
+  Mesh lattice;                    // hex8, VTK node order, elements of one rest shape (cubes of side `cell`)
+  double cell = 0.0;               // the cube side
+  std::array<double, 3> origin{};  // the corner of grid cell (0, 0, 0)
+  std::array<int, 3> dims{};       // grid cells per axis
   // Per element: its grid cell (i, j, k); the cube spans origin + cell * [i, i+1] x ...
   std::vector<std::array<int, 3>> element_cell;
+  // Pieces of the lattice (elements connected through shared vertices): 1
+  // for a connected shape; more where parts touch only across a cut or
+  // along a cell edge or corner (see voxelize).
+  int components = 0;
 };
 
-// The rule for which grid cells become elements and how they connect is
-// documented in the implementation's header comment and the README. Throws
-// snh::Error for a surface that is not closed (naming open edges), cell <= 0,
-// or a lattice that would be empty or too large.
-Voxelization voxelize(const TriangleSurface& surface, double cell);
+struct VoxelizeOptions {
+  // The grid (dims product) may hold at most this many cells; a larger one
+  // is refused with a message naming its size, before anything is allocated.
+  int64_t max_grid_cells = int64_t(1) << 26;
+};
+
+// The grid: dims[d] = ceil(extent_d / cell) (at least 1; an extent a
+// rounding error above a multiple of the cell takes no extra cell) cubes of
+// side `cell` per axis from the bounding box's lowest corner (a box-shaped
+// surface whose sides are multiples of the cell is filled exactly).
+//
+// Which cells: a grid cell becomes an element when its centre is inside the
+// surface: its winding number is positive (nested or overlapping closed
+// pieces count as long as the count is positive). The winding number is
+// counted along rays parallel to +x from every cell centre, crossing by
+// crossing, with exact tie handling: a ray through a triangle's edge or
+// vertex is decided as if moved by an infinitesimal (0, e, e^2), each edge
+// evaluated once in a fixed vertex order so that the triangles sharing it
+// agree, and a centre lying exactly on the surface as if moved by +x.
+//
+// How cells connect (thin gaps, the paper's non-manifold lattices): two
+// face-adjacent elements share the 4 vertices of their common face only when
+// the segment between their centres does not cross the surface (counted as
+// above, along that axis); otherwise each keeps its own copies, so the two
+// sides of a slit thinner than a cell are not glued. Lattice vertices are the
+// classes of element corners joined through shared faces (union-find):
+// elements that touch only along an edge or at a corner share those
+// vertices only when a chain of face-sharing elements around that edge or
+// corner joins them; otherwise they get separate vertices (the piece then
+// counts as its own component).
+//
+// Throws snh::Error for a surface that is not closed (validate_closed_surface),
+// cell <= 0, or a lattice that would be empty or too large.
+Voxelization voxelize(const TriangleSurface& surface, double cell, const VoxelizeOptions& options = {});
 
 // Each surface vertex's element and its 8 trilinear weights (hex8 node
 // order), so that the surface follows the lattice.
@@ -53,7 +103,15 @@ struct Embedding {
   std::vector<double> weights;   // 8 per surface vertex, summing to 1
 };
 
-// Throws snh::Error naming a surface vertex that lies in no element.
+// Each vertex goes to the nearest element (grid cell) by its distance to the
+// closed cube, distances below 1e-9 cells counting as 0; ties (a vertex on a
+// face, edge or corner shared by elements) go to the cell with the smallest
+// grid index i + dims[0] (j + dims[1] k). A vertex outside every element (the
+// centre-inside rule drops cells the surface passes through) is extrapolated
+// from its nearest element: its weights are that cell's trilinear functions
+// at its unclamped local coordinates (still summing to 1), so the surface is
+// reproduced exactly at rest and under affine maps of the lattice. Throws
+// snh::Error naming a surface vertex more than one cell from every element.
 Embedding embed(const Voxelization& voxels, const TriangleSurface& surface);
 
 // The surface's vertex positions (xyz per vertex) for lattice positions x.

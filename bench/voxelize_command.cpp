@@ -1,0 +1,92 @@
+// `snh-gpu-bench voxelize SURFACE --cell H --out LATTICE`: a closed surface
+// (.obj, .ply, .stl) to a hex8 lattice (voxelize in surface.h), written as
+// .vtu with each element's grid cell, and what the lattice is: cells,
+// vertices, pieces, its volume against the surface's enclosed volume.
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.h"
+#include "snh/error.h"
+#include "snh/io.h"
+#include "snh/surface.h"
+
+namespace snh::bench {
+namespace {
+
+struct VoxelizeCommand {
+  std::string surface;
+  double cell = 0.0;
+  std::string out;
+  int64_t max_cells = VoxelizeOptions{}.max_grid_cells;
+};
+
+bool ends_with_vtu(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& c : ext)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return ext == ".vtu";
+}
+
+int run_voxelize(const VoxelizeCommand& o) {
+  using Clock = std::chrono::steady_clock;
+  if (!ends_with_vtu(o.out)) throw Error("voxelize: --out " + o.out + ": the lattice is written as .vtu (VTK XML)");
+  const auto t0 = Clock::now();
+  const TriangleSurface surface = read_surface(o.surface);
+  const auto t1 = Clock::now();
+  VoxelizeOptions options;
+  options.max_grid_cells = o.max_cells;
+  const Voxelization v = voxelize(surface, o.cell, options);
+  const auto t2 = Clock::now();
+  VtuCellField grid_cell{"grid_cell", {}, 3};
+  grid_cell.values.reserve(3 * v.element_cell.size());
+  for (const auto& c : v.element_cell) grid_cell.values.insert(grid_cell.values.end(), c.begin(), c.end());
+  write_vtu(o.out, v.lattice, v.lattice.positions, {}, {grid_cell});
+  const auto t3 = Clock::now();
+
+  const double enclosed = enclosed_volume(surface);
+  const double lattice = double(v.lattice.element_count()) * o.cell * o.cell * o.cell;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  std::cout << std::setprecision(6);
+  std::cout << "surface: " << o.surface << ", " << surface.vertex_count() << " vertices, " << surface.triangle_count()
+            << " triangles, area " << surface_area(surface) << "\n";
+  std::cout << "grid: " << v.dims[0] << " x " << v.dims[1] << " x " << v.dims[2] << " cells of " << v.cell << " from ("
+            << v.origin[0] << ", " << v.origin[1] << ", " << v.origin[2] << ")\n";
+  std::cout << "cells: " << v.lattice.element_count() << "\n";
+  std::cout << "vertices: " << v.lattice.vertex_count() << "\n";
+  std::cout << "components: " << v.components << "\n";
+  std::cout << "lattice volume: " << lattice << "\n";
+  std::cout << "enclosed volume: " << enclosed << "\n";
+  std::cout << "relative volume difference: " << (lattice - enclosed) / enclosed << "\n";
+  std::cout << "seconds: read " << seconds(t0, t1) << ", voxelize " << seconds(t1, t2) << ", write " << seconds(t2, t3)
+            << "\n";
+  std::cout << "wrote: " << o.out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void add_voxelize_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<VoxelizeCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "voxelize",
+      "A closed triangle surface (.obj, .ply, .stl) to a hex8 lattice: cells whose centres are inside, not glued "
+      "across gaps thinner than a cell (written as .vtu)");
+  cmd->add_option("surface", o->surface, "closed surface: .obj, .ply (ASCII or binary) or .stl (ASCII or binary)")
+      ->required();
+  cmd->add_option("--cell", o->cell, "cube side of the lattice, in the surface's units")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--out", o->out, "the lattice, .vtu (with a cell array grid_cell: each element's i j k)")->required();
+  cmd->add_option("--max-cells", o->max_cells, "refuse grids of more cells than this")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->callback([o, &exit_code] { exit_code = run_voxelize(*o); });
+}
+
+}  // namespace snh::bench

@@ -1,0 +1,54 @@
+// Running an animation: for each frame, every animated bone's transform set
+// on its constraint set, a solve from the previous frame (warm start), and
+// the embedded surface carried along. Running is separate from writing: the
+// driver returns one record per frame and hands each frame's positions to a
+// callback, which writes what it likes (snh/io.h, snh/surface.h).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "snh/animation.h"
+#include "snh/simulation.h"
+#include "snh/surface.h"
+
+namespace snh {
+
+struct FrameRecord {
+  int frame = 0;
+  double time = 0.0;
+  bool converged = false;
+  std::string status;  // the last load step's (StepResult::status)
+  int newton_iterations = 0;
+  int cg_iterations = 0;
+  double residual_norm = 0.0;
+  double seconds = 0.0;
+  double volume_ratio = 0.0;
+  double min_j = 0.0;
+  int inverted_elements = 0;
+};
+
+struct FrameOptions {
+  int load_steps = 1;  // per frame
+  // Stop at the first frame that does not converge (its record is the last).
+  bool stop_on_failure = false;
+};
+
+// Called after each frame with its record, the lattice positions and the
+// embedded surface's positions (xyz per vertex; empty without an embedding).
+// Return false to stop after this frame.
+using FrameCallback =
+    std::function<bool(const FrameRecord&, const std::vector<double>& lattice, const std::vector<double>& surface)>;
+
+// Runs every frame of `animation` on `simulation`: each animated bone's
+// matrix goes to the constraint set of the same name through
+// set_transform(to_rigid_transform(M, c)), c the centroid of the set's rest
+// positions (rigid motions are interpolated about the bone itself); sets the
+// animation does not name keep their targets. The surface follows
+// `embedding` (null: no surface). Throws snh::Error naming an animated bone
+// that is not a constraint set of the simulation, before any solve.
+std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& animation, const Embedding* embedding,
+                                    const FrameOptions& options = {}, const FrameCallback& on_frame = {});
+
+}  // namespace snh
