@@ -433,10 +433,6 @@ std::string read_file(const std::string& path) {
   return contents.str();
 }
 
-}  // namespace io
-
-namespace {
-
 std::string lowercase_extension(const std::string& path) {
   const size_t slash = path.find_last_of("/\\");
   const size_t dot = path.find_last_of('.');
@@ -447,10 +443,10 @@ std::string lowercase_extension(const std::string& path) {
   return ext;
 }
 
-}  // namespace
+}  // namespace io
 
 Mesh read_mesh(const std::string& path) {
-  const std::string ext = lowercase_extension(path);
+  const std::string ext = io::lowercase_extension(path);
   if (ext == ".msh") return io::read_gmsh(path, io::read_file(path));
   if (ext == ".vtk") return io::read_vtk_legacy(path, io::read_file(path));
   if (ext == ".vtu") return io::read_vtu(path, io::read_file(path));

@@ -183,4 +183,7 @@ Mesh read_tetgen(const std::string& node_path, const std::string& node_data, con
 // A file's whole contents; throws naming the path when it cannot be read.
 std::string read_file(const std::string& path);
 
+// The file name's extension with its dot, in lower case ("" for none).
+std::string lowercase_extension(const std::string& path);
+
 }  // namespace snh::io

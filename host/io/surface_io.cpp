@@ -7,6 +7,7 @@
 #include <locale>
 #include <sstream>
 
+#include "io/readers.h"
 #include "io/surface_readers.h"
 #include "snh/error.h"
 #include "snh/surface.h"
@@ -65,22 +66,8 @@ TriangleSurface SurfaceBuilder::finish() {
 
 }  // namespace io
 
-namespace {
-
-std::string lowercase_extension(const std::string& path) {
-  const size_t slash = path.find_last_of("/\\");
-  const size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot);
-  for (char& c : ext)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return ext;
-}
-
-}  // namespace
-
 TriangleSurface read_surface(const std::string& path) {
-  const std::string ext = lowercase_extension(path);
+  const std::string ext = io::lowercase_extension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".stl")
     throw Error(path + ": unknown surface format '" + ext + "' (expected .obj, .ply or .stl)");
   const std::string data = io::read_file(path);
