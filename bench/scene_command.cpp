@@ -53,7 +53,7 @@ struct SceneOptions {
   int frames = 0;
   std::string device;
   std::string variant = "automatic";
-  std::string preconditioner = "block-jacobi";
+  std::string preconditioner = "automatic";
   double strain_tolerance = 0.0;
   double relative_tolerance = -1.0;
   double absolute_tolerance = -1.0;
@@ -75,7 +75,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["poisson_ratio"] = scene.material.poisson_ratio();
   j["barrier"] = scene.material.barrier;
   j["product"] = to_string(r.product);
-  j["preconditioner"] = options.block_jacobi ? "block-jacobi" : "none";
+  j["preconditioner"] = to_string(r.preconditioner);
   j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
   j["steps"] = json::array();
   for (const StepResult& s : r.steps)
@@ -177,7 +177,7 @@ int run_scene(const SceneOptions& given) {
     options.precision = parse_precision(o.precision);
     options.device.match = o.device;
     options.product = parse_product_variant(o.variant);
-    options.block_jacobi = o.preconditioner == "block-jacobi";
+    options.preconditioner = parse_preconditioner(o.preconditioner);
     if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
     if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
     if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
@@ -322,8 +322,9 @@ void add_scene_command(CLI::App& app, int& exit_code) {
                   "Hessian product: automatic (measured default), cached, recompute, element-matrices, assembled")
       ->check(CLI::IsMember({"automatic", "cached", "recompute", "element-matrices", "assembled"}))
       ->capture_default_str();
-  cmd->add_option("--preconditioner", o->preconditioner, "block-jacobi or none")
-      ->check(CLI::IsMember({"block-jacobi", "none"}))
+  cmd->add_option("--preconditioner", o->preconditioner,
+                  "automatic (measured default), block-jacobi, multigrid (hex8 lattices) or none")
+      ->check(CLI::IsMember({"automatic", "block-jacobi", "multigrid", "none"}))
       ->capture_default_str();
   cmd->add_option(
       "--strain-tol", o->strain_tolerance,

@@ -292,7 +292,11 @@ SceneFile load_scene_file(const std::string& path) {
   s.options.load_steps = r.integer(solver, "solver", "steps", 1);
   s.options.precision = parse_precision(r.text(solver, "solver", "precision", "double"));
   s.options.max_newton_iterations = r.integer(solver, "solver", "max_newton_iterations", 200);
-  s.options.block_jacobi = r.text(solver, "solver", "preconditioner", "block-jacobi") == "block-jacobi";
+  try {
+    s.options.preconditioner = parse_preconditioner(r.text(solver, "solver", "preconditioner", "automatic"));
+  } catch (const Error& e) {
+    throw Error(path + ": solver.preconditioner: " + e.what());
+  }
   s.options.hessian =
       r.text(solver, "solver", "hessian", "adaptive") == "projected" ? HessianMode::projected : HessianMode::adaptive;
   // Strain-equivalent tolerance as in make_scene, h from the first element's first edge.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "snh/error.h"
 #include "solver/elastic_model.h"
 #include "solver/matrix_free.h"
 #include "solver/newton_driver.h"
@@ -19,8 +20,16 @@ class DeviceProblem {
  public:
   using Vector = viennacl::vector<Real>;
 
-  DeviceProblem(ElasticModel<Real>& model, bool block_jacobi)
-      : model_(model), op_(model), precond_(model, block_jacobi), block_jacobi_(block_jacobi) {}
+  // preconditioner: none or block_jacobi (automatic resolved by the caller).
+  DeviceProblem(ElasticModel<Real>& model, Preconditioner preconditioner)
+      : model_(model),
+        op_(model),
+        precond_(model, preconditioner == Preconditioner::block_jacobi),
+        block_jacobi_(preconditioner == Preconditioner::block_jacobi) {
+    if (preconditioner == Preconditioner::multigrid) throw Error("solver: multigrid is not built yet");
+    if (preconditioner == Preconditioner::automatic)
+      throw Error("solver: resolve Preconditioner::automatic before use");
+  }
 
   size_t dofs() const { return model_.dofs(); }
   double epsilon() const { return std::numeric_limits<Real>::epsilon(); }

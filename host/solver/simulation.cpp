@@ -86,6 +86,7 @@ struct Simulation::Impl {
   device::OpenClContext cl;
   long viennacl_context_id;
   ProductVariant product;
+  Preconditioner preconditioner;
   double tolerance;
   std::vector<char> prescribed;  // per DOF
   std::vector<std::string> warnings;
@@ -110,6 +111,9 @@ struct Simulation::Impl {
         product(options.product == ProductVariant::automatic
                     ? default_product_variant(mesh.type, options.precision, cl.info().is_gpu)
                     : options.product),
+        preconditioner(options.preconditioner != Preconditioner::automatic ? options.preconditioner
+                       : options.block_jacobi                              ? default_preconditioner(mesh)
+                                                                           : Preconditioner::none),
         tolerance(0.0) {
     validate_solve_inputs(mesh, constraints, options);
     validate_material_map(mesh, materials);
@@ -156,7 +160,7 @@ struct Simulation::Impl {
     std::vector<Real> mask(prescribed.size());
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
     engine->model->set_mask(mask);
-    engine->problem = std::make_unique<solver::DeviceProblem<Real>>(*engine->model, options.block_jacobi);
+    engine->problem = std::make_unique<solver::DeviceProblem<Real>>(*engine->model, preconditioner);
     engine->newton = std::make_unique<solver::NewtonDriver<solver::DeviceProblem<Real>>>(*engine->problem, options);
     device::use_viennacl(viennacl_context_id);
     return engine;
@@ -281,6 +285,7 @@ struct Simulation::Impl {
     SolveResult result;
     result.device = cl.info();
     result.product = product;
+    result.preconditioner = preconditioner;
     result.tolerance = tolerance;
     result.kernel_specialization = (single ? single->model->specialization() : dual->model->specialization()) +
                                    " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");

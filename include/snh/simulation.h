@@ -70,6 +70,20 @@ ProductVariant parse_product_variant(const std::string& text);  // the names abo
 // measurements (README); device classes not measured get `cached`.
 ProductVariant default_product_variant(ElementType type, Precision precision, bool gpu);
 
+// The preconditioner of the conjugate gradient solves.
+enum class Preconditioner {
+  automatic,     // the measured choice (default_preconditioner)
+  none,          // plain CG
+  block_jacobi,  // the inverted 3x3 diagonal blocks of the projected Hessian
+  multigrid,     // a geometric V-cycle on the hex8 lattice (solver/multigrid.h); hex8 lattices only
+};
+
+const char* to_string(Preconditioner p);                       // "automatic", "none", "block-jacobi", "multigrid"
+Preconditioner parse_preconditioner(const std::string& text);  // the names above
+
+// What `automatic` resolves to for this mesh (README, `snh-gpu-bench scale`).
+Preconditioner default_preconditioner(const Mesh& mesh);
+
 struct NewtonIteration {
   int step = 0;
   int iteration = 0;
@@ -124,10 +138,13 @@ struct SolveOptions {
   // capped at eta_max.
   double forcing_gamma = 0.9;
   double forcing_max = 0.5;
+  Preconditioner preconditioner = Preconditioner::automatic;
+  // Older switch, kept for existing callers: false with preconditioner
+  // `automatic` means none.
   bool block_jacobi = true;
   // Backtracking halvings the line search may take before it gives up (and
   // retries once along the preconditioned steepest-descent direction).
-  int line_search_halvings = 40;  // false: CG without preconditioner
+  int line_search_halvings = 40;
   ProductVariant product = ProductVariant::automatic;
   HessianMode hessian = HessianMode::adaptive;
   // Lumped external force, xyz per vertex; empty for none.
@@ -187,9 +204,10 @@ struct SolveResult {
   int inverted_elements = 0;  // elements with J <= 0 at some quadrature point
   double seconds = 0.0;
   DeviceInfo device;
-  std::string kernel_specialization;                // the build-time switches of the kernels used
-  ProductVariant product = ProductVariant::cached;  // the variant used (automatic resolved)
-  std::vector<std::string> warnings;                // e.g. unused vertices (they stay where they are)
+  std::string kernel_specialization;                             // the build-time switches of the kernels used
+  ProductVariant product = ProductVariant::cached;               // the variant used (automatic resolved)
+  Preconditioner preconditioner = Preconditioner::block_jacobi;  // the one used (automatic resolved)
+  std::vector<std::string> warnings;                             // e.g. unused vertices (they stay where they are)
 };
 
 // Called after each load step with the step's positions (e.g. to write a .vtu).
