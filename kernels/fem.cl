@@ -11,28 +11,8 @@
  * vertex over a fixed adjacency order, so results are bitwise reproducible
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
  * element; gradients: [element][q][a][3]; weights: [element][q]. */
-#include "fem/element.h"
+#include "fem/element_data.h"
 #include "materials/kernel_args.h"
-
-#if SNH_UNIFORM_REST
-#define REST_ELEMENT(e) 0
-#else
-#define REST_ELEMENT(e) (e)
-#endif
-
-SNH_FN void load_nodes(SNH_GLOBAL const real* x, SNH_GLOBAL const int* nodes, real* xs) {
-  for (int a = 0; a < SNH_NODES; ++a)
-    for (int i = 0; i < 3; ++i) xs[3 * a + i] = x[3 * nodes[a] + i];
-}
-
-SNH_FN void load_gradients(SNH_GLOBAL const real* gradients, int e, int q, real* g) {
-  SNH_GLOBAL const real* src = gradients + (size_t)3 * SNH_NODES * (SNH_QUADRATURE * REST_ELEMENT(e) + q);
-  for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = src[i];
-}
-
-SNH_FN real load_weight(SNH_GLOBAL const real* weights, int e, int q) {
-  return weights[SNH_QUADRATURE * REST_ELEMENT(e) + q];
-}
 
 /* Strain energy of each element, sum_q w_q psi(F_q), and its smallest J. */
 __kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,

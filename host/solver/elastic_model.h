@@ -57,6 +57,15 @@ class ElasticModel {
   std::vector<Real> preconditioner_blocks() const;
 
   std::string specialization() const { return defines_; }
+  // What the multigrid preconditioner reads (solver/multigrid.h): the
+  // context, the mesh's element and rest-state buffers, the linearization
+  // cache and the constraint mask (host copy and buffer).
+  device::OpenClContext& context() const { return cl_; }
+  cl_mem elements_buffer() const { return elements_.get(); }
+  cl_mem gradients_buffer() const { return gradients_.get(); }
+  cl_mem weights_buffer() const { return weights_.get(); }
+  cl_mem cache_buffer() const { return cache_.get(); }
+  size_t element_count() const { return element_count_; }
   ProductVariant variant() const { return variant_; }
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);

@@ -17,6 +17,7 @@
 #include "solver/constraint_checks.h"
 #include "solver/device_problem.h"
 #include "solver/elastic_model.h"
+#include "solver/multigrid.h"
 #include "solver/newton_driver.h"
 
 namespace snh {
@@ -143,6 +144,12 @@ struct Simulation::Impl {
     body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
   }
 
+  std::vector<char> free_dofs() const {
+    std::vector<char> free(prescribed.size());
+    for (size_t i = 0; i < free.size(); ++i) free[i] = prescribed[i] ? 0 : 1;
+    return free;
+  }
+
   void total_force(std::vector<double>& f) const {
     f.assign(3 * mesh.vertex_count(), 0.0);
     for (size_t i = 0; i < user_force.size(); ++i) f[i] += user_force[i];
@@ -160,7 +167,12 @@ struct Simulation::Impl {
     std::vector<Real> mask(prescribed.size());
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
     engine->model->set_mask(mask);
-    engine->problem = std::make_unique<solver::DeviceProblem<Real>>(*engine->model, preconditioner);
+    std::unique_ptr<solver::MultigridPreconditioner<Real>> multigrid;
+    if (preconditioner == Preconditioner::multigrid)
+      multigrid =
+          std::make_unique<solver::MultigridPreconditioner<Real>>(*engine->model, mesh, free_dofs(), options.multigrid);
+    engine->problem =
+        std::make_unique<solver::DeviceProblem<Real>>(*engine->model, preconditioner, std::move(multigrid));
     engine->newton = std::make_unique<solver::NewtonDriver<solver::DeviceProblem<Real>>>(*engine->problem, options);
     device::use_viennacl(viennacl_context_id);
     return engine;
