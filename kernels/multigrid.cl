@@ -61,9 +61,11 @@ SNH_FN void child_weights_and_mask(int o, SNH_GLOBAL const int* nodes, SNH_GLOBA
     for (int i = 0; i < 3; ++i) m[3 * a + i] = mask[3 * nodes[a] + i];
 }
 
-/* First coarse level from the fine linearization cache: each child's
- * stiffness K = sum_q w_q B_q^T H_q B_q column by column, with H projected to
- * PSD (as the block-Jacobi diagonal is) so every coarse operator is SPD. */
+/* First coarse level from the fine linearization cache (the product
+ * variants that keep no element matrices): each child's stiffness
+ * K = sum_q w_q B_q^T H_q B_q column by column, H as the cache holds it
+ * (projected or true), so that the coarse operator is the Galerkin product of
+ * the very operator CG solves with. */
 __kernel void snh_galerkin_from_cache(__global const int* children, __global const int* fine_elements,
                                       __global const real* gradients, __global const real* weights,
                                       __global const real* cache, __global const real* fine_mask, const int count,
@@ -81,8 +83,7 @@ __kernel void snh_galerkin_from_cache(__global const int* children, __global con
     for (int q = 0; q < SNH_QUADRATURE; ++q) {
       load_gradients(gradients, e, q, g[q]);
       qw[q] = load_weight(weights, e, q);
-      h[q] = principal_hessian_project(
-          linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q)));
+      h[q] = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
     }
     for (int b = 0; b < 8; ++b)
       for (int d = 0; d < 3; ++d) {
@@ -102,7 +103,8 @@ __kernel void snh_galerkin_from_cache(__global const int* children, __global con
   for (int i = 0; i < MG_DOFS * MG_DOFS; ++i) dst[i] = k[i];
 }
 
-/* Next coarser level from a level's element matrices. */
+/* Next coarser level from a level's element matrices (also the first, from
+ * the fine element matrices when the product variant keeps them). */
 __kernel void snh_galerkin_from_matrices(__global const int* children, __global const int* fine_elements,
                                          __global const real* fine_matrices, __global const real* fine_mask,
                                          const int count, __global real* out) {

@@ -65,6 +65,13 @@ class ElasticModel {
   cl_mem gradients_buffer() const { return gradients_.get(); }
   cl_mem weights_buffer() const { return weights_.get(); }
   cl_mem cache_buffer() const { return cache_.get(); }
+  // The per-element matrices of the last linearize() (element_matrices and
+  // assembled variants), else null.
+  cl_mem element_matrices_buffer() const {
+    return variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled
+               ? element_matrices_.get()
+               : nullptr;
+  }
   size_t element_count() const { return element_count_; }
   ProductVariant variant() const { return variant_; }
   // Takes effect at the next linearize(). `automatic` is not accepted here.

@@ -170,13 +170,18 @@ bool is_hex8_lattice(const Mesh& mesh) {
   return true;
 }
 
-LatticeHierarchy build_lattice_hierarchy(const Mesh& mesh, const std::vector<char>& fine_mask, size_t coarsest_dofs,
-                                         int max_levels) {
-  if (mesh.type != ElementType::hex8) throw Error("multigrid: needs a hex8 lattice; this mesh is tet4");
+void require_hex8_lattice(const Mesh& mesh) {
+  if (mesh.type != ElementType::hex8)
+    throw Error("multigrid: needs a hex8 lattice; this mesh is tet4 (use block-jacobi)");
   if (!is_hex8_lattice(mesh))
     throw Error(
         "multigrid: the mesh is not a hex8 lattice (axis-aligned cubes of one edge length, nodes in VTK order); use "
         "block-jacobi");
+}
+
+LatticeHierarchy build_lattice_hierarchy(const Mesh& mesh, const std::vector<char>& fine_mask, size_t coarsest_dofs,
+                                         int max_levels) {
+  require_hex8_lattice(mesh);
   if (fine_mask.size() != 3 * mesh.vertex_count()) throw Error("multigrid: constraint mask has the wrong size");
   LatticeHierarchy hierarchy;
   const auto p0 = mesh.vertex(mesh.elements[0]), p1 = mesh.vertex(mesh.elements[1]);

@@ -43,6 +43,10 @@ struct LatticeHierarchy {
 // length (relative tolerance 1e-6), nodes in VTK order.
 bool is_hex8_lattice(const Mesh& mesh);
 
+// Throws snh::Error (naming what is wrong and the alternative) unless the
+// mesh is a hex8 lattice.
+void require_hex8_lattice(const Mesh& mesh);
+
 // Coarsens until a level has at most `coarsest_dofs` DOFs, stops shrinking
 // (fewer than 1.5x fewer cells) or `max_levels` levels exist. fine_mask: 1
 // free, 0 constrained, per DOF of the mesh. Throws snh::Error naming the

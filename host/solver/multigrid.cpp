@@ -179,7 +179,8 @@ void MultigridPreconditioner<Real>::setup() {
     Level& L = *levels_[l];
     const Level& F = *levels_[l - 1];
     const int cells = static_cast<int>(L.cells);
-    if (l == 1) {
+    const cl_mem fine_matrices = l == 1 ? model_.element_matrices_buffer() : F.matrices.get();
+    if (!fine_matrices) {
       cl_kernel k = galerkin_cache_k_.get();
       set_arg(k, 0, L.children.get());
       set_arg(k, 1, F.element_handle);
@@ -194,7 +195,7 @@ void MultigridPreconditioner<Real>::setup() {
       cl_kernel k = galerkin_matrices_k_.get();
       set_arg(k, 0, L.children.get());
       set_arg(k, 1, F.element_handle);
-      set_arg(k, 2, F.matrices.get());
+      set_arg(k, 2, fine_matrices);
       set_arg(k, 3, F.mask.get());
       set_arg(k, 4, cells);
       set_arg(k, 5, L.matrices.get());

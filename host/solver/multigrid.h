@@ -2,14 +2,18 @@
 // V-cycle over the levels of solver/lattice_hierarchy.h.
 //   - Fine level: the engine's own matrix-free product (ElasticModel) and its
 //     block-Jacobi inverse blocks.
-//   - Coarse levels: Galerkin operators P^T D A D P rebuilt at every Newton
+//   - Coarse levels: Galerkin operators P^T D A D P of the fine operator A
+//     (projected or true Hessian, as linearized) rebuilt at every Newton
 //     linearization, one 24x24 matrix per coarse cell (kernels/multigrid.cl),
-//     from the projected fine Hessian: SPD whatever the fine Hessian is.
+//     from the fine element matrices when the product variant keeps them,
+//     else from the linearization cache.
 //   - Smoother: Chebyshev of degree k over block-Jacobi on the interval
 //     [0.1, 1.1] * lambda_max(D^-1 A) (lambda_max by 10 power iterations per
 //     level and linearization); the same before and after the coarse
 //     correction, so the V-cycle is symmetric.
-//   - Coarsest level: assembled and factored (sparse LDL^T, Eigen) on the host.
+//   - Coarsest level: assembled and factored (sparse LDL^T, Eigen) on the
+//     host; where that factor is not positive (a true Hessian that is not
+//     positive definite there) the coarsest level is smoothed instead.
 // Constrained DOFs stay exactly zero on every level (masked transfers).
 #pragma once
 

@@ -17,6 +17,7 @@
 #include "solver/constraint_checks.h"
 #include "solver/device_problem.h"
 #include "solver/elastic_model.h"
+#include "solver/lattice_hierarchy.h"
 #include "solver/multigrid.h"
 #include "solver/newton_driver.h"
 
@@ -118,6 +119,7 @@ struct Simulation::Impl {
         tolerance(0.0) {
     validate_solve_inputs(mesh, constraints, options);
     validate_material_map(mesh, materials);
+    if (preconditioner == Preconditioner::multigrid) solver::require_hex8_lattice(mesh);
     tolerance = residual_tolerance(mesh, materials, options);
     prescribed = solver::prescribed_dofs(mesh, constraints);
     user_force = options.external_force;

@@ -91,7 +91,7 @@ Preconditioner default_preconditioner(const Mesh& mesh);
 // preconditioner) and a direct solve of the coarsest level on the host.
 struct MultigridOptions {
   int smoother_degree = 2;      // Chebyshev degree of each pre- and post-smoothing (operator products each)
-  size_t coarsest_dofs = 3000;  // coarsen until a level has at most this many DOFs
+  size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
   int max_levels = 12;
 };
 
