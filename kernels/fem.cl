@@ -256,6 +256,18 @@ __kernel void snh_element_matrix_product(__global const real* p, __global const 
   for (int i = 0; i < SNH_DOFS; ++i) out[SNH_DOFS * e + i] = y[i];
 }
 
+/* The 3x3 diagonal blocks K_aa of stored element matrices, laid out as
+ * snh_element_diagonal writes them: out[(e * NODES + a) * 9 + 3 d + i]. */
+__kernel void snh_element_matrix_diagonal(__global const real* matrices, const int count, __global real* out) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  __global const real* k = matrices + (size_t)SNH_DOFS * SNH_DOFS * e;
+  for (int a = 0; a < SNH_NODES; ++a)
+    for (int d = 0; d < 3; ++d)
+      for (int i = 0; i < 3; ++i)
+        out[(size_t)9 * SNH_NODES * e + 9 * a + 3 * d + i] = k[SNH_DOFS * (3 * a + d) + 3 * a + i];
+}
+
 /* y = mask * y, elementwise (after an assembled product). */
 __kernel void snh_apply_mask(__global const real* mask, const int size, __global real* y) {
   const int i = get_global_id(0);

@@ -104,41 +104,38 @@ __kernel void snh_galerkin_from_cache(__global const int* children, __global con
 }
 
 /* Next coarser level from a level's element matrices (also the first, from
- * the fine element matrices when the product variant keeps them). */
+ * the fine element matrices when the product variant keeps them). One
+ * work-item per coarse cell and coarse column (B, d): column (B, d) of K_C is
+ * sum_children sum_b W_o[b][B] m_bd W_o^T (m . column (b, d) of K_child). */
 __kernel void snh_galerkin_from_matrices(__global const int* children, __global const int* fine_elements,
                                          __global const real* fine_matrices, __global const real* fine_mask,
                                          const int count, __global real* out) {
-  const int c = get_global_id(0);
-  if (c >= count) return;
-  real k[MG_DOFS * MG_DOFS];
-  for (int i = 0; i < MG_DOFS * MG_DOFS; ++i) k[i] = SNH_R(0);
+  const int item = get_global_id(0);
+  if (item >= count * MG_DOFS) return;
+  const int c = item / MG_DOFS, column_index = item % MG_DOFS, corner_b = column_index / 3, d = column_index % 3;
+  real column[MG_DOFS];
+  for (int i = 0; i < MG_DOFS; ++i) column[i] = SNH_R(0);
   for (int o = 0; o < 8; ++o) {
     const int e = children[8 * c + o];
     if (e < 0) continue;
-    real w[64], m[MG_DOFS];
-    child_weights_and_mask(o, fine_elements + 8 * e, fine_mask, w, m);
+    SNH_GLOBAL const int* nodes = fine_elements + 8 * e;
     __global const real* ke = fine_matrices + (size_t)MG_DOFS * MG_DOFS * e;
-    for (int b = 0; b < 8; ++b)
-      for (int d = 0; d < 3; ++d) {
-        if (m[3 * b + d] == SNH_R(0)) continue;
-        real column[MG_DOFS];
-        for (int i = 0; i < MG_DOFS; ++i) column[i] = ke[MG_DOFS * (3 * b + d) + i];
-        galerkin_add_column(w, m, b, d, column, k);
-      }
+    real w[64];
+    for (int a = 0; a < 8; ++a)
+      for (int corner = 0; corner < 8; ++corner) w[8 * a + corner] = child_weight(o, a, corner);
+    for (int b = 0; b < 8; ++b) {
+      const real wb = w[8 * b + corner_b] * fine_mask[3 * nodes[b] + d];
+      if (wb == SNH_R(0)) continue;
+      __global const real* kb = ke + MG_DOFS * (3 * b + d);
+      for (int a = 0; a < 8; ++a)
+        for (int i = 0; i < 3; ++i) {
+          const real v = wb * fine_mask[3 * nodes[a] + i] * kb[3 * a + i];
+          for (int corner = 0; corner < 8; ++corner) column[3 * corner + i] += w[8 * a + corner] * v;
+        }
+    }
   }
-  __global real* dst = out + (size_t)MG_DOFS * MG_DOFS * c;
-  for (int i = 0; i < MG_DOFS * MG_DOFS; ++i) dst[i] = k[i];
-}
-
-/* The 3x3 diagonal blocks K_aa of each cell's matrix, as snh_element_diagonal
- * lays them out for snh_block_jacobi_setup: out[(e * 8 + a) * 9 + 3 d + i]. */
-__kernel void snh_matrix_diagonal_blocks(__global const real* matrices, const int count, __global real* out) {
-  const int e = get_global_id(0);
-  if (e >= count) return;
-  __global const real* k = matrices + (size_t)MG_DOFS * MG_DOFS * e;
-  for (int a = 0; a < 8; ++a)
-    for (int d = 0; d < 3; ++d)
-      for (int i = 0; i < 3; ++i) out[(size_t)72 * e + 9 * a + 3 * d + i] = k[MG_DOFS * (3 * a + d) + 3 * a + i];
+  __global real* dst = out + (size_t)MG_DOFS * MG_DOFS * c + MG_DOFS * column_index;
+  for (int i = 0; i < MG_DOFS; ++i) dst[i] = column[i];
 }
 
 /* fine += mask * P coarse: 8 (coarse vertex, weight) pairs per fine vertex. */

@@ -50,7 +50,10 @@ class ElasticModel {
   void linearize(const VectorBase& x, bool projected = true);
   // y = mask * K p, K the (projected) stiffness at the linearized x.
   void product(const VectorBase& p, VectorBase& y) const;
-  // Block-Jacobi preconditioner from the current linearization.
+  // Block-Jacobi preconditioner from the current linearization: the 3x3
+  // diagonal blocks of the projected Hessian (of the element matrices when
+  // the variant keeps them and the linearization is projected, else
+  // recomputed from the cache and projected).
   void setup_preconditioner();
   void apply_preconditioner(VectorBase& z) const;  // z <- M^-1 z
   // The preconditioner's inverted 3x3 blocks, column-major per vertex (tests).
@@ -114,7 +117,7 @@ class ElasticModel {
   std::vector<double> external_host_;
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
-      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;
+      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_, matrix_diagonal_k_;
 };
 
 }  // namespace snh::solver

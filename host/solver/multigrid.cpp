@@ -51,7 +51,7 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   const std::string defines = model.specialization();
   galerkin_cache_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_cache");
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_matrices");
-  diagonal_blocks_k_ = cl_.kernel("multigrid.cl", defines, "snh_matrix_diagonal_blocks");
+  diagonal_blocks_k_ = cl_.kernel("fem.cl", defines, "snh_element_matrix_diagonal");
   prolong_k_ = cl_.kernel("multigrid.cl", defines, "snh_prolong_add");
   restrict_k_ = cl_.kernel("multigrid.cl", defines, "snh_restrict");
   matrix_product_k_ = cl_.kernel("fem.cl", defines, "snh_element_matrix_product");
@@ -199,7 +199,7 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, 3, F.mask.get());
       set_arg(k, 4, cells);
       set_arg(k, 5, L.matrices.get());
-      cl_.run(k, L.cells);
+      cl_.run(k, 24 * L.cells);
     }
     cl_kernel d = diagonal_blocks_k_.get();
     set_arg(d, 0, L.matrices.get());
