@@ -25,15 +25,22 @@
 /* Offset (0 or 1) of hex8 node a (VTK order) along axis d. */
 SNH_FN int hex_node_bit(int a, int d) { return d == 0 ? ((a + 1) >> 1) & 1 : d == 1 ? (a >> 1) & 1 : (a >> 2) & 1; }
 
-/* W_o[a][A]: weight of coarse corner A at node a of the child in octant o. */
-SNH_FN real child_weight(int o, int a, int corner) {
-  real w = SNH_R(1);
-  for (int d = 0; d < 3; ++d) {
-    const int p = ((o >> d) & 1) + hex_node_bit(a, d), c = 2 * hex_node_bit(corner, d);
-    const int distance = p > c ? p - c : c - p;
-    w *= distance == 0 ? SNH_R(1) : distance == 1 ? SNH_R(0.5) : SNH_R(0);
-  }
-  return w;
+/* W_o[a][A]: weight of coarse corner A at node a of the child in octant o,
+ * a product of 1D weights 1 - |p - c| / 2 (p = octant bit + node bit in
+ * {0, 1, 2}, c = 2 * corner bit): all 64 of octant o, w[8 a + A]. */
+SNH_FN void child_weights(int o, real* w) {
+  real axis[3][2][2]; /* [d][node bit][corner bit] */
+  for (int d = 0; d < 3; ++d)
+    for (int n = 0; n < 2; ++n) {
+      const int p = ((o >> d) & 1) + n;
+      axis[d][n][0] = SNH_R(1) - SNH_R(0.5) * (real)p;
+      axis[d][n][1] = SNH_R(0.5) * (real)p;
+    }
+  for (int a = 0; a < 8; ++a)
+    for (int corner = 0; corner < 8; ++corner)
+      w[8 * a + corner] = axis[0][hex_node_bit(a, 0)][hex_node_bit(corner, 0)] *
+                          axis[1][hex_node_bit(a, 1)][hex_node_bit(corner, 1)] *
+                          axis[2][hex_node_bit(a, 2)][hex_node_bit(corner, 2)];
 }
 
 /* k += W_o^T diag(m) col e_(b,d)^T ... : adds the masked column (b, d) of a
@@ -55,8 +62,7 @@ SNH_FN void galerkin_add_column(const real* w, const real* m, int b, int d, cons
 }
 
 SNH_FN void child_weights_and_mask(int o, SNH_GLOBAL const int* nodes, SNH_GLOBAL const real* mask, real* w, real* m) {
-  for (int a = 0; a < 8; ++a)
-    for (int corner = 0; corner < 8; ++corner) w[8 * a + corner] = child_weight(o, a, corner);
+  child_weights(o, w);
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i) m[3 * a + i] = mask[3 * nodes[a] + i];
 }
@@ -120,19 +126,22 @@ __kernel void snh_galerkin_from_matrices(__global const int* children, __global 
     if (e < 0) continue;
     SNH_GLOBAL const int* nodes = fine_elements + 8 * e;
     __global const real* ke = fine_matrices + (size_t)MG_DOFS * MG_DOFS * e;
-    real w[64];
-    for (int a = 0; a < 8; ++a)
-      for (int corner = 0; corner < 8; ++corner) w[8 * a + corner] = child_weight(o, a, corner);
+    real w[64], right[MG_DOFS];
+    child_weights(o, w);
+    /* right = K_child D W_o e_(B,d): the child's columns (b, d) weighted. */
+    for (int i = 0; i < MG_DOFS; ++i) right[i] = SNH_R(0);
     for (int b = 0; b < 8; ++b) {
       const real wb = w[8 * b + corner_b] * fine_mask[3 * nodes[b] + d];
       if (wb == SNH_R(0)) continue;
       __global const real* kb = ke + MG_DOFS * (3 * b + d);
-      for (int a = 0; a < 8; ++a)
-        for (int i = 0; i < 3; ++i) {
-          const real v = wb * fine_mask[3 * nodes[a] + i] * kb[3 * a + i];
-          for (int corner = 0; corner < 8; ++corner) column[3 * corner + i] += w[8 * a + corner] * v;
-        }
+      for (int i = 0; i < MG_DOFS; ++i) right[i] += wb * kb[i];
     }
+    /* column += W_o^T D right */
+    for (int a = 0; a < 8; ++a)
+      for (int i = 0; i < 3; ++i) {
+        const real v = fine_mask[3 * nodes[a] + i] * right[3 * a + i];
+        for (int corner = 0; corner < 8; ++corner) column[3 * corner + i] += w[8 * a + corner] * v;
+      }
   }
   __global real* dst = out + (size_t)MG_DOFS * MG_DOFS * c + MG_DOFS * column_index;
   for (int i = 0; i < MG_DOFS; ++i) dst[i] = column[i];
