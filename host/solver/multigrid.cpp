@@ -21,7 +21,7 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 }
 
 constexpr int kCellMatrix = 24 * 24;
-constexpr int kPowerIterations = 10;
+constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
 // Chebyshev's interval as fractions of the estimated lambda_max(D^-1 A):
 // the upper part of the spectrum, which the coarse levels do not resolve
 // (PETSc's defaults for a Chebyshev smoother; Adams et al. 2003).
@@ -36,6 +36,7 @@ struct MultigridPreconditioner<Real>::Level {
   device::Buffer elements, offsets, adjacency, mask, matrices, scratch, blocks, inverse, children;
   device::Buffer prolong_vertices, prolong_weights, restrict_offsets, restrict_vertices, restrict_weights;
   viennacl::vector<Real> b, x, r, d, t;
+  viennacl::vector<Real> eigenvector;  // of D^-1 A, the last power iteration's
   double lambda = 1.0;
   size_t bytes = 0;
 };
@@ -217,30 +218,42 @@ void MultigridPreconditioner<Real>::setup() {
     cl_.run(s, L.vertices);
   }
   factor_coarsest();
-  // lambda_max(D^-1 A) per smoothed level by power iteration from a fixed
-  // start (deterministic), the norms reduced on the device in a fixed order.
+  // lambda_max(D^-1 A) per smoothed level by power iteration: the first
+  // setup from a fixed start (deterministic), later ones warm-started from
+  // the last eigenvector estimate, whose operator changed by one Newton step
+  // only. Norms are reduced on the device in a fixed order.
   const size_t smoothed = levels_.size() == 1 || !coarsest_ok_ ? levels_.size() : levels_.size() - 1;
   for (size_t l = 0; l < smoothed; ++l) {
     Level& L = *levels_[l];
-    const LatticeLevel& h = hierarchy_.levels[l];
-    std::vector<Real> start(3 * L.vertices);
-    uint32_t state = 12345u;
-    for (size_t i = 0; i < start.size(); ++i) {
-      state = state * 1664525u + 1013904223u;
-      start[i] = h.mask[i] ? Real(0.5 + static_cast<double>(state >> 8) / 16777216.0) : Real(0);
+    const bool warm = L.eigenvector.size() == 3 * L.vertices;
+    if (!warm) {
+      const LatticeLevel& h = hierarchy_.levels[l];
+      std::vector<Real> start(3 * L.vertices);
+      uint32_t state = 12345u;
+      for (size_t i = 0; i < start.size(); ++i) {
+        state = state * 1664525u + 1013904223u;
+        start[i] = h.mask[i] ? Real(0.5 + static_cast<double>(state >> 8) / 16777216.0) : Real(0);
+      }
+      L.eigenvector = viennacl::vector<Real>(3 * L.vertices);
+      viennacl::copy(start.begin(), start.end(), L.eigenvector.begin());
+      L.bytes += 3 * L.vertices * sizeof(Real);
     }
-    viennacl::copy(start.begin(), start.end(), L.d.begin());
     double lambda = 0.0;
-    for (int it = 0; it < kPowerIterations; ++it) {
-      const double dn = static_cast<double>(viennacl::linalg::norm_2(L.d));
-      if (!(dn > 0.0) || !std::isfinite(dn)) break;
-      L.d *= Real(1.0 / dn);
-      product(static_cast<int>(l), L.d, L.t);
+    const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
+    for (int it = 0; it < iterations; ++it) {
+      const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
+      if (!(norm > 0.0) || !std::isfinite(norm)) break;
+      L.eigenvector *= Real(1.0 / norm);
+      product(static_cast<int>(l), L.eigenvector, L.t);
       inverse_diagonal(static_cast<int>(l), L.t);
       lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
-      L.d.fast_swap(L.t);
+      L.eigenvector.fast_swap(L.t);
     }
-    L.lambda = std::isfinite(lambda) && lambda > 0.0 ? lambda : 1.0;
+    if (!(std::isfinite(lambda) && lambda > 0.0)) {  // start again next time
+      L.eigenvector = viennacl::vector<Real>();
+      lambda = 1.0;
+    }
+    L.lambda = lambda;
   }
 }
 

@@ -8,9 +8,10 @@
 //     from the fine element matrices when the product variant keeps them,
 //     else from the linearization cache.
 //   - Smoother: Chebyshev of degree k over block-Jacobi on the interval
-//     [0.1, 1.1] * lambda_max(D^-1 A) (lambda_max by 10 power iterations per
-//     level and linearization); the same before and after the coarse
-//     correction, so the V-cycle is symmetric.
+//     [0.1, 1.1] * lambda_max(D^-1 A) (lambda_max by power iteration per
+//     level and linearization: 10 steps the first time, then 4 from the last
+//     estimate); the same before and after the coarse correction, so the
+//     V-cycle is symmetric.
 //   - Coarsest level: assembled and factored (sparse LDL^T, Eigen) on the
 //     host; where that factor is not positive (a true Hessian that is not
 //     positive definite there) the coarsest level is smoothed instead.
