@@ -169,8 +169,8 @@ __kernel void snh_prolong_add(__global const real* coarse, __global const int* v
  * vertices and weights between offsets[c] and offsets[c + 1], in increasing
  * fine order (deterministic sums). */
 __kernel void snh_restrict(__global const real* fine, __global const real* fine_mask, __global const int* offsets,
-                           __global const int* vertices, __global const real* weights,
-                           __global const real* coarse_mask, const int count, __global real* coarse) {
+                           __global const int* vertices, __global const real* weights, __global const real* coarse_mask,
+                           const int count, __global real* coarse) {
   const int c = get_global_id(0);
   if (c >= count) return;
   real s0 = SNH_R(0), s1 = SNH_R(0), s2 = SNH_R(0);
