@@ -2,7 +2,8 @@
 // against exact shapes and an independent winding number, ties on edges and
 // vertices included), how the lattice's volume converges to the surface's,
 // that material on the two sides of a slit thinner than a cell is not glued,
-// and `snh-gpu-bench voxelize` writing a lattice read_mesh reads back.
+// and `snh-gpu-bench voxelize` writing a lattice read_mesh reads back, in
+// every format write_mesh writes.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -298,9 +299,29 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
   for (size_t e = 0; e < v.element_cell.size(); ++e)
     for (int d = 0; d < 3; ++d) EXPECT_EQ(back.cell_arrays[0].values[3 * e + d], v.element_cell[e][d]);
 
+  // The other formats by their extension: the same lattice exactly (the
+  // grid_cell array where the format carries arrays).
+  for (const char* name : {"sphere.msh", "sphere.vtk", "sphere.mesh", "sphere.VTU"}) {
+    SCOPED_TRACE(name);
+    std::string out;
+    ASSERT_EQ(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / name).string(), out), 0) << out;
+    const Mesh other = read_mesh((dir / name).string());
+    EXPECT_EQ(other.positions, v.lattice.positions);
+    EXPECT_EQ(other.elements, v.lattice.elements);
+    const bool arrays = std::string(name) != "sphere.msh" && std::string(name) != "sphere.mesh";
+    ASSERT_EQ(other.cell_arrays.size(), arrays ? 1u : 0u);
+    if (arrays) {
+      EXPECT_EQ(other.cell_arrays[0].values, back.cell_arrays[0].values);
+    }
+  }
   std::string bad;
-  EXPECT_NE(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / "sphere.msh").string(), bad), 0);
-  EXPECT_NE(bad.find(".vtu"), std::string::npos) << bad;
+  EXPECT_NE(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / "sphere.obj").string(), bad), 0);
+  EXPECT_NE(bad.find("unknown mesh format '.obj'"), std::string::npos) << bad;
+  std::string tets;
+  EXPECT_NE(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / "sphere.node").string(), tets), 0);
+  EXPECT_NE(tets.find("TetGen .node/.ele files hold only tetrahedra, and this mesh is hex8"), std::string::npos)
+      << tets;
+  EXPECT_FALSE(fs::exists(dir / "sphere.node"));
   std::string open;
   const fs::path hole = dir / "hole.obj";
   TriangleSurface box = test::box_surface({0, 0, 0}, {1, 1, 1});
@@ -308,6 +329,7 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
   write_obj(hole.string(), box);
   EXPECT_NE(run("voxelize " + hole.string() + " --cell 0.1 --out " + (dir / "hole.vtu").string(), open), 0);
   EXPECT_NE(open.find("open edges"), std::string::npos) << open;
+  fs::remove_all(dir);
 }
 #endif
 

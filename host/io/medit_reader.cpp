@@ -6,6 +6,7 @@
 // tetrahedra and hexahedra become volume groups, those of triangles and
 // quadrilaterals surface groups and those of edges curve groups, each named
 // by its number (as gmsh writes them, the elementary entity tags).
+// Reference 0 is Medit's "none": entries with it are in no group.
 #include <limits>
 #include <map>
 #include <sstream>
@@ -142,6 +143,11 @@ class MeditReader {
       if (reference < std::numeric_limits<int>::min() || reference > std::numeric_limits<int>::max())
         fail(path_, line_at(s_.token_line()), "the reference of " + what + " is out of range");
       const int dimension = k.kind == 5 ? 1 : (k.kind >= 6 ? 2 : 3);
+      if (reference == 0) {  // Medit's "no reference": no group
+        if (dimension == 3)
+          builder_.add_element(k.kind == 2 ? ElementType::tet4 : ElementType::hex8, number, v, line_at(line));
+        return;
+      }
       MeshGroup& group = groups_[{dimension, reference}];
       group.name = std::to_string(reference);
       group.tag = static_cast<int>(reference);
