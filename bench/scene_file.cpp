@@ -24,11 +24,17 @@ using nlohmann::json;
 using Reader = SceneJson;
 
 Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path& folder) {
-  r.keys(m, "mesh", {"file", "generator", "cells", "size", "radius", "length", "element"});
+  r.keys(m, "mesh", {"file", "generator", "cells", "size", "radius", "length", "element", "allow_coincident_vertices"});
+  if (m.contains("allow_coincident_vertices") && !m["allow_coincident_vertices"].is_boolean())
+    r.fail("mesh.allow_coincident_vertices", "expected true or false");
+  if (m.contains("allow_coincident_vertices") && !m.contains("file"))
+    r.fail("mesh.allow_coincident_vertices", "only a mesh \"file\" takes it");
   Mesh mesh;
   if (m.contains("file")) {
     const std::string file = r.text(m, "mesh", "file", "");
-    mesh = read_mesh((folder / file).string());
+    MeshReadOptions options;
+    options.allow_coincident_vertices = m.value("allow_coincident_vertices", false);
+    mesh = read_mesh((folder / file).string(), options);
   } else {
     const std::string generator = r.text(m, "mesh", "generator", "box");
     const double h = r.number(m, "mesh", "size", 0.1);

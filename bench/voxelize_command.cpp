@@ -4,9 +4,11 @@
 // .vtk and .vtu with each element's grid cell as a cell array), and what
 // the lattice is: cells, vertices, pieces, its volume against the
 // surface's enclosed volume.
+#include <array>
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -54,6 +56,17 @@ int run_voxelize(const VoxelizeCommand& o) {
   std::cout << "cells: " << v.lattice.element_count() << "\n";
   std::cout << "vertices: " << v.lattice.vertex_count() << "\n";
   std::cout << "components: " << v.components << "\n";
+  // Vertices kept apart across a thin gap sit at the same position; readers
+  // refuse such files unless told (mesh_io.h).
+  std::map<std::array<double, 3>, int> at;
+  for (size_t i = 0; i < v.lattice.vertex_count(); ++i) ++at[v.lattice.vertex(i)];
+  size_t coincident = 0;
+  for (const auto& [position, count] : at) coincident += count > 1 ? count : 0;
+  std::cout << "coincident vertices: " << coincident;
+  if (coincident > 0)
+    std::cout << " (read the lattice back with MeshReadOptions::allow_coincident_vertices, or the scene key "
+                 "mesh.allow_coincident_vertices)";
+  std::cout << "\n";
   std::cout << "lattice volume: " << lattice << "\n";
   std::cout << "enclosed volume: " << enclosed << "\n";
   std::cout << "relative volume difference: " << (lattice - enclosed) / enclosed << "\n";

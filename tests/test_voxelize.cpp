@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <numeric>
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "scene_file.h"
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
@@ -242,6 +244,44 @@ TEST(Voxelize, SlitThinnerThanACellIsNotGlued) {
   expect_slit_cut(read_surface((data / "slit_box.stl").string()), test::box_surface({0, 0, 0}, {1, 0.6, 1}), 0.05);
 }
 
+// The slit lattice keeps two copies of the vertices on the slit's plane, at
+// the same positions: every format write_mesh writes gives it back when
+// coincident vertices are allowed (by default a reader refuses them and
+// names the option), and a scene file reads it with
+// mesh.allow_coincident_vertices.
+TEST(Voxelize, SlitLatticeReadsBackWithCoincidentVerticesAllowed) {
+  const Voxelization v = voxelize(test::slit_box(0.04, 0.5, 0.6), 0.1);
+  const fs::path dir = fs::temp_directory_path() / ("snh_slit_lattice_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  MeshReadOptions allow;
+  allow.allow_coincident_vertices = true;
+  for (const char* name : {"slit.msh", "slit.vtk", "slit.vtu", "slit.mesh"}) {
+    SCOPED_TRACE(name);
+    const std::string path = (dir / name).string();
+    write_mesh(path, v.lattice);
+    const std::string refused = error_of([&] { read_mesh(path); });
+    EXPECT_NE(refused.find("duplicates vertex"), std::string::npos) << refused;
+    EXPECT_NE(refused.find("MeshReadOptions::allow_coincident_vertices"), std::string::npos) << refused;
+    const Mesh back = read_mesh(path, allow);
+    EXPECT_EQ(back.positions, v.lattice.positions);
+    EXPECT_EQ(back.elements, v.lattice.elements);
+  }
+  const auto scene = [&](const std::string& extra) {
+    const fs::path file = dir / "slit_scene.json";
+    std::ofstream(file) << R"({"mesh": {"file": "slit.vtu")" << extra << "}}";
+    return file.string();
+  };
+  EXPECT_EQ(bench::load_scene_file(scene(R"(, "allow_coincident_vertices": true)")).scene.mesh.elements,
+            v.lattice.elements);
+  EXPECT_NE(error_of([&] { bench::load_scene_file(scene("")); }).find("duplicates vertex"), std::string::npos);
+  EXPECT_NE(error_of([&] {
+              bench::load_scene_file(scene(R"(, "allow_coincident_vertices": 1)"));
+            }).find("mesh.allow_coincident_vertices: expected true or false"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(Voxelize, BadCellSizesAndAbsurdGridsAreErrors) {
   const TriangleSurface sphere = test::icosphere(1, 1.0);
   for (const double h : {0.0, -0.1, std::nan(""), HUGE_VAL}) {
@@ -292,6 +332,7 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
   EXPECT_EQ(value["cells"], double(back.element_count())) << text;
   EXPECT_EQ(value["vertices"], double(back.vertex_count())) << text;
   EXPECT_EQ(value["components"], 1.0) << text;
+  EXPECT_EQ(value["coincident vertices"], 0.0) << text;
   EXPECT_NEAR(value["lattice volume"], mesh_volume(back, back.positions), 1e-5) << text;
   EXPECT_NEAR(value["enclosed volume"], enclosed_volume(read_surface(surface.string())), 1e-5) << text;
   ASSERT_EQ(back.cell_arrays.size(), 1u);
@@ -314,6 +355,26 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
       EXPECT_EQ(other.cell_arrays[0].values, back.cell_arrays[0].values);
     }
   }
+  // gmsh's slit box at h = 0.05: the vertices on the slit's plane above its
+  // bottom come twice, as the library's lattice has them.
+  std::string slit;
+  const fs::path slit_surface = fs::path(SNH_DATA_DIR) / "surfaces" / "slit_box.stl";
+  ASSERT_EQ(run("voxelize " + slit_surface.string() + " --cell 0.05 --out " + (dir / "slit.msh").string(), slit), 0)
+      << slit;
+  MeshReadOptions allow;
+  allow.allow_coincident_vertices = true;
+  const Mesh slit_back = read_mesh((dir / "slit.msh").string(), allow);
+  EXPECT_EQ(slit_back.positions, voxelize(read_surface(slit_surface.string()), 0.05).lattice.positions);
+  std::map<std::array<double, 3>, int> at;
+  for (size_t i = 0; i < slit_back.vertex_count(); ++i) ++at[slit_back.vertex(i)];
+  int coincident = 0;
+  for (const auto& [position, count] : at) coincident += count > 1 ? count : 0;
+  EXPECT_GT(coincident, 0);
+  EXPECT_NE(slit.find("coincident vertices: " + std::to_string(coincident) +
+                      " (read the lattice back with MeshReadOptions::allow_coincident_vertices"),
+            std::string::npos)
+      << slit;
+
   std::string bad;
   EXPECT_NE(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / "sphere.obj").string(), bad), 0);
   EXPECT_NE(bad.find("unknown mesh format '.obj'"), std::string::npos) << bad;

@@ -56,7 +56,10 @@ constexpr Keyword kKeywords[] = {
 
 class MeditReader {
  public:
-  MeditReader(const std::string& path, const std::string& data) : path_(path), s_(path, data), builder_(path) {}
+  MeditReader(const std::string& path, const std::string& data, const MeshReadOptions& options)
+      : path_(path), s_(path, data), builder_(path) {
+    builder_.options = options;
+  }
 
   Mesh read() {
     bool have_version = false, have_dimension = false;
@@ -171,6 +174,8 @@ class MeditReader {
 
 }  // namespace
 
-Mesh read_medit(const std::string& path, const std::string& data) { return MeditReader(path, data).read(); }
+Mesh read_medit(const std::string& path, const std::string& data, const MeshReadOptions& options) {
+  return MeditReader(path, data, options).read();
+}
 
 }  // namespace snh::io

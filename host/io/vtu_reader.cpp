@@ -32,9 +32,10 @@ struct Array {
 
 class VtuReader {
  public:
-  VtuReader(const std::string& path, const std::string& data)
+  VtuReader(const std::string& path, const std::string& data, const MeshReadOptions& options)
       : path_(path), data_(data), s_(path, data), builder_(path) {
     builder_.set_element_noun("cell");
+    builder_.options = options;
   }
 
   Mesh read() {
@@ -499,6 +500,8 @@ class VtuReader {
 
 }  // namespace
 
-Mesh read_vtu(const std::string& path, const std::string& data) { return VtuReader(path, data).read(); }
+Mesh read_vtu(const std::string& path, const std::string& data, const MeshReadOptions& options) {
+  return VtuReader(path, data, options).read();
+}
 
 }  // namespace snh::io

@@ -10,6 +10,15 @@
 
 namespace snh {
 
+struct MeshReadOptions {
+  // Vertices at the same position are refused by default: a mesh whose
+  // vertices were not merged falls apart into pieces under load. A lattice
+  // kept open across gaps thinner than a cell (voxelize: the two sides of a
+  // slit keep their own copies of the vertices on it, the paper's
+  // non-manifold lattices) has them on purpose; this accepts them.
+  bool allow_coincident_vertices = false;
+};
+
 // By extension: .msh (Gmsh 2.2 and 4.1, ASCII and binary), .vtk (VTK legacy),
 // .vtu (VTK XML, ascii or raw appended data), .mesh (Medit), .node or .ele
 // (TetGen: the other file of the pair is found beside it). Tetrahedra and
@@ -25,7 +34,7 @@ namespace snh {
 // arrays; VTU PointData/CellData arrays. Cell arrays keep the entries of the
 // volume cells, in file order. TetGen attributes and markers are not read;
 // Medit reference 0 means no group.
-Mesh read_mesh(const std::string& path);
+Mesh read_mesh(const std::string& path, const MeshReadOptions& options = {});
 
 // Writes `mesh` (at its rest positions) in the format its extension names,
 // so that read_mesh gives back the same vertices and elements, in the same
