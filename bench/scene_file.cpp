@@ -159,13 +159,18 @@ std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m
 }
 
 SceneFile::Embedded read_embed(const Reader& r, const json& e, const std::filesystem::path& folder) {
-  r.keys(e, "embed", {"surface", "cell"});
+  r.keys(e, "embed", {"surface", "cell", "cover_surface"});
   if (!e.contains("surface")) r.fail("embed.surface", "missing (a closed surface: .obj, .ply or .stl)");
   SceneFile::Embedded out;
   out.surface = read_surface((folder / r.text(e, "embed", "surface", "")).string());
   const double cell = r.required_number(e, "embed", "cell");
   if (!(cell > 0.0)) r.fail("embed.cell", "expected a cube side > 0");
-  out.voxels = voxelize(out.surface, cell);
+  VoxelizeOptions options;
+  if (e.contains("cover_surface")) {
+    if (!e["cover_surface"].is_boolean()) r.fail("embed.cover_surface", "expected true or false");
+    options.cover_surface = e["cover_surface"].get<bool>();
+  }
+  out.voxels = voxelize(out.surface, cell, options);
   out.embedding = embed(out.voxels, out.surface);
   return out;
 }

@@ -25,6 +25,7 @@ struct VoxelizeCommand {
   double cell = 0.0;
   std::string out;
   int64_t max_cells = VoxelizeOptions{}.max_grid_cells;
+  bool cover_surface = false;
 };
 
 int run_voxelize(const VoxelizeCommand& o) {
@@ -34,6 +35,7 @@ int run_voxelize(const VoxelizeCommand& o) {
   const auto t1 = Clock::now();
   VoxelizeOptions options;
   options.max_grid_cells = o.max_cells;
+  options.cover_surface = o.cover_surface;
   Voxelization v = voxelize(surface, o.cell, options);
   const auto t2 = Clock::now();
   MeshArray grid_cell{"grid_cell", 3, {}};
@@ -93,6 +95,9 @@ void add_voxelize_command(CLI::App& app, int& exit_code) {
                   "the lattice: .msh (Gmsh 2.2), .vtk (VTK legacy), .vtu (VTK XML) or .mesh (Medit), by its extension; "
                   ".vtk and .vtu carry a cell array grid_cell (each element's i j k)")
       ->required();
+  cmd->add_flag("--cover-surface", o->cover_surface,
+                "also keep the cells the surface passes through (every surface point in a kept cell; a gap "
+                "holding a cell centre is glued)");
   cmd->add_option("--max-cells", o->max_cells, "refuse grids of more cells than this")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

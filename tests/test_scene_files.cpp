@@ -297,6 +297,15 @@ TEST(SceneFiles, RigKeysNameTheirErrors) {
       R"({"name": "upper_arm", "capsule": {"a": [0.35, 0, 0], "b": [1.6, 0, 0], "radius": 0.25}})";
   const std::string fore = R"({"name": "forearm", "capsule": {"a": [2.4, 0, 0], "b": [3.55, 0, 0], "radius": 0.24}})";
   EXPECT_NE(error_of("{" + embed + ", " + mesh + "}").find("not both"), std::string::npos);
+  const std::string covered = R"({"embed": {"surface": ")" + surface + R"(", "cell": 0.25, "cover_surface": )";
+  EXPECT_NE(error_of(covered + "1}}").find("embed.cover_surface: expected true or false"), std::string::npos);
+  {
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_arm_cover.json";
+    std::ofstream(path) << covered + "true}}";
+    const bench::SceneFile f = bench::load_scene_file(path.string());
+    EXPECT_GT(f.scene.mesh.element_count(), 137u);  // the centre-inside lattice of the arm at 0.25 has 137
+    for (double w : f.embedded->embedding.weights) EXPECT_GE(w, -1e-9);  // no surface vertex outside its cell
+  }
   EXPECT_NE(error_of(R"({"embed": {"surface": ")" + surface + R"("}})").find("embed.cell: missing"), std::string::npos);
   EXPECT_NE(error_of("{" + embed + R"(, "rig": {"bones": [)" + upper + R"(], "animation": ")" + animation + R"("}})")
                 .find("rig.animation: the animation moves bone 'forearm', which is not in rig.bones"),

@@ -244,6 +244,82 @@ TEST(Voxelize, SlitThinnerThanACellIsNotGlued) {
   expect_slit_cut(read_surface((data / "slit_box.stl").string()), test::box_surface({0, 0, 0}, {1, 0.6, 1}), 0.05);
 }
 
+// cover_surface: the centre-inside cells plus exactly the cells the surface
+// passes through, so that the lattice covers the solid and every surface
+// vertex lies in its element (no extrapolation); one connected piece.
+TEST(Voxelize, CoverSurfaceAddsTheCellsTheSurfaceCrosses) {
+  const TriangleSurface sphere = test::icosphere(3, 1.0);
+  std::vector<std::array<double, 4>> planes;  // the convex polyhedron's faces: inside is n . p < d
+  for (size_t t = 0; t < sphere.triangle_count(); ++t) {
+    const double* a = &sphere.positions[3 * sphere.triangles[3 * t]];
+    const double* b = &sphere.positions[3 * sphere.triangles[3 * t + 1]];
+    const double* c = &sphere.positions[3 * sphere.triangles[3 * t + 2]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (double& x : n) x /= len;
+    planes.push_back({n[0], n[1], n[2], n[0] * a[0] + n[1] * a[1] + n[2] * a[2]});
+  }
+  const auto depth = [&](const std::array<double, 3>& p) {  // > 0 inside; outside, -depth <= the distance
+    double d = 1e300;
+    for (const auto& f : planes) d = std::min(d, f[3] - (f[0] * p[0] + f[1] * p[1] + f[2] * p[2]));
+    return d;
+  };
+  VoxelizeOptions cover;
+  cover.cover_surface = true;
+  for (const double h : {0.1, 0.07}) {
+    SCOPED_TRACE(h);
+    const Voxelization centres = voxelize(sphere, h), v = voxelize(sphere, h, cover);
+    expect_consistent(v);
+    EXPECT_EQ(v.components, 1);
+    const std::set<std::array<int, 3>> kept(v.element_cell.begin(), v.element_cell.end());
+    for (const auto& g : centres.element_cell) EXPECT_TRUE(kept.count(g)) << g[0] << " " << g[1] << " " << g[2];
+    EXPECT_GT(v.element_cell.size(), centres.element_cell.size());
+    // Kept cells reach the solid (centre within half a diagonal of it);
+    // dropped cells near it hold none of its points (3 x 3 x 3 samples of
+    // the cube: corners, edge and face midpoints, centre).
+    const double reach = std::sqrt(3.0) * h / 2;
+    for (int k = 0; k < v.dims[2]; ++k)
+      for (int j = 0; j < v.dims[1]; ++j)
+        for (int i = 0; i < v.dims[0]; ++i) {
+          const std::array<double, 3> c = centre(v, {i, j, k});
+          const double dc = depth(c);
+          if (kept.count({i, j, k})) {
+            ASSERT_GE(dc, -reach - 1e-12) << i << " " << j << " " << k;
+            continue;
+          }
+          if (dc < -reach) continue;  // farther than half a diagonal: the cube is outside
+          for (int s = 0; s < 27; ++s) {
+            const std::array<double, 3> p = {c[0] + h * ((s % 3) / 2.0 - 0.5), c[1] + h * ((s / 3 % 3) / 2.0 - 0.5),
+                                             c[2] + h * ((s / 9) / 2.0 - 0.5)};
+            ASSERT_LE(depth(p), 1e-12) << "cell " << i << " " << j << " " << k << " dropped with a point inside";
+          }
+        }
+    EXPECT_GE(mesh_volume(v.lattice, v.lattice.positions), enclosed_volume(sphere));
+    // Every surface vertex lies in its element's cube: weights in [0, 1].
+    const Embedding e = embed(v, sphere);
+    for (size_t i = 0; i < sphere.vertex_count(); ++i) {
+      const auto& g = v.element_cell[e.element[i]];
+      for (int d = 0; d < 3; ++d) {
+        const double u = (sphere.positions[3 * i + d] - v.origin[d]) / h - g[d];
+        EXPECT_GE(u, -1e-9) << "vertex " << i;
+        EXPECT_LE(u, 1 + 1e-9) << "vertex " << i;
+      }
+      for (int a = 0; a < 8; ++a) EXPECT_GE(e.weights[8 * i + a], -1e-9) << "vertex " << i;
+    }
+  }
+  // A slit between cell centres stays open; one holding a column of centres
+  // (x = 0.5 at h = 0.2) is glued through those cells, which the surface
+  // crosses; without cover_surface they are dropped and the slit is open.
+  const TriangleSurface slit = test::slit_box(0.04, 0.5, 0.6);
+  const auto pieces_above = [](const Voxelization& l, double z) {
+    return pieces(l.lattice, [&](size_t e) { return centre(l, l.element_cell[e])[2] > z; });
+  };
+  EXPECT_EQ(pieces_above(voxelize(slit, 0.1, cover), 0.6), 2);
+  EXPECT_EQ(pieces_above(voxelize(slit, 0.2, cover), 0.7), 1);
+  EXPECT_EQ(pieces_above(voxelize(slit, 0.2), 0.7), 2);
+}
+
 // The slit lattice keeps two copies of the vertices on the slit's plane, at
 // the same positions: every format write_mesh writes gives it back when
 // coincident vertices are allowed (by default a reader refuses them and
@@ -374,6 +450,17 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
                       " (read the lattice back with MeshReadOptions::allow_coincident_vertices"),
             std::string::npos)
       << slit;
+
+  std::string covered;
+  ASSERT_EQ(run("voxelize " + surface.string() + " --cell 0.1 --cover-surface --out " + (dir / "cover.vtu").string(),
+                covered),
+            0)
+      << covered;
+  VoxelizeOptions cover;
+  cover.cover_surface = true;
+  EXPECT_EQ(read_mesh((dir / "cover.vtu").string()).elements,
+            voxelize(read_surface(surface.string()), 0.1, cover).lattice.elements);
+  EXPECT_GT(read_mesh((dir / "cover.vtu").string()).element_count(), back.element_count());
 
   std::string bad;
   EXPECT_NE(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / "sphere.obj").string(), bad), 0);
