@@ -3,11 +3,14 @@
 // example flexes its embedded surface, bones given as surface files hold and
 // move the vertices inside them, and bad files get errors naming the key.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "scene_file.h"
 #include "snh/error.h"
@@ -15,6 +18,7 @@
 #include "snh/regions.h"
 #include "snh/rig.h"
 #include "snh/simulation.h"
+#include "snh/surface.h"
 
 namespace snh::test {
 namespace {
@@ -287,6 +291,63 @@ TEST(SceneFiles, SurfaceFileBonesHoldTheVerticesInsideAndFollowTheirFrames) {
   EXPECT_LT(lifted[3 * near_tip + 2] - axis_z, 0.1);
   fs::remove_all(dir);
 }
+
+#ifdef SNH_BENCH_BINARY
+// `snh-gpu-bench scene --file` on the coarse arm (cell 0.25) with frames 0,
+// 12 and 24 of its animation: per frame the embedded surface as OBJ, the
+// lattice and the surface as .vtu parts of one .pvd, and the JSON record.
+TEST(SceneFiles, RiggedSceneCommandWritesTheSurfacePerFrameAndAPvd) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "snh_arm_command";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  nlohmann::json animation;
+  std::ifstream(std::string(SNH_DATA_DIR) + "/arm/arm_flexion.json") >> animation;
+  nlohmann::json frames = nlohmann::json::array();
+  for (int f : {0, 12, 24}) frames.push_back(animation["frames"][f]);
+  std::ofstream(dir / "three.json") << nlohmann::json{{"frames", frames}}.dump();
+  nlohmann::json doc;
+  std::ifstream(kScenes + "arm.json") >> doc;
+  doc["embed"]["cell"] = 0.25;
+  doc["embed"]["surface"] = kScenes + doc["embed"]["surface"].get<std::string>();
+  doc["rig"]["animation"] = "three.json";
+  doc["output"] = {
+      {"vtu", (dir / "vtu").string()}, {"surface", (dir / "obj/").string()}, {"json", (dir / "run.json").string()}};
+  std::ofstream(dir / "arm.json") << doc.dump();
+  const int status = std::system((std::string(SNH_BENCH_BINARY) + " scene --file " + (dir / "arm.json").string() +
+                                  " > " + (dir / "log.txt").string() + " 2>&1")
+                                     .c_str());
+  std::ostringstream log;
+  log << std::ifstream(dir / "log.txt").rdbuf();
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << log.str();
+  EXPECT_NE(log.str().find("frame 3/3"), std::string::npos) << log.str();  // progress per frame
+  const TriangleSurface rest = read_surface(kScenes + "../arm/arm.obj");
+  for (int f = 0; f < 3; ++f) {
+    const TriangleSurface s = read_surface(bench::surface_obj_path((dir / "obj/").string(), "arm", f));
+    EXPECT_EQ(s.triangles, rest.triangles);
+    if (f == 0) {
+      for (size_t i = 0; i < s.positions.size(); ++i) EXPECT_NEAR(s.positions[i], rest.positions[i], 1e-9);
+    }
+    if (f == 2) {  // the hand (4, 0, 0) turned 100 degrees about the elbow (2, 0, 0), as in the in-process test
+      const size_t hand = rest.vertex_count() - 1;
+      EXPECT_NEAR(s.positions[3 * hand], 2.0 + 2.0 * std::cos(100.0 * M_PI / 180.0), 0.05);
+      EXPECT_NEAR(s.positions[3 * hand + 2], 2.0 * std::sin(100.0 * M_PI / 180.0), 0.05);
+    }
+  }
+  std::ostringstream pvd;
+  pvd << std::ifstream(dir / "vtu" / "arm.pvd").rdbuf();
+  for (const char* file : {"arm_0000.vtu", "arm_surface_0000.vtu", "arm_0002.vtu", "arm_surface_0002.vtu"}) {
+    EXPECT_TRUE(fs::exists(dir / "vtu" / file)) << file;
+    EXPECT_NE(pvd.str().find(std::string("file=\"") + file + "\""), std::string::npos) << pvd.str();
+  }
+  EXPECT_NE(pvd.str().find("part=\"1\" file=\"arm_surface_0002.vtu\""), std::string::npos) << pvd.str();
+  nlohmann::json run;
+  std::ifstream(dir / "run.json") >> run;
+  EXPECT_EQ(run["converged"], true);
+  EXPECT_EQ(run["frames"].size(), 3u);
+  fs::remove_all(dir);
+}
+#endif
 
 TEST(SceneFiles, RigKeysNameTheirErrors) {
   const std::string surface = std::string(SNH_DATA_DIR) + "/arm/arm.obj";
