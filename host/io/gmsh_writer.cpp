@@ -9,9 +9,10 @@
 // once more per further group after all elements, as gmsh itself does, and
 // the reader joins the copies); a point, curve or surface group is written
 // as points (element type 15), element edges (type 1) or element faces
-// (types 2 and 3) whose vertices lie in it (group_cells). A group the format
-// cannot give back as it is (not exact in group_cells; tag 0, which gmsh reads as "no group"; a (dimension,
-// tag) pair already used; a name holding a line break) is left out. Point and
+// (types 2 and 3) whose vertices lie in it (group_cells). A group the
+// format cannot give back as it is (not exact in group_cells; tag 0, which
+// gmsh reads as "no group"; a (dimension, tag) pair already used; a name
+// holding a line break) is left out. Point and
 // cell arrays are not written (gmsh's $NodeData and $ElementData hold time
 // steps of fields, and read_mesh skips them).
 #include <set>
