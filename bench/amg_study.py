@@ -24,8 +24,12 @@ V-cycle (cycle_products: smoothing, residuals, transfers on every level, the
 coarsest solve).
 Setup, which a Newton solver pays every iteration because the Hessian
 changes, is converted to products by this machine's measured time of one
-fine-level sparse product (scipy CSR); that conversion favours AMG, whose
-setup here is compiled PyAMG code, over the engine's device product.
+fine-level sparse product (scipy CSR, one thread, like PyAMG's compiled
+setup routines); a setup on the device would have its own ratio.
+
+--lag-res adds, for tet4, a hierarchy built at one Newton iterate and used on
+the systems of later ones: frozen whole, or refreshed (aggregates and
+prolongators kept, Galerkin operators and smoothers rebuilt).
 
 Writes OUT_DIR/amg_study.json (every record) and OUT_DIR/amg_study.md.
 """
