@@ -2,6 +2,9 @@
 // residuals and the matrix-free Hessian on the OpenCL device, linear solves by
 // ViennaCL's CG with the block-Jacobi preconditioner. Norms and dot products
 // are summed on the host in double and in index order: deterministic.
+// Every call charges its time to a phase of the model's profiler
+// (solver/phase_profile.h): the CG solve to its vector work, less the
+// products and preconditioner applications inside it.
 #pragma once
 
 #include <cmath>
@@ -32,6 +35,11 @@ class DeviceProblem {
   }
 
   size_t dofs() const { return model_.dofs(); }
+  // Device memory at the solve's peak: the model's buffers, the
+  // preconditioner's, and the vectors of a Newton iteration (x and the
+  // driver's r, p, trial, r_trial) with those of ViennaCL's CG inside it
+  // (result, residual, tmp, z, p).
+  size_t memory_bytes() const { return model_.memory_bytes() + 10 * model_.dofs() * sizeof(Real); }
   double epsilon() const { return std::numeric_limits<Real>::epsilon(); }
   Vector vector() const { return Vector(viennacl::scalar_vector<Real>(model_.dofs(), Real(0))); }
   double energy(const Vector& x) { return model_.energy(x); }
@@ -55,15 +63,21 @@ class DeviceProblem {
 
   void linearize(const Vector& x, bool projected) {
     model_.linearize(x, projected);
-    if (block_jacobi_) model_.setup_preconditioner();
+    if (block_jacobi_) {
+      PhaseScope timed(&model_.profiler(), Phase::preconditioner_setup);
+      model_.setup_preconditioner();
+    }
   }
 
   LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations) {
+    PhaseScope timed(&model_.profiler(), Phase::cg_vector_work);
     op_.reset();
     viennacl::linalg::cg_tag tag(static_cast<Real>(eta), static_cast<unsigned>(max_iterations));
     viennacl::linalg::cg_solver<Vector> cg(tag);
     cg.set_monitor(&DeviceProblem::stop_cg, this);
-    p = cg(op_, r, precond_);
+    p = cg(
+        op_, r,
+        TimedPreconditioner<BlockJacobiPreconditioner<Real>>{precond_, block_jacobi_ ? &model_.profiler() : nullptr});
     LinearSolve s;
     s.iterations = static_cast<int>(cg.tag().iters());
     s.relative_residual = cg.tag().error();
@@ -73,10 +87,14 @@ class DeviceProblem {
   }
 
   void precondition(const Vector& r, Vector& p) {
+    PhaseScope timed(block_jacobi_ ? &model_.profiler() : nullptr, Phase::preconditioner_apply);
     p = r;
     precond_.apply(p);
   }
-  void step(const Vector& x, double alpha, const Vector& p, Vector& out) { out = x + static_cast<Real>(alpha) * p; }
+  void step(const Vector& x, double alpha, const Vector& p, Vector& out) {
+    PhaseScope timed(&model_.profiler(), Phase::line_search_energies);
+    out = x + static_cast<Real>(alpha) * p;
+  }
   void swap(Vector& u, Vector& v) { u.fast_swap(v); }
 
  private:
@@ -85,7 +103,20 @@ class DeviceProblem {
     return problem->op_.negative_curvature() || problem->op_.breakdown() ||
            !std::isfinite(static_cast<double>(relative_residual));
   }
-  static void download(const Vector& v, std::vector<Real>& out) {
+  // What CG applies: the preconditioner, its time charged to
+  // preconditioner_apply (none with a null profiler: no preconditioner).
+  template <typename Inner>
+  struct TimedPreconditioner {
+    const Inner& inner;
+    PhaseProfiler* profiler;
+    void apply(viennacl::vector_base<Real>& z) const {
+      PhaseScope timed(profiler, Phase::preconditioner_apply);
+      inner.apply(z);
+    }
+  };
+
+  void download(const Vector& v, std::vector<Real>& out) const {
+    PhaseScope timed(&model_.profiler(), Phase::transfers);
     out.resize(v.size());
     viennacl::copy(v.begin(), v.end(), out.begin());
   }
