@@ -184,11 +184,24 @@ std::vector<std::pair<int, size_t>> scale_resolutions(const std::string& scene, 
     largest = std::max(largest, res);
   }
   if (o.max_dofs > 0 && largest > 0) {
-    for (int res = largest;;) {
-      res = std::max(res + 1, static_cast<int>(std::lround(res * std::cbrt(2.0))));
-      const size_t dofs = dofs_at(res);
-      if (dofs > static_cast<size_t>(o.max_dofs)) break;
-      out.push_back({res, dofs});
+    const size_t limit = static_cast<size_t>(o.max_dofs);
+    int res = largest;
+    for (;;) {
+      const int next = std::max(res + 1, static_cast<int>(std::lround(res * std::cbrt(2.0))));
+      const size_t dofs = dofs_at(next);
+      if (dofs > limit) {
+        // Last, the largest resolution that fits (bisection between the
+        // last that fit and the first that did not).
+        int fits = res, too_big = next;
+        while (too_big - fits > 1) {
+          const int mid = (fits + too_big) / 2;
+          (dofs_at(mid) <= limit ? fits : too_big) = mid;
+        }
+        if (fits > res) out.push_back({fits, dofs_at(fits)});
+        break;
+      }
+      out.push_back({next, dofs});
+      res = next;
     }
   }
   return out;

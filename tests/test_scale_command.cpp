@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "scale.h"
+
 namespace snh::test {
 namespace {
 
@@ -196,6 +198,26 @@ TEST(ScaleCommand, MaxDofsGrowsTheResolution) {
     EXPECT_LE(r["dofs"].get<int>(), 700);
   }
   EXPECT_EQ(resolutions, (std::vector<int>{2, 3, 4, 5}));
+}
+
+TEST(ScaleCommand, ResolutionsGrowToTheLargestThatFits) {
+  bench::ScaleOptions o;
+  o.resolutions = {8};
+  o.max_dofs = 3500;  // twist: res 8 has 2,187 DOF, 9 has 3,000, 10 (the 2^(1/3) step) 3,993
+  const auto grown = bench::scale_resolutions("twist", o);
+  ASSERT_EQ(grown.size(), 2u);
+  EXPECT_EQ(grown[0], std::make_pair(8, size_t{2187}));
+  EXPECT_EQ(grown[1], std::make_pair(9, size_t{3000}));
+  o.resolutions = {2, 3, 20};  // 20 exceeds the limit and is left out
+  o.max_dofs = 3000;
+  std::vector<int> res;
+  for (const auto& [r, dofs] : bench::scale_resolutions("twist", o)) {
+    res.push_back(r);
+    EXPECT_LE(dofs, 3000u);
+  }
+  EXPECT_EQ(res, (std::vector<int>{2, 3, 4, 5, 6, 8, 9}));
+  o.max_dofs = 0;  // only the resolutions asked for
+  EXPECT_EQ(bench::scale_resolutions("twist", o).size(), 3u);
 }
 
 }  // namespace
