@@ -18,6 +18,7 @@
 #include "commands.h"
 #include "errtime.h"
 #include "reference/element_reference.h"
+#include "scale.h"
 #include "snh/device.h"
 #include "snh/error.h"
 #include "snh/probe.h"
@@ -171,7 +172,7 @@ int run_default_suite(const std::string& out_dir, int samples, bool quick) {
   const auto start = Clock::now();
   std::filesystem::create_directories(out_dir);
   std::cerr << "snh-gpu-bench default suite -> " << out_dir
-            << "/ (element check, throughput, specialization, errtime)\n";
+            << "/ (element check, throughput, specialization, errtime, scale)\n";
   json summary;
   std::string element_md;
   int status = run_element_check(out_dir, samples, summary["element"], element_md);
@@ -204,7 +205,15 @@ int run_default_suite(const std::string& out_dir, int samples, bool quick) {
   std::cerr << "errtime\n";
   status = std::max(status, run_errtime(errtime));
 
-  for (const char* part : {"throughput", "specialization", "errtime"}) {
+  // A small scale run (the paper's sizes: `snh-gpu-bench scale --max-dofs`).
+  ScaleOptions scale;
+  scale.out_dir = out_dir;
+  scale.resolutions = quick ? std::vector<int>{2, 3} : std::vector<int>{4, 6, 8};
+  if (quick) scale.plots = false;
+  std::cerr << "scale\n";
+  write_scale(scale, run_scale(scale));
+
+  for (const char* part : {"throughput", "specialization", "errtime", "scale"}) {
     std::ifstream in(out_dir + "/" + part + ".json");
     if (in) summary[part] = json::parse(in);
   }
@@ -217,8 +226,10 @@ int run_default_suite(const std::string& out_dir, int samples, bool quick) {
                                          << element_md << "\n"
                                          << read_file(out_dir + "/throughput.md") << "\n"
                                          << read_file(out_dir + "/specialization.md") << "\n"
-                                         << read_file(out_dir + "/errtime.md");
-  std::cout << "wrote " << out_dir << "/summary.{json,md} (and element, throughput, specialization, errtime files) in "
+                                         << read_file(out_dir + "/errtime.md") << "\n"
+                                         << read_file(out_dir + "/scale.md");
+  std::cout << "wrote " << out_dir
+            << "/summary.{json,md} (and element, throughput, specialization, errtime, scale files) in "
             << std::setprecision(3) << seconds << " s\n";
   return status;
 }

@@ -23,6 +23,7 @@
 
 #include "commands.h"
 #include "host_baseline.h"
+#include "profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
@@ -74,7 +75,8 @@ struct Series {
   std::vector<StepResult> steps;
   bool converged = false;
   double seconds = 0.0;
-  std::string skipped;  // why the series did not run, if it did not
+  SolveProfile profile;  // where the solve's time went
+  std::string skipped;   // why the series did not run, if it did not
 };
 
 struct SceneRun {
@@ -259,6 +261,7 @@ Series run_device_series(const Scene& scene, const SceneParameters& parameters, 
     s.rows = recorder.rows(r.history);
     s.steps = r.steps;
     s.converged = r.converged;
+    s.profile = r.profile;
     for (const NewtonIteration& h : r.history) s.seconds = std::max(s.seconds, h.seconds);
     s.device = r.device.platform + " / " + r.device.name;
     s.specialization = r.kernel_specialization;
@@ -287,6 +290,7 @@ Series run_host_series(const Scene& scene, const Reference& ref, const ErrtimeOp
     s.rows = recorder.rows(r.history);
     s.steps = r.steps;
     s.converged = r.converged;
+    s.profile = r.profile;
     for (const NewtonIteration& h : r.history) s.seconds = std::max(s.seconds, h.seconds);
   } catch (const Error& e) {
     s.skipped = e.what();
@@ -403,6 +407,7 @@ json series_json(const Series& s, int last_step) {
     t[kThresholdNames[k]] = v ? json(*v) : json(nullptr);
   }
   j["seconds_to_residual"] = t;
+  j["profile"] = profile_json(s.profile);
   const Row* last = s.rows.empty() ? nullptr : &s.rows.back();
   j["final_residual"] = last ? json(last->residual) : json(nullptr);
   j["best_residual_last_step"] = s.rows.empty() ? json(nullptr) : json(best_residual(s, last_step));
@@ -641,6 +646,24 @@ int run_errtime(const ErrtimeOptions& o) {
            << " |\n";
       }
       first = false;
+    }
+  }
+  md << "\n## Where the time went\n\n"
+     << "Seconds per phase of each series' solve (SolveProfile; callbacks excluded, so `total` may exceed the wall "
+        "seconds above by the final statistics). host-eigen: Eigen's CG solve is one call whose parts cannot be told "
+        "apart; its time is in `other`.\n\n"
+     << "| scene | series";
+  for (const auto& part : profile_parts(SolveProfile{})) md << " | " << part.first;
+  md << " |\n|---|---";
+  for (size_t k = 0; k < profile_parts(SolveProfile{}).size(); ++k) md << "|---";
+  md << "|\n";
+  for (const SceneRun& run : runs) {
+    if (!run.skipped.empty()) continue;
+    for (const Series& s : run.series) {
+      if (!s.skipped.empty()) continue;
+      md << "| " << run.scene.name << " | " << s.name;
+      for (const auto& part : profile_parts(s.profile)) md << " | " << fmt(part.second);
+      md << " |\n";
     }
   }
   std::ofstream(o.out_dir + "/errtime.md") << md.str();

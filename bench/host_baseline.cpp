@@ -19,6 +19,7 @@
 #include "snh/regions.h"
 #include "solver/constraint_checks.h"
 #include "solver/newton_driver.h"
+#include "solver/phase_profile.h"
 
 namespace snh::bench {
 
@@ -133,14 +134,21 @@ class HostNewtonProblem {
  public:
   using Vector = std::vector<double>;
 
-  HostNewtonProblem(const HostProblem& problem, HostBaselineResult& out) : problem_(problem), out_(out) {}
+  HostNewtonProblem(const HostProblem& problem, HostBaselineResult& out, solver::PhaseProfiler& profiler)
+      : problem_(problem), out_(out), profiler_(profiler) {}
 
   size_t dofs() const { return problem_.dofs(); }
   double epsilon() const { return std::numeric_limits<double>::epsilon(); }
   Vector vector() const { return Vector(problem_.dofs(), 0.0); }
-  double energy(const Vector& x) { return problem_.energy(x); }
+  double energy(const Vector& x) {
+    solver::PhaseScope timed(&profiler_, solver::Phase::line_search_energies);
+    return problem_.energy(x);
+  }
   double last_min_j() const { return 1.0; }  // only asked for with a true Hessian
-  void residual(const Vector& x, Vector& r) { problem_.residual(x, r); }
+  void residual(const Vector& x, Vector& r) {
+    solver::PhaseScope timed(&profiler_, solver::Phase::line_search_energies);
+    problem_.residual(x, r);
+  }
   double norm(const Vector& v) const { return bench::norm(v); }
   double dot(const Vector& a, const Vector& b) const {
     double s = 0.0;
@@ -152,6 +160,7 @@ class HostNewtonProblem {
   bool has_true_hessian() const { return false; }
 
   void linearize(const Vector& x, bool) {
+    solver::PhaseScope timed(&profiler_, solver::Phase::linearization);
     const Clock::time_point start = Clock::now();
     k_ = problem_.stiffness(x);
     out_.assembly_seconds += seconds_since(start);
@@ -162,7 +171,10 @@ class HostNewtonProblem {
     Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper> cg;
     cg.setTolerance(eta);
     cg.setMaxIterations(max_iterations);
-    cg.compute(k_);
+    {
+      solver::PhaseScope setup(&profiler_, solver::Phase::preconditioner_setup);
+      cg.compute(k_);
+    }
     const Eigen::Map<const Eigen::VectorXd> rhs(r.data(), static_cast<Eigen::Index>(r.size()));
     const Eigen::VectorXd solution = cg.solve(rhs);
     out_.cg_seconds += seconds_since(start);
@@ -181,6 +193,7 @@ class HostNewtonProblem {
 
   // The diagonal (Jacobi) preconditioner Eigen's CG uses.
   void precondition(const Vector& r, Vector& p) {
+    solver::PhaseScope timed(&profiler_, solver::Phase::preconditioner_apply);
     const Eigen::VectorXd diagonal = k_.diagonal();
     p.resize(r.size());
     for (size_t i = 0; i < r.size(); ++i) {
@@ -189,6 +202,7 @@ class HostNewtonProblem {
     }
   }
   void step(const Vector& x, double alpha, const Vector& p, Vector& out) {
+    solver::PhaseScope timed(&profiler_, solver::Phase::line_search_energies);
     out.resize(x.size());
     for (size_t i = 0; i < x.size(); ++i) out[i] = x[i] + alpha * p[i];
   }
@@ -197,6 +211,7 @@ class HostNewtonProblem {
  private:
   const HostProblem& problem_;
   HostBaselineResult& out_;
+  solver::PhaseProfiler& profiler_;
   SparseMatrix k_;
 };
 
@@ -208,7 +223,8 @@ HostBaselineResult solve_on_host(const Scene& scene, const SolveOptions& options
   HostProblem problem(scene, options);
   HostBaselineResult result;
   const IterationCallback& callback = on_iteration ? on_iteration : options.on_iteration;
-  HostNewtonProblem newton_problem(problem, result);
+  solver::PhaseProfiler profiler;
+  HostNewtonProblem newton_problem(problem, result, profiler);
   solver::NewtonDriver<HostNewtonProblem> newton(newton_problem, options);
   solver::NewtonDriver<HostNewtonProblem>::Observer observe;
   if (callback)
@@ -228,6 +244,7 @@ HostBaselineResult solve_on_host(const Scene& scene, const SolveOptions& options
   }
   result.positions = std::move(x);
   result.seconds = newton.elapsed(start);
+  result.profile = solver::make_profile(profiler.seconds(), result.seconds);
   return result;
 }
 

@@ -19,6 +19,13 @@ struct HostBaselineResult {
   double seconds = 0.0;           // whole solve
   double assembly_seconds = 0.0;  // summed over Newton iterations
   double cg_seconds = 0.0;        // summed over Newton iterations
+  // Per phase as the device solver's (SolveProfile): assembly as
+  // linearization, Eigen's diagonal setup as preconditioner_setup, energies,
+  // residuals and trial updates as line_search_energies. Eigen's CG solve is
+  // one call whose products, diagonal scaling and vector work cannot be told
+  // apart without changing it: its time is in `other` (cg_seconds above).
+  // total: `seconds`.
+  SolveProfile profile;
 };
 
 // Runs the scene's load steps with the scene's (or the given) tolerances, in

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "profile_json.h"
 #include "scene_output.h"
 #include "snh/error.h"
 #include "snh/frames.h"
@@ -78,10 +79,12 @@ int run_rig_scene(const SceneFile& file, const SolveOptions& options, const RigR
 
   bool all = true;
   double seconds = 0.0;
+  SolveProfile profile;
   std::cout << "frame  newton  cg      status                 residual   min J\n";
   for (const FrameRecord& r : records) {
     all = all && r.converged;
     seconds += r.seconds;
+    profile += r.profile;
     std::cout << std::left << std::setw(7) << r.frame << std::setw(8) << r.newton_iterations << std::setw(8)
               << r.cg_iterations << std::setw(23) << r.status << std::setw(11) << std::setprecision(3)
               << r.residual_norm << std::setprecision(4) << r.min_j << '\n';
@@ -98,6 +101,8 @@ int run_rig_scene(const SceneFile& file, const SolveOptions& options, const RigR
     j["dofs"] = 3 * scene.mesh.vertex_count();
     j["load_steps_per_frame"] = options.load_steps;
     j["converged"] = all;
+    j["seconds"] = seconds;
+    j["profile"] = profile_json(profile);  // summed over the frames
     j["frames"] = nlohmann::ordered_json::array();
     for (const FrameRecord& r : records)
       j["frames"].push_back({{"frame", r.frame},
@@ -108,6 +113,7 @@ int run_rig_scene(const SceneFile& file, const SolveOptions& options, const RigR
                              {"cg_iterations", r.cg_iterations},
                              {"residual", r.residual_norm},
                              {"seconds", r.seconds},
+                             {"profile", profile_json(r.profile)},
                              {"volume_ratio", r.volume_ratio},
                              {"min_j", r.min_j},
                              {"inverted_elements", r.inverted_elements}});

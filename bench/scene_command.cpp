@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "material_options.h"
+#include "profile_json.h"
 #include "rig_frames.h"
 #include "scene_file.h"
 #include "scene_output.h"
@@ -85,8 +86,11 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                           {"converged", s.converged},
                           {"status", s.status},
                           {"residual", s.residual_norm},
-                          {"seconds", s.seconds}});
+                          {"seconds", s.seconds},
+                          {"profile", profile_json(s.profile)}});
   j["wall_seconds"] = r.seconds;
+  j["profile"] = profile_json(r.profile);
+  j["device_memory_bytes"] = r.device_memory_bytes;
   j["final_residual"] = r.final_residual_norm;
   j["converged"] = r.converged;
   j["volume_ratio"] = r.volume_ratio;

@@ -104,6 +104,20 @@ TEST(ErrtimeCommand, WritesCsvJsonMarkdownAndPlots) {
         EXPECT_TRUE(s["seconds_to_residual"].contains(threshold)) << threshold;
       EXPECT_GT(s["newton_iterations"].get<int>(), 0);
       EXPECT_GT(s["cg_iterations"].get<int>(), 0);
+      // Where the time went: every phase, none negative, adding up.
+      ASSERT_TRUE(s.contains("profile")) << s["series"];
+      double parts = 0.0;
+      for (const char* key : {"linearization", "products", "preconditioner_setup", "preconditioner_apply",
+                              "cg_vector_work", "line_search_energies", "transfers", "other"}) {
+        ASSERT_TRUE(s["profile"].contains(key)) << s["series"] << " " << key;
+        EXPECT_GE(s["profile"][key].get<double>(), 0.0) << s["series"] << " " << key;
+        parts += s["profile"][key].get<double>();
+      }
+      EXPECT_NEAR(parts, s["profile"]["total"].get<double>(), 1e-9) << s["series"];
+      EXPECT_GT(s["profile"]["linearization"].get<double>(), 0.0) << s["series"];
+      if (s["series"] != "host-eigen") {
+        EXPECT_GT(s["profile"]["products"].get<double>(), 0.0) << s["series"];
+      }
       if (s["precision"] == "double") {
         EXPECT_TRUE(s["converged"].get<bool>()) << s["series"];
         const auto& t = s["seconds_to_residual"];

@@ -155,8 +155,13 @@ TEST(DefaultSuite, WritesWellFormedSummaryAtTinySize) {
     EXPECT_GT(row["gain_material"].get<double>(), 0.0);
   }
   ASSERT_TRUE(summary.contains("errtime"));
+  // A small scale run: none and block-Jacobi ran for both scenes.
+  ASSERT_TRUE(summary.contains("scale"));
+  int ran = 0;
+  for (const auto& r : summary["scale"]["records"]) ran += r.contains("skipped") ? 0 : 1;
+  EXPECT_GE(ran, 2 * 2 * 2);
   for (const char* file : {"summary.md", "element.md", "throughput.csv", "throughput.md", "specialization.md",
-                           "errtime.csv", "errtime.md"})
+                           "errtime.csv", "errtime.md", "scale.csv", "scale.md"})
     EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
 }
 

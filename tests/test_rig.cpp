@@ -291,6 +291,9 @@ TEST(RigFrames, ScalingAndIntersectingBonesSolveAndHoldTheirTargets) {
   for (const FrameRecord& r : records) {
     EXPECT_TRUE(r.converged) << "frame " << r.frame << ": " << r.status;
     EXPECT_EQ(r.inverted_elements, 0) << "frame " << r.frame;
+    // Each frame's solve carries its profile (frame 0, at rest, needs no CG).
+    EXPECT_EQ(r.profile.products > 0.0, r.cg_iterations > 0) << "frame " << r.frame;
+    EXPECT_NEAR(r.profile.total, r.seconds, std::max(0.002, 0.01 * r.seconds)) << "frame " << r.frame;
   }
   // Every bone vertex sits on its last transform.
   for (size_t b = 0; b < 2; ++b)

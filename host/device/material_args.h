@@ -58,6 +58,10 @@ class MaterialArgs {
   bool per_element() const { return static_cast<bool>(table_); }
   // Sets MATERIAL_ARGS from index `first`; returns the index after them.
   cl_uint set(cl_kernel kernel, cl_uint first) const;
+  // Device memory of the table and per-element indices (0 for a uniform map).
+  size_t memory_bytes() const {
+    return OpenClContext::bytes(table_.get()) + OpenClContext::bytes(element_material_.get());
+  }
 
  private:
   std::string defines_;

@@ -204,6 +204,15 @@ void OpenClContext::read(cl_mem buffer, size_t bytes, void* data) {
   check(clEnqueueReadBuffer(queue_, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr), "clEnqueueReadBuffer");
 }
 
+size_t OpenClContext::bytes(cl_mem buffer) {
+  if (!buffer) return 0;
+  size_t size = 0;
+  check(clGetMemObjectInfo(buffer, CL_MEM_SIZE, sizeof size, &size, nullptr), "clGetMemObjectInfo");
+  return size;
+}
+
+void OpenClContext::finish() { check(clFinish(queue_), "clFinish"); }
+
 void OpenClContext::run(cl_kernel kernel, size_t global_size) {
   if (global_size == 0) return;
   // An explicit work-group size: left to itself pocl picks groups of

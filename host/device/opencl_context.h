@@ -56,11 +56,15 @@ class OpenClContext {
   Kernel kernel(const std::string& file, const std::string& defines, const char* name);
 
   Buffer buffer(cl_mem_flags flags, size_t bytes, const void* host = nullptr);
+  // The size of a buffer (0 for none).
+  static size_t bytes(cl_mem buffer);
   void write(cl_mem buffer, size_t bytes, const void* data);
   void read(cl_mem buffer, size_t bytes, void* data);
   // Runs `kernel` over global_size work-items (rounded up to whole groups)
   // and waits for it.
   void run(cl_kernel kernel, size_t global_size);
+  // Waits for everything queued (ViennaCL's operations share the queue).
+  void finish();
 
   static constexpr size_t kWorkGroupSize = 64;
 

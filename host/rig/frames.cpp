@@ -53,6 +53,7 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     }
     record.residual_norm = r.final_residual_norm;
     record.seconds = r.seconds;
+    record.profile = r.profile;
     record.volume_ratio = r.volume_ratio;
     record.min_j = r.min_j;
     record.inverted_elements = r.inverted_elements;

@@ -2,6 +2,9 @@
 // residuals and the matrix-free Hessian on the OpenCL device, linear solves by
 // ViennaCL's CG with the block-Jacobi or multigrid preconditioner. Norms and dot products
 // are summed on the host in double and in index order: deterministic.
+// Every call charges its time to a phase of the model's profiler
+// (solver/phase_profile.h): the CG solve to its vector work, less the
+// products and preconditioner applications inside it.
 #pragma once
 
 #include <cmath>
@@ -37,6 +40,13 @@ class DeviceProblem {
   }
 
   size_t dofs() const { return model_.dofs(); }
+  // Device memory at the solve's peak: the model's buffers, the
+  // preconditioner's, and the vectors of a Newton iteration (x and the
+  // driver's r, p, trial, r_trial) with those of ViennaCL's CG inside it
+  // (result, residual, tmp, z, p).
+  size_t memory_bytes() const {
+    return model_.memory_bytes() + 10 * model_.dofs() * sizeof(Real) + (multigrid_ ? multigrid_->memory_bytes() : 0);
+  }
   double epsilon() const { return std::numeric_limits<Real>::epsilon(); }
   Vector vector() const { return Vector(viennacl::scalar_vector<Real>(model_.dofs(), Real(0))); }
   double energy(const Vector& x) { return model_.energy(x); }
@@ -60,16 +70,21 @@ class DeviceProblem {
 
   void linearize(const Vector& x, bool projected) {
     model_.linearize(x, projected);
-    if (preconditioner_ != Preconditioner::none) model_.setup_preconditioner();  // the multigrid's fine smoother too
-    if (multigrid_) multigrid_->setup();
+    if (preconditioner_ != Preconditioner::none) {
+      PhaseScope timed(&model_.profiler(), Phase::preconditioner_setup);
+      model_.setup_preconditioner();  // the multigrid's fine smoother too
+      if (multigrid_) multigrid_->setup();
+    }
   }
 
   LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations) {
+    PhaseScope timed(&model_.profiler(), Phase::cg_vector_work);
     op_.reset();
     viennacl::linalg::cg_tag tag(static_cast<Real>(eta), static_cast<unsigned>(max_iterations));
     viennacl::linalg::cg_solver<Vector> cg(tag);
     cg.set_monitor(&DeviceProblem::stop_cg, this);
-    p = cg(op_, r, precond_);
+    p = cg(op_, r,
+           TimedPreconditioner<CgPreconditioner<Real>>{precond_, preconditioned() ? &model_.profiler() : nullptr});
     LinearSolve s;
     s.iterations = static_cast<int>(cg.tag().iters());
     s.relative_residual = cg.tag().error();
@@ -79,19 +94,37 @@ class DeviceProblem {
   }
 
   void precondition(const Vector& r, Vector& p) {
+    PhaseScope timed(preconditioned() ? &model_.profiler() : nullptr, Phase::preconditioner_apply);
     p = r;
     precond_.apply(p);
   }
-  void step(const Vector& x, double alpha, const Vector& p, Vector& out) { out = x + static_cast<Real>(alpha) * p; }
+  void step(const Vector& x, double alpha, const Vector& p, Vector& out) {
+    PhaseScope timed(&model_.profiler(), Phase::line_search_energies);
+    out = x + static_cast<Real>(alpha) * p;
+  }
   void swap(Vector& u, Vector& v) { u.fast_swap(v); }
 
  private:
+  bool preconditioned() const { return preconditioner_ != Preconditioner::none; }
   static bool stop_cg(const Vector&, Real relative_residual, void* self) {
     const DeviceProblem* problem = static_cast<DeviceProblem*>(self);
     return problem->op_.negative_curvature() || problem->op_.breakdown() ||
            !std::isfinite(static_cast<double>(relative_residual));
   }
-  static void download(const Vector& v, std::vector<Real>& out) {
+  // What CG applies: the preconditioner, its time charged to
+  // preconditioner_apply (none with a null profiler: no preconditioner).
+  template <typename Inner>
+  struct TimedPreconditioner {
+    const Inner& inner;
+    PhaseProfiler* profiler;
+    void apply(viennacl::vector_base<Real>& z) const {
+      PhaseScope timed(profiler, Phase::preconditioner_apply);
+      inner.apply(z);
+    }
+  };
+
+  void download(const Vector& v, std::vector<Real>& out) const {
+    PhaseScope timed(&model_.profiler(), Phase::transfers);
     out.resize(v.size());
     viennacl::copy(v.begin(), v.end(), out.begin());
   }

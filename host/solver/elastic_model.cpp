@@ -33,6 +33,7 @@ template <typename Real>
 ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
                                  const MaterialMap& materials, ProductVariant variant, device::MaterialKernel build)
     : cl_(cl),
+      profiler_([&cl] { cl.finish(); }),
       vertex_count_(mesh.vertex_count()),
       element_count_(mesh.element_count()),
       nodes_(rest.nodes),
@@ -120,6 +121,18 @@ size_t ElasticModel<Real>::variant_memory_bytes() const {
 }
 
 template <typename Real>
+size_t ElasticModel<Real>::memory_bytes() const {
+  size_t bytes = material_.memory_bytes() + linearized_x_.size() * sizeof(Real);
+  for (const device::Buffer* b :
+       {&elements_, &gradients_, &weights_, &offsets_, &adjacency_, &mask_, &external_, &element_scratch_,
+        &element_blocks_, &cache_, &energies_, &min_j_, &inverse_blocks_, &element_matrices_})
+    bytes += device::OpenClContext::bytes(b->get());
+  if (assembled_ready_)
+    bytes += csr_columns_.size() * (sizeof(Real) + sizeof(unsigned)) + csr_rows_.size() * sizeof(unsigned);
+  return bytes;
+}
+
+template <typename Real>
 void ElasticModel<Real>::compute_element_matrices() {
   cl_kernel k = matrices_k_.get();
   const int count = static_cast<int>(element_count_);
@@ -167,9 +180,13 @@ void ElasticModel<Real>::assemble() {
         }
   }
   std::vector<Real> local(element_count_ * m);
-  cl_.read(element_matrices_.get(), local.size() * sizeof(Real), local.data());
+  {
+    PhaseScope transfer(&profiler_, Phase::transfers);
+    cl_.read(element_matrices_.get(), local.size() * sizeof(Real), local.data());
+  }
   std::vector<Real> values(csr_columns_.size(), Real(0));
   for (size_t k = 0; k < local.size(); ++k) values[csr_slot_[k]] += local[k];
+  PhaseScope transfer(&profiler_, Phase::transfers);
   if (!assembled_ready_) {
     assembled_.set(csr_rows_.data(), csr_columns_.data(), values.data(), dofs(), dofs(), values.size());
     assembled_ready_ = true;
@@ -182,6 +199,7 @@ void ElasticModel<Real>::assemble() {
 template <typename Real>
 void ElasticModel<Real>::set_mask(const std::vector<Real>& mask) {
   if (mask.size() != dofs()) throw Error("solver: constraint mask has the wrong size");
+  PhaseScope transfer(&profiler_, Phase::transfers);
   cl_.write(mask_.get(), mask.size() * sizeof(Real), mask.data());
 }
 
@@ -196,6 +214,7 @@ void ElasticModel<Real>::set_external_force(const std::vector<double>& force) {
     if (!std::isfinite(f)) throw Error("solver: external force has a non-finite entry");
   external_host_ = force;
   const std::vector<Real> f(force.begin(), force.end());
+  PhaseScope transfer(&profiler_, Phase::transfers);
   cl_.write(external_.get(), f.size() * sizeof(Real), f.data());
 }
 
@@ -206,6 +225,7 @@ void ElasticModel<Real>::run_element_kernel(cl_kernel k) const {
 
 template <typename Real>
 double ElasticModel<Real>::energy(const VectorBase& x) {
+  PhaseScope timed(&profiler_, Phase::line_search_energies);
   cl_kernel k = energy_k_.get();
   const int count = static_cast<int>(element_count_);
   set_arg(k, 0, mem(x));
@@ -218,14 +238,20 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   set_arg(k, next + 1, min_j_.get());
   run_element_kernel(k);
   std::vector<Real> e(element_count_), j(element_count_);
-  cl_.read(energies_.get(), e.size() * sizeof(Real), e.data());
-  cl_.read(min_j_.get(), j.size() * sizeof(Real), j.data());
+  {
+    PhaseScope transfer(&profiler_, Phase::transfers);
+    cl_.read(energies_.get(), e.size() * sizeof(Real), e.data());
+    cl_.read(min_j_.get(), j.size() * sizeof(Real), j.data());
+  }
   double sum = 0.0;
   for (Real v : e) sum += static_cast<double>(v);
   last_min_j_ = j.empty() ? 0.0 : static_cast<double>(*std::min_element(j.begin(), j.end()));
   if (has_external_) {
     std::vector<Real> xh(dofs());
-    viennacl::copy(x.begin(), x.end(), xh.begin());
+    {
+      PhaseScope transfer(&profiler_, Phase::transfers);
+      viennacl::copy(x.begin(), x.end(), xh.begin());
+    }
     for (size_t i = 0; i < xh.size(); ++i) sum -= external_host_[i] * static_cast<double>(xh[i]);
   }
   return sum;
@@ -251,6 +277,7 @@ void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase
 
 template <typename Real>
 void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
+  PhaseScope timed(&profiler_, Phase::line_search_energies);
   cl_kernel k = forces_k_.get();
   const int count = static_cast<int>(element_count_);
   set_arg(k, 0, mem(x));
@@ -265,6 +292,7 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
 
 template <typename Real>
 void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
+  PhaseScope timed(&profiler_, Phase::linearization);
   linearized_x_ = x;
   projected_ = projected ? 1 : 0;
   cl_kernel k = linearize_k_.get();
@@ -284,6 +312,7 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
 
 template <typename Real>
 void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
+  PhaseScope timed(&profiler_, Phase::products);
   const int count = static_cast<int>(element_count_);
   cl_kernel k;
   if (variant_ == ProductVariant::assembled) {
@@ -330,6 +359,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
 
 template <typename Real>
 void ElasticModel<Real>::setup_preconditioner() {
+  PhaseScope timed(&profiler_, Phase::preconditioner_setup);
   const int count = static_cast<int>(element_count_);
   if (projected_ && element_matrices_buffer()) {
     // The projected element matrices are at hand: their diagonal blocks.
@@ -361,6 +391,7 @@ void ElasticModel<Real>::setup_preconditioner() {
 
 template <typename Real>
 void ElasticModel<Real>::apply_preconditioner(VectorBase& z) const {
+  PhaseScope timed(&profiler_, Phase::preconditioner_apply);
   cl_kernel k = apply_k_.get();
   const int vertices = static_cast<int>(vertex_count_);
   set_arg(k, 0, inverse_blocks_.get());
@@ -373,6 +404,7 @@ void ElasticModel<Real>::apply_preconditioner(VectorBase& z) const {
 template <typename Real>
 std::vector<Real> ElasticModel<Real>::preconditioner_blocks() const {
   std::vector<Real> blocks(9 * vertex_count_);
+  PhaseScope transfer(&profiler_, Phase::transfers);
   cl_.read(inverse_blocks_.get(), blocks.size() * sizeof(Real), blocks.data());
   return blocks;
 }

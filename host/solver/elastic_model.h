@@ -14,6 +14,7 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
+#include "solver/phase_profile.h"
 #include "viennacl/compressed_matrix.hpp"
 #include "viennacl/vector.hpp"
 
@@ -86,6 +87,14 @@ class ElasticModel {
   // (download, host scatter, upload); 0 for other variants.
   double last_assembly_seconds() const { return last_assembly_seconds_; }
   size_t assembled_nonzeros() const { return csr_columns_.size(); }
+  // Device memory of every buffer the model holds: mesh, rest state,
+  // material, scratch, preconditioner and variant_memory_bytes(); not the
+  // solver's vectors.
+  size_t memory_bytes() const;
+
+  // Where this model's solves spend their time (solver/phase_profile.h); the
+  // model charges its own work, its users (DeviceProblem) theirs.
+  PhaseProfiler& profiler() const { return profiler_; }
 
  private:
   void run_element_kernel(cl_kernel k) const;
@@ -96,6 +105,7 @@ class ElasticModel {
   void gather(const device::Buffer& element_values, VectorBase& out, bool external) const;
 
   device::OpenClContext& cl_;
+  mutable PhaseProfiler profiler_;
   size_t vertex_count_, element_count_;
   int nodes_, quadrature_;
   device::MaterialArgs<Real> material_;

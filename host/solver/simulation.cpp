@@ -20,6 +20,7 @@
 #include "solver/lattice_hierarchy.h"
 #include "solver/multigrid.h"
 #include "solver/newton_driver.h"
+#include "solver/phase_profile.h"
 
 namespace snh {
 
@@ -59,6 +60,19 @@ Affine interpolate(const RigidTransform& from, const RigidTransform& to, double 
 }
 
 }  // namespace
+
+SolveProfile& SolveProfile::operator+=(const SolveProfile& o) {
+  linearization += o.linearization;
+  products += o.products;
+  preconditioner_setup += o.preconditioner_setup;
+  preconditioner_apply += o.preconditioner_apply;
+  cg_vector_work += o.cg_vector_work;
+  line_search_energies += o.line_search_energies;
+  transfers += o.transfers;
+  other += o.other;
+  total += o.total;
+  return *this;
+}
 
 struct Simulation::Impl {
   // Where a set's vertices go in the coming solve.
@@ -100,6 +114,31 @@ struct Simulation::Impl {
   std::array<double, 3> body_force{0, 0, 0};
   std::unique_ptr<Engine<float>> single;
   std::unique_ptr<Engine<double>> dual;  // double: the main engine or the float fallback
+  double callback_seconds = 0.0;         // in the caller's callbacks during the current solve
+
+  // Seconds per phase so far, over the engines built so far.
+  solver::PhaseSeconds phase_seconds() const {
+    solver::PhaseSeconds s{};
+    if (single) s = solver::sum(s, single->model->profiler().seconds());
+    if (dual) s = solver::sum(s, dual->model->profiler().seconds());
+    return s;
+  }
+
+  size_t device_memory_bytes() const {
+    return (single ? single->problem->memory_bytes() : 0) + (dual ? dual->problem->memory_bytes() : 0);
+  }
+
+  // Runs a caller's callback, its time kept out of the profile.
+  template <typename F>
+  auto in_callback(F&& f) {
+    const auto paused = Clock::now();
+    struct Count {
+      double& seconds;
+      Clock::time_point since;
+      ~Count() { seconds += std::chrono::duration<double>(Clock::now() - since).count(); }
+    } count{callback_seconds, paused};
+    return f();
+  }
 
   Impl(Mesh m, const MaterialMap& map, std::vector<ConstraintSet> c, SolveOptions o)
       : mesh(std::move(m)),
@@ -273,20 +312,28 @@ struct Simulation::Impl {
     engine.model->set_external_force(force_applied);
     const std::vector<Real> xr(x.begin(), x.end());
     viennacl::vector<Real> xd(x.size());
-    viennacl::copy(xr.begin(), xr.end(), xd.begin());
+    {
+      solver::PhaseScope upload(&engine.model->profiler(), solver::Phase::transfers);
+      viennacl::copy(xr.begin(), xr.end(), xd.begin());
+    }
     typename solver::NewtonDriver<solver::DeviceProblem<Real>>::Observer observe;
     if (options.on_iteration || progress)
       observe = [&](const NewtonIteration& rec, const viennacl::vector<Real>& xi) {
-        if (options.on_iteration) {
-          std::vector<Real> host(xi.size());
-          viennacl::copy(xi.begin(), xi.end(), host.begin());
-          options.on_iteration(rec, std::vector<double>(host.begin(), host.end()));
-        }
-        return progress ? progress(rec) : true;
+        return in_callback([&] {
+          if (options.on_iteration) {
+            std::vector<Real> host(xi.size());
+            viennacl::copy(xi.begin(), xi.end(), host.begin());
+            options.on_iteration(rec, std::vector<double>(host.begin(), host.end()));
+          }
+          return progress ? progress(rec) : true;
+        });
       };
     StepResult step = engine.newton->solve_step(s, xd, tolerance, history, start, observe);
     std::vector<Real> back(x.size());
-    viennacl::copy(xd.begin(), xd.end(), back.begin());
+    {
+      solver::PhaseScope download(&engine.model->profiler(), solver::Phase::transfers);
+      viennacl::copy(xd.begin(), xd.end(), back.begin());
+    }
     std::copy(back.begin(), back.end(), x.begin());
     device::use_viennacl(viennacl_context_id);
     return step;
@@ -296,6 +343,8 @@ struct Simulation::Impl {
     const int steps = load_steps > 0 ? load_steps : options.load_steps;
     if (steps < 1) throw Error("solve: load_steps must be >= 1");
     const auto start = Clock::now();
+    callback_seconds = 0.0;
+    const solver::PhaseSeconds solve_start = phase_seconds();
     SolveResult result;
     result.device = cl.info();
     result.product = product;
@@ -315,6 +364,9 @@ struct Simulation::Impl {
     bool fell_back = false;
     result.converged = true;
     for (int s = 1; s <= steps; ++s) {
+      const auto step_clock = Clock::now();
+      const double step_callbacks = callback_seconds;
+      const solver::PhaseSeconds step_start_phases = phase_seconds();
       const double fraction = static_cast<double>(s) / steps;
       for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
       force_applied.resize(force_to.size());
@@ -367,8 +419,11 @@ struct Simulation::Impl {
       }
       result.converged = result.converged && step.converged;
       result.final_residual_norm = step.residual_norm;
+      step.profile = solver::make_profile(
+          solver::difference(phase_seconds(), step_start_phases),
+          std::chrono::duration<double>(Clock::now() - step_clock).count() - (callback_seconds - step_callbacks));
       result.steps.push_back(step);
-      if (on_step) on_step(s, x);
+      if (on_step) in_callback([&] { on_step(s, x); });
       if (step.status == "cancelled") {
         result.cancelled = true;
         break;
@@ -390,6 +445,9 @@ struct Simulation::Impl {
     result.max_j = stats.max_j;
     result.inverted_elements = stats.inverted_elements;
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.profile =
+        solver::make_profile(solver::difference(phase_seconds(), solve_start), result.seconds - callback_seconds);
+    result.device_memory_bytes = device_memory_bytes();
     return result;
   }
 };

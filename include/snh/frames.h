@@ -24,6 +24,7 @@ struct FrameRecord {
   int cg_iterations = 0;
   double residual_norm = 0.0;
   double seconds = 0.0;
+  SolveProfile profile;  // where the frame's solve spent its time (SolveResult::profile)
   double volume_ratio = 0.0;
   double min_j = 0.0;
   int inverted_elements = 0;

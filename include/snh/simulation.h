@@ -183,6 +183,28 @@ struct SolveOptions {
   std::function<void(const NewtonIteration&, const std::vector<double>& positions)> on_iteration;
 };
 
+// Where a solve's time went, in seconds. Every second of the solve is
+// charged to exactly one part (the innermost phase running; a preconditioner's
+// own products and vector work count as its setup or apply), so the parts add
+// up to `total`. Device work is waited for at every phase boundary, so
+// queued kernels are charged to the phase that queued them.
+struct SolveProfile {
+  double linearization = 0.0;         // per-point SVD and eigensystem (and element matrices, assembly)
+  double products = 0.0;              // Hessian products (CG's operator applications)
+  double preconditioner_setup = 0.0;  // building the preconditioner from the linearization
+  double preconditioner_apply = 0.0;  // z = M^-1 r, in CG and for the steepest-descent fallback
+  double cg_vector_work = 0.0;        // the rest of CG: updates, dot products, curvature checks
+  // Energy and force evaluations: the line search's trials and each step's
+  // start, with the trial updates x + alpha p.
+  double line_search_energies = 0.0;
+  double transfers = 0.0;  // host <-> device reads and writes (incl. the downloads behind norms and dots)
+  double other = 0.0;      // the rest: host-side Newton bookkeeping, constraint placement, statistics
+  // Wall time of the solve (or step), less the time in the caller's
+  // callbacks (on_iteration, progress, on_step).
+  double total = 0.0;
+  SolveProfile& operator+=(const SolveProfile& o);
+};
+
 struct StepResult {
   int step = 0;
   int newton_iterations = 0;
@@ -200,6 +222,7 @@ struct StepResult {
   // Newton / 340 CG iterations (residual 3.1e-05); re-solved in double".
   // newton_iterations and cg_iterations then count both attempts.
   std::string fallback;
+  SolveProfile profile;  // this step's share of SolveResult::profile
 };
 
 struct SolveResult {
@@ -215,6 +238,11 @@ struct SolveResult {
   double max_j = 0.0;
   int inverted_elements = 0;  // elements with J <= 0 at some quadrature point
   double seconds = 0.0;
+  SolveProfile profile;  // where `seconds` went (profile.total: seconds less the callbacks)
+  // Device memory the engine held at the solve's peak: mesh, material,
+  // linearization, preconditioner and solver vectors (of the float and the
+  // fallback double engine together when both ran).
+  size_t device_memory_bytes = 0;
   DeviceInfo device;
   std::string kernel_specialization;                             // the build-time switches of the kernels used
   ProductVariant product = ProductVariant::cached;               // the variant used (automatic resolved)

@@ -1,0 +1,33 @@
+// The per-phase profile (snh::SolveProfile) as the reports write it: a JSON
+// object with one key per phase, and the phases in a fixed order for tables.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "snh/simulation.h"
+
+namespace snh::bench {
+
+// (key, seconds) in the order the reports show them; `total` last.
+inline std::vector<std::pair<std::string, double>> profile_parts(const SolveProfile& p) {
+  return {{"linearization", p.linearization},
+          {"products", p.products},
+          {"preconditioner_setup", p.preconditioner_setup},
+          {"preconditioner_apply", p.preconditioner_apply},
+          {"cg_vector_work", p.cg_vector_work},
+          {"line_search_energies", p.line_search_energies},
+          {"transfers", p.transfers},
+          {"other", p.other},
+          {"total", p.total}};
+}
+
+inline nlohmann::ordered_json profile_json(const SolveProfile& p) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& [key, seconds] : profile_parts(p)) j[key] = seconds;
+  return j;
+}
+
+}  // namespace snh::bench

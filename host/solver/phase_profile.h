@@ -1,0 +1,135 @@
+// Per-phase wall time of a solve (snh::SolveProfile): scopes opened where the
+// work happens (solver/elastic_model.cpp, solver/device_problem.h, the host
+// baseline) charge the time to one phase each. Exclusive timing: a scope
+// opened inside another pauses it, so every second lands in exactly one phase
+// and the phases add up; time outside every scope is the profile's `other`.
+// Inside a preconditioner's setup or apply, nested scopes (its own products,
+// vector work) stay charged to the preconditioner; only transfers separate.
+//
+// OpenCL is asynchronous: ViennaCL's vector operations are queued on the same
+// in-order queue as the element kernels. The profiler's `finish` (clFinish on
+// that queue) runs at every boundary, so queued work is charged to the phase
+// that queued it and not to the next one that waits. Timers read only the
+// clock: results stay bit-identical.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "snh/simulation.h"
+
+namespace snh::solver {
+
+enum class Phase : int {
+  linearization,
+  products,
+  preconditioner_setup,
+  preconditioner_apply,
+  cg_vector_work,
+  line_search_energies,
+  transfers,
+};
+constexpr int kPhaseCount = 7;
+
+using PhaseSeconds = std::array<double, kPhaseCount>;
+
+class PhaseProfiler {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // finish: waits for the device's queued work (empty on the host).
+  explicit PhaseProfiler(std::function<void()> finish = {}) : finish_(std::move(finish)) {}
+
+  void enter(Phase requested) {
+    if (finish_) finish_();
+    const auto now = Clock::now();
+    Phase phase = requested;
+    if (!stack_.empty()) {
+      seconds_[index(stack_.back())] += std::chrono::duration<double>(now - since_).count();
+      const Phase outer = stack_.back();
+      if ((outer == Phase::preconditioner_setup || outer == Phase::preconditioner_apply) &&
+          requested != Phase::transfers)
+        phase = outer;
+    }
+    stack_.push_back(phase);
+    since_ = now;
+  }
+
+  void leave() {
+    if (stack_.empty()) return;
+    if (finish_) finish_();
+    const auto now = Clock::now();
+    seconds_[index(stack_.back())] += std::chrono::duration<double>(now - since_).count();
+    stack_.pop_back();
+    since_ = now;
+  }
+
+  // Seconds per phase so far (an open phase counted up to now).
+  PhaseSeconds seconds() const {
+    PhaseSeconds out = seconds_;
+    if (!stack_.empty()) out[index(stack_.back())] += std::chrono::duration<double>(Clock::now() - since_).count();
+    return out;
+  }
+
+ private:
+  static int index(Phase p) { return static_cast<int>(p); }
+
+  std::function<void()> finish_;
+  PhaseSeconds seconds_{};
+  std::vector<Phase> stack_;
+  Clock::time_point since_;
+};
+
+// Charges its lifetime to `phase` (nothing with a null profiler).
+class PhaseScope {
+ public:
+  PhaseScope(PhaseProfiler* profiler, Phase phase) : profiler_(profiler) {
+    if (profiler_) profiler_->enter(phase);
+  }
+  ~PhaseScope() {
+    if (profiler_) profiler_->leave();
+  }
+  PhaseScope(const PhaseScope&) = delete;
+  PhaseScope& operator=(const PhaseScope&) = delete;
+
+ private:
+  PhaseProfiler* profiler_;
+};
+
+// Per phase, a - b and a + b.
+inline PhaseSeconds difference(const PhaseSeconds& a, const PhaseSeconds& b) {
+  PhaseSeconds out;
+  for (int k = 0; k < kPhaseCount; ++k) out[k] = a[k] - b[k];
+  return out;
+}
+
+inline PhaseSeconds sum(const PhaseSeconds& a, const PhaseSeconds& b) {
+  PhaseSeconds out;
+  for (int k = 0; k < kPhaseCount; ++k) out[k] = a[k] + b[k];
+  return out;
+}
+
+// The public profile of `spent` within a wall time `total`; `other` is what
+// no phase claimed (never below 0: clock reads of the phases and of the
+// caller's total may differ by a few microseconds).
+inline SolveProfile make_profile(const PhaseSeconds& spent, double total) {
+  SolveProfile p;
+  p.linearization = spent[static_cast<int>(Phase::linearization)];
+  p.products = spent[static_cast<int>(Phase::products)];
+  p.preconditioner_setup = spent[static_cast<int>(Phase::preconditioner_setup)];
+  p.preconditioner_apply = spent[static_cast<int>(Phase::preconditioner_apply)];
+  p.cg_vector_work = spent[static_cast<int>(Phase::cg_vector_work)];
+  p.line_search_energies = spent[static_cast<int>(Phase::line_search_energies)];
+  p.transfers = spent[static_cast<int>(Phase::transfers)];
+  double phases = 0.0;
+  for (double s : spent) phases += s;
+  p.total = std::max(total, phases);
+  p.other = p.total - phases;
+  return p;
+}
+
+}  // namespace snh::solver
