@@ -197,7 +197,7 @@ Reference solve_reference(const Scene& scene, const ErrtimeOptions& o) {
   options.absolute_tolerance = 0.0;
   options.max_newton_iterations = std::max(options.max_newton_iterations, 200);
   options.hessian = HessianMode::adaptive;
-  options.block_jacobi = true;
+  options.preconditioner = Preconditioner::block_jacobi;
   options.product = ProductVariant::cached;
   Reference ref;
   QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
@@ -228,16 +228,16 @@ SolveOptions series_options(const Scene& scene, const ErrtimeOptions& o) {
 }
 
 Series run_device_series(const Scene& scene, const SceneParameters& parameters, const Reference& ref,
-                         const ErrtimeOptions& o, Precision precision, bool block_jacobi) {
+                         const ErrtimeOptions& o, Precision precision, Preconditioner preconditioner) {
   Series s;
   s.precision = to_string(precision);
-  s.preconditioner = block_jacobi ? "block-jacobi" : "none";
+  s.preconditioner = to_string(preconditioner);
   s.name = s.precision + "/" + s.preconditioner;
   s.variant = o.variant;
   s.hessian = o.hessian;
   SolveOptions options = series_options(scene, o);
   options.precision = precision;
-  options.block_jacobi = block_jacobi;
+  options.preconditioner = preconditioner;
   try {
     {
       // Warm-up on a small copy of the scene (same kernel specialization):
@@ -519,9 +519,11 @@ int run_errtime(const ErrtimeOptions& o) {
               << " s, worst reached relative residual " << worst_reached(run.reference)
               << (ref.converged ? "" : " (did not reach the tolerance in every step)") << '\n';
     for (const std::string& precision : expand(o.precision, {"double", "float"}))
-      for (const std::string& pre : expand(o.preconditioner, {"block-jacobi", "none"})) {
+      for (const std::string& pre : o.preconditioner == "all"
+                                        ? std::vector<std::string>{"block-jacobi", "multigrid", "none"}
+                                        : expand(o.preconditioner, {"block-jacobi", "none"})) {
         run.series.push_back(
-            run_device_series(scene, p, run.reference, o, parse_precision(precision), pre == "block-jacobi"));
+            run_device_series(scene, p, run.reference, o, parse_precision(precision), parse_preconditioner(pre)));
         const Series& s = run.series.back();
         if (!s.skipped.empty())
           std::cerr << "errtime:   " << s.name << " skipped: " << s.skipped << '\n';
@@ -713,8 +715,9 @@ void add_errtime_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--precision", o->precision, "float, double or both")
       ->check(CLI::IsMember({"float", "double", "both"}))
       ->capture_default_str();
-  cmd->add_option("--preconditioner", o->preconditioner, "block-jacobi, none or both")
-      ->check(CLI::IsMember({"block-jacobi", "none", "both"}))
+  cmd->add_option("--preconditioner", o->preconditioner,
+                  "block-jacobi, multigrid (hex8 lattices), none, both (block-jacobi and none) or all three")
+      ->check(CLI::IsMember({"block-jacobi", "multigrid", "none", "both", "all"}))
       ->capture_default_str();
   cmd->add_option("--variant", o->variant,
                   "Hessian product of the device series: automatic (measured default), cached, recompute, "

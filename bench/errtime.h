@@ -14,7 +14,7 @@ struct ErrtimeOptions {
   int resolution = 0;                     // 0: default_errtime_resolution(scene)
   std::string element = "hex8";           // hex8 or tet4
   std::string precision = "both";         // float, double, both
-  std::string preconditioner = "both";    // block-jacobi, none, both
+  std::string preconditioner = "both";    // block-jacobi, multigrid, none, both (block-jacobi and none), all
   std::string variant = "automatic";      // automatic, cached, recompute, element-matrices, assembled
   std::string hessian = "adaptive";       // adaptive, projected
   bool host_baseline = true;              // also the Eigen host solve (double) as series "host-eigen"
