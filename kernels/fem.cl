@@ -7,12 +7,18 @@
  *   SNH_LAMBDA_MODEL  model of the lambda part when mixing (-1: the same)
  *   SNH_UNIFORM_REST  every element shares element 0's rest gradients (lattices)
  *   SNH_REGIONS       per-element materials from a table (kernel_args.h)
+ *   SNH_INERTIA       implicit Euler's inertia term in the per-vertex kernels
+ *                     (gather, block-Jacobi setup, assembled product)
  * Element kernels write per-element nodal values; gather kernels sum them per
  * vertex over a fixed adjacency order, so results are bitwise reproducible
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
  * element; gradients: [element][q][a][3]; weights: [element][q]. */
 #include "fem/element.h"
 #include "materials/kernel_args.h"
+
+#ifndef SNH_INERTIA
+#define SNH_INERTIA 0
+#endif
 
 #if SNH_UNIFORM_REST
 #define REST_ELEMENT(e) 0
@@ -162,13 +168,26 @@ __kernel void snh_element_diagonal(__global const int* elements, __global const 
   for (int i = 0; i < 9 * SNH_NODES; ++i) out[9 * SNH_NODES * e + i] = k[i];
 }
 
-/* Per vertex: out = mask * (sign * sum of its element-node values + external).
- * adjacency lists the (element * NODES + node) slots of each vertex, in
- * increasing order, between offsets[v] and offsets[v + 1]. */
+/* Per vertex: out = mask * (sign * sum of its element-node values + external
+ * + vertex terms). adjacency lists the (element * NODES + node) slots of each
+ * vertex, in increasing order, between offsets[v] and offsets[v + 1].
+ *
+ * Vertex terms (SNH_INERTIA; incremental potential of implicit Euler,
+ * snh::DynamicsOptions): inertia_mass holds c m_v, c = (1 + a h) / h^2 with
+ * the lumped mass m_v, and inertia_target the point y the inertia pulls
+ * toward. vertex_mode 1 (residual, u = x): -c m_v (x_v - y_v); 2 (Hessian
+ * product, u = p): + c m_v p_v; 0: none. `sign` carries the elastic scale
+ * (1 + b / h) of Rayleigh stiffness damping. */
 __kernel void snh_gather_vectors(__global const real* element_values, __global const int* offsets,
                                  __global const int* adjacency, __global const real* mask,
                                  __global const real* external_force, const int use_external, const real sign,
-                                 const int vertex_count, __global real* out) {
+                                 const int vertex_count, __global real* out
+#if SNH_INERTIA
+                                 ,
+                                 __global const real* u, const int vertex_mode, __global const real* inertia_mass,
+                                 __global const real* inertia_target
+#endif
+) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
   real s0 = SNH_R(0), s1 = SNH_R(0), s2 = SNH_R(0);
@@ -186,6 +205,19 @@ __kernel void snh_gather_vectors(__global const real* element_values, __global c
     s1 += external_force[3 * v + 1];
     s2 += external_force[3 * v + 2];
   }
+#if SNH_INERTIA
+  if (vertex_mode == 1) {
+    const real m = inertia_mass[v];
+    s0 -= m * (u[3 * v] - inertia_target[3 * v]);
+    s1 -= m * (u[3 * v + 1] - inertia_target[3 * v + 1]);
+    s2 -= m * (u[3 * v + 2] - inertia_target[3 * v + 2]);
+  } else if (vertex_mode == 2) {
+    const real m = inertia_mass[v];
+    s0 += m * u[3 * v];
+    s1 += m * u[3 * v + 1];
+    s2 += m * u[3 * v + 2];
+  }
+#endif
   out[3 * v] = mask[3 * v] * s0;
   out[3 * v + 1] = mask[3 * v + 1] * s1;
   out[3 * v + 2] = mask[3 * v + 2] * s2;
@@ -196,12 +228,21 @@ __kernel void snh_gather_vectors(__global const real* element_values, __global c
  * elements are all flat) falls back to the inverse of its diagonal. */
 __kernel void snh_block_jacobi_setup(__global const real* element_blocks, __global const int* offsets,
                                      __global const int* adjacency, __global const real* mask, const int vertex_count,
-                                     __global real* inverse) {
+                                     __global real* inverse
+#if SNH_INERTIA
+                                     ,
+                                     const real elastic_scale, __global const real* inertia_mass
+#endif
+) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
   mat3 b = mat3_zero();
   for (int k = offsets[v]; k < offsets[v + 1]; ++k)
     for (int i = 0; i < 9; ++i) b.a[i] += element_blocks[9 * adjacency[k] + i];
+#if SNH_INERTIA
+  for (int i = 0; i < 9; ++i) b.a[i] *= elastic_scale;
+  for (int d = 0; d < 3; ++d) M3(b, d, d) += inertia_mass[v];
+#endif
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) M3(b, r, c) *= mask[3 * v + r] * mask[3 * v + c];
   for (int d = 0; d < 3; ++d)
@@ -276,9 +317,19 @@ __kernel void snh_element_matrix_product(__global const real* p, __global const 
   for (int i = 0; i < SNH_DOFS; ++i) out[SNH_DOFS * e + i] = y[i];
 }
 
-/* y = mask * y, elementwise (after an assembled product). */
-__kernel void snh_apply_mask(__global const real* mask, const int size, __global real* y) {
+/* y = mask * y, elementwise (after an assembled product); with SNH_INERTIA
+ * y = mask * (elastic_scale * y + c m_v p), the gather's vertex terms. */
+__kernel void snh_apply_mask(__global const real* mask, const int size, __global real* y
+#if SNH_INERTIA
+                             ,
+                             const real elastic_scale, __global const real* p, __global const real* inertia_mass
+#endif
+) {
   const int i = get_global_id(0);
   if (i >= size) return;
+#if SNH_INERTIA
+  y[i] = mask[i] * (elastic_scale * y[i] + inertia_mass[i / 3] * p[i]);
+#else
   y[i] *= mask[i];
+#endif
 }

@@ -31,7 +31,8 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 
 template <typename Real>
 ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
-                                 const MaterialMap& materials, ProductVariant variant, device::MaterialKernel build)
+                                 const MaterialMap& materials, ProductVariant variant, device::MaterialKernel build,
+                                 const ModelTerms& terms)
     : cl_(cl),
       vertex_count_(mesh.vertex_count()),
       element_count_(mesh.element_count()),
@@ -43,6 +44,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   // Build-time specialization: only what this scene uses is compiled in.
   defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " + material_.defines() +
              " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+  terms_ = terms;
+  if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
 
   // Vertex -> (element * nodes + node) slots, in increasing slot order, so
   // every gather sums in the same order on every run.
@@ -70,6 +73,13 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   min_j_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
+  if (terms.inertia) {
+    inertia_mass_host_.assign(vertex_count_, 0.0);
+    inertia_target_host_.assign(dofs(), 0.0);
+    const std::vector<Real> zeros(dofs(), Real(0));
+    inertia_mass_ = cl_.buffer(CL_MEM_READ_ONLY, vertex_count_ * sizeof(Real), zeros.data());
+    inertia_target_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), zeros.data());
+  }
 
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
   forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
@@ -199,6 +209,41 @@ void ElasticModel<Real>::set_external_force(const std::vector<double>& force) {
 }
 
 template <typename Real>
+void ElasticModel<Real>::set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target,
+                                     double elastic_scale) {
+  if (!terms_.inertia) throw Error("solver: set_inertia on a model built without the inertia term");
+  if (coefficient.size() != vertex_count_ || target.size() != dofs())
+    throw Error("solver: inertia has " + std::to_string(coefficient.size()) + " coefficients and " +
+                std::to_string(target.size()) + " target entries, expected " + std::to_string(vertex_count_) + " and " +
+                std::to_string(dofs()));
+  for (double c : coefficient)
+    if (!(c >= 0.0) || !std::isfinite(c)) throw Error("solver: inertia coefficient not finite and >= 0");
+  for (double y : target)
+    if (!std::isfinite(y)) throw Error("solver: inertia target has a non-finite entry");
+  if (!(elastic_scale > 0.0) || !std::isfinite(elastic_scale)) throw Error("solver: elastic scale not finite and > 0");
+  inertia_mass_host_ = coefficient;
+  inertia_target_host_ = target;
+  elastic_scale_ = elastic_scale;
+  const std::vector<Real> c(coefficient.begin(), coefficient.end()), y(target.begin(), target.end());
+  cl_.write(inertia_mass_.get(), c.size() * sizeof(Real), c.data());
+  cl_.write(inertia_target_.get(), y.size() * sizeof(Real), y.data());
+}
+
+template <typename Real>
+void ElasticModel<Real>::elastic_forces(const VectorBase& x, VectorBase& out) {
+  cl_kernel k = forces_k_.get();
+  const int count = static_cast<int>(element_count_);
+  set_arg(k, 0, mem(x));
+  set_arg(k, 1, elements_.get());
+  set_arg(k, 2, gradients_.get());
+  set_arg(k, 3, weights_.get());
+  set_arg(k, 4, count);
+  set_arg(k, set_material_args(k, 5), element_scratch_.get());
+  run_element_kernel(k);
+  gather(element_scratch_, out, false);
+}
+
+template <typename Real>
 void ElasticModel<Real>::run_element_kernel(cl_kernel k) const {
   cl_.run(k, element_count_);
 }
@@ -221,20 +266,28 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   cl_.read(min_j_.get(), j.size() * sizeof(Real), j.data());
   double sum = 0.0;
   for (Real v : e) sum += static_cast<double>(v);
+  sum *= elastic_scale_;
   last_min_j_ = j.empty() ? 0.0 : static_cast<double>(*std::min_element(j.begin(), j.end()));
-  if (has_external_) {
+  if (has_external_ || terms_.inertia) {
     std::vector<Real> xh(dofs());
     viennacl::copy(x.begin(), x.end(), xh.begin());
-    for (size_t i = 0; i < xh.size(); ++i) sum -= external_host_[i] * static_cast<double>(xh[i]);
+    if (has_external_)
+      for (size_t i = 0; i < xh.size(); ++i) sum -= external_host_[i] * static_cast<double>(xh[i]);
+    if (terms_.inertia)
+      for (size_t i = 0; i < xh.size(); ++i) {
+        const double d = static_cast<double>(xh[i]) - inertia_target_host_[i];
+        sum += 0.5 * inertia_mass_host_[i / 3] * d * d;
+      }
   }
   return sum;
 }
 
 template <typename Real>
-void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase& out, bool external) const {
+void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase& out, bool external,
+                                const VectorBase* u, int vertex_mode, double scale) const {
   cl_kernel k = gather_k_.get();
   const int use_external = external && has_external_ ? 1 : 0;
-  const Real sign = Real(1);
+  const Real sign = static_cast<Real>(scale);
   const int count = static_cast<int>(vertex_count_);
   set_arg(k, 0, element_values.get());
   set_arg(k, 1, offsets_.get());
@@ -245,6 +298,12 @@ void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase
   set_arg(k, 6, sign);
   set_arg(k, 7, count);
   set_arg(k, 8, mem(out));
+  if (terms_.inertia) {
+    set_arg(k, 9, u ? mem(*u) : mem(out));  // read only when vertex_mode > 0
+    set_arg(k, 10, u ? vertex_mode : 0);
+    set_arg(k, 11, inertia_mass_.get());
+    set_arg(k, 12, inertia_target_.get());
+  }
   cl_.run(k, vertex_count_);
 }
 
@@ -259,7 +318,7 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
   set_arg(k, 4, count);
   set_arg(k, set_material_args(k, 5), element_scratch_.get());
   run_element_kernel(k);
-  gather(element_scratch_, r, true);
+  gather(element_scratch_, r, true, &x, 1, elastic_scale_);
 }
 
 template <typename Real>
@@ -292,6 +351,11 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(mk, 0, mask_.get());
     set_arg(mk, 1, size);
     set_arg(mk, 2, mem(y));
+    if (terms_.inertia) {
+      set_arg(mk, 3, static_cast<Real>(elastic_scale_));
+      set_arg(mk, 4, mem(p));
+      set_arg(mk, 5, inertia_mass_.get());
+    }
     cl_.run(mk, dofs());
     return;
   }
@@ -324,7 +388,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(k, next + 1, element_scratch_.get());
   }
   run_element_kernel(k);
-  gather(element_scratch_, y, false);
+  gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }
 
 template <typename Real>
@@ -346,6 +410,10 @@ void ElasticModel<Real>::setup_preconditioner() {
   set_arg(s, 3, mask_.get());
   set_arg(s, 4, vertices);
   set_arg(s, 5, inverse_blocks_.get());
+  if (terms_.inertia) {
+    set_arg(s, 6, static_cast<Real>(elastic_scale_));
+    set_arg(s, 7, inertia_mass_.get());
+  }
   cl_.run(s, vertex_count_);
 }
 

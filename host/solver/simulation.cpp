@@ -1,6 +1,7 @@
 // Simulation: the per-frame driver. Constraint targets and loads per load
-// step, the float-to-double fallback, and one Newton driver
-// (solver/newton_driver.h) over the device problem.
+// step (or per implicit Euler time step with dynamics), the float-to-double
+// fallback, and one Newton driver (solver/newton_driver.h) over the device
+// problem.
 #include "snh/simulation.h"
 
 #include <Eigen/Geometry>
@@ -91,6 +92,9 @@ struct Simulation::Impl {
   std::vector<char> prescribed;  // per DOF
   std::vector<std::string> warnings;
   std::vector<double> x;
+  // Dynamics: velocities (xyz per vertex), lumped mass per vertex, time.
+  std::vector<double> v, mass;
+  double time = 0.0;
   std::vector<Target> targets;
   std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
   std::vector<double> body_force_lumped;
@@ -124,8 +128,14 @@ struct Simulation::Impl {
     update_body_force();
     total_force(force_to);
     force_from.assign(force_to.size(), 0.0);
-    if (!options.ramp_loads) force_from = force_to;
-    solver::check_rigid_modes(mesh, prescribed, force_to, warnings);
+    if (!options.ramp_loads || options.dynamics) force_from = force_to;
+    // With dynamics inertia holds every rigid motion: no equilibrium needed.
+    if (!options.dynamics) solver::check_rigid_modes(mesh, prescribed, force_to, warnings);
+    if (options.dynamics) {
+      mass = lumped_mass(mesh, options.dynamics->density);
+      v = options.initial_velocities.empty() ? std::vector<double>(3 * mesh.vertex_count(), 0.0)
+                                             : options.initial_velocities;
+    }
     if (!mesh_warnings.unused_vertices.empty())
       warnings.push_back("mesh: " + std::to_string(mesh_warnings.unused_vertices.size()) +
                          " vertices belong to no element (first: " +
@@ -156,7 +166,10 @@ struct Simulation::Impl {
     engine->viennacl_context_id = context ? device::bind_viennacl(*context) : viennacl_context_id;
     engine->own_context = std::move(context);
     device::use_viennacl(engine->viennacl_context_id);
-    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant);
+    solver::ModelTerms terms;
+    terms.inertia = options.dynamics.has_value();
+    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant,
+                                                                 device::MaterialKernel::specialized, terms);
     std::vector<Real> mask(prescribed.size());
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
     engine->model->set_mask(mask);
@@ -252,11 +265,49 @@ struct Simulation::Impl {
                       std::to_string(c.vertices[i]));
   }
 
+  // One implicit Euler step's data (see DynamicsOptions): the start x_n, the
+  // inertia's per-vertex coefficient c m_v and target y, and b / h.
+  struct EulerStep {
+    std::vector<double> start, coefficient, target;
+    double stiffness_damping = 0.0;
+  };
+
+  EulerStep euler_step(double h) const {
+    const DynamicsOptions& d = *options.dynamics;
+    EulerStep e;
+    e.start = x;
+    const double ah = d.damping.mass * h, c = (1.0 + ah) / (h * h);
+    e.coefficient.resize(mass.size());
+    for (size_t i = 0; i < mass.size(); ++i) e.coefficient[i] = c * mass[i];
+    // c M (x - y) = M (x - x~) / h^2 + a M (x - x_n) / h, x~ = x_n + h v_n.
+    e.target.resize(x.size());
+    for (size_t i = 0; i < x.size(); ++i) e.target[i] = (x[i] + h * v[i] + ah * x[i]) / (1.0 + ah);
+    e.stiffness_damping = d.damping.stiffness / h;
+    return e;
+  }
+
   template <typename Real>
   StepResult solve_in(Engine<Real>& engine, int s, std::vector<NewtonIteration>& history, Clock::time_point start,
-                      const ProgressCallback& progress) {
+                      const ProgressCallback& progress, const EulerStep* euler = nullptr) {
     device::use_viennacl(engine.viennacl_context_id);
-    engine.model->set_external_force(force_applied);
+    if (euler) {
+      // Rayleigh stiffness damping's linear part: f + (b/h) grad Psi(x_n).
+      std::vector<double> force = force_applied;
+      if (euler->stiffness_damping > 0.0) {
+        const std::vector<Real> xs(euler->start.begin(), euler->start.end());
+        viennacl::vector<Real> xn(xs.size()), fe(xs.size());
+        viennacl::copy(xs.begin(), xs.end(), xn.begin());
+        engine.model->elastic_forces(xn, fe);
+        std::vector<Real> host(xs.size());
+        viennacl::copy(fe.begin(), fe.end(), host.begin());
+        force.resize(host.size(), 0.0);
+        for (size_t i = 0; i < host.size(); ++i) force[i] -= euler->stiffness_damping * static_cast<double>(host[i]);
+      }
+      engine.model->set_external_force(force);
+      engine.model->set_inertia(euler->coefficient, euler->target, 1.0 + euler->stiffness_damping);
+    } else {
+      engine.model->set_external_force(force_applied);
+    }
     const std::vector<Real> xr(x.begin(), x.end());
     viennacl::vector<Real> xd(x.size());
     viennacl::copy(xr.begin(), xr.end(), xd.begin());
@@ -296,60 +347,20 @@ struct Simulation::Impl {
       for (size_t i = 0; i < constraints[k].vertices.size(); ++i)
         for (int d = 0; d < 3; ++d) t.start[3 * i + d] = x[3 * constraints[k].vertices[i] + d];
     }
-    const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
-    bool in_double = options.precision == Precision::double_;
-    bool fell_back = false;
+    fell_back = false;
+    in_double = options.precision == Precision::double_;
     result.converged = true;
     for (int s = 1; s <= steps; ++s) {
-      const double fraction = static_cast<double>(s) / steps;
-      for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
-      force_applied.resize(force_to.size());
-      for (size_t i = 0; i < force_to.size(); ++i)
-        force_applied[i] = force_from[i] + fraction * (force_to[i] - force_from[i]);
-      require_defined(x, s);
-      const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
       StepResult step;
-      if (!in_double) {
-        step = solve_in(*single, s, result.history, start, progress);
-        step.precision_used = to_string(options.precision);
-      }
-      const bool failed = !in_double && !step.converged && step.status != "cancelled";
-      if (may_fall_back && (fell_back || failed)) {
-        if (!fell_back && !cl.info().has_fp64) {
-          result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + step.status +
-                                    ") and fallback_to_double was asked, but the device has no fp64");
-        } else {
-          std::string note;
-          if (!fell_back) {
-            std::ostringstream why;
-            why << "float " << step.status << " after " << step.newton_iterations << " Newton / " << step.cg_iterations
-                << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
-            note = why.str();
-            x = step_start;
-          }
-          const size_t first_record = result.history.size();
-          StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress);
-          redo.precision_used = "double";
-          if (!fell_back) {
-            if (first_record < result.history.size()) {
-              std::string& r = result.history[first_record].recovery;
-              r = "float " + step.status + " -> double" + (r.empty() ? "" : "; " + r);
-            }
-            redo.newton_iterations += step.newton_iterations;
-            redo.cg_iterations += step.cg_iterations;
-            redo.fallback = note;
-            result.warnings.push_back("step " + std::to_string(s) + ": " + note +
-                                      (redo.converged ? " (converged)" : " (did not converge: " + redo.status + ")") +
-                                      (s < steps ? "; the remaining steps run in double" : ""));
-          } else {
-            redo.fallback = "double (after a float failure in an earlier step)";
-          }
-          fell_back = true;
-          step = redo;
-        }
-      } else if (in_double) {
-        step = solve_in(*dual, s, result.history, start, progress);
-        step.precision_used = "double";
+      if (options.dynamics) {
+        step = time_step(s, steps, result, start, progress);
+      } else {
+        const double fraction = static_cast<double>(s) / steps;
+        for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+        force_applied.resize(force_to.size());
+        for (size_t i = 0; i < force_to.size(); ++i)
+          force_applied[i] = force_from[i] + fraction * (force_to[i] - force_from[i]);
+        step = solve_step(s, steps, result, start, progress);
       }
       result.converged = result.converged && step.converged;
       result.final_residual_norm = step.residual_norm;
@@ -360,6 +371,104 @@ struct Simulation::Impl {
         break;
       }
     }
+    return finish(result, start);
+  }
+
+  // Implicit Euler time step s of n: `substeps` minimizations of the
+  // incremental potential, the constraint targets interpolated linearly
+  // within the step. Newton and CG counts summed; the last substep's status.
+  StepResult time_step(int s, int steps, SolveResult& result, Clock::time_point start,
+                       const ProgressCallback& progress) {
+    const DynamicsOptions& d = *options.dynamics;
+    const double h = d.time_step / d.substeps;
+    bool defined_for_inversion = true;
+    for (const Material& m : materials.materials)
+      defined_for_inversion = defined_for_inversion && m.defined_for_inversion();
+    force_applied = force_to;
+    StepResult total;
+    total.step = s;
+    total.converged = true;
+    for (int j = 1; j <= d.substeps; ++j) {
+      const EulerStep euler = euler_step(h);
+      // Newton starts from x~ = x_n + h v_n (from x_n where a material is
+      // undefined for inverted elements and x~ could invert one).
+      if (defined_for_inversion)
+        for (size_t i = 0; i < x.size(); ++i) x[i] += h * v[i];
+      const double fraction = (s - 1 + static_cast<double>(j) / d.substeps) / steps;
+      for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+      const StepResult sub = solve_step(s, steps, result, start, progress, &euler);
+      for (size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - euler.start[i]) / h;
+      time += h;
+      total.newton_iterations += sub.newton_iterations;
+      total.cg_iterations += sub.cg_iterations;
+      total.converged = total.converged && sub.converged;
+      total.residual_norm = sub.residual_norm;
+      total.status = sub.status;
+      total.precision_used = sub.precision_used;
+      if (!sub.fallback.empty()) total.fallback = sub.fallback;
+      if (sub.status == "cancelled") break;
+    }
+    total.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    total.time = time;
+    return total;
+  }
+
+  bool fell_back = false, in_double = true;
+
+  // One Newton solve from x at its step's targets and forces, with the
+  // float-to-double fallback.
+  StepResult solve_step(int s, int steps, SolveResult& result, Clock::time_point start,
+                        const ProgressCallback& progress, const EulerStep* euler = nullptr) {
+    const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
+    require_defined(x, s);
+    const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
+    StepResult step;
+    if (!in_double) {
+      step = solve_in(*single, s, result.history, start, progress, euler);
+      step.precision_used = to_string(options.precision);
+    }
+    const bool failed = !in_double && !step.converged && step.status != "cancelled";
+    if (may_fall_back && (fell_back || failed)) {
+      if (!fell_back && !cl.info().has_fp64) {
+        result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + step.status +
+                                  ") and fallback_to_double was asked, but the device has no fp64");
+      } else {
+        std::string note;
+        if (!fell_back) {
+          std::ostringstream why;
+          why << "float " << step.status << " after " << step.newton_iterations << " Newton / " << step.cg_iterations
+              << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
+          note = why.str();
+          x = step_start;
+        }
+        const size_t first_record = result.history.size();
+        StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress, euler);
+        redo.precision_used = "double";
+        if (!fell_back) {
+          if (first_record < result.history.size()) {
+            std::string& r = result.history[first_record].recovery;
+            r = "float " + step.status + " -> double" + (r.empty() ? "" : "; " + r);
+          }
+          redo.newton_iterations += step.newton_iterations;
+          redo.cg_iterations += step.cg_iterations;
+          redo.fallback = note;
+          result.warnings.push_back("step " + std::to_string(s) + ": " + note +
+                                    (redo.converged ? " (converged)" : " (did not converge: " + redo.status + ")") +
+                                    (s < steps ? "; the remaining steps run in double" : ""));
+        } else {
+          redo.fallback = "double (after a float failure in an earlier step)";
+        }
+        fell_back = true;
+        step = redo;
+      }
+    } else if (in_double) {
+      step = solve_in(*dual, s, result.history, start, progress, euler);
+      step.precision_used = "double";
+    }
+    return step;
+  }
+
+  SolveResult finish(SolveResult& result, Clock::time_point start) {
     // What this solve reached becomes where the next one starts from.
     for (size_t k = 0; k < constraints.size(); ++k) {
       Target& t = targets[k];
@@ -376,7 +485,7 @@ struct Simulation::Impl {
     result.max_j = stats.max_j;
     result.inverted_elements = stats.inverted_elements;
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    return result;
+    return std::move(result);
   }
 };
 
@@ -433,7 +542,8 @@ void Simulation::set_external_force(const std::vector<double>& lumped) {
   validate_solve_inputs(impl_->mesh, {}, check);
   impl_->user_force = lumped;
   impl_->total_force(impl_->force_to);
-  solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
+  if (!impl_->options.dynamics)
+    solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
 }
 
 void Simulation::set_body_force(const std::array<double, 3>& per_rest_volume) {
@@ -443,7 +553,8 @@ void Simulation::set_body_force(const std::array<double, 3>& per_rest_volume) {
   impl_->body_force = per_rest_volume;
   impl_->update_body_force();
   impl_->total_force(impl_->force_to);
-  solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
+  if (!impl_->options.dynamics)
+    solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
 }
 
 void Simulation::set_state(const std::vector<double>& positions) {
@@ -453,16 +564,30 @@ void Simulation::set_state(const std::vector<double>& positions) {
   impl_->x = positions;
 }
 
+void Simulation::set_velocities(const std::vector<double>& velocities) {
+  if (!impl_->options.dynamics) throw Error("set_velocities: the simulation has no dynamics (SolveOptions::dynamics)");
+  SolveOptions check;
+  check.dynamics = impl_->options.dynamics;
+  check.initial_velocities = velocities;
+  validate_solve_inputs(impl_->mesh, {}, check);
+  impl_->v = velocities.empty() ? std::vector<double>(3 * impl_->mesh.vertex_count(), 0.0) : velocities;
+}
+
 void Simulation::restart() {
   Impl& m = *impl_;
   m.x = m.options.initial_positions.empty() ? m.mesh.positions : m.options.initial_positions;
+  if (m.options.dynamics) {
+    m.v = m.options.initial_velocities.empty() ? std::vector<double>(3 * m.mesh.vertex_count(), 0.0)
+                                               : m.options.initial_velocities;
+    m.time = 0.0;
+  }
   m.targets.assign(m.constraints.size(), Impl::Target());
   m.user_force = m.options.external_force;
   m.body_force = m.options.body_force;
   m.update_body_force();
   m.total_force(m.force_to);
   m.force_from.assign(m.force_to.size(), 0.0);
-  if (!m.options.ramp_loads) m.force_from = m.force_to;
+  if (!m.options.ramp_loads || m.options.dynamics) m.force_from = m.force_to;
   m.force_applied.clear();
 }
 
@@ -471,6 +596,8 @@ SolveResult Simulation::solve(int load_steps, const ProgressCallback& progress, 
 }
 
 const std::vector<double>& Simulation::positions() const { return impl_->x; }
+const std::vector<double>& Simulation::velocities() const { return impl_->v; }
+double Simulation::time() const { return impl_->time; }
 const std::vector<double>& Simulation::applied_force() const { return impl_->force_applied; }
 const Mesh& Simulation::mesh() const { return impl_->mesh; }
 const MaterialMap& Simulation::materials() const { return impl_->materials; }

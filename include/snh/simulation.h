@@ -114,8 +114,34 @@ enum class HessianMode {
   adaptive,
 };
 
+// Implicit (backward) Euler time stepping, each step the minimization of the
+// incremental potential (Simulation::solve with dynamics; README "Dynamics
+// and obstacles"): with h = time_step / substeps, x~ = x_n + h v_n,
+//   E(x) = 1/(2 h^2) |x - x~|^2_M + a/(2 h) |x - x_n|^2_M
+//        + Psi(x) + b/h [Psi(x) - Psi(x_n) - grad Psi(x_n)^T (x - x_n)] - f^T x,
+// M the lumped mass (row-sum lumping of rho with each element's quadrature,
+// snh::lumped_mass). Its gradient is M (x - x~)/h^2 + grad Psi(x) - f plus the
+// Rayleigh damping force (a M + b K) v to first order in h, v = (x - x_n)/h:
+// the mass term exactly, the stiffness term as the Bregman divergence of Psi
+// about x_n (gradient b/h (grad Psi(x) - grad Psi(x_n)) = b K v + O(h |v|^2)),
+// whose Hessian b/h K(x) reuses the elastic Hessian (projected with it).
+struct DynamicsOptions {
+  double time_step = 0.0;  // seconds per time step (> 0)
+  double density = 0.0;    // mass per rest volume (> 0)
+  struct Damping {
+    double mass = 0.0;       // a, 1/s (>= 0)
+    double stiffness = 0.0;  // b, s (>= 0)
+  } damping;
+  int substeps = 1;  // backward Euler steps of time_step / substeps per time step (>= 1)
+};
+
 struct SolveOptions {
   Precision precision = Precision::double_;
+  // Set: solve() advances time steps of implicit Euler instead of load steps
+  // (load_steps then counts time steps; loads are applied in full from the
+  // first step, ramp_loads is ignored; constrained vertices follow their
+  // targets at each time step, substeps interpolating linearly).
+  std::optional<DynamicsOptions> dynamics;
   DeviceOptions device;
   int load_steps = 1;
   int max_newton_iterations = 50;
@@ -165,6 +191,8 @@ struct SolveOptions {
   bool fallback_to_double = false;
   // Starting positions of the first step (xyz per vertex); empty: rest.
   std::vector<double> initial_positions;
+  // Starting velocities with dynamics (xyz per vertex); empty: zero.
+  std::vector<double> initial_velocities;
   // Called after every Newton iteration with its record and the positions
   // it produced (xyz per vertex), e.g. to measure error against a reference
   // as the solve runs. Downloads the positions: leave empty when not needed.
@@ -188,6 +216,9 @@ struct StepResult {
   // Newton / 340 CG iterations (residual 3.1e-05); re-solved in double".
   // newton_iterations and cg_iterations then count both attempts.
   std::string fallback;
+  // With dynamics: the simulated time at the end of this step (seconds);
+  // newton_iterations and cg_iterations then sum over the substeps.
+  double time = 0.0;
 };
 
 struct SolveResult {
@@ -246,14 +277,21 @@ class Simulation {
   void set_body_force(const std::array<double, 3>& per_rest_volume);
   // Replaces the state (xyz per vertex), e.g. to restart from a saved frame.
   void set_state(const std::vector<double>& positions);
+  // With dynamics: replaces the velocities (xyz per vertex; empty: zero).
+  void set_velocities(const std::vector<double>& velocities);
   // Back to the start: SolveOptions::initial_positions (else rest), every set
   // following its own callbacks, no force applied yet.
   void restart();
 
-  // load_steps: 0 for SolveOptions::load_steps.
+  // load_steps: 0 for SolveOptions::load_steps. With dynamics each step is
+  // a time step: the constraint targets of step s of n (as in a quasistatic
+  // solve) are reached at its end, the velocities are kept between solves.
   SolveResult solve(int load_steps = 0, const ProgressCallback& progress = {}, const StepCallback& on_step = {});
 
   const std::vector<double>& positions() const;
+  // With dynamics: the velocities (xyz per vertex) and the simulated time.
+  const std::vector<double>& velocities() const;
+  double time() const;
   // Per element F, J, stresses and energy density at the current state.
   ElementFields fields() const;
   // Per constraint set, the force and torque it exerts on the body at the
