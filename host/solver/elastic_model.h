@@ -23,6 +23,13 @@ namespace snh::solver {
 // the kernel specialization): only what it uses.
 struct ModelTerms {
   bool inertia = false;  // implicit Euler's inertia (SNH_INERTIA)
+  int obstacles = 0;     // kinematic obstacles' contact penalty (SNH_OBSTACLES)
+};
+
+// Contact with the obstacles at some x.
+struct ContactState {
+  int contacts = 0;              // vertices with g = thickness - phi > 0
+  double max_penetration = 0.0;  // the largest g (0: none)
 };
 
 template <typename Real>
@@ -51,6 +58,12 @@ class ElasticModel {
   void set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target, double elastic_scale);
   // -dPsi/dx at x, masked, without external force, inertia or scale.
   void elastic_forces(const VectorBase& x, VectorBase& out);
+  // The obstacles placed for the coming solve (ModelTerms::obstacles records
+  // of solver/obstacles.h) and the penalty's stiffness and thickness: the
+  // energy gains sum over vertices of their contact energy, the residual
+  // their contact force, the Hessian their Gauss-Newton blocks.
+  void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
+  ContactState contact_state(const VectorBase& x);
 
   // Total potential energy: elastic energy minus external work, summed on the
   // host in double and in element order. Non-finite when any element's is.
@@ -117,6 +130,14 @@ class ElasticModel {
   device::Buffer inertia_mass_, inertia_target_;
   std::vector<double> inertia_mass_host_, inertia_target_host_;
   double elastic_scale_ = 1.0;
+  // contact_blocks_ holds the blocks of the last linearize(), which the
+  // products use; other evaluations write theirs to contact_scratch_.
+  device::Buffer obstacles_, contact_energy_, contact_force_, contact_blocks_, contact_scratch_, contact_depth_;
+  double contact_stiffness_ = 0.0, contact_thickness_ = 0.0;
+  device::Kernel contact_k_;
+  // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
+  void contact(const VectorBase& x, bool linearization = false) const;
+  bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0; }
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
       setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;

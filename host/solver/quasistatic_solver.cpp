@@ -8,6 +8,7 @@
 #include "snh/error.h"
 #include "snh/simulation.h"
 #include "solver/constraint_checks.h"
+#include "solver/obstacles.h"
 
 namespace snh {
 
@@ -127,6 +128,7 @@ void validate_solve_inputs(const Mesh& mesh, const std::vector<ConstraintSet>& c
                   ")");
     if (d.substeps < 1) throw Error("dynamics: substeps must be >= 1 (got " + std::to_string(d.substeps) + ")");
   }
+  solver::validate_obstacles(options.obstacles, options.contact);
 }
 
 double residual_tolerance(const Mesh& mesh, const MaterialMap& materials, const SolveOptions& options) {

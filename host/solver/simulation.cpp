@@ -19,6 +19,7 @@
 #include "solver/device_problem.h"
 #include "solver/elastic_model.h"
 #include "solver/newton_driver.h"
+#include "solver/obstacles.h"
 
 namespace snh {
 
@@ -95,6 +96,7 @@ struct Simulation::Impl {
   // Dynamics: velocities (xyz per vertex), lumped mass per vertex, time.
   std::vector<double> v, mass;
   double time = 0.0;
+  std::vector<double> obstacle_table;  // the obstacles placed for the coming Newton solve
   std::vector<Target> targets;
   std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
   std::vector<double> body_force_lumped;
@@ -130,7 +132,8 @@ struct Simulation::Impl {
     force_from.assign(force_to.size(), 0.0);
     if (!options.ramp_loads || options.dynamics) force_from = force_to;
     // With dynamics inertia holds every rigid motion: no equilibrium needed.
-    if (!options.dynamics) solver::check_rigid_modes(mesh, prescribed, force_to, warnings);
+    // Obstacles may hold what the constraints leave free: a warning at most.
+    if (!options.dynamics) check_rigid_modes();
     if (options.dynamics) {
       mass = lumped_mass(mesh, options.dynamics->density);
       v = options.initial_velocities.empty() ? std::vector<double>(3 * mesh.vertex_count(), 0.0)
@@ -146,6 +149,11 @@ struct Simulation::Impl {
       dual = make_engine<double>(nullptr, product);
     else
       single = make_engine<float>(nullptr, product);
+  }
+
+  void check_rigid_modes() {
+    if (options.dynamics) return;
+    solver::check_rigid_modes(mesh, prescribed, options.obstacles.empty() ? force_to : std::vector<double>(), warnings);
   }
 
   void update_body_force() {
@@ -168,6 +176,7 @@ struct Simulation::Impl {
     device::use_viennacl(engine->viennacl_context_id);
     solver::ModelTerms terms;
     terms.inertia = options.dynamics.has_value();
+    terms.obstacles = static_cast<int>(options.obstacles.size());
     engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant,
                                                                  device::MaterialKernel::specialized, terms);
     std::vector<Real> mask(prescribed.size());
@@ -308,6 +317,8 @@ struct Simulation::Impl {
     } else {
       engine.model->set_external_force(force_applied);
     }
+    if (!options.obstacles.empty())
+      engine.model->set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
     const std::vector<Real> xr(x.begin(), x.end());
     viennacl::vector<Real> xd(x.size());
     viennacl::copy(xr.begin(), xr.end(), xd.begin());
@@ -322,6 +333,9 @@ struct Simulation::Impl {
         return progress ? progress(rec) : true;
       };
     StepResult step = engine.newton->solve_step(s, xd, tolerance, history, start, observe);
+    const solver::ContactState contact = engine.model->contact_state(xd);
+    step.contacts = contact.contacts;
+    step.max_penetration = contact.max_penetration;
     std::vector<Real> back(x.size());
     viennacl::copy(xd.begin(), xd.end(), back.begin());
     std::copy(back.begin(), back.end(), x.begin());
@@ -357,6 +371,7 @@ struct Simulation::Impl {
       } else {
         const double fraction = static_cast<double>(s) / steps;
         for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+        if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
         force_applied.resize(force_to.size());
         for (size_t i = 0; i < force_to.size(); ++i)
           force_applied[i] = force_from[i] + fraction * (force_to[i] - force_from[i]);
@@ -396,6 +411,7 @@ struct Simulation::Impl {
         for (size_t i = 0; i < x.size(); ++i) x[i] += h * v[i];
       const double fraction = (s - 1 + static_cast<double>(j) / d.substeps) / steps;
       for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+      if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
       const StepResult sub = solve_step(s, steps, result, start, progress, &euler);
       for (size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - euler.start[i]) / h;
       time += h;
@@ -405,6 +421,8 @@ struct Simulation::Impl {
       total.residual_norm = sub.residual_norm;
       total.status = sub.status;
       total.precision_used = sub.precision_used;
+      total.contacts = sub.contacts;
+      total.max_penetration = sub.max_penetration;
       if (!sub.fallback.empty()) total.fallback = sub.fallback;
       if (sub.status == "cancelled") break;
     }
@@ -542,8 +560,7 @@ void Simulation::set_external_force(const std::vector<double>& lumped) {
   validate_solve_inputs(impl_->mesh, {}, check);
   impl_->user_force = lumped;
   impl_->total_force(impl_->force_to);
-  if (!impl_->options.dynamics)
-    solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
+  impl_->check_rigid_modes();
 }
 
 void Simulation::set_body_force(const std::array<double, 3>& per_rest_volume) {
@@ -553,8 +570,7 @@ void Simulation::set_body_force(const std::array<double, 3>& per_rest_volume) {
   impl_->body_force = per_rest_volume;
   impl_->update_body_force();
   impl_->total_force(impl_->force_to);
-  if (!impl_->options.dynamics)
-    solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
+  impl_->check_rigid_modes();
 }
 
 void Simulation::set_state(const std::vector<double>& positions) {

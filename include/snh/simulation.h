@@ -135,6 +135,36 @@ struct DynamicsOptions {
   int substeps = 1;  // backward Euler steps of time_step / substeps per time step (>= 1)
 };
 
+// A kinematic obstacle the body cannot enter (README "Dynamics and
+// obstacles"). Its placement at load parameter t (as ConstraintSet::motion:
+// step s of n has t = s / n) is motion(t) applied to the one given here;
+// without a motion it stays.
+enum class ObstacleType { plane, sphere, cylinder };
+const char* to_string(ObstacleType type);  // "plane", "sphere", "cylinder"
+
+struct Obstacle {
+  ObstacleType type = ObstacleType::plane;
+  // plane: a point on it; sphere: its centre; cylinder: a point on its axis.
+  std::array<double, 3> point{0, 0, 0};
+  // plane: its normal (the free side); cylinder: its axis (infinite both
+  // ways). Normalized on use; unused for the sphere.
+  std::array<double, 3> direction{0, 0, 1};
+  double radius = 0.0;  // sphere and cylinder (> 0)
+  std::function<RigidTransform(double t)> motion;
+};
+
+// Contact with the obstacles as a penalty on every vertex in the depth
+// g = thickness - phi into the layer of `thickness` about each obstacle
+// (phi the signed distance): E = stiffness/2 max(g, 0)^2 per vertex and
+// obstacle, C^1, with the PSD Gauss-Newton Hessian stiffness grad phi
+// grad phi^T (kernels/contact/obstacle.h). stiffness is per vertex (force per
+// length): a body of weight W resting on n vertices sinks W / (n stiffness)
+// into the layer.
+struct ContactOptions {
+  double stiffness = 0.0;  // > 0 when there are obstacles
+  double thickness = 0.0;  // >= 0
+};
+
 struct SolveOptions {
   Precision precision = Precision::double_;
   // Set: solve() advances time steps of implicit Euler instead of load steps
@@ -142,6 +172,9 @@ struct SolveOptions {
   // first step, ramp_loads is ignored; constrained vertices follow their
   // targets at each time step, substeps interpolating linearly).
   std::optional<DynamicsOptions> dynamics;
+  // Kinematic obstacles and their contact penalty (SNH_OBSTACLES kernels).
+  std::vector<Obstacle> obstacles;
+  ContactOptions contact;
   DeviceOptions device;
   int load_steps = 1;
   int max_newton_iterations = 50;
@@ -219,6 +252,12 @@ struct StepResult {
   // With dynamics: the simulated time at the end of this step (seconds);
   // newton_iterations and cg_iterations then sum over the substeps.
   double time = 0.0;
+  // With obstacles, at the end of the step: the vertices in some obstacle's
+  // contact layer, and the deepest penetration into a layer as the penalty
+  // sees it, max(thickness - phi) (0 when none; above `thickness` a vertex is
+  // inside the obstacle itself).
+  int contacts = 0;
+  double max_penetration = 0.0;
 };
 
 struct SolveResult {
