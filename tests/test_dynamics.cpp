@@ -77,6 +77,39 @@ TEST(Dynamics, FreeFallMatchesTheAnalyticMotionToFirstOrder) {
   }
 }
 
+// Substeps are time steps of time_step / substeps: 10 steps of 0.02 s with 2
+// substeps are 20 steps of 0.01 s. In float too (the float kernels with
+// inertia), to float's resolution.
+TEST(Dynamics, SubstepsAreShorterTimeStepsInBothPrecisions) {
+  const Mesh mesh = make_tet_box(2, 1, 1, 0.1);
+  const ConstraintSet held{"held", on_plane(mesh, 0, 0.0), {}, {}};
+  for (Precision precision : {Precision::double_, Precision::single}) {
+    std::vector<std::vector<double>> results;
+    for (int substeps : {1, 2}) {
+      SolveOptions options;
+      options.precision = precision;
+      options.dynamics = DynamicsOptions{};
+      options.dynamics->time_step = 0.01 * substeps;
+      options.dynamics->substeps = substeps;
+      options.dynamics->density = 1000.0;
+      options.body_force = {0.0, 0.0, -9810.0};
+      if (precision == Precision::double_) options.absolute_tolerance = 1e-10;  // float: its default stop
+      Simulation sim(mesh, StableNeoHookean::from_youngs_modulus(1e5, 0.4), {held}, options);
+      const SolveResult r = sim.solve(20 / substeps);
+      ASSERT_TRUE(r.converged) << to_string(precision);
+      EXPECT_NEAR(sim.time(), 0.2, 1e-12);
+      results.push_back(r.positions);
+    }
+    double sag = 0.0, difference = 0.0;
+    for (size_t i = 0; i < results[0].size(); ++i) {
+      sag = std::max(sag, mesh.positions[i] - results[0][i]);
+      difference = std::max(difference, std::abs(results[1][i] - results[0][i]));
+    }
+    EXPECT_GT(sag, 0.005) << to_string(precision);
+    EXPECT_LT(difference, precision == Precision::double_ ? 1e-9 : 1e-5) << to_string(precision);
+  }
+}
+
 // No external force, no constraint: the elastic forces sum to zero
 // (translation invariance), so backward Euler keeps sum m v to the solver's
 // tolerance, here with Rayleigh stiffness damping (an internal force) too.
