@@ -105,6 +105,12 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
   if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
   elements_host_ = elements;
+  for (size_t e = 0; e < element_count_; ++e) {
+    const Material& m = materials.of_element(e);
+    double volume = 0.0;
+    for (int q = 0; q < quadrature_; ++q) volume += rest.weight(e, q);
+    elastic_magnitude_ += (std::abs(m.mu) + std::abs(m.lambda)) * volume;
+  }
   set_variant(variant);
 }
 
@@ -322,6 +328,7 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   double sum = 0.0;
   for (Real v : e) sum += static_cast<double>(v);
   sum *= elastic_scale_;
+  last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
   if (terms_.obstacles > 0) {
     contact(x);
     std::vector<Real> c(vertex_count_);
@@ -333,7 +340,10 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
     std::vector<Real> xh(dofs());
     viennacl::copy(x.begin(), x.end(), xh.begin());
     if (has_external_)
-      for (size_t i = 0; i < xh.size(); ++i) sum -= external_host_[i] * static_cast<double>(xh[i]);
+      for (size_t i = 0; i < xh.size(); ++i) {
+        sum -= external_host_[i] * static_cast<double>(xh[i]);
+        last_energy_magnitude_ += std::abs(external_host_[i] * static_cast<double>(xh[i]));
+      }
     if (terms_.inertia)
       for (size_t i = 0; i < xh.size(); ++i) {
         const double d = static_cast<double>(xh[i]) - inertia_target_host_[i];

@@ -70,6 +70,11 @@ class ElasticModel {
   double energy(const VectorBase& x);
   // The smallest J over all quadrature points at the x of the last energy().
   double last_min_j() const { return last_min_j_; }
+  // The size of the terms the last energy() summed, for its rounding: the
+  // elastic part's sum over elements of (|mu| + |lambda|) V (a material's
+  // energy sums terms of that size, e.g. mu/2 (I_C - 3) with I_C ~ 3, even
+  // where the total is small) times the elastic scale, plus sum |f_i x_i|.
+  double last_energy_magnitude() const { return last_energy_magnitude_; }
   // r = mask * (elastic forces + external force) = -mask * dE/dx.
   void residual(const VectorBase& x, VectorBase& r);
   // The per-Newton linearization at x (SVD and eigensystem per point),
@@ -130,6 +135,7 @@ class ElasticModel {
   device::Buffer inertia_mass_, inertia_target_;
   std::vector<double> inertia_mass_host_, inertia_target_host_;
   double elastic_scale_ = 1.0;
+  double elastic_magnitude_ = 0.0, last_energy_magnitude_ = 0.0;
   // contact_blocks_ holds the blocks of the last linearize(), which the
   // products use; other evaluations write theirs to contact_scratch_.
   device::Buffer obstacles_, contact_energy_, contact_force_, contact_blocks_, contact_scratch_, contact_depth_;
