@@ -12,6 +12,7 @@ void add_probe_command(CLI::App& app, int& exit_code);
 void add_scene_command(CLI::App& app, int& exit_code);
 void add_errtime_command(CLI::App& app, int& exit_code);  // errtime.h: run_errtime for the suite
 void add_voxelize_command(CLI::App& app, int& exit_code);
+void add_hessian_command(CLI::App& app, int& exit_code);  // hessian_export.h
 
 // The default suite, run when no subcommand is given: the element check,
 // throughput and errtime, into out_dir with a combined summary.{json,md}.

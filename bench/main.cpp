@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   snh::bench::add_specialization_command(app, exit_code);
   snh::bench::add_stability_command(app, exit_code);
   snh::bench::add_voxelize_command(app, exit_code);
+  snh::bench::add_hessian_command(app, exit_code);
   std::string out_dir = "bench-results";
   int samples = 20000;
   app.add_option("--out", out_dir, "folder for the default suite's results")->capture_default_str();

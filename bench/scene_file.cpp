@@ -25,11 +25,17 @@ using nlohmann::json;
 using Reader = SceneJson;
 
 Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path& folder) {
-  r.keys(m, "mesh", {"file", "generator", "cells", "size", "radius", "length", "element"});
+  r.keys(m, "mesh", {"file", "generator", "cells", "size", "radius", "length", "element", "allow_coincident_vertices"});
+  if (m.contains("allow_coincident_vertices") && !m["allow_coincident_vertices"].is_boolean())
+    r.fail("mesh.allow_coincident_vertices", "expected true or false");
+  if (m.contains("allow_coincident_vertices") && !m.contains("file"))
+    r.fail("mesh.allow_coincident_vertices", "only a mesh \"file\" takes it");
   Mesh mesh;
   if (m.contains("file")) {
     const std::string file = r.text(m, "mesh", "file", "");
-    mesh = read_mesh((folder / file).string());
+    MeshReadOptions options;
+    options.allow_coincident_vertices = m.value("allow_coincident_vertices", false);
+    mesh = read_mesh((folder / file).string(), options);
   } else {
     const std::string generator = r.text(m, "mesh", "generator", "box");
     const double h = r.number(m, "mesh", "size", 0.1);
@@ -199,13 +205,18 @@ std::vector<Obstacle> read_obstacles(const Reader& r, const json& list) {
 }
 
 SceneFile::Embedded read_embed(const Reader& r, const json& e, const std::filesystem::path& folder) {
-  r.keys(e, "embed", {"surface", "cell"});
+  r.keys(e, "embed", {"surface", "cell", "cover_surface"});
   if (!e.contains("surface")) r.fail("embed.surface", "missing (a closed surface: .obj, .ply or .stl)");
   SceneFile::Embedded out;
   out.surface = read_surface((folder / r.text(e, "embed", "surface", "")).string());
   const double cell = r.required_number(e, "embed", "cell");
   if (!(cell > 0.0)) r.fail("embed.cell", "expected a cube side > 0");
-  out.voxels = voxelize(out.surface, cell);
+  VoxelizeOptions options;
+  if (e.contains("cover_surface")) {
+    if (!e["cover_surface"].is_boolean()) r.fail("embed.cover_surface", "expected true or false");
+    options.cover_surface = e["cover_surface"].get<bool>();
+  }
+  out.voxels = voxelize(out.surface, cell, options);
   out.embedding = embed(out.voxels, out.surface);
   return out;
 }

@@ -23,7 +23,8 @@
 //   "embed": {"surface": "arm.obj", "cell": 0.125}
 //       the mesh is the voxelization of that closed surface (.obj, .ply,
 //       .stl) with cubes of side `cell`, and the surface is embedded in it
-//       (instead of "mesh").
+//       (instead of "mesh"); "cover_surface": true keeps also the cells the
+//       surface passes through (VoxelizeOptions::cover_surface).
 //   "rig": {"bones": [{"name": "upper", "capsule": {"a": [x, y, z], "b": [x, y, z], "radius": r}},
 //                     {"name": "fore", "surface": "fore_bone.obj"}],
 //           "animation": "flexion.json"}

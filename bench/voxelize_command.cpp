@@ -1,16 +1,20 @@
 // `snh-gpu-bench voxelize SURFACE --cell H --out LATTICE`: a closed surface
-// (.obj, .ply, .stl) to a hex8 lattice (voxelize in surface.h), written as
-// .vtu with each element's grid cell, and what the lattice is: cells,
-// vertices, pieces, its volume against the surface's enclosed volume.
+// (.obj, .ply, .stl) to a hex8 lattice (voxelize in surface.h), written by
+// write_mesh in the format --out's extension names (.msh, .vtk, .vtu, .mesh;
+// .vtk and .vtu with each element's grid cell as a cell array), and what
+// the lattice is: cells, vertices, pieces, its volume against the
+// surface's enclosed volume.
+#include <array>
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 
 #include "commands.h"
 #include "snh/error.h"
-#include "snh/io.h"
+#include "snh/mesh_io.h"
 #include "snh/surface.h"
 
 namespace snh::bench {
@@ -21,30 +25,24 @@ struct VoxelizeCommand {
   double cell = 0.0;
   std::string out;
   int64_t max_cells = VoxelizeOptions{}.max_grid_cells;
+  bool cover_surface = false;
 };
-
-bool ends_with_vtu(const std::string& path) {
-  if (path.size() < 4) return false;
-  std::string ext = path.substr(path.size() - 4);
-  for (char& c : ext)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return ext == ".vtu";
-}
 
 int run_voxelize(const VoxelizeCommand& o) {
   using Clock = std::chrono::steady_clock;
-  if (!ends_with_vtu(o.out)) throw Error("voxelize: --out " + o.out + ": the lattice is written as .vtu (VTK XML)");
   const auto t0 = Clock::now();
   const TriangleSurface surface = read_surface(o.surface);
   const auto t1 = Clock::now();
   VoxelizeOptions options;
   options.max_grid_cells = o.max_cells;
-  const Voxelization v = voxelize(surface, o.cell, options);
+  options.cover_surface = o.cover_surface;
+  Voxelization v = voxelize(surface, o.cell, options);
   const auto t2 = Clock::now();
-  VtuCellField grid_cell{"grid_cell", {}, 3};
+  MeshArray grid_cell{"grid_cell", 3, {}};
   grid_cell.values.reserve(3 * v.element_cell.size());
   for (const auto& c : v.element_cell) grid_cell.values.insert(grid_cell.values.end(), c.begin(), c.end());
-  write_vtu(o.out, v.lattice, v.lattice.positions, {}, {grid_cell});
+  v.lattice.cell_arrays.push_back(std::move(grid_cell));
+  write_mesh(o.out, v.lattice);
   const auto t3 = Clock::now();
 
   const double enclosed = enclosed_volume(surface);
@@ -60,6 +58,17 @@ int run_voxelize(const VoxelizeCommand& o) {
   std::cout << "cells: " << v.lattice.element_count() << "\n";
   std::cout << "vertices: " << v.lattice.vertex_count() << "\n";
   std::cout << "components: " << v.components << "\n";
+  // Vertices kept apart across a thin gap sit at the same position; readers
+  // refuse such files unless told (mesh_io.h).
+  std::map<std::array<double, 3>, int> at;
+  for (size_t i = 0; i < v.lattice.vertex_count(); ++i) ++at[v.lattice.vertex(i)];
+  size_t coincident = 0;
+  for (const auto& [position, count] : at) coincident += count > 1 ? count : 0;
+  std::cout << "coincident vertices: " << coincident;
+  if (coincident > 0)
+    std::cout << " (read the lattice back with MeshReadOptions::allow_coincident_vertices, or the scene key "
+                 "mesh.allow_coincident_vertices)";
+  std::cout << "\n";
   std::cout << "lattice volume: " << lattice << "\n";
   std::cout << "enclosed volume: " << enclosed << "\n";
   std::cout << "relative volume difference: " << (lattice - enclosed) / enclosed << "\n";
@@ -76,13 +85,19 @@ void add_voxelize_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "voxelize",
       "A closed triangle surface (.obj, .ply, .stl) to a hex8 lattice: cells whose centres are inside, not glued "
-      "across gaps thinner than a cell (written as .vtu)");
+      "across gaps thinner than a cell (written as .msh, .vtk, .vtu or .mesh)");
   cmd->add_option("surface", o->surface, "closed surface: .obj, .ply (ASCII or binary) or .stl (ASCII or binary)")
       ->required();
   cmd->add_option("--cell", o->cell, "cube side of the lattice, in the surface's units")
       ->required()
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--out", o->out, "the lattice, .vtu (with a cell array grid_cell: each element's i j k)")->required();
+  cmd->add_option("--out", o->out,
+                  "the lattice: .msh (Gmsh 2.2), .vtk (VTK legacy), .vtu (VTK XML) or .mesh (Medit), by its extension; "
+                  ".vtk and .vtu carry a cell array grid_cell (each element's i j k)")
+      ->required();
+  cmd->add_flag("--cover-surface", o->cover_surface,
+                "also keep the cells the surface passes through (every surface point in a kept cell; a gap "
+                "holding a cell centre is glued)");
   cmd->add_option("--max-cells", o->max_cells, "refuse grids of more cells than this")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -17,7 +17,7 @@
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
  * element; gradients: [element][q][a][3]; weights: [element][q]. */
 #include "contact/obstacle.h"
-#include "fem/element.h"
+#include "fem/element_data.h"
 #include "materials/kernel_args.h"
 
 #ifndef SNH_INERTIA
@@ -27,26 +27,6 @@
 #define SNH_OBSTACLES 0
 #endif
 #define SNH_VERTEX_TERMS (SNH_INERTIA || SNH_OBSTACLES)
-
-#if SNH_UNIFORM_REST
-#define REST_ELEMENT(e) 0
-#else
-#define REST_ELEMENT(e) (e)
-#endif
-
-SNH_FN void load_nodes(SNH_GLOBAL const real* x, SNH_GLOBAL const int* nodes, real* xs) {
-  for (int a = 0; a < SNH_NODES; ++a)
-    for (int i = 0; i < 3; ++i) xs[3 * a + i] = x[3 * nodes[a] + i];
-}
-
-SNH_FN void load_gradients(SNH_GLOBAL const real* gradients, int e, int q, real* g) {
-  SNH_GLOBAL const real* src = gradients + (size_t)3 * SNH_NODES * (SNH_QUADRATURE * REST_ELEMENT(e) + q);
-  for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = src[i];
-}
-
-SNH_FN real load_weight(SNH_GLOBAL const real* weights, int e, int q) {
-  return weights[SNH_QUADRATURE * REST_ELEMENT(e) + q];
-}
 
 /* Strain energy of each element, sum_q w_q psi(F_q), and its smallest J. */
 __kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,
@@ -358,6 +338,18 @@ __kernel void snh_element_matrix_product(__global const real* p, __global const 
     for (int r = 0; r < SNH_DOFS; ++r) y[r] += k[SNH_DOFS * c + r] * pc;
   }
   for (int i = 0; i < SNH_DOFS; ++i) out[SNH_DOFS * e + i] = y[i];
+}
+
+/* The 3x3 diagonal blocks K_aa of stored element matrices, laid out as
+ * snh_element_diagonal writes them: out[(e * NODES + a) * 9 + 3 d + i]. */
+__kernel void snh_element_matrix_diagonal(__global const real* matrices, const int count, __global real* out) {
+  const int e = get_global_id(0);
+  if (e >= count) return;
+  __global const real* k = matrices + (size_t)SNH_DOFS * SNH_DOFS * e;
+  for (int a = 0; a < SNH_NODES; ++a)
+    for (int d = 0; d < 3; ++d)
+      for (int i = 0; i < 3; ++i)
+        out[(size_t)9 * SNH_NODES * e + 9 * a + 3 * d + i] = k[SNH_DOFS * (3 * a + d) + 3 * a + i];
 }
 
 /* y = mask * y, elementwise (after an assembled product); with vertex terms

@@ -2,22 +2,25 @@
 // element counts, element type, total rest volume, groups (name, tag,
 // dimension, vertex and element counts) and arrays (name, components, sum of
 // values) as JSON (used by tests/meshio_crosscheck.py). A bad file prints the reader's message to
-// stderr and exits with status 1.
+// stderr and exits with status 1. `--write OUT ...` also writes the mesh to
+// each OUT with write_mesh (the format by OUT's extension).
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::cerr << "usage: snh-mesh-info MESH (.msh, .vtk, .vtu, .mesh, .node/.ele)\n";
+  if (argc < 2 || argc == 3 || (argc > 3 && std::string(argv[2]) != "--write")) {
+    std::cerr << "usage: snh-mesh-info MESH [--write OUT ...] (.msh, .vtk, .vtu, .mesh, .node/.ele)\n";
     return 2;
   }
   try {
     const snh::Mesh mesh = snh::read_mesh(argv[1]);
+    for (int i = 3; i < argc; ++i) snh::write_mesh(argv[i], mesh);
     nlohmann::json out;
     out["path"] = argv[1];
     out["vertices"] = mesh.vertex_count();

@@ -4,7 +4,12 @@ and compares the point count, the count of tetrahedra or hexahedra, the
 total volume, the named Gmsh physical groups (vertex and element counts) and
 the point and cell arrays (components and sum of values). Gmsh 2.2 writes an
 element once per physical group it is in: identical volume cells count once.
-Usage: meshio_crosscheck.py SNH_MESH_INFO DATA_MESHES_DIR
+Usage: meshio_crosscheck.py SNH_MESH_INFO DATA_MESHES_DIR [--written TMP_DIR]
+
+With --written, every mesh is first written by snh's write_mesh
+(snh-mesh-info MESH --write ...) to TMP_DIR in each format (TetGen for tets
+too), and those files are checked instead: meshio must read what snh writes,
+and agree with snh on it.
 
 Exits 1 on any disagreement, and when meshio cannot be imported (Debian's
 python3-meshio, installed by scripts/setup.sh)."""
@@ -86,7 +91,7 @@ def meshio_arrays(data, cells):
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) not in (3, 5) or (len(sys.argv) == 5 and sys.argv[3] != "--written"):
         print(__doc__)
         return 2
     tool, folder = sys.argv[1], sys.argv[2]
@@ -94,6 +99,18 @@ def main():
     if not files:
         print(f"meshio_crosscheck: no meshes in {folder}")
         return 1
+    if len(sys.argv) == 5:
+        written = sys.argv[4]
+        os.makedirs(written, exist_ok=True)
+        for name in files:
+            stem = os.path.join(written, name.replace(".", "_"))
+            outputs = [stem + ext for ext in (".msh", ".vtk", ".vtu", ".mesh")]
+            if json.loads(subprocess.run([tool, os.path.join(folder, name)], capture_output=True,
+                                         text=True, check=True).stdout)["type"] == "tet4":
+                outputs.append(stem + ".node")
+            subprocess.run([tool, os.path.join(folder, name), "--write"] + outputs, capture_output=True, check=True)
+        folder = written
+        files = sorted(f for f in os.listdir(folder) if f.endswith(EXTENSIONS))
     failures = 0
     for name in files:
         path = os.path.join(folder, name)
@@ -116,9 +133,12 @@ def main():
         if abs(snh["volume"] - volume) > 1e-9 * max(1.0, abs(volume)):
             problems.append(f"volume: snh {snh['volume']!r}, meshio {volume!r}")
         if name.endswith(".msh"):
-            theirs = meshio_groups(mesh)
+            # meshio keys groups by name (field_data): a name used in several
+            # dimensions (Medit references written as .msh) keeps only one.
+            names = [g["name"] for g in snh["groups"]]
+            theirs = {k: v for k, v in meshio_groups(mesh).items() if names.count(k[0]) == 1}
             ours = {(g["name"], g["tag"], g["dimension"]): (g["vertices"], g["elements"])
-                    for g in snh["groups"] if g["name"]}
+                    for g in snh["groups"] if g["name"] and names.count(g["name"]) == 1}
             if ours != theirs:
                 problems.append(f"groups: snh {ours}, meshio {theirs}")
         for kind, data, cells in (("point_arrays", mesh.point_data, None), ("cell_arrays", mesh.cell_data, mesh.cells)):

@@ -300,6 +300,10 @@ TEST(Dynamics, OptionsAreChecked) {
   EXPECT_NE(message(with([](SolveOptions& o) { o.dynamics->substeps = 0; })).find("substeps"), std::string::npos);
   EXPECT_NE(message(with([](SolveOptions& o) { o.initial_velocities = {1.0}; })).find("initial_velocities"),
             std::string::npos);
+  EXPECT_NE(message(with([](SolveOptions& o) {
+              o.preconditioner = Preconditioner::multigrid;
+            })).find("preconditioner multigrid: its coarse levels do not carry the inertia"),
+            std::string::npos);
   SolveOptions quasistatic;
   quasistatic.initial_velocities.assign(24, 0.0);
   EXPECT_NE(message(quasistatic).find("need dynamics"), std::string::npos);

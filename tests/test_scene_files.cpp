@@ -1,19 +1,24 @@
 // Scene files (data/scenes/*.json): the shipped built-in scenes match
 // make_scene, the Gmsh-mesh example with gravity solves, the rigged arm
-// example flexes its embedded surface, and bad files get errors naming the
-// key.
+// example flexes its embedded surface, bones given as surface files hold and
+// move the vertices inside them, and bad files get errors naming the key.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "scene_file.h"
 #include "snh/error.h"
 #include "snh/frames.h"
 #include "snh/regions.h"
+#include "snh/rig.h"
 #include "snh/simulation.h"
+#include "snh/surface.h"
 
 namespace snh::test {
 namespace {
@@ -154,6 +159,196 @@ TEST(SceneFiles, ArmExampleFlexesTheEmbeddedSurface) {
   }
 }
 
+// A bar of 12 x 4 x 4 hexes (h = 0.2) rigged by two bones given as closed
+// surface files: a box (OBJ) around the two end layers at x = 0 and 0.2,
+// and a 16-sided cylinder (ASCII STL) along the bar's axis around the
+// middle 3 x 3 vertices of the layers x = 2.2 and 2.4. Each bone's set is
+// the lattice vertices inside its surface (counted here from the geometry),
+// and over three frames (rest, a rotation about the bar's axis with a lift,
+// then a non-rigid stretch and shear) the root stays, the tip vertices sit
+// where the frame's matrix puts them and every frame converges.
+TEST(SceneFiles, SurfaceFileBonesHoldTheVerticesInsideAndFollowTheirFrames) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "snh_surface_bones";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    std::ofstream obj(dir / "root_bone.obj");
+    const double lo[3] = {-0.1, -0.1, -0.1}, hi[3] = {0.3, 0.9, 0.9};
+    for (int c = 0; c < 8; ++c)
+      obj << "v " << (c & 1 ? hi : lo)[0] << " " << (c & 2 ? hi : lo)[1] << " " << (c & 4 ? hi : lo)[2] << "\n";
+    // Outward quads as triangles (corner c = x + 2y + 4z, 1-based in OBJ).
+    const int quads[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5}, {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+    for (const auto& q : quads)
+      obj << "f " << q[0] << " " << q[1] << " " << q[2] << "\nf " << q[0] << " " << q[2] << " " << q[3] << "\n";
+  }
+  const double axis_y = 0.4, axis_z = 0.4, radius = 0.3, x0 = 2.1, x1 = 2.5;
+  {
+    std::ofstream stl(dir / "tip_bone.stl");
+    stl.precision(17);
+    const int sides = 16;
+    const auto ring = [&](int k) {
+      const double a = 2.0 * M_PI * k / sides;
+      return std::array<double, 2>{axis_y + radius * std::cos(a), axis_z + radius * std::sin(a)};
+    };
+    const auto facet = [&](std::array<double, 3> a, std::array<double, 3> b, std::array<double, 3> c) {
+      stl << "facet normal 0 0 0\nouter loop\n";
+      for (const auto& p : {a, b, c}) stl << "vertex " << p[0] << " " << p[1] << " " << p[2] << "\n";
+      stl << "endloop\nendfacet\n";
+    };
+    stl << "solid tip\n";
+    for (int k = 0; k < sides; ++k) {
+      const auto p = ring(k), q = ring(k + 1);
+      // Side (outward: counter-clockwise seen from outside), then the caps.
+      facet({x0, p[0], p[1]}, {x1, q[0], q[1]}, {x1, p[0], p[1]});
+      facet({x0, p[0], p[1]}, {x0, q[0], q[1]}, {x1, q[0], q[1]});
+      facet({x1, axis_y, axis_z}, {x1, p[0], p[1]}, {x1, q[0], q[1]});
+      facet({x0, axis_y, axis_z}, {x0, q[0], q[1]}, {x0, p[0], p[1]});
+    }
+    stl << "endsolid tip\n";
+  }
+  // Frame 1: 30 degrees about the bar's axis (x) through the bone, lifted
+  // 0.1 in z; frame 2: 10% longer along x and sheared (z += 0.2 x) about
+  // the bone's start: not a rigid motion.
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  const Matrix4 turn = {
+      1, 0, 0, 0, 0, c, -s, axis_y - c * axis_y + s * axis_z, 0, s, c, axis_z - s * axis_y - c * axis_z + 0.1,
+      0, 0, 0, 1};
+  const Matrix4 stretch = {1.1, 0, 0, -0.1 * x0, 0, 1, 0, 0, 0.2, 0, 1, -0.2 * x0, 0, 0, 0, 1};
+  {
+    nlohmann::json frames = nlohmann::json::array();
+    const Matrix4 frame_matrices[3] = {identity_matrix4(), turn, stretch};
+    for (int f = 0; f < 3; ++f) {
+      nlohmann::json rows = nlohmann::json::array();
+      for (int r = 0; r < 4; ++r)
+        rows.push_back({frame_matrices[f][4 * r], frame_matrices[f][4 * r + 1], frame_matrices[f][4 * r + 2],
+                        frame_matrices[f][4 * r + 3]});
+      frames.push_back({{"time", f}, {"bones", {{"tip", rows}}}});
+    }
+    std::ofstream(dir / "bend.json") << nlohmann::json{{"frames", frames}}.dump();
+    std::ofstream(dir / "scene.json") << R"({
+      "mesh": {"generator": "box", "cells": [12, 4, 4], "size": 0.2},
+      "material": {"model": "snh", "E": 1.0, "nu": 0.45},
+      "rig": {"bones": [{"name": "root", "surface": "root_bone.obj"}, {"name": "tip", "surface": "tip_bone.stl"}],
+              "animation": "bend.json"}})";
+  }
+  const bench::SceneFile f = bench::load_scene_file((dir / "scene.json").string());
+  ASSERT_TRUE(f.rig);
+  const Mesh& mesh = f.scene.mesh;
+  ASSERT_EQ(mesh.element_count(), 192u);
+  ASSERT_EQ(f.scene.constraints.size(), 2u);
+  const ConstraintSet &root = f.scene.constraints[0], &tip = f.scene.constraints[1];
+  EXPECT_EQ(root.name, "root");
+  EXPECT_EQ(tip.name, "tip");
+  std::vector<int32_t> in_root, in_tip;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const auto x = mesh.vertex(v);
+    if (x[0] < 0.3) in_root.push_back(static_cast<int32_t>(v));
+    if (x[0] > x0 && std::hypot(x[1] - axis_y, x[2] - axis_z) < 0.29) in_tip.push_back(static_cast<int32_t>(v));
+  }
+  EXPECT_EQ(in_root.size(), 2u * 25u);  // layers x = 0 and 0.2
+  EXPECT_EQ(in_tip.size(), 2u * 9u);    // 3 x 3 around the axis on x = 2.2 and 2.4
+  EXPECT_EQ(root.vertices, in_root);
+  EXPECT_EQ(tip.vertices, in_tip);
+
+  Simulation sim(mesh, uniform_material(mesh, f.material), f.scene.constraints, f.scene.options);
+  FrameOptions options;
+  options.load_steps = 1;
+  const Matrix4 expected[3] = {identity_matrix4(), turn, stretch};
+  int frame = 0;
+  std::vector<double> lifted;
+  const auto records = run_frames(
+      sim, f.rig->animation, nullptr, options,
+      [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>&) {
+        EXPECT_TRUE(r.converged) << "frame " << r.frame << ": " << r.status;
+        EXPECT_EQ(r.inverted_elements, 0);
+        for (int32_t v : root.vertices)
+          for (int d = 0; d < 3; ++d) EXPECT_NEAR(x[3 * v + d], mesh.positions[3 * v + d], 1e-12);
+        const Matrix4& m = expected[frame];
+        for (int32_t v : tip.vertices) {
+          const auto p = mesh.vertex(v);
+          for (int d = 0; d < 3; ++d)
+            EXPECT_NEAR(x[3 * v + d], m[4 * d] * p[0] + m[4 * d + 1] * p[1] + m[4 * d + 2] * p[2] + m[4 * d + 3], 1e-12)
+                << "frame " << frame << " vertex " << v;
+        }
+        if (frame == 1) lifted = x;
+        ++frame;
+        return true;
+      });
+  EXPECT_EQ(records.size(), 3u);
+  EXPECT_EQ(frame, 3);
+  // The free flesh between the bones followed: the vertex on the axis at
+  // x = 2, next to the tip bone, rose with the lift of frame 1 (0.1 at the
+  // bone, 0 at the root).
+  int32_t near_tip = -1;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (std::abs(mesh.positions[3 * v] - 2.0) < 1e-9 && std::abs(mesh.positions[3 * v + 1] - axis_y) < 1e-9 &&
+        std::abs(mesh.positions[3 * v + 2] - axis_z) < 1e-9)
+      near_tip = static_cast<int32_t>(v);
+  ASSERT_GE(near_tip, 0);
+  ASSERT_EQ(lifted.size(), mesh.positions.size());
+  EXPECT_GT(lifted[3 * near_tip + 2] - axis_z, 0.05);
+  EXPECT_LT(lifted[3 * near_tip + 2] - axis_z, 0.1);
+  fs::remove_all(dir);
+}
+
+#ifdef SNH_BENCH_BINARY
+// `snh-gpu-bench scene --file` on the coarse arm (cell 0.25) with frames 0,
+// 12 and 24 of its animation: per frame the embedded surface as OBJ, the
+// lattice and the surface as .vtu parts of one .pvd, and the JSON record.
+TEST(SceneFiles, RiggedSceneCommandWritesTheSurfacePerFrameAndAPvd) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "snh_arm_command";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  nlohmann::json animation;
+  std::ifstream(std::string(SNH_DATA_DIR) + "/arm/arm_flexion.json") >> animation;
+  nlohmann::json frames = nlohmann::json::array();
+  for (int f : {0, 12, 24}) frames.push_back(animation["frames"][f]);
+  std::ofstream(dir / "three.json") << nlohmann::json{{"frames", frames}}.dump();
+  nlohmann::json doc;
+  std::ifstream(kScenes + "arm.json") >> doc;
+  doc["embed"]["cell"] = 0.25;
+  doc["embed"]["surface"] = kScenes + doc["embed"]["surface"].get<std::string>();
+  doc["rig"]["animation"] = "three.json";
+  doc["output"] = {
+      {"vtu", (dir / "vtu").string()}, {"surface", (dir / "obj/").string()}, {"json", (dir / "run.json").string()}};
+  std::ofstream(dir / "arm.json") << doc.dump();
+  const int status = std::system((std::string(SNH_BENCH_BINARY) + " scene --file " + (dir / "arm.json").string() +
+                                  " > " + (dir / "log.txt").string() + " 2>&1")
+                                     .c_str());
+  std::ostringstream log;
+  log << std::ifstream(dir / "log.txt").rdbuf();
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << log.str();
+  EXPECT_NE(log.str().find("frame 3/3"), std::string::npos) << log.str();  // progress per frame
+  const TriangleSurface rest = read_surface(kScenes + "../arm/arm.obj");
+  for (int f = 0; f < 3; ++f) {
+    const TriangleSurface s = read_surface(bench::surface_obj_path((dir / "obj/").string(), "arm", f));
+    EXPECT_EQ(s.triangles, rest.triangles);
+    if (f == 0) {
+      for (size_t i = 0; i < s.positions.size(); ++i) EXPECT_NEAR(s.positions[i], rest.positions[i], 1e-9);
+    }
+    if (f == 2) {  // the hand (4, 0, 0) turned 100 degrees about the elbow (2, 0, 0), as in the in-process test
+      const size_t hand = rest.vertex_count() - 1;
+      EXPECT_NEAR(s.positions[3 * hand], 2.0 + 2.0 * std::cos(100.0 * M_PI / 180.0), 0.05);
+      EXPECT_NEAR(s.positions[3 * hand + 2], 2.0 * std::sin(100.0 * M_PI / 180.0), 0.05);
+    }
+  }
+  std::ostringstream pvd;
+  pvd << std::ifstream(dir / "vtu" / "arm.pvd").rdbuf();
+  for (const char* file : {"arm_0000.vtu", "arm_surface_0000.vtu", "arm_0002.vtu", "arm_surface_0002.vtu"}) {
+    EXPECT_TRUE(fs::exists(dir / "vtu" / file)) << file;
+    EXPECT_NE(pvd.str().find(std::string("file=\"") + file + "\""), std::string::npos) << pvd.str();
+  }
+  EXPECT_NE(pvd.str().find("part=\"1\" file=\"arm_surface_0002.vtu\""), std::string::npos) << pvd.str();
+  nlohmann::json run;
+  std::ifstream(dir / "run.json") >> run;
+  EXPECT_EQ(run["converged"], true);
+  EXPECT_EQ(run["frames"].size(), 3u);
+  fs::remove_all(dir);
+}
+#endif
+
 TEST(SceneFiles, RigKeysNameTheirErrors) {
   const std::string surface = std::string(SNH_DATA_DIR) + "/arm/arm.obj";
   const std::string animation = std::string(SNH_DATA_DIR) + "/arm/arm_flexion.json";
@@ -163,6 +358,15 @@ TEST(SceneFiles, RigKeysNameTheirErrors) {
       R"({"name": "upper_arm", "capsule": {"a": [0.35, 0, 0], "b": [1.6, 0, 0], "radius": 0.25}})";
   const std::string fore = R"({"name": "forearm", "capsule": {"a": [2.4, 0, 0], "b": [3.55, 0, 0], "radius": 0.24}})";
   EXPECT_NE(error_of("{" + embed + ", " + mesh + "}").find("not both"), std::string::npos);
+  const std::string covered = R"({"embed": {"surface": ")" + surface + R"(", "cell": 0.25, "cover_surface": )";
+  EXPECT_NE(error_of(covered + "1}}").find("embed.cover_surface: expected true or false"), std::string::npos);
+  {
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_arm_cover.json";
+    std::ofstream(path) << covered + "true}}";
+    const bench::SceneFile f = bench::load_scene_file(path.string());
+    EXPECT_GT(f.scene.mesh.element_count(), 137u);  // the centre-inside lattice of the arm at 0.25 has 137
+    for (double w : f.embedded->embedding.weights) EXPECT_GE(w, -1e-9);  // no surface vertex outside its cell
+  }
   EXPECT_NE(error_of(R"({"embed": {"surface": ")" + surface + R"("}})").find("embed.cell: missing"), std::string::npos);
   EXPECT_NE(error_of("{" + embed + R"(, "rig": {"bones": [)" + upper + R"(], "animation": ")" + animation + R"("}})")
                 .find("rig.animation: the animation moves bone 'forearm', which is not in rig.bones"),

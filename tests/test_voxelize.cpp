@@ -2,7 +2,8 @@
 // against exact shapes and an independent winding number, ties on edges and
 // vertices included), how the lattice's volume converges to the surface's,
 // that material on the two sides of a slit thinner than a cell is not glued,
-// and `snh-gpu-bench voxelize` writing a lattice read_mesh reads back.
+// and `snh-gpu-bench voxelize` writing a lattice read_mesh reads back, in
+// every format write_mesh writes.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <numeric>
@@ -20,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "scene_file.h"
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
@@ -241,6 +244,120 @@ TEST(Voxelize, SlitThinnerThanACellIsNotGlued) {
   expect_slit_cut(read_surface((data / "slit_box.stl").string()), test::box_surface({0, 0, 0}, {1, 0.6, 1}), 0.05);
 }
 
+// cover_surface: the centre-inside cells plus exactly the cells the surface
+// passes through, so that the lattice covers the solid and every surface
+// vertex lies in its element (no extrapolation); one connected piece.
+TEST(Voxelize, CoverSurfaceAddsTheCellsTheSurfaceCrosses) {
+  const TriangleSurface sphere = test::icosphere(3, 1.0);
+  std::vector<std::array<double, 4>> planes;  // the convex polyhedron's faces: inside is n . p < d
+  for (size_t t = 0; t < sphere.triangle_count(); ++t) {
+    const double* a = &sphere.positions[3 * sphere.triangles[3 * t]];
+    const double* b = &sphere.positions[3 * sphere.triangles[3 * t + 1]];
+    const double* c = &sphere.positions[3 * sphere.triangles[3 * t + 2]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (double& x : n) x /= len;
+    planes.push_back({n[0], n[1], n[2], n[0] * a[0] + n[1] * a[1] + n[2] * a[2]});
+  }
+  const auto depth = [&](const std::array<double, 3>& p) {  // > 0 inside; outside, -depth <= the distance
+    double d = 1e300;
+    for (const auto& f : planes) d = std::min(d, f[3] - (f[0] * p[0] + f[1] * p[1] + f[2] * p[2]));
+    return d;
+  };
+  VoxelizeOptions cover;
+  cover.cover_surface = true;
+  for (const double h : {0.1, 0.07}) {
+    SCOPED_TRACE(h);
+    const Voxelization centres = voxelize(sphere, h), v = voxelize(sphere, h, cover);
+    expect_consistent(v);
+    EXPECT_EQ(v.components, 1);
+    const std::set<std::array<int, 3>> kept(v.element_cell.begin(), v.element_cell.end());
+    for (const auto& g : centres.element_cell) EXPECT_TRUE(kept.count(g)) << g[0] << " " << g[1] << " " << g[2];
+    EXPECT_GT(v.element_cell.size(), centres.element_cell.size());
+    // Kept cells reach the solid (centre within half a diagonal of it);
+    // dropped cells near it hold none of its points (3 x 3 x 3 samples of
+    // the cube: corners, edge and face midpoints, centre).
+    const double reach = std::sqrt(3.0) * h / 2;
+    for (int k = 0; k < v.dims[2]; ++k)
+      for (int j = 0; j < v.dims[1]; ++j)
+        for (int i = 0; i < v.dims[0]; ++i) {
+          const std::array<double, 3> c = centre(v, {i, j, k});
+          const double dc = depth(c);
+          if (kept.count({i, j, k})) {
+            ASSERT_GE(dc, -reach - 1e-12) << i << " " << j << " " << k;
+            continue;
+          }
+          if (dc < -reach) continue;  // farther than half a diagonal: the cube is outside
+          for (int s = 0; s < 27; ++s) {
+            const std::array<double, 3> p = {c[0] + h * ((s % 3) / 2.0 - 0.5), c[1] + h * ((s / 3 % 3) / 2.0 - 0.5),
+                                             c[2] + h * ((s / 9) / 2.0 - 0.5)};
+            ASSERT_LE(depth(p), 1e-12) << "cell " << i << " " << j << " " << k << " dropped with a point inside";
+          }
+        }
+    EXPECT_GE(mesh_volume(v.lattice, v.lattice.positions), enclosed_volume(sphere));
+    // Every surface vertex lies in its element's cube: weights in [0, 1].
+    const Embedding e = embed(v, sphere);
+    for (size_t i = 0; i < sphere.vertex_count(); ++i) {
+      const auto& g = v.element_cell[e.element[i]];
+      for (int d = 0; d < 3; ++d) {
+        const double u = (sphere.positions[3 * i + d] - v.origin[d]) / h - g[d];
+        EXPECT_GE(u, -1e-9) << "vertex " << i;
+        EXPECT_LE(u, 1 + 1e-9) << "vertex " << i;
+      }
+      for (int a = 0; a < 8; ++a) EXPECT_GE(e.weights[8 * i + a], -1e-9) << "vertex " << i;
+    }
+  }
+  // A slit between cell centres stays open; one holding a column of centres
+  // (x = 0.5 at h = 0.2) is glued through those cells, which the surface
+  // crosses; without cover_surface they are dropped and the slit is open.
+  const TriangleSurface slit = test::slit_box(0.04, 0.5, 0.6);
+  const auto pieces_above = [](const Voxelization& l, double z) {
+    return pieces(l.lattice, [&](size_t e) { return centre(l, l.element_cell[e])[2] > z; });
+  };
+  EXPECT_EQ(pieces_above(voxelize(slit, 0.1, cover), 0.6), 2);
+  EXPECT_EQ(pieces_above(voxelize(slit, 0.2, cover), 0.7), 1);
+  EXPECT_EQ(pieces_above(voxelize(slit, 0.2), 0.7), 2);
+}
+
+// The slit lattice keeps two copies of the vertices on the slit's plane, at
+// the same positions: every format write_mesh writes gives it back when
+// coincident vertices are allowed (by default a reader refuses them and
+// names the option), and a scene file reads it with
+// mesh.allow_coincident_vertices.
+TEST(Voxelize, SlitLatticeReadsBackWithCoincidentVerticesAllowed) {
+  const Voxelization v = voxelize(test::slit_box(0.04, 0.5, 0.6), 0.1);
+  const fs::path dir = fs::temp_directory_path() / ("snh_slit_lattice_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  MeshReadOptions allow;
+  allow.allow_coincident_vertices = true;
+  for (const char* name : {"slit.msh", "slit.vtk", "slit.vtu", "slit.mesh"}) {
+    SCOPED_TRACE(name);
+    const std::string path = (dir / name).string();
+    write_mesh(path, v.lattice);
+    const std::string refused = error_of([&] { read_mesh(path); });
+    EXPECT_NE(refused.find("duplicates vertex"), std::string::npos) << refused;
+    EXPECT_NE(refused.find("MeshReadOptions::allow_coincident_vertices"), std::string::npos) << refused;
+    const Mesh back = read_mesh(path, allow);
+    EXPECT_EQ(back.positions, v.lattice.positions);
+    EXPECT_EQ(back.elements, v.lattice.elements);
+  }
+  const auto scene = [&](const std::string& extra) {
+    const fs::path file = dir / "slit_scene.json";
+    std::ofstream(file) << R"({"mesh": {"file": "slit.vtu")" << extra << "}}";
+    return file.string();
+  };
+  EXPECT_EQ(bench::load_scene_file(scene(R"(, "allow_coincident_vertices": true)")).scene.mesh.elements,
+            v.lattice.elements);
+  EXPECT_NE(error_of([&] { bench::load_scene_file(scene("")); }).find("duplicates vertex"), std::string::npos);
+  EXPECT_NE(error_of([&] {
+              bench::load_scene_file(scene(R"(, "allow_coincident_vertices": 1)"));
+            }).find("mesh.allow_coincident_vertices: expected true or false"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(Voxelize, BadCellSizesAndAbsurdGridsAreErrors) {
   const TriangleSurface sphere = test::icosphere(1, 1.0);
   for (const double h : {0.0, -0.1, std::nan(""), HUGE_VAL}) {
@@ -291,6 +408,7 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
   EXPECT_EQ(value["cells"], double(back.element_count())) << text;
   EXPECT_EQ(value["vertices"], double(back.vertex_count())) << text;
   EXPECT_EQ(value["components"], 1.0) << text;
+  EXPECT_EQ(value["coincident vertices"], 0.0) << text;
   EXPECT_NEAR(value["lattice volume"], mesh_volume(back, back.positions), 1e-5) << text;
   EXPECT_NEAR(value["enclosed volume"], enclosed_volume(read_surface(surface.string())), 1e-5) << text;
   ASSERT_EQ(back.cell_arrays.size(), 1u);
@@ -298,9 +416,60 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
   for (size_t e = 0; e < v.element_cell.size(); ++e)
     for (int d = 0; d < 3; ++d) EXPECT_EQ(back.cell_arrays[0].values[3 * e + d], v.element_cell[e][d]);
 
+  // The other formats by their extension: the same lattice exactly (the
+  // grid_cell array where the format carries arrays).
+  for (const char* name : {"sphere.msh", "sphere.vtk", "sphere.mesh", "sphere.VTU"}) {
+    SCOPED_TRACE(name);
+    std::string out;
+    ASSERT_EQ(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / name).string(), out), 0) << out;
+    const Mesh other = read_mesh((dir / name).string());
+    EXPECT_EQ(other.positions, v.lattice.positions);
+    EXPECT_EQ(other.elements, v.lattice.elements);
+    const bool arrays = std::string(name) != "sphere.msh" && std::string(name) != "sphere.mesh";
+    ASSERT_EQ(other.cell_arrays.size(), arrays ? 1u : 0u);
+    if (arrays) {
+      EXPECT_EQ(other.cell_arrays[0].values, back.cell_arrays[0].values);
+    }
+  }
+  // gmsh's slit box at h = 0.05: the vertices on the slit's plane above its
+  // bottom come twice, as the library's lattice has them.
+  std::string slit;
+  const fs::path slit_surface = fs::path(SNH_DATA_DIR) / "surfaces" / "slit_box.stl";
+  ASSERT_EQ(run("voxelize " + slit_surface.string() + " --cell 0.05 --out " + (dir / "slit.msh").string(), slit), 0)
+      << slit;
+  MeshReadOptions allow;
+  allow.allow_coincident_vertices = true;
+  const Mesh slit_back = read_mesh((dir / "slit.msh").string(), allow);
+  EXPECT_EQ(slit_back.positions, voxelize(read_surface(slit_surface.string()), 0.05).lattice.positions);
+  std::map<std::array<double, 3>, int> at;
+  for (size_t i = 0; i < slit_back.vertex_count(); ++i) ++at[slit_back.vertex(i)];
+  int coincident = 0;
+  for (const auto& [position, count] : at) coincident += count > 1 ? count : 0;
+  EXPECT_GT(coincident, 0);
+  EXPECT_NE(slit.find("coincident vertices: " + std::to_string(coincident) +
+                      " (read the lattice back with MeshReadOptions::allow_coincident_vertices"),
+            std::string::npos)
+      << slit;
+
+  std::string covered;
+  ASSERT_EQ(run("voxelize " + surface.string() + " --cell 0.1 --cover-surface --out " + (dir / "cover.vtu").string(),
+                covered),
+            0)
+      << covered;
+  VoxelizeOptions cover;
+  cover.cover_surface = true;
+  EXPECT_EQ(read_mesh((dir / "cover.vtu").string()).elements,
+            voxelize(read_surface(surface.string()), 0.1, cover).lattice.elements);
+  EXPECT_GT(read_mesh((dir / "cover.vtu").string()).element_count(), back.element_count());
+
   std::string bad;
-  EXPECT_NE(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / "sphere.msh").string(), bad), 0);
-  EXPECT_NE(bad.find(".vtu"), std::string::npos) << bad;
+  EXPECT_NE(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / "sphere.obj").string(), bad), 0);
+  EXPECT_NE(bad.find("unknown mesh format '.obj'"), std::string::npos) << bad;
+  std::string tets;
+  EXPECT_NE(run("voxelize " + surface.string() + " --cell 0.1 --out " + (dir / "sphere.node").string(), tets), 0);
+  EXPECT_NE(tets.find("TetGen .node/.ele files hold only tetrahedra, and this mesh is hex8"), std::string::npos)
+      << tets;
+  EXPECT_FALSE(fs::exists(dir / "sphere.node"));
   std::string open;
   const fs::path hole = dir / "hole.obj";
   TriangleSurface box = test::box_surface({0, 0, 0}, {1, 1, 1});
@@ -308,6 +477,7 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
   write_obj(hole.string(), box);
   EXPECT_NE(run("voxelize " + hole.string() + " --cell 0.1 --out " + (dir / "hole.vtu").string(), open), 0);
   EXPECT_NE(open.find("open edges"), std::string::npos) << open;
+  fs::remove_all(dir);
 }
 #endif
 

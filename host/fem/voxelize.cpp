@@ -1,6 +1,7 @@
 // From a closed triangle surface to a hex8 lattice (surface.h): grid cells
-// whose centres are inside become elements, and face-adjacent elements share
-// vertices unless the surface passes between their centres.
+// whose centres are inside (and, on request, those the surface passes
+// through) become elements, and face-adjacent elements share vertices unless
+// the surface passes between their centres, both inside.
 //
 // Inside and crossing tests share one procedure: for each axis a, every row
 // of cell centres parallel to a is a line; the triangles whose projection on
@@ -32,6 +33,8 @@ namespace {
 constexpr uint8_t kInside = 1;
 // kCut << a: the segment from this cell's centre to its +a neighbour's crosses the surface.
 constexpr uint8_t kCut = 2;
+// A triangle meets the cell's open cube (VoxelizeOptions::cover_surface).
+constexpr uint8_t kCrossed = 16;
 
 struct Grid {
   std::array<double, 3> origin;
@@ -155,6 +158,73 @@ void sweep(const TriangleSurface& surface, const Grid& grid, int axis, std::vect
     }
 }
 
+// Whether triangle (v0, v1, v2) meets the axis-aligned box of half-size r
+// about `centre`: no separating axis among the box's 3 normals, the
+// triangle's normal and the 9 cross products of box and triangle edges
+// (Akenine-Moeller, "Fast 3D triangle-box overlap testing", 2001).
+bool triangle_meets_box(const double* v0, const double* v1, const double* v2, const double centre[3], double r) {
+  double v[3][3];
+  for (int d = 0; d < 3; ++d) {
+    v[0][d] = v0[d] - centre[d];
+    v[1][d] = v1[d] - centre[d];
+    v[2][d] = v2[d] - centre[d];
+  }
+  double e[3][3];
+  for (int d = 0; d < 3; ++d) {
+    e[0][d] = v[1][d] - v[0][d];
+    e[1][d] = v[2][d] - v[1][d];
+    e[2][d] = v[0][d] - v[2][d];
+  }
+  const auto separated = [&](const double axis[3]) {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const auto& p : v) {
+      const double x = axis[0] * p[0] + axis[1] * p[1] + axis[2] * p[2];
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+    const double reach = r * (std::abs(axis[0]) + std::abs(axis[1]) + std::abs(axis[2]));
+    return lo > reach || hi < -reach;
+  };
+  for (int d = 0; d < 3; ++d) {
+    const double axis[3] = {double(d == 0), double(d == 1), double(d == 2)};
+    if (separated(axis)) return false;
+  }
+  const double normal[3] = {e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
+                            e[0][0] * e[1][1] - e[0][1] * e[1][0]};
+  if (separated(normal)) return false;
+  for (int d = 0; d < 3; ++d)
+    for (const auto& edge : e) {
+      const double unit[3] = {double(d == 0), double(d == 1), double(d == 2)};
+      const double axis[3] = {unit[1] * edge[2] - unit[2] * edge[1], unit[2] * edge[0] - unit[0] * edge[2],
+                              unit[0] * edge[1] - unit[1] * edge[0]};
+      if (separated(axis)) return false;
+    }
+  return true;
+}
+
+// Marks kCrossed on every cell whose open cube a triangle meets.
+void mark_crossed(const TriangleSurface& surface, const Grid& grid, std::vector<uint8_t>& flags) {
+  const double r = 0.5 * grid.h * (1.0 - 1e-9);
+  for (size_t t = 0; t < surface.triangle_count(); ++t) {
+    const double* v[3];
+    for (int k = 0; k < 3; ++k) v[k] = &surface.positions[3 * surface.triangles[3 * t + k]];
+    int lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+      const double mn = std::min({v[0][d], v[1][d], v[2][d]}), mx = std::max({v[0][d], v[1][d], v[2][d]});
+      lo[d] = std::max(0, static_cast<int>(std::floor((mn - grid.origin[d]) / grid.h)) - 1);
+      hi[d] = std::min(grid.dims[d] - 1, static_cast<int>(std::floor((mx - grid.origin[d]) / grid.h)) + 1);
+    }
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i) {
+          uint8_t& f = flags[grid.index(i, j, k)];
+          if (f & kCrossed) continue;
+          const double centre[3] = {grid.centre(0, i), grid.centre(1, j), grid.centre(2, k)};
+          if (triangle_meets_box(v[0], v[1], v[2], centre, r)) f |= kCrossed;
+        }
+  }
+}
+
 struct UnionFind {
   std::vector<int32_t> parent;
   explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
@@ -213,6 +283,8 @@ Voxelization voxelize(const TriangleSurface& surface, double cell, const Voxeliz
   const size_t cells = size_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   std::vector<uint8_t> flags(cells, 0);
   for (int axis = 0; axis < 3; ++axis) sweep(surface, grid, axis, flags);
+  if (options.cover_surface) mark_crossed(surface, grid, flags);
+  const uint8_t keep = options.cover_surface ? (kInside | kCrossed) : kInside;
 
   Voxelization out;
   out.cell = cell;
@@ -222,7 +294,7 @@ Voxelization voxelize(const TriangleSurface& surface, double cell, const Voxeliz
   for (int k = 0; k < grid.dims[2]; ++k)
     for (int j = 0; j < grid.dims[1]; ++j)
       for (int i = 0; i < grid.dims[0]; ++i)
-        if (flags[grid.index(i, j, k)] & kInside) {
+        if (flags[grid.index(i, j, k)] & keep) {
           if (out.element_cell.size() >= size_t(std::numeric_limits<int32_t>::max() / 8))
             throw Error("voxelize: the lattice would have more vertices than 32-bit indices can address");
           kept[grid.index(i, j, k)] = static_cast<int32_t>(out.element_cell.size());
@@ -241,12 +313,16 @@ Voxelization voxelize(const TriangleSurface& surface, double cell, const Voxeliz
   UnionFind corners(8 * elements);
   for (size_t e = 0; e < elements; ++e) {
     const std::array<int, 3>& g = out.element_cell[e];
+    const uint8_t here = flags[grid.index(g[0], g[1], g[2])];
     for (int a = 0; a < 3; ++a) {
-      if (g[a] + 1 >= grid.dims[a] || (flags[grid.index(g[0], g[1], g[2])] & (kCut << a))) continue;
+      if (g[a] + 1 >= grid.dims[a]) continue;
       std::array<int, 3> n = g;
       ++n[a];
       const int32_t f = kept[grid.index(n[0], n[1], n[2])];
       if (f < 0) continue;
+      // A cut between two centres inside is a gap; a cell kept for the
+      // surface crossing it (centre outside) joins its neighbours.
+      if ((here & (kCut << a)) && (here & kInside) && (flags[grid.index(n[0], n[1], n[2])] & kInside)) continue;
       for (int corner = 0; corner < 8; ++corner)
         if (corner & (1 << a))
           corners.unite(static_cast<int32_t>(8 * e + corner), static_cast<int32_t>(8 * f + (corner ^ (1 << a))));

@@ -124,7 +124,10 @@ std::string group_words(const GroupKey& key) {
 
 class GmshReader {
  public:
-  GmshReader(const std::string& path, const std::string& data) : path_(path), s_(path, data), builder_(path) {}
+  GmshReader(const std::string& path, const std::string& data, const MeshReadOptions& options)
+      : path_(path), s_(path, data), builder_(path) {
+    builder_.options = options;
+  }
 
   Mesh read() {
     const std::string_view first = s_.token();
@@ -718,6 +721,8 @@ class GmshReader {
 
 }  // namespace
 
-Mesh read_gmsh(const std::string& path, const std::string& data) { return GmshReader(path, data).read(); }
+Mesh read_gmsh(const std::string& path, const std::string& data, const MeshReadOptions& options) {
+  return GmshReader(path, data, options).read();
+}
 
 }  // namespace snh::io

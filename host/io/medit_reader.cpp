@@ -6,6 +6,7 @@
 // tetrahedra and hexahedra become volume groups, those of triangles and
 // quadrilaterals surface groups and those of edges curve groups, each named
 // by its number (as gmsh writes them, the elementary entity tags).
+// Reference 0 is Medit's "none": entries with it are in no group.
 #include <limits>
 #include <map>
 #include <sstream>
@@ -55,7 +56,10 @@ constexpr Keyword kKeywords[] = {
 
 class MeditReader {
  public:
-  MeditReader(const std::string& path, const std::string& data) : path_(path), s_(path, data), builder_(path) {}
+  MeditReader(const std::string& path, const std::string& data, const MeshReadOptions& options)
+      : path_(path), s_(path, data), builder_(path) {
+    builder_.options = options;
+  }
 
   Mesh read() {
     bool have_version = false, have_dimension = false;
@@ -142,6 +146,11 @@ class MeditReader {
       if (reference < std::numeric_limits<int>::min() || reference > std::numeric_limits<int>::max())
         fail(path_, line_at(s_.token_line()), "the reference of " + what + " is out of range");
       const int dimension = k.kind == 5 ? 1 : (k.kind >= 6 ? 2 : 3);
+      if (reference == 0) {  // Medit's "no reference": no group
+        if (dimension == 3)
+          builder_.add_element(k.kind == 2 ? ElementType::tet4 : ElementType::hex8, number, v, line_at(line));
+        return;
+      }
       MeshGroup& group = groups_[{dimension, reference}];
       group.name = std::to_string(reference);
       group.tag = static_cast<int>(reference);
@@ -165,6 +174,8 @@ class MeditReader {
 
 }  // namespace
 
-Mesh read_medit(const std::string& path, const std::string& data) { return MeditReader(path, data).read(); }
+Mesh read_medit(const std::string& path, const std::string& data, const MeshReadOptions& options) {
+  return MeditReader(path, data, options).read();
+}
 
 }  // namespace snh::io

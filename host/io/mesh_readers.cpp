@@ -284,7 +284,7 @@ Mesh MeshBuilder::finish() {
         }
   }
 
-  {
+  if (!options.allow_coincident_vertices) {
     std::unordered_map<CoordinateKey, int32_t, CoordinateHash> seen;
     seen.reserve(vertex_count());
     for (size_t i = 0; i < vertex_count(); ++i) {
@@ -300,7 +300,9 @@ Mesh MeshBuilder::finish() {
         s.precision(17);
         s << "vertex " << vertex_ids_[i] << " duplicates vertex " << vertex_ids_[j] << " (" << place(vertex_where_[j])
           << "): both are at (" << positions_[3 * i] + 0.0 << ", " << positions_[3 * i + 1] + 0.0 << ", "
-          << positions_[3 * i + 2] + 0.0 << ")";
+          << positions_[3 * i + 2] + 0.0
+          << ") (a mesh whose vertices were not merged falls apart; a lattice kept open across thin gaps, as "
+             "voxelize makes, has them on purpose: MeshReadOptions::allow_coincident_vertices)";
         fail(vertex_path_, vertex_where_[i], s.str());
       }
     }
@@ -445,16 +447,16 @@ std::string lowercase_extension(const std::string& path) {
 
 }  // namespace io
 
-Mesh read_mesh(const std::string& path) {
+Mesh read_mesh(const std::string& path, const MeshReadOptions& options) {
   const std::string ext = io::lowercase_extension(path);
-  if (ext == ".msh") return io::read_gmsh(path, io::read_file(path));
-  if (ext == ".vtk") return io::read_vtk_legacy(path, io::read_file(path));
-  if (ext == ".vtu") return io::read_vtu(path, io::read_file(path));
-  if (ext == ".mesh") return io::read_medit(path, io::read_file(path));
+  if (ext == ".msh") return io::read_gmsh(path, io::read_file(path), options);
+  if (ext == ".vtk") return io::read_vtk_legacy(path, io::read_file(path), options);
+  if (ext == ".vtu") return io::read_vtu(path, io::read_file(path), options);
+  if (ext == ".mesh") return io::read_medit(path, io::read_file(path), options);
   if (ext == ".node" || ext == ".ele") {
     const std::string stem = path.substr(0, path.size() - ext.size());
     const std::string node = stem + ".node", ele = stem + ".ele";
-    return io::read_tetgen(node, io::read_file(node), ele, io::read_file(ele));
+    return io::read_tetgen(node, io::read_file(node), ele, io::read_file(ele), options);
   }
   throw Error(path + ": unknown mesh format '" + ext +
               "' (read_mesh reads .msh, .vtk, .vtu, .mesh, and TetGen .node/.ele pairs)");

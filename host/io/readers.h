@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "snh/mesh.h"
+#include "snh/mesh_io.h"
 
 namespace snh::io {
 
@@ -124,8 +125,12 @@ class MeshBuilder {
   std::vector<MeshGroup> groups;
   std::vector<MeshArray> point_arrays, cell_arrays;
 
-  // Checks for no elements, repeated nodes, duplicate vertices, fixes
-  // mirrored elements, rejects degenerate ones, and validates the mesh.
+  // What read_mesh was asked to accept (coincident vertices).
+  MeshReadOptions options;
+
+  // Checks for no elements, repeated nodes, duplicate vertices (unless
+  // options allow them), fixes mirrored elements, rejects degenerate ones,
+  // and validates the mesh.
   Mesh finish();
 
  private:
@@ -173,12 +178,12 @@ void add_cell_array(MeshBuilder& builder, const std::string& path, Location wher
                     const std::vector<char>& kept);
 
 // The readers, on a file's whole contents.
-Mesh read_gmsh(const std::string& path, const std::string& data);
-Mesh read_vtk_legacy(const std::string& path, const std::string& data);
-Mesh read_vtu(const std::string& path, const std::string& data);
-Mesh read_medit(const std::string& path, const std::string& data);
+Mesh read_gmsh(const std::string& path, const std::string& data, const MeshReadOptions& options = {});
+Mesh read_vtk_legacy(const std::string& path, const std::string& data, const MeshReadOptions& options = {});
+Mesh read_vtu(const std::string& path, const std::string& data, const MeshReadOptions& options = {});
+Mesh read_medit(const std::string& path, const std::string& data, const MeshReadOptions& options = {});
 Mesh read_tetgen(const std::string& node_path, const std::string& node_data, const std::string& ele_path,
-                 const std::string& ele_data);
+                 const std::string& ele_data, const MeshReadOptions& options = {});
 
 // A file's whole contents; throws naming the path when it cannot be read.
 std::string read_file(const std::string& path);

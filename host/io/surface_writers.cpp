@@ -11,15 +11,15 @@
 #include <locale>
 #include <sstream>
 
+#include "io/writers.h"
 #include "snh/error.h"
 #include "snh/mesh_io.h"
 
 namespace snh {
 namespace {
 
-// Outward faces of a positively oriented tet4 and of a VTK-ordered hex8.
-constexpr int kTetFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-constexpr int kHexFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+using io::kHexFaces;
+using io::kTetFaces;
 
 struct Surface {
   int corners = 3;                // per face

@@ -25,8 +25,9 @@ int64_t to_int(const Scanner& s, std::string_view t, const std::string& what, ui
 }  // namespace
 
 Mesh read_tetgen(const std::string& node_path, const std::string& node_data, const std::string& ele_path,
-                 const std::string& ele_data) {
+                 const std::string& ele_data, const MeshReadOptions& options) {
   MeshBuilder builder(ele_path, node_path);
+  builder.options = options;
   Scanner s(node_path, node_data);
   uint64_t line = 0;
   auto t = next(s, "the .node header (points, dimension, attributes, markers)", line);

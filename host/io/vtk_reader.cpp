@@ -111,8 +111,10 @@ namespace {
 
 class VtkLegacyReader {
  public:
-  VtkLegacyReader(const std::string& path, const std::string& data) : path_(path), s_(path, data), builder_(path) {
+  VtkLegacyReader(const std::string& path, const std::string& data, const MeshReadOptions& options)
+      : path_(path), s_(path, data), builder_(path) {
     builder_.set_element_noun("cell");
+    builder_.options = options;
   }
 
   Mesh read() {
@@ -557,6 +559,8 @@ class VtkLegacyReader {
 
 }  // namespace
 
-Mesh read_vtk_legacy(const std::string& path, const std::string& data) { return VtkLegacyReader(path, data).read(); }
+Mesh read_vtk_legacy(const std::string& path, const std::string& data, const MeshReadOptions& options) {
+  return VtkLegacyReader(path, data, options).read();
+}
 
 }  // namespace snh::io

@@ -32,9 +32,10 @@ struct Array {
 
 class VtuReader {
  public:
-  VtuReader(const std::string& path, const std::string& data)
+  VtuReader(const std::string& path, const std::string& data, const MeshReadOptions& options)
       : path_(path), data_(data), s_(path, data), builder_(path) {
     builder_.set_element_noun("cell");
+    builder_.options = options;
   }
 
   Mesh read() {
@@ -182,6 +183,27 @@ class VtuReader {
     const auto it = tag.attributes.find(name);
     return it == tag.attributes.end() ? fallback : it->second;
   }
+  // XML's five predefined entities (array names written by write_vtu); any
+  // other '&' is kept as it is.
+  static std::string unescape(const std::string& text) {
+    static const std::pair<const char*, char> kEntities[] = {
+        {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}, {"&apos;", '\''}};
+    std::string out;
+    out.reserve(text.size());
+    for (size_t i = 0; i < text.size(); ++i) {
+      bool replaced = false;
+      if (text[i] == '&')
+        for (const auto& [entity, c] : kEntities)
+          if (text.compare(i, std::char_traits<char>::length(entity), entity) == 0) {
+            out += c;
+            i += std::char_traits<char>::length(entity) - 1;
+            replaced = true;
+            break;
+          }
+      if (!replaced) out += text[i];
+    }
+    return out;
+  }
   int64_t count_attribute(const Tag& tag, const std::string& name, int64_t fallback = -1) {
     const auto it = tag.attributes.find(name);
     if (it == tag.attributes.end() && fallback >= 0) return fallback;
@@ -246,7 +268,7 @@ class VtuReader {
         const size_t close = data_.find(q, i + 2);
         if (close == std::string::npos)
           fail(path_, line_at(tag.line), "malformed XML: an attribute of <" + tag.name + "> is not closed");
-        tag.attributes[name] = data_.substr(i + 2, close - i - 2);
+        tag.attributes[name] = unescape(data_.substr(i + 2, close - i - 2));
         i = close + 1;
       }
       s_.seek(i);
@@ -478,6 +500,8 @@ class VtuReader {
 
 }  // namespace
 
-Mesh read_vtu(const std::string& path, const std::string& data) { return VtuReader(path, data).read(); }
+Mesh read_vtu(const std::string& path, const std::string& data, const MeshReadOptions& options) {
+  return VtuReader(path, data, options).read();
+}
 
 }  // namespace snh::io

@@ -8,6 +8,7 @@
 #include <locale>
 #include <sstream>
 
+#include "io/writers.h"
 #include "snh/error.h"
 #include "snh/io.h"
 
@@ -43,21 +44,6 @@ std::string xml_escape(const std::string& text) {
         out += c;
     }
   return out;
-}
-
-// The stream must not follow a global locale that writes decimal commas.
-void open_for_writing(std::ofstream& file, const std::string& path) {
-  file.open(path, std::ios::out | std::ios::trunc);
-  if (!file) throw Error("cannot write " + path + " (the file cannot be opened; does its directory exist?)");
-  file.imbue(std::locale::classic());
-  file << std::setprecision(std::numeric_limits<double>::max_digits10);
-}
-
-void finish(std::ofstream& file, const std::string& path) {
-  file.flush();
-  if (!file) throw Error("cannot write " + path + " (writing failed part way)");
-  file.close();
-  if (file.fail()) throw Error("cannot write " + path + " (closing failed)");
 }
 
 // `per_line` values to a line, so large arrays stay readable in an editor.
@@ -134,7 +120,7 @@ void write_grid(const std::string& path, const std::vector<double>& x, const std
                 const std::vector<VtuCellField>& cell_fields) {
   const size_t vertices = x.size() / 3, cells = connectivity.size() / nodes;
   std::ofstream file;
-  open_for_writing(file, path);
+  io::open_for_writing(file, path);
   file << "<?xml version=\"1.0\"?>\n"
        << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
        << "  <UnstructuredGrid>\n"
@@ -187,7 +173,7 @@ void write_grid(const std::string& path, const std::vector<double>& x, const std
        << "    </Piece>\n"
        << "  </UnstructuredGrid>\n"
        << "</VTKFile>\n";
-  finish(file, path);
+  io::finish_writing(file, path);
 }
 
 }  // namespace
@@ -200,6 +186,25 @@ void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<doub
   write_grid(path, x, mesh.elements, nodes_per_element(mesh.type),
              mesh.type == ElementType::hex8 ? kVtkHexahedron : kVtkTetra, point_fields, cell_fields);
 }
+
+namespace io {
+
+// write_mesh's .vtu: the mesh at rest with its point and cell arrays (the
+// reader takes at most 64 components); groups are not written.
+void write_vtu_mesh(const std::string& path, const Mesh& mesh) {
+  std::vector<VtuPointField> points;
+  for (const MeshArray* a : carried_arrays(mesh.point_arrays, 64))
+    points.push_back({a->name, a->components, a->values});
+  std::vector<VtuCellField> cells;
+  for (const MeshArray* a : carried_arrays(mesh.cell_arrays, 64)) cells.push_back({a->name, a->values, a->components});
+  // A mesh's arrays may have any number of components (write_vtu's fields
+  // are the 1, 3 and 9 ParaView shows as scalars, vectors and tensors).
+  check_sizes(path, mesh, mesh.positions, {}, {});
+  write_grid(path, mesh.positions, mesh.elements, nodes_per_element(mesh.type),
+             mesh.type == ElementType::hex8 ? kVtkHexahedron : kVtkTetra, points, cells);
+}
+
+}  // namespace io
 
 void write_surface_vtu(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x,
                        const std::vector<VtuPointField>& point_fields) {
@@ -260,7 +265,7 @@ void write_pvd_parts(const std::string& path, const std::vector<PvdDataSet>& dat
     }
   }
   std::ofstream file;
-  open_for_writing(file, path);
+  io::open_for_writing(file, path);
   file << "<?xml version=\"1.0\"?>\n"
        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
        << "  <Collection>\n";
@@ -269,7 +274,7 @@ void write_pvd_parts(const std::string& path, const std::vector<PvdDataSet>& dat
          << xml_escape(d.file) << "\"/>\n";
   file << "  </Collection>\n"
        << "</VTKFile>\n";
-  finish(file, path);
+  io::finish_writing(file, path);
 }
 
 }  // namespace snh

@@ -1,10 +1,11 @@
 // The device model as a Newton problem (solver/newton_driver.h): energies,
 // residuals and the matrix-free Hessian on the OpenCL device, linear solves by
-// ViennaCL's CG with the block-Jacobi preconditioner. Norms and dot products
+// ViennaCL's CG with the block-Jacobi or multigrid preconditioner. Norms and dot products
 // are summed on the host in double and in index order: deterministic.
 #pragma once
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "snh/error.h"
@@ -20,13 +21,17 @@ class DeviceProblem {
  public:
   using Vector = viennacl::vector<Real>;
 
-  // preconditioner: none or block_jacobi (automatic resolved by the caller).
-  DeviceProblem(ElasticModel<Real>& model, Preconditioner preconditioner)
+  // preconditioner: none, block_jacobi or multigrid (then `multigrid` is
+  // its V-cycle); automatic is resolved by the caller.
+  DeviceProblem(ElasticModel<Real>& model, Preconditioner preconditioner,
+                std::unique_ptr<MultigridPreconditioner<Real>> multigrid = nullptr)
       : model_(model),
         op_(model),
-        precond_(model, preconditioner == Preconditioner::block_jacobi),
-        block_jacobi_(preconditioner == Preconditioner::block_jacobi) {
-    if (preconditioner == Preconditioner::multigrid) throw Error("solver: multigrid is not built yet");
+        multigrid_(std::move(multigrid)),
+        precond_(model, preconditioner, multigrid_.get()),
+        preconditioner_(preconditioner) {
+    if (preconditioner == Preconditioner::multigrid && !multigrid_)
+      throw Error("solver: the multigrid preconditioner was not built");
     if (preconditioner == Preconditioner::automatic)
       throw Error("solver: resolve Preconditioner::automatic before use");
   }
@@ -56,7 +61,8 @@ class DeviceProblem {
 
   void linearize(const Vector& x, bool projected) {
     model_.linearize(x, projected);
-    if (block_jacobi_) model_.setup_preconditioner();
+    if (preconditioner_ != Preconditioner::none) model_.setup_preconditioner();  // the multigrid's fine smoother too
+    if (multigrid_) multigrid_->setup();
   }
 
   LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations) {
@@ -93,8 +99,9 @@ class DeviceProblem {
 
   ElasticModel<Real>& model_;
   HessianOperator<Real> op_;
-  BlockJacobiPreconditioner<Real> precond_;
-  bool block_jacobi_;
+  std::unique_ptr<MultigridPreconditioner<Real>> multigrid_;
+  CgPreconditioner<Real> precond_;
+  Preconditioner preconditioner_;
   mutable std::vector<Real> a_, b_;
 };
 

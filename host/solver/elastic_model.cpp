@@ -103,6 +103,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   matrices_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrices");
   matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
+  matrix_diagonal_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_diagonal");
   if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
   elements_host_ = elements;
   for (size_t e = 0; e < element_count_; ++e) {
@@ -475,15 +476,24 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
 
 template <typename Real>
 void ElasticModel<Real>::setup_preconditioner() {
-  cl_kernel k = diagonal_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, elements_.get());
-  set_arg(k, 1, gradients_.get());
-  set_arg(k, 2, weights_.get());
-  set_arg(k, 3, count);
-  set_arg(k, 4, cache_.get());
-  set_arg(k, 5, element_blocks_.get());
-  run_element_kernel(k);
+  if (projected_ && element_matrices_buffer()) {
+    // The projected element matrices are at hand: their diagonal blocks.
+    cl_kernel k = matrix_diagonal_k_.get();
+    set_arg(k, 0, element_matrices_.get());
+    set_arg(k, 1, count);
+    set_arg(k, 2, element_blocks_.get());
+    run_element_kernel(k);
+  } else {
+    cl_kernel k = diagonal_k_.get();
+    set_arg(k, 0, elements_.get());
+    set_arg(k, 1, gradients_.get());
+    set_arg(k, 2, weights_.get());
+    set_arg(k, 3, count);
+    set_arg(k, 4, cache_.get());
+    set_arg(k, 5, element_blocks_.get());
+    run_element_kernel(k);
+  }
   cl_kernel s = setup_k_.get();
   const int vertices = static_cast<int>(vertex_count_);
   set_arg(s, 0, element_blocks_.get());

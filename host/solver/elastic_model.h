@@ -82,13 +82,32 @@ class ElasticModel {
   void linearize(const VectorBase& x, bool projected = true);
   // y = mask * K p, K the (projected) stiffness at the linearized x.
   void product(const VectorBase& p, VectorBase& y) const;
-  // Block-Jacobi preconditioner from the current linearization.
+  // Block-Jacobi preconditioner from the current linearization: the 3x3
+  // diagonal blocks of the projected Hessian (of the element matrices when
+  // the variant keeps them and the linearization is projected, else
+  // recomputed from the cache and projected).
   void setup_preconditioner();
   void apply_preconditioner(VectorBase& z) const;  // z <- M^-1 z
   // The preconditioner's inverted 3x3 blocks, column-major per vertex (tests).
   std::vector<Real> preconditioner_blocks() const;
 
   std::string specialization() const { return defines_; }
+  // What the multigrid preconditioner reads (solver/multigrid.h): the
+  // context, the mesh's element and rest-state buffers, the linearization
+  // cache and the constraint mask (host copy and buffer).
+  device::OpenClContext& context() const { return cl_; }
+  cl_mem elements_buffer() const { return elements_.get(); }
+  cl_mem gradients_buffer() const { return gradients_.get(); }
+  cl_mem weights_buffer() const { return weights_.get(); }
+  cl_mem cache_buffer() const { return cache_.get(); }
+  // The per-element matrices of the last linearize() (element_matrices and
+  // assembled variants), else null.
+  cl_mem element_matrices_buffer() const {
+    return variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled
+               ? element_matrices_.get()
+               : nullptr;
+  }
+  size_t element_count() const { return element_count_; }
   ProductVariant variant() const { return variant_; }
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);
@@ -146,7 +165,7 @@ class ElasticModel {
   bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0; }
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
-      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;
+      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_, matrix_diagonal_k_;
 };
 
 }  // namespace snh::solver

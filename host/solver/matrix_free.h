@@ -1,12 +1,14 @@
 // The pieces ViennaCL's CG is handed: the matrix-free projected Hessian
-// (apply + sizes, as in ViennaCL's matrix-free tutorial) and a block-Jacobi
-// preconditioner with apply() (ViennaCL's own need an assembled matrix).
+// (apply + sizes, as in ViennaCL's matrix-free tutorial) and the
+// preconditioner with apply() (ViennaCL's own need an assembled matrix):
+// none, block-Jacobi or the multigrid V-cycle.
 #pragma once
 
 #include <cmath>
 #include <limits>
 
 #include "solver/elastic_model.h"
+#include "solver/multigrid.h"
 #include "viennacl/linalg/inner_prod.hpp"
 
 namespace snh::solver {
@@ -49,16 +51,20 @@ class HessianOperator {
 };
 
 template <typename Real>
-class BlockJacobiPreconditioner {
+class CgPreconditioner {
  public:
-  BlockJacobiPreconditioner(const ElasticModel<Real>& model, bool enabled) : model_(model), enabled_(enabled) {}
+  // multigrid: the V-cycle when kind is multigrid, else null.
+  CgPreconditioner(const ElasticModel<Real>& model, Preconditioner kind, const MultigridPreconditioner<Real>* multigrid)
+      : model_(model), kind_(kind), multigrid_(multigrid) {}
   void apply(viennacl::vector_base<Real>& z) const {
-    if (enabled_) model_.apply_preconditioner(z);
+    if (kind_ == Preconditioner::block_jacobi) model_.apply_preconditioner(z);
+    if (kind_ == Preconditioner::multigrid) multigrid_->apply(z);
   }
 
  private:
   const ElasticModel<Real>& model_;
-  bool enabled_;
+  Preconditioner kind_;
+  const MultigridPreconditioner<Real>* multigrid_;
 };
 
 }  // namespace snh::solver

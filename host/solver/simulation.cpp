@@ -18,6 +18,8 @@
 #include "solver/constraint_checks.h"
 #include "solver/device_problem.h"
 #include "solver/elastic_model.h"
+#include "solver/lattice_hierarchy.h"
+#include "solver/multigrid.h"
 #include "solver/newton_driver.h"
 #include "solver/obstacles.h"
 
@@ -123,6 +125,17 @@ struct Simulation::Impl {
         tolerance(0.0) {
     validate_solve_inputs(mesh, constraints, options);
     validate_material_map(mesh, materials);
+    // The multigrid's coarse levels carry the elastic Hessian only: no
+    // inertia, no contact blocks (and its kernels lack those arguments).
+    if (options.dynamics || !options.obstacles.empty()) {
+      if (options.preconditioner == Preconditioner::multigrid)
+        throw Error(std::string("preconditioner multigrid: its coarse levels do not carry the ") +
+                    (options.dynamics ? "inertia" : "obstacle contact") +
+                    " terms yet; use block-jacobi (or automatic) with " +
+                    (options.dynamics ? "dynamics" : "obstacles"));
+      if (preconditioner == Preconditioner::multigrid) preconditioner = Preconditioner::block_jacobi;
+    }
+    if (preconditioner == Preconditioner::multigrid) solver::require_hex8_lattice(mesh);
     tolerance = residual_tolerance(mesh, materials, options);
     prescribed = solver::prescribed_dofs(mesh, constraints);
     user_force = options.external_force;
@@ -161,6 +174,12 @@ struct Simulation::Impl {
     body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
   }
 
+  std::vector<char> free_dofs() const {
+    std::vector<char> free(prescribed.size());
+    for (size_t i = 0; i < free.size(); ++i) free[i] = prescribed[i] ? 0 : 1;
+    return free;
+  }
+
   void total_force(std::vector<double>& f) const {
     f.assign(3 * mesh.vertex_count(), 0.0);
     for (size_t i = 0; i < user_force.size(); ++i) f[i] += user_force[i];
@@ -182,7 +201,12 @@ struct Simulation::Impl {
     std::vector<Real> mask(prescribed.size());
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
     engine->model->set_mask(mask);
-    engine->problem = std::make_unique<solver::DeviceProblem<Real>>(*engine->model, preconditioner);
+    std::unique_ptr<solver::MultigridPreconditioner<Real>> multigrid;
+    if (preconditioner == Preconditioner::multigrid)
+      multigrid =
+          std::make_unique<solver::MultigridPreconditioner<Real>>(*engine->model, mesh, free_dofs(), options.multigrid);
+    engine->problem =
+        std::make_unique<solver::DeviceProblem<Real>>(*engine->model, preconditioner, std::move(multigrid));
     engine->newton = std::make_unique<solver::NewtonDriver<solver::DeviceProblem<Real>>>(*engine->problem, options);
     device::use_viennacl(viennacl_context_id);
     return engine;

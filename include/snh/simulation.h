@@ -72,7 +72,7 @@ ProductVariant default_product_variant(ElementType type, Precision precision, bo
 
 // The preconditioner of the conjugate gradient solves.
 enum class Preconditioner {
-  automatic,     // the measured choice (default_preconditioner)
+  automatic,     // the measured choice: multigrid on hex8 lattices from 10,000 DOFs, else block-Jacobi
   none,          // plain CG
   block_jacobi,  // the inverted 3x3 diagonal blocks of the projected Hessian
   multigrid,     // a geometric V-cycle on the hex8 lattice (solver/multigrid.h); hex8 lattices only
@@ -83,6 +83,17 @@ Preconditioner parse_preconditioner(const std::string& text);  // the names abov
 
 // What `automatic` resolves to for this mesh (README, `snh-gpu-bench scale`).
 Preconditioner default_preconditioner(const Mesh& mesh);
+
+// The multigrid preconditioner's settings: a symmetric V-cycle whose levels
+// are the hex8 lattice coarsened 2x per axis, Galerkin coarse operators from
+// the current Newton linearization, Chebyshev smoothing over block-Jacobi
+// (the same before and after the coarse correction, so CG sees a symmetric
+// preconditioner) and a direct solve of the coarsest level on the host.
+struct MultigridOptions {
+  int smoother_degree = 2;      // Chebyshev degree of each pre- and post-smoothing (operator products each)
+  size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
+  int max_levels = 12;
+};
 
 struct NewtonIteration {
   int step = 0;
@@ -198,6 +209,7 @@ struct SolveOptions {
   double forcing_gamma = 0.9;
   double forcing_max = 0.5;
   Preconditioner preconditioner = Preconditioner::automatic;
+  MultigridOptions multigrid;
   // Older switch, kept for existing callers: false with preconditioner
   // `automatic` means none.
   bool block_jacobi = true;

@@ -65,6 +65,14 @@ struct VoxelizeOptions {
   // The grid (dims product) may hold at most this many cells; a larger one
   // is refused with a message naming its size, before anything is allocated.
   int64_t max_grid_cells = int64_t(1) << 26;
+  // Also keep every cell the surface passes through (its triangles meet the
+  // cube's interior), whatever its centre: the lattice then covers the whole
+  // solid and every surface point lies in a kept cell (the embedding needs
+  // no extrapolation), at the price of a layer of cells that stick out by
+  // up to a cell. A gap thinner than a cell stays open where no cell centre
+  // lies in it; a cell whose centre is in the gap is kept and glues its
+  // two sides (see voxelize).
+  bool cover_surface = false;
 };
 
 // The grid: dims[d] = ceil(extent_d / cell) (at least 1; an extent a
@@ -74,7 +82,10 @@ struct VoxelizeOptions {
 //
 // Which cells: a grid cell becomes an element when its centre is inside the
 // surface: its winding number is positive (nested or overlapping closed
-// pieces count as long as the count is positive). The winding number is
+// pieces count as long as the count is positive). With cover_surface, also
+// when a triangle meets the open cube (separating axes, Akenine-Moeller
+// 2001, on the cube shrunk by 1e-9 cells, so that a cell the surface only
+// touches along its boundary stays out). The winding number is
 // counted along rays parallel to +x from every cell centre, crossing by
 // crossing, with exact tie handling: a ray through a triangle's edge or
 // vertex is decided as if moved by an infinitesimal (0, e, e^2), each edge
@@ -85,7 +96,10 @@ struct VoxelizeOptions {
 // face-adjacent elements share the 4 vertices of their common face only when
 // the segment between their centres does not cross the surface (counted as
 // above, along that axis); otherwise each keeps its own copies, so the two
-// sides of a slit thinner than a cell are not glued. Lattice vertices are the
+// sides of a slit thinner than a cell are not glued. Cells kept by
+// cover_surface with their centre outside are glued to their neighbours
+// whatever the segment crosses (the surface passes through them by
+// definition); only two cells with both centres inside can be kept apart. Lattice vertices are the
 // classes of element corners joined through shared faces (union-find):
 // elements that touch only along an edge or at a corner share those
 // vertices only when a chain of face-sharing elements around that edge or

@@ -1,0 +1,407 @@
+#include "solver/multigrid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "snh/error.h"
+#include "viennacl/linalg/norm_2.hpp"
+
+namespace snh::solver {
+
+namespace {
+
+template <typename T>
+void set_arg(cl_kernel k, cl_uint index, const T& value) {
+  device::check(clSetKernelArg(k, index, sizeof(T), &value), "clSetKernelArg");
+}
+
+template <typename Real>
+cl_mem mem(const viennacl::vector_base<Real>& v) {
+  return v.handle().opencl_handle().get();
+}
+
+constexpr int kCellMatrix = 24 * 24;
+constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
+// Chebyshev's interval as fractions of the estimated lambda_max(D^-1 A):
+// the upper part of the spectrum, which the coarse levels do not resolve
+// (PETSc's defaults for a Chebyshev smoother; Adams et al. 2003).
+constexpr double kLower = 0.1, kUpper = 1.1;
+
+}  // namespace
+
+template <typename Real>
+struct MultigridPreconditioner<Real>::Level {
+  size_t cells = 0, vertices = 0;
+  cl_mem element_handle = nullptr;  // the level's elements (the model's at level 0)
+  device::Buffer elements, offsets, adjacency, mask, matrices, scratch, blocks, inverse, children;
+  device::Buffer prolong_vertices, prolong_weights, restrict_offsets, restrict_vertices, restrict_weights;
+  viennacl::vector<Real> b, x, r, d, t;
+  viennacl::vector<Real> eigenvector;  // of D^-1 A, the last power iteration's
+  double lambda = 1.0;
+  size_t bytes = 0;
+};
+
+template <typename Real>
+MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model, const Mesh& mesh,
+                                                       const std::vector<char>& mask, const MultigridOptions& options)
+    : model_(model), cl_(model.context()), options_(options) {
+  if (options.smoother_degree < 1 || options.smoother_degree > 16)
+    throw Error("multigrid: smoother_degree must be in 1..16, got " + std::to_string(options.smoother_degree));
+  if (options.max_levels < 2) throw Error("multigrid: max_levels must be at least 2");
+  hierarchy_ = build_lattice_hierarchy(mesh, mask, options.coarsest_dofs, options.max_levels);
+  const std::string defines = model.specialization();
+  galerkin_cache_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_cache");
+  galerkin_matrices_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_matrices");
+  diagonal_blocks_k_ = cl_.kernel("fem.cl", defines, "snh_element_matrix_diagonal");
+  prolong_k_ = cl_.kernel("multigrid.cl", defines, "snh_prolong_add");
+  restrict_k_ = cl_.kernel("multigrid.cl", defines, "snh_restrict");
+  matrix_product_k_ = cl_.kernel("fem.cl", defines, "snh_element_matrix_product");
+  gather_k_ = cl_.kernel("fem.cl", defines, "snh_gather_vectors");
+  jacobi_setup_k_ = cl_.kernel("fem.cl", defines, "snh_block_jacobi_setup");
+  jacobi_apply_k_ = cl_.kernel("fem.cl", defines, "snh_block_jacobi_apply");
+
+  auto upload_int = [&](const std::vector<int>& v, size_t& bytes) {
+    bytes += v.size() * sizeof(int);
+    return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(v.size(), 1) * sizeof(int), v.empty() ? nullptr : v.data());
+  };
+  auto upload_real = [&](const auto& v, size_t& bytes) {
+    const std::vector<Real> r(v.begin(), v.end());
+    bytes += r.size() * sizeof(Real);
+    return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(r.size(), 1) * sizeof(Real), r.empty() ? nullptr : r.data());
+  };
+  for (size_t l = 0; l < hierarchy_.levels.size(); ++l) {
+    const LatticeLevel& h = hierarchy_.levels[l];
+    auto level = std::make_unique<Level>();
+    Level& L = *level;
+    L.cells = h.cells.size();
+    L.vertices = h.vertex_count;
+    const size_t n = 3 * L.vertices;
+    L.mask = upload_real(h.mask, L.bytes);
+    if (l == 0) {
+      L.element_handle = model.elements_buffer();
+    } else {
+      L.elements = upload_int(h.elements, L.bytes);
+      L.element_handle = L.elements.get();
+      std::vector<int> offsets(L.vertices + 1, 0), adjacency(h.elements.size());
+      for (int v : h.elements) ++offsets[v + 1];
+      for (size_t v = 0; v < L.vertices; ++v) offsets[v + 1] += offsets[v];
+      std::vector<int> fill(offsets.begin(), offsets.end() - 1);
+      for (size_t slot = 0; slot < h.elements.size(); ++slot)
+        adjacency[fill[h.elements[slot]]++] = static_cast<int>(slot);
+      L.offsets = upload_int(offsets, L.bytes);
+      L.adjacency = upload_int(adjacency, L.bytes);
+      L.children = upload_int(h.children, L.bytes);
+      L.matrices = cl_.buffer(CL_MEM_READ_WRITE, L.cells * kCellMatrix * sizeof(Real));
+      L.scratch = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 24 * sizeof(Real));
+      L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
+      L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(Real));
+      L.bytes += L.cells * (kCellMatrix + 24 + 72) * sizeof(Real) + L.vertices * 9 * sizeof(Real);
+    }
+    if (l + 1 < hierarchy_.levels.size()) {
+      L.prolong_vertices = upload_int(h.prolongation_vertices, L.bytes);
+      L.prolong_weights = upload_real(h.prolongation_weights, L.bytes);
+      L.restrict_offsets = upload_int(h.restriction_offsets, L.bytes);
+      L.restrict_vertices = upload_int(h.restriction_vertices, L.bytes);
+      L.restrict_weights = upload_real(h.restriction_weights, L.bytes);
+    }
+    for (auto* v : {&L.b, &L.x, &L.r, &L.d, &L.t})
+      *v = viennacl::vector<Real>(viennacl::scalar_vector<Real>(n, Real(0)));
+    L.bytes += 5 * n * sizeof(Real);
+    levels_.push_back(std::move(level));
+  }
+  if (hierarchy_.levels.size() > 1) {
+    // The coarsest operator's sparsity: 3x3 blocks of vertices sharing a cell.
+    const LatticeLevel& h = hierarchy_.levels.back();
+    std::vector<Eigen::Triplet<double>> pattern;
+    for (size_t c = 0; c < h.cells.size(); ++c)
+      for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b)
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+              pattern.emplace_back(3 * h.elements[8 * c + a] + i, 3 * h.elements[8 * c + b] + j, 1.0);
+    Eigen::SparseMatrix<double> a(3 * h.vertex_count, 3 * h.vertex_count);
+    a.setFromTriplets(pattern.begin(), pattern.end());
+    coarsest_.analyzePattern(a);
+  }
+}
+
+template <typename Real>
+MultigridPreconditioner<Real>::~MultigridPreconditioner() = default;
+
+template <typename Real>
+void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, VectorBase& y) const {
+  if (level == 0) {
+    model_.product(p, y);
+    return;
+  }
+  const Level& L = *levels_[level];
+  const int cells = static_cast<int>(L.cells), vertices = static_cast<int>(L.vertices);
+  cl_kernel k = matrix_product_k_.get();
+  set_arg(k, 0, mem(p));
+  set_arg(k, 1, L.element_handle);
+  set_arg(k, 2, L.matrices.get());
+  set_arg(k, 3, cells);
+  set_arg(k, 4, L.scratch.get());
+  cl_.run(k, L.cells);
+  cl_kernel g = gather_k_.get();
+  const int no_external = 0;
+  const Real sign = Real(1);
+  set_arg(g, 0, L.scratch.get());
+  set_arg(g, 1, L.offsets.get());
+  set_arg(g, 2, L.adjacency.get());
+  set_arg(g, 3, L.mask.get());
+  set_arg(g, 4, L.mask.get());  // no external force: any buffer
+  set_arg(g, 5, no_external);
+  set_arg(g, 6, sign);
+  set_arg(g, 7, vertices);
+  set_arg(g, 8, mem(y));
+  cl_.run(g, L.vertices);
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::inverse_diagonal(int level, VectorBase& z) const {
+  if (level == 0) {
+    model_.apply_preconditioner(z);
+    return;
+  }
+  const Level& L = *levels_[level];
+  const int vertices = static_cast<int>(L.vertices);
+  cl_kernel k = jacobi_apply_k_.get();
+  set_arg(k, 0, L.inverse.get());
+  set_arg(k, 1, mem(z));
+  set_arg(k, 2, vertices);
+  set_arg(k, 3, mem(z));
+  cl_.run(k, L.vertices);
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::setup() {
+  for (size_t l = 1; l < levels_.size(); ++l) {
+    Level& L = *levels_[l];
+    const Level& F = *levels_[l - 1];
+    const int cells = static_cast<int>(L.cells);
+    const cl_mem fine_matrices = l == 1 ? model_.element_matrices_buffer() : F.matrices.get();
+    if (!fine_matrices) {
+      cl_kernel k = galerkin_cache_k_.get();
+      set_arg(k, 0, L.children.get());
+      set_arg(k, 1, F.element_handle);
+      set_arg(k, 2, model_.gradients_buffer());
+      set_arg(k, 3, model_.weights_buffer());
+      set_arg(k, 4, model_.cache_buffer());
+      set_arg(k, 5, F.mask.get());
+      set_arg(k, 6, cells);
+      set_arg(k, 7, L.matrices.get());
+      cl_.run(k, L.cells);
+    } else {
+      cl_kernel k = galerkin_matrices_k_.get();
+      set_arg(k, 0, L.children.get());
+      set_arg(k, 1, F.element_handle);
+      set_arg(k, 2, fine_matrices);
+      set_arg(k, 3, F.mask.get());
+      set_arg(k, 4, cells);
+      set_arg(k, 5, L.matrices.get());
+      cl_.run(k, 24 * L.cells);
+    }
+    cl_kernel d = diagonal_blocks_k_.get();
+    set_arg(d, 0, L.matrices.get());
+    set_arg(d, 1, cells);
+    set_arg(d, 2, L.blocks.get());
+    cl_.run(d, L.cells);
+    cl_kernel s = jacobi_setup_k_.get();
+    const int vertices = static_cast<int>(L.vertices);
+    set_arg(s, 0, L.blocks.get());
+    set_arg(s, 1, L.offsets.get());
+    set_arg(s, 2, L.adjacency.get());
+    set_arg(s, 3, L.mask.get());
+    set_arg(s, 4, vertices);
+    set_arg(s, 5, L.inverse.get());
+    cl_.run(s, L.vertices);
+  }
+  factor_coarsest();
+  // lambda_max(D^-1 A) per smoothed level by power iteration: the first
+  // setup from a fixed start (deterministic), later ones warm-started from
+  // the last eigenvector estimate, whose operator changed by one Newton step
+  // only. Norms are reduced on the device in a fixed order.
+  const size_t smoothed = levels_.size() == 1 || !coarsest_ok_ ? levels_.size() : levels_.size() - 1;
+  for (size_t l = 0; l < smoothed; ++l) {
+    Level& L = *levels_[l];
+    const bool warm = L.eigenvector.size() == 3 * L.vertices;
+    if (!warm) {
+      const LatticeLevel& h = hierarchy_.levels[l];
+      std::vector<Real> start(3 * L.vertices);
+      uint32_t state = 12345u;
+      for (size_t i = 0; i < start.size(); ++i) {
+        state = state * 1664525u + 1013904223u;
+        start[i] = h.mask[i] ? Real(0.5 + static_cast<double>(state >> 8) / 16777216.0) : Real(0);
+      }
+      L.eigenvector = viennacl::vector<Real>(3 * L.vertices);
+      viennacl::copy(start.begin(), start.end(), L.eigenvector.begin());
+      L.bytes += 3 * L.vertices * sizeof(Real);
+    }
+    double lambda = 0.0;
+    const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
+    for (int it = 0; it < iterations; ++it) {
+      const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
+      if (!(norm > 0.0) || !std::isfinite(norm)) break;
+      L.eigenvector *= Real(1.0 / norm);
+      product(static_cast<int>(l), L.eigenvector, L.t);
+      inverse_diagonal(static_cast<int>(l), L.t);
+      lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
+      L.eigenvector.fast_swap(L.t);
+    }
+    if (!(std::isfinite(lambda) && lambda > 0.0)) {  // start again next time
+      L.eigenvector = viennacl::vector<Real>();
+      lambda = 1.0;
+    }
+    L.lambda = lambda;
+  }
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::factor_coarsest() {
+  coarsest_ok_ = false;
+  if (levels_.size() < 2) return;
+  const Level& L = *levels_.back();
+  const LatticeLevel& h = hierarchy_.levels.back();
+  std::vector<Real> local(L.cells * kCellMatrix);
+  cl_.read(L.matrices.get(), local.size() * sizeof(Real), local.data());
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(local.size() + 3 * L.vertices);
+  for (size_t c = 0; c < L.cells; ++c)
+    for (int col = 0; col < 24; ++col)
+      for (int row = 0; row < 24; ++row)
+        entries.emplace_back(3 * h.elements[8 * c + row / 3] + row % 3, 3 * h.elements[8 * c + col / 3] + col % 3,
+                             static_cast<double>(local[kCellMatrix * c + 24 * col + row]));
+  for (size_t i = 0; i < 3 * L.vertices; ++i)
+    if (!h.mask[i]) entries.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);  // dead DOF: identity
+  Eigen::SparseMatrix<double> a(3 * L.vertices, 3 * L.vertices);
+  a.setFromTriplets(entries.begin(), entries.end());
+  coarsest_.factorize(a);
+  coarsest_ok_ = coarsest_.info() == Eigen::Success && coarsest_.vectorD().minCoeff() > 0.0;
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::coarse_solve() const {
+  Level& L = *levels_.back();
+  if (!coarsest_ok_) {  // a singular coarsest operator: smooth instead
+    L.x.clear();
+    L.r = L.b;
+    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false);
+    return;
+  }
+  host_rhs_.resize(3 * L.vertices);
+  viennacl::copy(L.b.begin(), L.b.end(), host_rhs_.begin());
+  Eigen::VectorXd rhs(host_rhs_.size());
+  for (size_t i = 0; i < host_rhs_.size(); ++i) rhs[i] = static_cast<double>(host_rhs_[i]);
+  const Eigen::VectorXd solution = coarsest_.solve(rhs);
+  const LatticeLevel& h = hierarchy_.levels.back();
+  for (size_t i = 0; i < host_rhs_.size(); ++i) host_rhs_[i] = h.mask[i] ? static_cast<Real>(solution[i]) : Real(0);
+  viennacl::copy(host_rhs_.begin(), host_rhs_.end(), L.x.begin());
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual) const {
+  Level& L = *levels_[level];
+  const double upper = kUpper * L.lambda, lower = kLower * L.lambda;
+  const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;
+  double rho = 1.0 / sigma;
+  L.d = r;
+  inverse_diagonal(level, L.d);
+  L.d *= Real(1.0 / theta);
+  const int degree = options_.smoother_degree;
+  for (int k = 1; k <= degree; ++k) {
+    x += L.d;
+    if (k == degree && !want_residual) break;
+    product(level, L.d, L.t);
+    r -= L.t;
+    if (k == degree) break;
+    const double rho_next = 1.0 / (2.0 * sigma - rho);
+    L.t = r;
+    inverse_diagonal(level, L.t);
+    L.d = Real(rho_next * rho) * L.d + Real(2.0 * rho_next / delta) * L.t;
+    rho = rho_next;
+  }
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::vcycle(int level) const {
+  Level& L = *levels_[level];
+  if (level + 1 == static_cast<int>(levels_.size())) {
+    if (level == 0) {  // a single level: one symmetric Chebyshev smoothing
+      L.x.clear();
+      L.r = L.b;
+      chebyshev(0, L.x, L.r, false);
+    } else {
+      coarse_solve();
+    }
+    return;
+  }
+  Level& C = *levels_[level + 1];
+  L.x.clear();
+  L.r = L.b;
+  chebyshev(level, L.x, L.r, true);
+  {
+    cl_kernel k = restrict_k_.get();
+    const int count = static_cast<int>(C.vertices);
+    set_arg(k, 0, mem(L.r));
+    set_arg(k, 1, L.mask.get());
+    set_arg(k, 2, L.restrict_offsets.get());
+    set_arg(k, 3, L.restrict_vertices.get());
+    set_arg(k, 4, L.restrict_weights.get());
+    set_arg(k, 5, C.mask.get());
+    set_arg(k, 6, count);
+    set_arg(k, 7, mem(C.b));
+    cl_.run(k, C.vertices);
+  }
+  vcycle(level + 1);
+  {
+    cl_kernel k = prolong_k_.get();
+    const int count = static_cast<int>(L.vertices);
+    set_arg(k, 0, mem(C.x));
+    set_arg(k, 1, L.prolong_vertices.get());
+    set_arg(k, 2, L.prolong_weights.get());
+    set_arg(k, 3, L.mask.get());
+    set_arg(k, 4, count);
+    set_arg(k, 5, mem(L.x));
+    cl_.run(k, L.vertices);
+  }
+  product(level, L.x, L.t);
+  L.r = L.b - L.t;
+  chebyshev(level, L.x, L.r, false);
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::apply(VectorBase& z) const {
+  Level& fine = *levels_[0];
+  fine.b = z;
+  vcycle(0);
+  z = fine.x;
+}
+
+template <typename Real>
+std::vector<Real> MultigridPreconditioner<Real>::level_matrices(int level) const {
+  if (level < 1 || level >= levels()) throw Error("multigrid: no matrices at level " + std::to_string(level));
+  const Level& L = *levels_[level];
+  std::vector<Real> out(L.cells * kCellMatrix);
+  cl_.read(L.matrices.get(), out.size() * sizeof(Real), out.data());
+  return out;
+}
+
+template <typename Real>
+std::vector<double> MultigridPreconditioner<Real>::eigenvalue_estimates() const {
+  std::vector<double> out;
+  for (const auto& L : levels_) out.push_back(L->lambda);
+  return out;
+}
+
+template <typename Real>
+size_t MultigridPreconditioner<Real>::memory_bytes() const {
+  size_t bytes = 0;
+  for (const auto& L : levels_) bytes += L->bytes;
+  return bytes;
+}
+
+template class MultigridPreconditioner<float>;
+template class MultigridPreconditioner<double>;
+
+}  // namespace snh::solver

@@ -1,0 +1,503 @@
+// The multigrid preconditioner (solver/lattice_hierarchy.h, solver/multigrid.h):
+// the hierarchy on boxes, partly filled and non-box lattices and across a
+// slit; the coarse operators against the assembled Galerkin product
+// P^T D K D P; the V-cycle's symmetry, positivity and exact zeros on
+// constrained DOFs; and whole solves (an affine patch test, the same
+// answer as block-Jacobi, bitwise repeatability, clear errors).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "device/opencl_context.h"
+#include "device/viennacl_binding.h"
+#include "fem/rest_state.h"
+#include "snh/error.h"
+#include "snh/material.h"
+#include "snh/mesh.h"
+#include "snh/regions.h"
+#include "snh/simulation.h"
+#include "solver/elastic_model.h"
+#include "solver/lattice_hierarchy.h"
+#include "solver/multigrid.h"
+#include "viennacl/vector.hpp"
+
+namespace snh::test {
+namespace {
+
+constexpr double kH = 0.25;
+
+// The lattice's cells kept by `keep(i, j, k)`, vertices renumbered densely
+// in the order of first use.
+template <typename Keep>
+Mesh lattice_subset(int nx, int ny, int nz, Keep keep) {
+  const Mesh box = make_box_lattice(nx, ny, nz, kH);
+  Mesh out;
+  out.type = ElementType::hex8;
+  std::vector<int> renumber(box.vertex_count(), -1);
+  for (size_t e = 0; e < box.element_count(); ++e) {
+    const auto x = box.vertex(box.elements[8 * e]);
+    const int i = static_cast<int>(std::lround(x[0] / kH)), j = static_cast<int>(std::lround(x[1] / kH)),
+              k = static_cast<int>(std::lround(x[2] / kH));
+    if (!keep(i, j, k)) continue;
+    for (int a = 0; a < 8; ++a) {
+      int& v = renumber[box.elements[8 * e + a]];
+      if (v < 0) {
+        v = static_cast<int>(out.vertex_count());
+        for (int d = 0; d < 3; ++d) out.positions.push_back(box.positions[3 * box.elements[8 * e + a] + d]);
+      }
+      out.elements.push_back(v);
+    }
+  }
+  return out;
+}
+
+std::vector<char> all_free(const Mesh& mesh) { return std::vector<char>(3 * mesh.vertex_count(), 1); }
+
+// Positions of a level's vertices in units of the finest spacing, from its
+// cells (corner offsets of VTK order).
+std::vector<Eigen::Vector3d> level_positions(const solver::LatticeLevel& level, int level_index) {
+  static const int bits[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                 {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const double scale = std::pow(2.0, level_index);
+  std::vector<Eigen::Vector3d> out(level.vertex_count, Eigen::Vector3d::Constant(NAN));
+  for (size_t c = 0; c < level.cells.size(); ++c)
+    for (int a = 0; a < 8; ++a)
+      for (int d = 0; d < 3; ++d) out[level.elements[8 * c + a]][d] = scale * (level.cells[c][d] + bits[a][d]);
+  return out;
+}
+
+// Prolongation of an affine field from level l + 1 reproduces it on level l.
+void expect_affine_prolongation(const solver::LatticeHierarchy& h) {
+  const Eigen::Vector3d g(0.3, -1.7, 2.2);
+  for (size_t l = 0; l + 1 < h.levels.size(); ++l) {
+    const auto fine = level_positions(h.levels[l], static_cast<int>(l));
+    const auto coarse = level_positions(h.levels[l + 1], static_cast<int>(l + 1));
+    for (size_t v = 0; v < h.levels[l].vertex_count; ++v) {
+      double value = 0.0, weight = 0.0;
+      for (int k = 0; k < 8; ++k) {
+        const double w = h.levels[l].prolongation_weights[8 * v + k];
+        value += w * (0.5 + g.dot(coarse[h.levels[l].prolongation_vertices[8 * v + k]]));
+        weight += w;
+      }
+      ASSERT_NEAR(weight, 1.0, 1e-15) << "level " << l << " vertex " << v;
+      ASSERT_NEAR(value, 0.5 + g.dot(fine[v]), 1e-12) << "level " << l << " vertex " << v;
+    }
+  }
+}
+
+TEST(LatticeHierarchy, BoxCoarsensByTwoAndProlongsAffineFieldsExactly) {
+  const Mesh mesh = make_box_lattice(8, 8, 8, kH);
+  const solver::LatticeHierarchy h = solver::build_lattice_hierarchy(mesh, all_free(mesh), 1, 10);
+  ASSERT_EQ(h.levels.size(), 4u);  // 8^3, 4^3, 2^3, 1 cell
+  EXPECT_EQ(h.levels[1].cells.size(), 64u);
+  EXPECT_EQ(h.levels[1].vertex_count, 125u);
+  EXPECT_EQ(h.levels[3].cells.size(), 1u);
+  EXPECT_EQ(h.levels[3].vertex_count, 8u);
+  expect_affine_prolongation(h);
+  // The restriction lists are the prolongation's transpose.
+  const solver::LatticeLevel& f = h.levels[0];
+  double forward = 0.0, backward = 0.0;
+  for (size_t v = 0; v < f.vertex_count; ++v)
+    for (int k = 0; k < 8; ++k)
+      forward += f.prolongation_weights[8 * v + k] * (1 + v % 7) * (1 + f.prolongation_vertices[8 * v + k] % 5);
+  for (size_t c = 0; c < h.levels[1].vertex_count; ++c)
+    for (int k = f.restriction_offsets[c]; k < f.restriction_offsets[c + 1]; ++k)
+      backward += f.restriction_weights[k] * (1 + f.restriction_vertices[k] % 7) * (1 + c % 5);
+  EXPECT_NEAR(forward, backward, 1e-9 * forward);
+}
+
+TEST(LatticeHierarchy, PartlyFilledAndNonBoxLatticesKeepTheirCells) {
+  // 5 x 3 x 7 cells: odd sizes leave coarse cells partly filled.
+  const Mesh odd = make_box_lattice(5, 3, 7, kH);
+  const solver::LatticeHierarchy a = solver::build_lattice_hierarchy(odd, all_free(odd), 1, 10);
+  EXPECT_EQ(a.levels[1].cells.size(), 3u * 2u * 4u);
+  expect_affine_prolongation(a);
+  // An L shape with a hole.
+  const Mesh l_shape =
+      lattice_subset(8, 8, 4, [](int i, int j, int k) { return (i < 3 || j < 3) && !(i == 1 && j == 1 && k == 2); });
+  const solver::LatticeHierarchy b = solver::build_lattice_hierarchy(l_shape, all_free(l_shape), 1, 10);
+  ASSERT_GE(b.levels.size(), 3u);
+  expect_affine_prolongation(b);
+  // Every fine cell has its parent; every coarse cell at least one child.
+  for (size_t l = 1; l < b.levels.size(); ++l) {
+    std::vector<int> seen(b.levels[l - 1].cells.size(), 0);
+    for (size_t c = 0; c < b.levels[l].cells.size(); ++c) {
+      int children = 0;
+      for (int o = 0; o < 8; ++o)
+        if (int child = b.levels[l].children[8 * c + o]; child >= 0) ++seen[child], ++children;
+      EXPECT_GT(children, 0);
+    }
+    for (int s : seen) EXPECT_EQ(s, 1);
+  }
+}
+
+TEST(LatticeHierarchy, SlitIsNotGluedOnCoarseLevels) {
+  // Two 4x2x4 slabs stacked in y; for x >= 2 the vertices between them are
+  // duplicated (a slit, as the voxelizer leaves across a thin gap).
+  Mesh mesh = make_box_lattice(4, 2, 4, kH);
+  std::vector<int> duplicate(mesh.vertex_count(), -1);
+  for (size_t e = 0; e < mesh.element_count(); ++e) {
+    const auto x0 = mesh.vertex(mesh.elements[8 * e]);
+    if (std::lround(x0[1] / kH) != 1) continue;  // upper slab's cells
+    for (int a = 0; a < 8; ++a) {
+      const int v = mesh.elements[8 * e + a];
+      const auto x = mesh.vertex(v);
+      if (std::lround(x[1] / kH) != 1 || x[0] < 2 * kH - 1e-9) continue;  // on the slit plane, x >= 2h
+      if (duplicate[v] < 0) {
+        duplicate[v] = static_cast<int>(mesh.vertex_count());
+        for (int d = 0; d < 3; ++d) mesh.positions.push_back(x[d]);
+      }
+      mesh.elements[8 * e + a] = duplicate[v];
+    }
+  }
+  const solver::LatticeHierarchy h = solver::build_lattice_hierarchy(mesh, all_free(mesh), 1, 2);
+  ASSERT_EQ(h.levels.size(), 2u);
+  // The parents at x = 1 (fine x 2..3) hold two unconnected groups each.
+  EXPECT_EQ(h.levels[1].cells.size(), 2u * 1u * 2u + 2u);
+  // A vertex below the slit and its copy above prolong from different
+  // coarse vertices at the same point.
+  for (size_t v = 0; v < duplicate.size(); ++v) {
+    if (duplicate[v] < 0) continue;
+    const auto x = mesh.vertex(v);
+    if (std::abs(x[0] - 4 * kH) > 1e-9 || std::lround(x[2] / kH) % 2 != 0) continue;  // a coarse lattice point
+    const auto& p = h.levels[0].prolongation_vertices;
+    const auto& w = h.levels[0].prolongation_weights;
+    for (int k = 0; k < 8; ++k) {
+      EXPECT_EQ(w[8 * v + k], w[8 * duplicate[v] + k]);
+      if (w[8 * v + k] > 0.0) EXPECT_NE(p[8 * v + k], p[8 * duplicate[v] + k]);
+    }
+  }
+  expect_affine_prolongation(h);
+}
+
+TEST(LatticeHierarchy, CoarseMasksKeepDofsThatReachFreeOnes) {
+  const Mesh mesh = make_box_lattice(4, 4, 4, kH);
+  std::vector<char> mask(3 * mesh.vertex_count(), 1);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) mask[3 * v] = 0;  // every x component fixed
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (mesh.positions[3 * v + 2] < 1e-9) mask[3 * v + 1] = mask[3 * v + 2] = 0;  // bottom face fixed
+  const solver::LatticeHierarchy h = solver::build_lattice_hierarchy(mesh, mask, 1, 10);
+  for (size_t l = 1; l < h.levels.size(); ++l)
+    for (size_t v = 0; v < h.levels[l].vertex_count; ++v) {
+      EXPECT_EQ(h.levels[l].mask[3 * v], 0) << "x DOFs reach no free DOF";
+      EXPECT_EQ(h.levels[l].mask[3 * v + 1], 1) << "y DOFs reach free DOFs above the bottom";
+    }
+}
+
+TEST(LatticeHierarchy, RefusesMeshesThatAreNotLattices) {
+  const Mesh tets = make_tet_box(2, 2, 2, kH);
+  EXPECT_THROW(solver::build_lattice_hierarchy(tets, all_free(tets), 1, 10), Error);
+  Mesh jittered = make_box_lattice(2, 2, 2, kH);
+  jittered.positions[3 * 13] += 0.05 * kH;
+  EXPECT_FALSE(solver::is_hex8_lattice(jittered));
+  try {
+    solver::build_lattice_hierarchy(jittered, all_free(jittered), 1, 10);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a hex8 lattice"), std::string::npos) << e.what();
+  }
+}
+
+// --- on the device ------------------------------------------------------------
+
+device::OpenClContext& device_context() {
+  static std::unique_ptr<device::OpenClContext> context;
+  static long id = 0;
+  if (!context) {
+    context = std::make_unique<device::OpenClContext>(DeviceOptions{}, Precision::double_);
+    id = device::bind_viennacl(*context);
+  }
+  device::use_viennacl(id);
+  return *context;
+}
+
+viennacl::vector<double> upload(const std::vector<double>& v) {
+  viennacl::vector<double> out(v.size());
+  viennacl::copy(v.begin(), v.end(), out.begin());
+  return out;
+}
+std::vector<double> download(const viennacl::vector_base<double>& v) {
+  std::vector<double> out(v.size());
+  viennacl::copy(v.begin(), v.end(), out.begin());
+  return out;
+}
+
+// A deformed, partly constrained L-shaped lattice at nu = 0.45.
+struct DeviceCase {
+  Mesh mesh = lattice_subset(6, 5, 4, [](int i, int j, int) { return i < 3 || j < 2; });
+  fem::RestState rest = fem::compute_rest_state(mesh);
+  Material material = Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, 0.45);
+  std::vector<double> x;
+  std::vector<char> mask;
+  DeviceCase() {
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> u(-0.15 * kH, 0.15 * kH);
+    x = mesh.positions;
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const double px = mesh.positions[3 * v], pz = mesh.positions[3 * v + 2];
+      x[3 * v] = px + 0.3 * pz * px + u(rng);  // a bend plus noise
+      x[3 * v + 1] += u(rng);
+      x[3 * v + 2] = pz * 1.1 + u(rng);
+    }
+    mask.assign(3 * mesh.vertex_count(), 1);
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+      if (mesh.positions[3 * v + 2] < 1e-9) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = 0;
+      if (mesh.positions[3 * v] < 1e-9) mask[3 * v] = 0;  // a sliding face
+    }
+  }
+};
+
+// From the linearization cache (cached variant) and from the fine element
+// matrices (element-matrices variant), projected and true Hessian.
+class CoarseOperator : public ::testing::TestWithParam<std::tuple<ProductVariant, bool>> {};
+
+TEST_P(CoarseOperator, IsTheAssembledGalerkinProduct) {
+  const auto [variant, projected] = GetParam();
+  DeviceCase c;
+  device::OpenClContext& cl = device_context();
+  solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), variant);
+  MultigridOptions options;
+  options.coarsest_dofs = 1;
+  solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
+  ASSERT_GE(mg.levels(), 3);
+  const viennacl::vector<double> x = upload(c.x);
+  model.linearize(x, projected);
+  model.setup_preconditioner();
+  mg.setup();
+  // K column by column through the (unmasked) matrix-free product.
+  const size_t n = 3 * c.mesh.vertex_count();
+  Eigen::MatrixXd k(n, n);
+  viennacl::vector<double> y(n);
+  for (size_t j = 0; j < n; ++j) {
+    std::vector<double> e(n, 0.0);
+    e[j] = 1.0;
+    model.product(upload(e), y);
+    const std::vector<double> column = download(y);
+    for (size_t i = 0; i < n; ++i) k(i, j) = column[i];
+  }
+  Eigen::MatrixXd a = k;
+  const solver::LatticeHierarchy& h = mg.hierarchy();
+  for (int l = 1; l < 3; ++l) {
+    const solver::LatticeLevel& fine = h.levels[l - 1];
+    const size_t nf = 3 * fine.vertex_count, nc = 3 * h.levels[l].vertex_count;
+    Eigen::MatrixXd p = Eigen::MatrixXd::Zero(nf, nc);
+    for (size_t v = 0; v < fine.vertex_count; ++v)
+      for (int s = 0; s < 8; ++s)
+        for (int d = 0; d < 3; ++d)
+          p(3 * v + d, 3 * fine.prolongation_vertices[8 * v + s] + d) += fine.prolongation_weights[8 * v + s];
+    Eigen::VectorXd dmask(nf);
+    for (size_t i = 0; i < nf; ++i) dmask[i] = fine.mask[i];
+    const Eigen::MatrixXd dp = dmask.asDiagonal() * p;
+    const Eigen::MatrixXd expected = dp.transpose() * a * dp;
+    // The device's cell matrices, assembled.
+    const std::vector<double> cells = mg.level_matrices(l);
+    const solver::LatticeLevel& coarse = h.levels[l];
+    Eigen::MatrixXd assembled = Eigen::MatrixXd::Zero(nc, nc);
+    for (size_t cell = 0; cell < coarse.cells.size(); ++cell)
+      for (int col = 0; col < 24; ++col)
+        for (int row = 0; row < 24; ++row)
+          assembled(3 * coarse.elements[8 * cell + row / 3] + row % 3,
+                    3 * coarse.elements[8 * cell + col / 3] + col % 3) += cells[576 * cell + 24 * col + row];
+    const double error = (assembled - expected).norm() / expected.norm();
+    EXPECT_LT(error, 1e-12) << "level " << l;
+    std::printf("level %d: %zu DOFs, |A_device - P^T D A D P| / |P^T D A D P| = %.2e\n", l, nc, error);
+    a = expected;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Multigrid, CoarseOperator,
+                         ::testing::Combine(::testing::Values(ProductVariant::cached, ProductVariant::element_matrices),
+                                            ::testing::Bool()));
+
+TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
+  DeviceCase c;
+  device::OpenClContext& cl = device_context();
+  solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), ProductVariant::cached);
+  std::vector<double> mask(c.mask.begin(), c.mask.end());
+  model.set_mask(mask);
+  for (int degree : {1, 3}) {
+    MultigridOptions options;
+    options.coarsest_dofs = 50;
+    options.smoother_degree = degree;
+    solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
+    model.linearize(upload(c.x), true);
+    model.setup_preconditioner();
+    mg.setup();
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<double> a(mask.size()), b(mask.size());
+    for (size_t i = 0; i < mask.size(); ++i) {
+      a[i] = mask[i] * u(rng);
+      b[i] = mask[i] * u(rng);
+    }
+    viennacl::vector<double> ma = upload(a), mb = upload(b);
+    mg.apply(ma);
+    mg.apply(mb);
+    const std::vector<double> za = download(ma), zb = download(mb);
+    double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+      ab += a[i] * zb[i];
+      ba += b[i] * za[i];
+      aa += a[i] * za[i];
+      scale += std::abs(a[i] * zb[i]);
+      if (mask[i] == 0.0) {
+        EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
+        EXPECT_EQ(zb[i], 0.0) << "constrained DOF " << i;
+      }
+    }
+    EXPECT_LT(std::abs(ab - ba), 1e-12 * scale) << "degree " << degree << ": a.Mb " << ab << " b.Ma " << ba;
+    EXPECT_GT(aa, 0.0);
+  }
+}
+
+// Boundary vertices follow x = A X + b; the equilibrium of any homogeneous
+// material is then that affine map everywhere.
+TEST(Multigrid, PatchTestSolvesToTheAffineField) {
+  const Mesh mesh = lattice_subset(7, 5, 6, [](int i, int j, int k) { return !(i >= 4 && j >= 3 && k >= 3); });
+  Eigen::Matrix3d f;
+  f << 1.08, 0.05, -0.02, 0.03, 0.95, 0.04, -0.01, 0.02, 1.03;
+  const Eigen::Vector3d t(0.01, -0.02, 0.03);
+  std::vector<int32_t> boundary;
+  std::vector<int> uses(mesh.vertex_count(), 0);
+  for (int32_t v : mesh.elements) ++uses[v];
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (uses[v] < 8) boundary.push_back(static_cast<int32_t>(v));  // interior lattice vertices have 8 cells
+  ConstraintSet set{"boundary", boundary, {}, {}};
+  set.targets = [&](double, std::vector<double>& xyz) {
+    for (size_t i = 0; i < boundary.size(); ++i) {
+      const Eigen::Vector3d rest(mesh.positions[3 * boundary[i]], mesh.positions[3 * boundary[i] + 1],
+                                 mesh.positions[3 * boundary[i] + 2]);
+      const Eigen::Vector3d x = f * rest + t;
+      for (int d = 0; d < 3; ++d) xyz[3 * i + d] = x[d];
+    }
+  };
+  SolveOptions options;
+  options.preconditioner = Preconditioner::multigrid;
+  options.multigrid.coarsest_dofs = 30;
+  QuasistaticSolver solver(mesh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, 0.49), {set},
+                           options);
+  const SolveResult r = solver.solve();
+  ASSERT_TRUE(r.converged);
+  EXPECT_EQ(r.preconditioner, Preconditioner::multigrid);
+  double worst = 0.0;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::Vector3d rest(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+    const Eigen::Vector3d x = f * rest + t;
+    for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(r.positions[3 * v + d] - x[d]));
+  }
+  EXPECT_LT(worst, 1e-6 * kH);
+  std::printf("patch test: max deviation from the affine field %.2e (h = %g), %d Newton, %d CG\n", worst, kH,
+              r.steps[0].newton_iterations, r.steps[0].cg_iterations);
+}
+
+SolveResult twist(Preconditioner preconditioner, int res, double nu) {
+  const Mesh mesh = make_box_lattice(res, res, res, 1.0 / res);
+  std::vector<int32_t> bottom, top;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    if (mesh.positions[3 * v + 2] < 1e-9) bottom.push_back(static_cast<int32_t>(v));
+    if (mesh.positions[3 * v + 2] > 1.0 - 1e-9) top.push_back(static_cast<int32_t>(v));
+  }
+  ConstraintSet fixed{"bottom", bottom, {}, {}};
+  ConstraintSet turned{"top",
+                       top,
+                       [](double t) {
+                         return RigidTransform::rotation_about({0, 0, 1}, 0.6 * t, {0.5, 0.5, 1});
+                       },
+                       {}};
+  SolveOptions options;
+  options.preconditioner = preconditioner;
+  options.multigrid.coarsest_dofs = 100;
+  QuasistaticSolver solver(mesh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, nu),
+                           {fixed, turned}, options);
+  return solver.solve();
+}
+
+TEST(Multigrid, SameAnswerAsBlockJacobiInFewerCgIterationsAndRepeatable) {
+  const SolveResult jacobi = twist(Preconditioner::block_jacobi, 6, 0.49);
+  const SolveResult mg = twist(Preconditioner::multigrid, 6, 0.49);
+  const SolveResult again = twist(Preconditioner::multigrid, 6, 0.49);
+  ASSERT_TRUE(jacobi.converged);
+  ASSERT_TRUE(mg.converged);
+  double worst = 0.0;
+  for (size_t i = 0; i < mg.positions.size(); ++i)
+    worst = std::max(worst, std::abs(mg.positions[i] - jacobi.positions[i]));
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_LT(mg.steps[0].cg_iterations, jacobi.steps[0].cg_iterations);
+  EXPECT_EQ(mg.positions, again.positions) << "not bitwise repeatable";
+  std::printf("twist 6^3: block-Jacobi %d Newton / %d CG, multigrid %d / %d; max position difference %.2e\n",
+              jacobi.steps[0].newton_iterations, jacobi.steps[0].cg_iterations, mg.steps[0].newton_iterations,
+              mg.steps[0].cg_iterations, worst);
+}
+
+TEST(Multigrid, RefusesTetMeshesByName) {
+  const Mesh mesh = make_tet_box(2, 2, 2, kH);
+  std::vector<int32_t> bottom;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (mesh.positions[3 * v + 2] < 1e-9) bottom.push_back(static_cast<int32_t>(v));
+  SolveOptions options;
+  options.preconditioner = Preconditioner::multigrid;
+  try {
+    QuasistaticSolver solver(mesh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, 0.3),
+                             {{"bottom", bottom, {}, {}}}, options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("multigrid"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Multigrid, PreconditionerNamesParse) {
+  for (Preconditioner p :
+       {Preconditioner::automatic, Preconditioner::none, Preconditioner::block_jacobi, Preconditioner::multigrid})
+    EXPECT_EQ(parse_preconditioner(to_string(p)), p);
+  EXPECT_THROW(parse_preconditioner("jacobi"), Error);
+}
+
+}  // namespace
+}  // namespace snh::test
+
+namespace snh::test {
+namespace {
+
+// Block-Jacobi's blocks come from the element matrices when the variant keeps
+// them (projected linearization) and from the cache otherwise: the same
+// blocks up to rounding.
+TEST(Multigrid, BlockJacobiBlocksFromElementMatricesMatchTheCache) {
+  DeviceCase c;
+  device::OpenClContext& cl = device_context();
+  std::vector<std::vector<double>> blocks;
+  for (ProductVariant v : {ProductVariant::cached, ProductVariant::element_matrices}) {
+    solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), v);
+    model.set_mask(std::vector<double>(c.mask.begin(), c.mask.end()));
+    model.linearize(upload(c.x), true);
+    model.setup_preconditioner();
+    blocks.push_back(model.preconditioner_blocks());
+  }
+  double worst = 0.0, scale = 0.0;
+  for (size_t i = 0; i < blocks[0].size(); ++i) {
+    worst = std::max(worst, std::abs(blocks[0][i] - blocks[1][i]));
+    scale = std::max(scale, std::abs(blocks[0][i]));
+  }
+  EXPECT_LT(worst, 1e-12 * scale);
+}
+
+}  // namespace
+}  // namespace snh::test
+
+namespace snh::test {
+namespace {
+
+TEST(Multigrid, AutomaticChoosesMultigridOnLargeLattices) {
+  EXPECT_EQ(default_preconditioner(make_box_lattice(15, 15, 15, 0.1)), Preconditioner::multigrid);  // 12,288 DOFs
+  EXPECT_EQ(default_preconditioner(make_box_lattice(8, 8, 8, 0.1)), Preconditioner::block_jacobi);
+  EXPECT_EQ(default_preconditioner(make_tet_box(15, 15, 15, 0.1)), Preconditioner::block_jacobi);
+  Mesh jittered = make_box_lattice(15, 15, 15, 0.1);
+  jittered.positions[3 * 100] += 0.01;
+  EXPECT_EQ(default_preconditioner(jittered), Preconditioner::block_jacobi);
+}
+
+}  // namespace
+}  // namespace snh::test
