@@ -78,16 +78,32 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["product"] = to_string(r.product);
   j["preconditioner"] = to_string(r.preconditioner);
   j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
+  if (options.dynamics) {
+    const DynamicsOptions& d = *options.dynamics;
+    j["dynamics"] = {{"time_step", d.time_step},
+                     {"density", d.density},
+                     {"damping", {{"mass", d.damping.mass}, {"stiffness", d.damping.stiffness}}},
+                     {"substeps", d.substeps}};
+  }
+  if (!options.obstacles.empty()) {
+    j["obstacles"] = options.obstacles.size();
+    j["contact"] = {{"stiffness", options.contact.stiffness}, {"thickness", options.contact.thickness}};
+  }
   j["steps"] = json::array();
-  for (const StepResult& s : r.steps)
-    j["steps"].push_back({{"step", s.step},
-                          {"newton_iterations", s.newton_iterations},
-                          {"cg_iterations", s.cg_iterations},
-                          {"converged", s.converged},
-                          {"status", s.status},
-                          {"residual", s.residual_norm},
-                          {"seconds", s.seconds},
-                          {"profile", profile_json(s.profile)}});
+  for (const StepResult& s : r.steps) {
+    json step = {{"step", s.step},
+                 {"newton_iterations", s.newton_iterations},
+                 {"cg_iterations", s.cg_iterations},
+                 {"converged", s.converged},
+                 {"status", s.status},
+                 {"residual", s.residual_norm},
+                 {"seconds", s.seconds},
+                 {"contacts", s.contacts},
+                 {"max_penetration", s.max_penetration},
+                 {"profile", profile_json(s.profile)}};
+    if (options.dynamics) step["time"] = s.time;
+    j["steps"].push_back(step);
+  }
   j["wall_seconds"] = r.seconds;
   j["profile"] = profile_json(r.profile);
   j["device_memory_bytes"] = r.device_memory_bytes;
@@ -236,15 +252,21 @@ int run_scene(const SceneOptions& given) {
     char file[256];
     std::snprintf(file, sizeof file, "%s_%04d.vtu", scene.name.c_str(), step);
     write_step_vtu(o.vtu_dir + "/" + file, mesh, materials, x);
-    written.push_back({static_cast<double>(step), file});
+    written.push_back({options.dynamics ? solver.simulation().time() : static_cast<double>(step), file});
   });
   if (!o.vtu_dir.empty()) write_pvd(o.vtu_dir + "/" + scene.name + ".pvd", written);
 
   for (const std::string& w : r.warnings) std::cerr << "warning: " << w << '\n';
-  std::cout << "step  newton  cg      status                 residual\n";
-  for (const StepResult& s : r.steps)
+  const bool contact = !options.obstacles.empty();
+  std::cout << "step  newton  cg      status                 residual"
+            << (contact ? "    contacts  max_penetration" : "") << '\n';
+  for (const StepResult& s : r.steps) {
     std::cout << std::left << std::setw(6) << s.step << std::setw(8) << s.newton_iterations << std::setw(8)
-              << s.cg_iterations << std::setw(23) << s.status << std::setprecision(3) << s.residual_norm << '\n';
+              << s.cg_iterations << std::setw(23) << s.status << std::setw(12) << std::setprecision(3)
+              << s.residual_norm;
+    if (contact) std::cout << std::setw(10) << s.contacts << std::setprecision(3) << s.max_penetration;
+    std::cout << '\n';
+  }
   std::cout << "converged " << (r.converged ? "yes" : "no") << ", " << std::setprecision(4) << r.seconds
             << " s, volume ratio " << std::setprecision(6) << r.volume_ratio << ", min J " << std::setprecision(4)
             << r.min_j << ", inverted elements " << r.inverted_elements << '\n';
@@ -285,7 +307,8 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--file", o->file,
                   "a scene in JSON: mesh (file or generator) or embed (a surface voxelized), material, constraints "
                   "(ids/box/plane, rigid or keyframed motion), rig (bones and an animation: run frame by frame), "
-                  "body_force, initial, solver, output (see data/scenes/)");
+                  "body_force, initial, dynamics (implicit Euler: solver.steps counts time steps), obstacles "
+                  "(plane, sphere, cylinder; keyframes), contact, solver, output (see data/scenes/)");
   cmd->add_option("--res", o->resolution, "cells across the scene's thickness (0: scene default)");
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
       ->check(CLI::IsMember({"hex8", "tet4"}))

@@ -15,6 +15,7 @@
 #include "snh/loads.h"
 #include "snh/mesh_io.h"
 #include "snh/rig.h"
+#include "solver/obstacles.h"
 
 namespace snh::bench {
 namespace {
@@ -158,6 +159,51 @@ std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m
   };
 }
 
+// "obstacles": planes, spheres and cylinders, each with optional
+// "keyframes": the keys of a keyframed constraint motion
+// ([{"t", "angle", "translation"}], rotation about z through the origin), or
+// an object as a constraint's "motion" (with "axis" and "center").
+std::vector<Obstacle> read_obstacles(const Reader& r, const json& list) {
+  if (!list.is_array()) r.fail("obstacles", "expected an array");
+  std::vector<Obstacle> out;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string key = "obstacles[" + std::to_string(i) + "]";
+    const json& o = list[i];
+    if (!o.is_object()) r.fail(key, "expected an object");
+    Obstacle obstacle;
+    const std::string type = r.text(o, key, "type", "");
+    if (type == "plane") {
+      r.keys(o, key, {"type", "point", "normal", "keyframes"});
+      obstacle.type = ObstacleType::plane;
+      obstacle.point = r.required_vec3(o, key, "point");
+      obstacle.direction = r.required_vec3(o, key, "normal");
+    } else if (type == "sphere") {
+      r.keys(o, key, {"type", "center", "radius", "keyframes"});
+      obstacle.type = ObstacleType::sphere;
+      obstacle.point = r.required_vec3(o, key, "center");
+      obstacle.radius = r.required_number(o, key, "radius");
+    } else if (type == "cylinder") {
+      r.keys(o, key, {"type", "point", "axis", "radius", "keyframes"});
+      obstacle.type = ObstacleType::cylinder;
+      obstacle.point = r.required_vec3(o, key, "point");
+      obstacle.direction = r.required_vec3(o, key, "axis");
+      obstacle.radius = r.required_number(o, key, "radius");
+    } else {
+      r.fail(key + ".type", type.empty() ? "missing (plane, sphere or cylinder)"
+                                         : "expected plane, sphere or cylinder, got '" + type + "'");
+    }
+    if (o.contains("keyframes")) {
+      const json& k = o["keyframes"];
+      if (k.is_array())
+        obstacle.motion = read_motion(r, json{{"type", "keyframes"}, {"keys", k}}, key + ".keyframes");
+      else
+        obstacle.motion = read_motion(r, k, key + ".keyframes");
+    }
+    out.push_back(std::move(obstacle));
+  }
+  return out;
+}
+
 SceneFile::Embedded read_embed(const Reader& r, const json& e, const std::filesystem::path& folder) {
   r.keys(e, "embed", {"surface", "cell", "cover_surface"});
   if (!e.contains("surface")) r.fail("embed.surface", "missing (a closed surface: .obj, .ply or .stl)");
@@ -223,7 +269,7 @@ SceneFile load_scene_file(const std::string& path) {
   const Reader r{path};
   r.keys(doc, "scene",
          {"name", "description", "mesh", "embed", "material", "regions", "constraints", "rig", "body_force", "initial",
-          "solver", "output"});
+          "dynamics", "obstacles", "contact", "solver", "output"});
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   SceneFile out;
   Scene& s = out.scene;
@@ -295,6 +341,47 @@ SceneFile load_scene_file(const std::string& path) {
       const double mid = 0.5 * (lo[d] + hi[d]), half = 0.5 * scale * (hi[d] - lo[d]);
       s.options.initial_positions[i] = std::uniform_real_distribution<double>(mid - half, mid + half)(rng);
     }
+  }
+  if (doc.contains("dynamics")) {
+    const json& d = doc["dynamics"];
+    r.keys(d, "dynamics", {"time_step", "density", "damping", "substeps"});
+    DynamicsOptions dynamics;
+    dynamics.time_step = r.required_number(d, "dynamics", "time_step");
+    dynamics.density = r.required_number(d, "dynamics", "density");
+    if (d.contains("damping")) {
+      r.keys(d["damping"], "dynamics.damping", {"mass", "stiffness"});
+      dynamics.damping.mass = r.number(d["damping"], "dynamics.damping", "mass", 0.0);
+      dynamics.damping.stiffness = r.number(d["damping"], "dynamics.damping", "stiffness", 0.0);
+    }
+    dynamics.substeps = r.integer(d, "dynamics", "substeps", 1);
+    if (!(dynamics.time_step > 0.0)) r.fail("dynamics.time_step", "must be > 0");
+    if (!(dynamics.density > 0.0)) r.fail("dynamics.density", "must be > 0");
+    if (!(dynamics.damping.mass >= 0.0)) r.fail("dynamics.damping.mass", "must be >= 0");
+    if (!(dynamics.damping.stiffness >= 0.0)) r.fail("dynamics.damping.stiffness", "must be >= 0");
+    if (dynamics.substeps < 1) r.fail("dynamics.substeps", "must be >= 1");
+    if (doc.contains("rig")) r.fail("dynamics", "not supported with \"rig\" yet (frames are quasistatic)");
+    s.options.dynamics = dynamics;
+  }
+  if (doc.contains("obstacles")) s.options.obstacles = read_obstacles(r, doc["obstacles"]);
+  if (doc.contains("contact")) {
+    const json& c = doc["contact"];
+    r.keys(c, "contact", {"stiffness", "thickness", "self"});
+    s.options.contact.stiffness = r.number(c, "contact", "stiffness", 0.0);
+    s.options.contact.thickness = r.number(c, "contact", "thickness", 0.0);
+    if (c.contains("self")) {
+      if (!c["self"].is_boolean()) r.fail("contact.self", "expected true or false");
+      if (c["self"].get<bool>())
+        r.fail("contact.self", "self-collision is not implemented yet (only obstacles); use false");
+    }
+    if (!(s.options.contact.thickness >= 0.0)) r.fail("contact.thickness", "must be >= 0");
+    if (s.options.contact.stiffness < 0.0) r.fail("contact.stiffness", "must be > 0");
+  }
+  if (!s.options.obstacles.empty() && !(s.options.contact.stiffness > 0.0))
+    r.fail("contact.stiffness", "missing (the obstacles need a contact stiffness > 0)");
+  try {
+    solver::validate_obstacles(s.options.obstacles, s.options.contact);
+  } catch (const Error& e) {
+    r.fail("obstacles", e.what());
   }
   const json solver = doc.value("solver", json::object());
   r.keys(solver, "solver",

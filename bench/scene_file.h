@@ -5,6 +5,20 @@
 // bones and its animation, body force, solver options, output.
 // Unknown keys and wrong types are errors naming the key's path.
 //
+// Dynamics and obstacles (README "Dynamics and obstacles"):
+//   "dynamics": {"time_step": s, "density": kg/m^3,
+//                "damping": {"mass": a, "stiffness": b}, "substeps": n}
+//       implicit Euler (snh::DynamicsOptions); absent: quasistatic.
+//       solver.steps then counts time steps.
+//   "obstacles": [{"type": "plane", "point": [x, y, z], "normal": [x, y, z]},
+//                 {"type": "sphere", "center": [x, y, z], "radius": r},
+//                 {"type": "cylinder", "point": [x, y, z], "axis": [x, y, z], "radius": r}]
+//       each with optional "keyframes": [{"t", "angle", "translation"}, ...]
+//       (a constraint's keyframed motion keys, rotation about z through the
+//       origin) or an object as a constraint's "motion" (axis, center).
+//   "contact": {"stiffness": k, "thickness": d, "self": false}
+//       the obstacles' penalty; "self": true is refused (not implemented).
+//
 // Surfaces and rigs:
 //   "embed": {"surface": "arm.obj", "cell": 0.125}
 //       the mesh is the voxelization of that closed surface (.obj, .ply,

@@ -7,12 +7,26 @@
  *   SNH_LAMBDA_MODEL  model of the lambda part when mixing (-1: the same)
  *   SNH_UNIFORM_REST  every element shares element 0's rest gradients (lattices)
  *   SNH_REGIONS       per-element materials from a table (kernel_args.h)
+ *   SNH_INERTIA       implicit Euler's inertia term in the per-vertex kernels
+ *                     (gather, block-Jacobi setup, assembled product)
+ *   SNH_OBSTACLES     number of kinematic obstacles (0: none); their contact
+ *                     penalty per vertex (contact/obstacle.h) joins the same
+ *                     per-vertex kernels
  * Element kernels write per-element nodal values; gather kernels sum them per
  * vertex over a fixed adjacency order, so results are bitwise reproducible
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
  * element; gradients: [element][q][a][3]; weights: [element][q]. */
+#include "contact/obstacle.h"
 #include "fem/element_data.h"
 #include "materials/kernel_args.h"
+
+#ifndef SNH_INERTIA
+#define SNH_INERTIA 0
+#endif
+#ifndef SNH_OBSTACLES
+#define SNH_OBSTACLES 0
+#endif
+#define SNH_VERTEX_TERMS (SNH_INERTIA || SNH_OBSTACLES)
 
 /* Strain energy of each element, sum_q w_q psi(F_q), and its smallest J. */
 __kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,
@@ -142,13 +156,35 @@ __kernel void snh_element_diagonal(__global const int* elements, __global const 
   for (int i = 0; i < 9 * SNH_NODES; ++i) out[9 * SNH_NODES * e + i] = k[i];
 }
 
-/* Per vertex: out = mask * (sign * sum of its element-node values + external).
- * adjacency lists the (element * NODES + node) slots of each vertex, in
- * increasing order, between offsets[v] and offsets[v + 1]. */
+/* Per vertex: out = mask * (sign * sum of its element-node values + external
+ * + vertex terms). adjacency lists the (element * NODES + node) slots of each
+ * vertex, in increasing order, between offsets[v] and offsets[v + 1].
+ *
+ * Vertex terms (SNH_INERTIA; incremental potential of implicit Euler,
+ * snh::DynamicsOptions): inertia_mass holds c m_v, c = (1 + a h) / h^2 with
+ * the lumped mass m_v, and inertia_target the point y the inertia pulls
+ * toward. vertex_mode 1 (residual, u = x): -c m_v (x_v - y_v); 2 (Hessian
+ * product, u = p): + c m_v p_v; 0: none. `sign` carries the elastic scale
+ * (1 + b / h) of Rayleigh stiffness damping. Obstacles (SNH_OBSTACLES > 0):
+ * mode 1 adds the contact force of snh_contact_vertices at x, mode 2 the
+ * contact Hessian block times p_v. */
 __kernel void snh_gather_vectors(__global const real* element_values, __global const int* offsets,
                                  __global const int* adjacency, __global const real* mask,
                                  __global const real* external_force, const int use_external, const real sign,
-                                 const int vertex_count, __global real* out) {
+                                 const int vertex_count, __global real* out
+#if SNH_VERTEX_TERMS
+                                 ,
+                                 __global const real* u, const int vertex_mode
+#endif
+#if SNH_INERTIA
+                                 ,
+                                 __global const real* inertia_mass, __global const real* inertia_target
+#endif
+#if SNH_OBSTACLES
+                                 ,
+                                 __global const real* contact_force, __global const real* contact_blocks
+#endif
+) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
   real s0 = SNH_R(0), s1 = SNH_R(0), s2 = SNH_R(0);
@@ -166,6 +202,32 @@ __kernel void snh_gather_vectors(__global const real* element_values, __global c
     s1 += external_force[3 * v + 1];
     s2 += external_force[3 * v + 2];
   }
+#if SNH_INERTIA
+  if (vertex_mode == 1) {
+    const real m = inertia_mass[v];
+    s0 -= m * (u[3 * v] - inertia_target[3 * v]);
+    s1 -= m * (u[3 * v + 1] - inertia_target[3 * v + 1]);
+    s2 -= m * (u[3 * v + 2] - inertia_target[3 * v + 2]);
+  } else if (vertex_mode == 2) {
+    const real m = inertia_mass[v];
+    s0 += m * u[3 * v];
+    s1 += m * u[3 * v + 1];
+    s2 += m * u[3 * v + 2];
+  }
+#endif
+#if SNH_OBSTACLES
+  if (vertex_mode == 1) {
+    s0 += contact_force[3 * v];
+    s1 += contact_force[3 * v + 1];
+    s2 += contact_force[3 * v + 2];
+  } else if (vertex_mode == 2) {
+    __global const real* b = contact_blocks + 9 * v;
+    const real p0 = u[3 * v], p1 = u[3 * v + 1], p2 = u[3 * v + 2];
+    s0 += b[0] * p0 + b[3] * p1 + b[6] * p2;
+    s1 += b[1] * p0 + b[4] * p1 + b[7] * p2;
+    s2 += b[2] * p0 + b[5] * p1 + b[8] * p2;
+  }
+#endif
   out[3 * v] = mask[3 * v] * s0;
   out[3 * v + 1] = mask[3 * v + 1] * s1;
   out[3 * v + 2] = mask[3 * v + 2] * s2;
@@ -176,12 +238,34 @@ __kernel void snh_gather_vectors(__global const real* element_values, __global c
  * elements are all flat) falls back to the inverse of its diagonal. */
 __kernel void snh_block_jacobi_setup(__global const real* element_blocks, __global const int* offsets,
                                      __global const int* adjacency, __global const real* mask, const int vertex_count,
-                                     __global real* inverse) {
+                                     __global real* inverse
+#if SNH_VERTEX_TERMS
+                                     ,
+                                     const real elastic_scale
+#endif
+#if SNH_INERTIA
+                                     ,
+                                     __global const real* inertia_mass
+#endif
+#if SNH_OBSTACLES
+                                     ,
+                                     __global const real* contact_blocks
+#endif
+) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
   mat3 b = mat3_zero();
   for (int k = offsets[v]; k < offsets[v + 1]; ++k)
     for (int i = 0; i < 9; ++i) b.a[i] += element_blocks[9 * adjacency[k] + i];
+#if SNH_VERTEX_TERMS
+  for (int i = 0; i < 9; ++i) b.a[i] *= elastic_scale;
+#endif
+#if SNH_INERTIA
+  for (int d = 0; d < 3; ++d) M3(b, d, d) += inertia_mass[v];
+#endif
+#if SNH_OBSTACLES
+  for (int i = 0; i < 9; ++i) b.a[i] += contact_blocks[9 * v + i];
+#endif
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) M3(b, r, c) *= mask[3 * v + r] * mask[3 * v + c];
   for (int d = 0; d < 3; ++d)
@@ -268,9 +352,57 @@ __kernel void snh_element_matrix_diagonal(__global const real* matrices, const i
         out[(size_t)9 * SNH_NODES * e + 9 * a + 3 * d + i] = k[SNH_DOFS * (3 * a + d) + 3 * a + i];
 }
 
-/* y = mask * y, elementwise (after an assembled product). */
-__kernel void snh_apply_mask(__global const real* mask, const int size, __global real* y) {
+/* y = mask * y, elementwise (after an assembled product); with vertex terms
+ * y = mask * (elastic_scale * y + c m_v p + contact block p), the gather's. */
+__kernel void snh_apply_mask(__global const real* mask, const int size, __global real* y
+#if SNH_VERTEX_TERMS
+                             ,
+                             const real elastic_scale, __global const real* p
+#endif
+#if SNH_INERTIA
+                             ,
+                             __global const real* inertia_mass
+#endif
+#if SNH_OBSTACLES
+                             ,
+                             __global const real* contact_blocks
+#endif
+) {
   const int i = get_global_id(0);
   if (i >= size) return;
+#if SNH_VERTEX_TERMS
+  real s = elastic_scale * y[i];
+#if SNH_INERTIA
+  s += inertia_mass[i / 3] * p[i];
+#endif
+#if SNH_OBSTACLES
+  {
+    const int v = i / 3, r = i % 3;
+    __global const real* b = contact_blocks + 9 * v;
+    s += b[r] * p[3 * v] + b[3 + r] * p[3 * v + 1] + b[6 + r] * p[3 * v + 2];
+  }
+#endif
+  y[i] = mask[i] * s;
+#else
   y[i] *= mask[i];
+#endif
 }
+
+#if SNH_OBSTACLES
+/* Per vertex, the obstacles' contact penalty at x (contact/obstacle.h):
+ * energy, force (xyz), Gauss-Newton Hessian block (column-major) and the
+ * deepest g = thickness - phi (0: no contact). */
+__kernel void snh_contact_vertices(__global const real* x, __global const real* obstacles, const real stiffness,
+                                   const real thickness, const int vertex_count, __global real* energy,
+                                   __global real* force, __global real* blocks, __global real* depth) {
+  const int v = get_global_id(0);
+  if (v >= vertex_count) return;
+  const real xv[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
+  real f[3] = {SNH_R(0), SNH_R(0), SNH_R(0)}, h[9], g = SNH_R(0);
+  for (int i = 0; i < 9; ++i) h[i] = SNH_R(0);
+  energy[v] = obstacle_contact(obstacles, SNH_OBSTACLES, stiffness, thickness, xv, f, h, &g);
+  for (int i = 0; i < 3; ++i) force[3 * v + i] = f[i];
+  for (int i = 0; i < 9; ++i) blocks[9 * v + i] = h[i];
+  depth[v] = g;
+}
+#endif

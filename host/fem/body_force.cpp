@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "fem/rest_state.h"
+#include "snh/error.h"
 #include "snh/loads.h"
 
 namespace snh {
@@ -35,6 +36,15 @@ std::vector<double> lump_body_force(const Mesh& mesh, const std::array<double, 3
       }
     }
   return f;
+}
+
+std::vector<double> lumped_mass(const Mesh& mesh, double density) {
+  if (!(density > 0.0) || !std::isfinite(density))
+    throw Error("lumped_mass: density must be finite and > 0 (got " + std::to_string(density) + ")");
+  const std::vector<double> f = lump_body_force(mesh, {density, 0.0, 0.0});
+  std::vector<double> m(mesh.vertex_count());
+  for (size_t v = 0; v < m.size(); ++v) m[v] = f[3 * v];
+  return m;
 }
 
 }  // namespace snh

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "snh/material.h"
 
@@ -93,5 +94,20 @@ Mat3<Real> material_projected_action(const Mat3<Real>& f, const Mat3<Real>& df, 
 // point for all columns of an element matrix).
 template <typename Real>
 Mat3<Real> material_projected_action_from_svd(const Svd<Real>& svd, const Mat3<Real>& df, const MaterialSpec& m);
+
+// Contact penalty of one vertex at x against `count` obstacle records
+// (kernels/contact/obstacle.h, the records of solver/obstacles.h): returns
+// the energy, writes the force -dE/dx, the Gauss-Newton Hessian (column-
+// major) and the deepest g = thickness - phi (0 when none).
+template <typename Real>
+struct ObstacleContact {
+  Real energy = 0;
+  std::array<Real, 3> force{};
+  std::array<Real, 9> hessian{};
+  Real depth = 0;
+};
+template <typename Real>
+ObstacleContact<Real> obstacle_contact(const std::vector<Real>& records, Real stiffness, Real thickness,
+                                       const std::array<Real, 3>& x);
 
 }  // namespace snh::reference

@@ -51,6 +51,7 @@ class DeviceProblem {
   Vector vector() const { return Vector(viennacl::scalar_vector<Real>(model_.dofs(), Real(0))); }
   double energy(const Vector& x) { return model_.energy(x); }
   double last_min_j() const { return model_.last_min_j(); }
+  double energy_magnitude() const { return model_.last_energy_magnitude(); }
   void residual(const Vector& x, Vector& r) { model_.residual(x, r); }
   bool has_true_hessian() const { return true; }
 

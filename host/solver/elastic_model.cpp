@@ -31,7 +31,8 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 
 template <typename Real>
 ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest,
-                                 const MaterialMap& materials, ProductVariant variant, device::MaterialKernel build)
+                                 const MaterialMap& materials, ProductVariant variant, device::MaterialKernel build,
+                                 const ModelTerms& terms)
     : cl_(cl),
       profiler_([&cl] { cl.finish(); }),
       vertex_count_(mesh.vertex_count()),
@@ -44,6 +45,9 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   // Build-time specialization: only what this scene uses is compiled in.
   defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " + material_.defines() +
              " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+  terms_ = terms;
+  if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
+  if (terms.obstacles > 0) defines_ += " -DSNH_OBSTACLES=" + std::to_string(terms.obstacles);
 
   // Vertex -> (element * nodes + node) slots, in increasing slot order, so
   // every gather sums in the same order on every run.
@@ -71,6 +75,22 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   min_j_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
+  if (terms.inertia) {
+    inertia_mass_host_.assign(vertex_count_, 0.0);
+    inertia_target_host_.assign(dofs(), 0.0);
+    const std::vector<Real> zeros(dofs(), Real(0));
+    inertia_mass_ = cl_.buffer(CL_MEM_READ_ONLY, vertex_count_ * sizeof(Real), zeros.data());
+    inertia_target_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), zeros.data());
+  }
+  if (terms.obstacles > 0) {
+    const std::vector<Real> zeros(9 * vertex_count_, Real(0));
+    obstacles_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * terms.obstacles * sizeof(Real), zeros.data());
+    contact_energy_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
+    contact_force_ = cl_.buffer(CL_MEM_READ_WRITE, dofs() * sizeof(Real), zeros.data());
+    contact_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real), zeros.data());
+    contact_scratch_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real));
+    contact_depth_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
+  }
 
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
   forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
@@ -85,7 +105,14 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
   matrix_diagonal_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_diagonal");
+  if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
   elements_host_ = elements;
+  for (size_t e = 0; e < element_count_; ++e) {
+    const Material& m = materials.of_element(e);
+    double volume = 0.0;
+    for (int q = 0; q < quadrature_; ++q) volume += rest.weight(e, q);
+    elastic_magnitude_ += (std::abs(m.mu) + std::abs(m.lambda)) * volume;
+  }
   set_variant(variant);
 }
 
@@ -219,6 +246,85 @@ void ElasticModel<Real>::set_external_force(const std::vector<double>& force) {
 }
 
 template <typename Real>
+void ElasticModel<Real>::set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target,
+                                     double elastic_scale) {
+  if (!terms_.inertia) throw Error("solver: set_inertia on a model built without the inertia term");
+  if (coefficient.size() != vertex_count_ || target.size() != dofs())
+    throw Error("solver: inertia has " + std::to_string(coefficient.size()) + " coefficients and " +
+                std::to_string(target.size()) + " target entries, expected " + std::to_string(vertex_count_) + " and " +
+                std::to_string(dofs()));
+  for (double c : coefficient)
+    if (!(c >= 0.0) || !std::isfinite(c)) throw Error("solver: inertia coefficient not finite and >= 0");
+  for (double y : target)
+    if (!std::isfinite(y)) throw Error("solver: inertia target has a non-finite entry");
+  if (!(elastic_scale > 0.0) || !std::isfinite(elastic_scale)) throw Error("solver: elastic scale not finite and > 0");
+  inertia_mass_host_ = coefficient;
+  inertia_target_host_ = target;
+  elastic_scale_ = elastic_scale;
+  const std::vector<Real> c(coefficient.begin(), coefficient.end()), y(target.begin(), target.end());
+  cl_.write(inertia_mass_.get(), c.size() * sizeof(Real), c.data());
+  cl_.write(inertia_target_.get(), y.size() * sizeof(Real), y.data());
+}
+
+template <typename Real>
+void ElasticModel<Real>::elastic_forces(const VectorBase& x, VectorBase& out) {
+  cl_kernel k = forces_k_.get();
+  const int count = static_cast<int>(element_count_);
+  set_arg(k, 0, mem(x));
+  set_arg(k, 1, elements_.get());
+  set_arg(k, 2, gradients_.get());
+  set_arg(k, 3, weights_.get());
+  set_arg(k, 4, count);
+  set_arg(k, set_material_args(k, 5), element_scratch_.get());
+  run_element_kernel(k);
+  gather(element_scratch_, out, false);
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_obstacles(const std::vector<double>& records, double stiffness, double thickness) {
+  if (terms_.obstacles == 0) throw Error("solver: set_obstacles on a model built without obstacles");
+  if (records.size() != static_cast<size_t>(8 * terms_.obstacles))
+    throw Error("solver: " + std::to_string(records.size()) + " obstacle record entries, expected " +
+                std::to_string(8 * terms_.obstacles));
+  const std::vector<Real> r(records.begin(), records.end());
+  cl_.write(obstacles_.get(), r.size() * sizeof(Real), r.data());
+  contact_stiffness_ = stiffness;
+  contact_thickness_ = thickness;
+}
+
+template <typename Real>
+void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const {
+  cl_kernel k = contact_k_.get();
+  const Real stiffness = static_cast<Real>(contact_stiffness_), thickness = static_cast<Real>(contact_thickness_);
+  const int count = static_cast<int>(vertex_count_);
+  set_arg(k, 0, mem(x));
+  set_arg(k, 1, obstacles_.get());
+  set_arg(k, 2, stiffness);
+  set_arg(k, 3, thickness);
+  set_arg(k, 4, count);
+  set_arg(k, 5, contact_energy_.get());
+  set_arg(k, 6, contact_force_.get());
+  set_arg(k, 7, linearization ? contact_blocks_.get() : contact_scratch_.get());
+  set_arg(k, 8, contact_depth_.get());
+  cl_.run(k, vertex_count_);
+}
+
+template <typename Real>
+ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
+  ContactState state;
+  if (terms_.obstacles == 0) return state;
+  contact(x);
+  std::vector<Real> depth(vertex_count_);
+  cl_.read(contact_depth_.get(), depth.size() * sizeof(Real), depth.data());
+  for (Real g : depth)
+    if (g > Real(0)) {
+      ++state.contacts;
+      state.max_penetration = std::max(state.max_penetration, static_cast<double>(g));
+    }
+  return state;
+}
+
+template <typename Real>
 void ElasticModel<Real>::run_element_kernel(cl_kernel k) const {
   cl_.run(k, element_count_);
 }
@@ -245,23 +351,41 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   }
   double sum = 0.0;
   for (Real v : e) sum += static_cast<double>(v);
+  sum *= elastic_scale_;
+  last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
+  if (terms_.obstacles > 0) {
+    contact(x);
+    std::vector<Real> c(vertex_count_);
+    cl_.read(contact_energy_.get(), c.size() * sizeof(Real), c.data());
+    for (Real v : c) sum += static_cast<double>(v);
+  }
   last_min_j_ = j.empty() ? 0.0 : static_cast<double>(*std::min_element(j.begin(), j.end()));
-  if (has_external_) {
+  if (has_external_ || terms_.inertia) {
     std::vector<Real> xh(dofs());
     {
       PhaseScope transfer(&profiler_, Phase::transfers);
       viennacl::copy(x.begin(), x.end(), xh.begin());
     }
-    for (size_t i = 0; i < xh.size(); ++i) sum -= external_host_[i] * static_cast<double>(xh[i]);
+    if (has_external_)
+      for (size_t i = 0; i < xh.size(); ++i) {
+        sum -= external_host_[i] * static_cast<double>(xh[i]);
+        last_energy_magnitude_ += std::abs(external_host_[i] * static_cast<double>(xh[i]));
+      }
+    if (terms_.inertia)
+      for (size_t i = 0; i < xh.size(); ++i) {
+        const double d = static_cast<double>(xh[i]) - inertia_target_host_[i];
+        sum += 0.5 * inertia_mass_host_[i / 3] * d * d;
+      }
   }
   return sum;
 }
 
 template <typename Real>
-void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase& out, bool external) const {
+void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase& out, bool external,
+                                const VectorBase* u, int vertex_mode, double scale) const {
   cl_kernel k = gather_k_.get();
   const int use_external = external && has_external_ ? 1 : 0;
-  const Real sign = Real(1);
+  const Real sign = static_cast<Real>(scale);
   const int count = static_cast<int>(vertex_count_);
   set_arg(k, 0, element_values.get());
   set_arg(k, 1, offsets_.get());
@@ -272,6 +396,19 @@ void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase
   set_arg(k, 6, sign);
   set_arg(k, 7, count);
   set_arg(k, 8, mem(out));
+  cl_uint next = 9;
+  if (vertex_terms()) {
+    set_arg(k, next++, u ? mem(*u) : mem(out));  // read only when vertex_mode > 0
+    set_arg(k, next++, u ? vertex_mode : 0);
+  }
+  if (terms_.inertia) {
+    set_arg(k, next++, inertia_mass_.get());
+    set_arg(k, next++, inertia_target_.get());
+  }
+  if (terms_.obstacles > 0) {
+    set_arg(k, next++, contact_force_.get());
+    set_arg(k, next++, contact_blocks_.get());
+  }
   cl_.run(k, vertex_count_);
 }
 
@@ -287,7 +424,8 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
   set_arg(k, 4, count);
   set_arg(k, set_material_args(k, 5), element_scratch_.get());
   run_element_kernel(k);
-  gather(element_scratch_, r, true);
+  if (terms_.obstacles > 0) contact(x);
+  gather(element_scratch_, r, true, &x, 1, elastic_scale_);
 }
 
 template <typename Real>
@@ -305,6 +443,7 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   set_arg(k, next, projected_);
   set_arg(k, next + 1, cache_.get());
   run_element_kernel(k);
+  if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
   last_assembly_seconds_ = 0.0;
   if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled) compute_element_matrices();
   if (variant_ == ProductVariant::assembled) assemble();
@@ -322,6 +461,13 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(mk, 0, mask_.get());
     set_arg(mk, 1, size);
     set_arg(mk, 2, mem(y));
+    cl_uint next = 3;
+    if (vertex_terms()) {
+      set_arg(mk, next++, static_cast<Real>(elastic_scale_));
+      set_arg(mk, next++, mem(p));
+    }
+    if (terms_.inertia) set_arg(mk, next++, inertia_mass_.get());
+    if (terms_.obstacles > 0) set_arg(mk, next++, contact_blocks_.get());
     cl_.run(mk, dofs());
     return;
   }
@@ -354,7 +500,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(k, next + 1, element_scratch_.get());
   }
   run_element_kernel(k);
-  gather(element_scratch_, y, false);
+  gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }
 
 template <typename Real>
@@ -386,6 +532,10 @@ void ElasticModel<Real>::setup_preconditioner() {
   set_arg(s, 3, mask_.get());
   set_arg(s, 4, vertices);
   set_arg(s, 5, inverse_blocks_.get());
+  cl_uint next = 6;
+  if (vertex_terms()) set_arg(s, next++, static_cast<Real>(elastic_scale_));
+  if (terms_.inertia) set_arg(s, next++, inertia_mass_.get());
+  if (terms_.obstacles > 0) set_arg(s, next++, contact_blocks_.get());
   cl_.run(s, vertex_count_);
 }
 

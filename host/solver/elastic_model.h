@@ -20,6 +20,19 @@
 
 namespace snh::solver {
 
+// Terms beyond elasticity that a scene compiles into the kernels (printed in
+// the kernel specialization): only what it uses.
+struct ModelTerms {
+  bool inertia = false;  // implicit Euler's inertia (SNH_INERTIA)
+  int obstacles = 0;     // kinematic obstacles' contact penalty (SNH_OBSTACLES)
+};
+
+// Contact with the obstacles at some x.
+struct ContactState {
+  int contacts = 0;              // vertices with g = thickness - phi > 0
+  double max_penetration = 0.0;  // the largest g (0: none)
+};
+
 template <typename Real>
 class ElasticModel {
  public:
@@ -31,19 +44,38 @@ class ElasticModel {
   // regions builds the SNH_REGIONS kernels (device::material_defines).
   // Throws snh::Error when the map does not fit the mesh.
   ElasticModel(device::OpenClContext& cl, const Mesh& mesh, const fem::RestState& rest, const MaterialMap& materials,
-               ProductVariant variant, device::MaterialKernel build = device::MaterialKernel::specialized);
+               ProductVariant variant, device::MaterialKernel build = device::MaterialKernel::specialized,
+               const ModelTerms& terms = {});
 
   size_t dofs() const { return 3 * vertex_count_; }
   // 1 for free DOFs, 0 for constrained ones (xyz per vertex).
   void set_mask(const std::vector<Real>& mask);
   // Lumped external force, xyz per vertex; empty for none.
   void set_external_force(const std::vector<double>& force);
+  // Implicit Euler's terms (ModelTerms::inertia): the energy becomes
+  //   elastic_scale * Psi(x) + 1/2 sum_v c_v |x_v - y_v|^2 - f^T x,
+  // c_v = coefficient (per vertex, c m_v), y = target (xyz per vertex); the
+  // Hessian elastic_scale * K + diag(c_v). snh::Error without the term.
+  void set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target, double elastic_scale);
+  // -dPsi/dx at x, masked, without external force, inertia or scale.
+  void elastic_forces(const VectorBase& x, VectorBase& out);
+  // The obstacles placed for the coming solve (ModelTerms::obstacles records
+  // of solver/obstacles.h) and the penalty's stiffness and thickness: the
+  // energy gains sum over vertices of their contact energy, the residual
+  // their contact force, the Hessian their Gauss-Newton blocks.
+  void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
+  ContactState contact_state(const VectorBase& x);
 
   // Total potential energy: elastic energy minus external work, summed on the
   // host in double and in element order. Non-finite when any element's is.
   double energy(const VectorBase& x);
   // The smallest J over all quadrature points at the x of the last energy().
   double last_min_j() const { return last_min_j_; }
+  // The size of the terms the last energy() summed, for its rounding: the
+  // elastic part's sum over elements of (|mu| + |lambda|) V (a material's
+  // energy sums terms of that size, e.g. mu/2 (I_C - 3) with I_C ~ 3, even
+  // where the total is small) times the elastic scale, plus sum |f_i x_i|.
+  double last_energy_magnitude() const { return last_energy_magnitude_; }
   // r = mask * (elastic forces + external force) = -mask * dE/dx.
   void residual(const VectorBase& x, VectorBase& r);
   // The per-Newton linearization at x (SVD and eigensystem per point),
@@ -102,7 +134,10 @@ class ElasticModel {
   // MATERIAL_ARGS from index first; returns the next index.
   cl_uint set_material_args(cl_kernel k, cl_uint first) const;
   void assemble();
-  void gather(const device::Buffer& element_values, VectorBase& out, bool external) const;
+  // vertex_mode: 0 none, 1 residual terms of u = x, 2 product terms of u = p
+  // (fem.cl, snh_gather_vectors); scale multiplies the element values.
+  void gather(const device::Buffer& element_values, VectorBase& out, bool external, const VectorBase* u = nullptr,
+              int vertex_mode = 0, double scale = 1.0) const;
 
   device::OpenClContext& cl_;
   mutable PhaseProfiler profiler_;
@@ -125,6 +160,19 @@ class ElasticModel {
   std::vector<int> elements_host_;
   double last_min_j_ = 0.0;
   std::vector<double> external_host_;
+  ModelTerms terms_;
+  device::Buffer inertia_mass_, inertia_target_;
+  std::vector<double> inertia_mass_host_, inertia_target_host_;
+  double elastic_scale_ = 1.0;
+  double elastic_magnitude_ = 0.0, last_energy_magnitude_ = 0.0;
+  // contact_blocks_ holds the blocks of the last linearize(), which the
+  // products use; other evaluations write theirs to contact_scratch_.
+  device::Buffer obstacles_, contact_energy_, contact_force_, contact_blocks_, contact_scratch_, contact_depth_;
+  double contact_stiffness_ = 0.0, contact_thickness_ = 0.0;
+  device::Kernel contact_k_;
+  // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
+  void contact(const VectorBase& x, bool linearization = false) const;
+  bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0; }
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
       setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_, matrix_diagonal_k_;

@@ -22,6 +22,9 @@
 //   void step(const Vector& x, double alpha, const Vector& p, Vector& out);  // out = x + alpha p
 //   void swap(Vector& a, Vector& b);
 //   bool has_true_hessian() const;       // whether linearize(x, false) is available
+// and optionally
+//   double energy_magnitude() const;     // the size of the terms the last energy() summed
+// for the rounding noise of energies that are small sums of large terms.
 #pragma once
 
 #include <algorithm>
@@ -29,6 +32,8 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "snh/simulation.h"
@@ -42,6 +47,19 @@ struct LinearSolve {
   bool negative_curvature = false;  // the operator showed p^T K p <= 0 (true Hessian, or rounding)
   bool breakdown = false;           // non-finite curvature
 };
+
+// The problem's energy_magnitude(), or 0 when it has none.
+template <typename P, typename = void>
+struct HasEnergyMagnitude : std::false_type {};
+template <typename P>
+struct HasEnergyMagnitude<P, std::void_t<decltype(std::declval<const P&>().energy_magnitude())>> : std::true_type {};
+template <typename P>
+double energy_magnitude_of(const P& problem) {
+  if constexpr (HasEnergyMagnitude<P>::value)
+    return problem.energy_magnitude();
+  else
+    return 0.0;
+}
 
 template <typename Problem>
 class NewtonDriver {
@@ -123,7 +141,7 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     if (residuals.size() > kStagnation) {
       const size_t old = residuals.size() - 1 - kStagnation;
       const double best = *std::min_element(residuals.begin() + old + 1, residuals.end());
-      const double noise = 64.0 * eps * std::abs(energies[old]);
+      const double noise = 64.0 * eps * std::max(std::abs(energies[old]), energy_magnitude_of(problem_));
       if (best > 0.99 * residuals[old] && energies[old] - energy <= noise) {
         finish("stagnated");
         break;
@@ -208,7 +226,8 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
         problem_.step(x, alpha, p, trial);
         trial_energy = problem_.energy(trial);
         if (!std::isfinite(trial_energy)) continue;
-        const double noise = 64.0 * eps * std::max(std::abs(energy), std::abs(trial_energy));
+        const double noise =
+            64.0 * eps * std::max({std::abs(energy), std::abs(trial_energy), energy_magnitude_of(problem_)});
         bool residual_known = false;
         if (!(trial_energy <= energy - kArmijo * alpha * slope)) {
           if (!(std::abs(trial_energy - energy) <= noise)) continue;

@@ -8,6 +8,7 @@
 #include "snh/error.h"
 #include "snh/simulation.h"
 #include "solver/constraint_checks.h"
+#include "solver/obstacles.h"
 
 namespace snh {
 
@@ -111,6 +112,23 @@ void validate_solve_inputs(const Mesh& mesh, const std::vector<ConstraintSet>& c
       (options.strain_tolerance && !std::isfinite(*options.strain_tolerance)))
     throw Error("solve options: tolerances must be finite and >= 0");
   if (options.line_search_halvings < 0) throw Error("solve options: line_search_halvings must be >= 0");
+  check_vector(options.initial_velocities, "initial_velocities");
+  if (!options.initial_velocities.empty() && !options.dynamics)
+    throw Error("solve options: initial_velocities need dynamics (quasistatic solves have no velocities)");
+  if (options.dynamics) {
+    const DynamicsOptions& d = *options.dynamics;
+    if (!(d.time_step > 0.0) || !std::isfinite(d.time_step))
+      throw Error("dynamics: time_step must be finite and > 0 (got " + std::to_string(d.time_step) + ")");
+    if (!(d.density > 0.0) || !std::isfinite(d.density))
+      throw Error("dynamics: density must be finite and > 0 (got " + std::to_string(d.density) + ")");
+    if (!(d.damping.mass >= 0.0) || !std::isfinite(d.damping.mass))
+      throw Error("dynamics: damping.mass must be finite and >= 0 (got " + std::to_string(d.damping.mass) + ")");
+    if (!(d.damping.stiffness >= 0.0) || !std::isfinite(d.damping.stiffness))
+      throw Error("dynamics: damping.stiffness must be finite and >= 0 (got " + std::to_string(d.damping.stiffness) +
+                  ")");
+    if (d.substeps < 1) throw Error("dynamics: substeps must be >= 1 (got " + std::to_string(d.substeps) + ")");
+  }
+  solver::validate_obstacles(options.obstacles, options.contact);
 }
 
 double residual_tolerance(const Mesh& mesh, const MaterialMap& materials, const SolveOptions& options) {

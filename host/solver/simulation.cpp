@@ -1,6 +1,7 @@
 // Simulation: the per-frame driver. Constraint targets and loads per load
-// step, the float-to-double fallback, and one Newton driver
-// (solver/newton_driver.h) over the device problem.
+// step (or per implicit Euler time step with dynamics), the float-to-double
+// fallback, and one Newton driver (solver/newton_driver.h) over the device
+// problem.
 #include "snh/simulation.h"
 
 #include <Eigen/Geometry>
@@ -20,6 +21,7 @@
 #include "solver/lattice_hierarchy.h"
 #include "solver/multigrid.h"
 #include "solver/newton_driver.h"
+#include "solver/obstacles.h"
 #include "solver/phase_profile.h"
 
 namespace snh {
@@ -107,6 +109,10 @@ struct Simulation::Impl {
   std::vector<char> prescribed;  // per DOF
   std::vector<std::string> warnings;
   std::vector<double> x;
+  // Dynamics: velocities (xyz per vertex), lumped mass per vertex, time.
+  std::vector<double> v, mass;
+  double time = 0.0;
+  std::vector<double> obstacle_table;  // the obstacles placed for the coming Newton solve
   std::vector<Target> targets;
   std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
   std::vector<double> body_force_lumped;
@@ -158,6 +164,16 @@ struct Simulation::Impl {
         tolerance(0.0) {
     validate_solve_inputs(mesh, constraints, options);
     validate_material_map(mesh, materials);
+    // The multigrid's coarse levels carry the elastic Hessian only: no
+    // inertia, no contact blocks (and its kernels lack those arguments).
+    if (options.dynamics || !options.obstacles.empty()) {
+      if (options.preconditioner == Preconditioner::multigrid)
+        throw Error(std::string("preconditioner multigrid: its coarse levels do not carry the ") +
+                    (options.dynamics ? "inertia" : "obstacle contact") +
+                    " terms yet; use block-jacobi (or automatic) with " +
+                    (options.dynamics ? "dynamics" : "obstacles"));
+      if (preconditioner == Preconditioner::multigrid) preconditioner = Preconditioner::block_jacobi;
+    }
     if (preconditioner == Preconditioner::multigrid) solver::require_hex8_lattice(mesh);
     tolerance = residual_tolerance(mesh, materials, options);
     prescribed = solver::prescribed_dofs(mesh, constraints);
@@ -166,8 +182,15 @@ struct Simulation::Impl {
     update_body_force();
     total_force(force_to);
     force_from.assign(force_to.size(), 0.0);
-    if (!options.ramp_loads) force_from = force_to;
-    solver::check_rigid_modes(mesh, prescribed, force_to, warnings);
+    if (!options.ramp_loads || options.dynamics) force_from = force_to;
+    // With dynamics inertia holds every rigid motion: no equilibrium needed.
+    // Obstacles may hold what the constraints leave free: a warning at most.
+    if (!options.dynamics) check_rigid_modes();
+    if (options.dynamics) {
+      mass = lumped_mass(mesh, options.dynamics->density);
+      v = options.initial_velocities.empty() ? std::vector<double>(3 * mesh.vertex_count(), 0.0)
+                                             : options.initial_velocities;
+    }
     if (!mesh_warnings.unused_vertices.empty())
       warnings.push_back("mesh: " + std::to_string(mesh_warnings.unused_vertices.size()) +
                          " vertices belong to no element (first: " +
@@ -178,6 +201,11 @@ struct Simulation::Impl {
       dual = make_engine<double>(nullptr, product);
     else
       single = make_engine<float>(nullptr, product);
+  }
+
+  void check_rigid_modes() {
+    if (options.dynamics) return;
+    solver::check_rigid_modes(mesh, prescribed, options.obstacles.empty() ? force_to : std::vector<double>(), warnings);
   }
 
   void update_body_force() {
@@ -204,7 +232,11 @@ struct Simulation::Impl {
     engine->viennacl_context_id = context ? device::bind_viennacl(*context) : viennacl_context_id;
     engine->own_context = std::move(context);
     device::use_viennacl(engine->viennacl_context_id);
-    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant);
+    solver::ModelTerms terms;
+    terms.inertia = options.dynamics.has_value();
+    terms.obstacles = static_cast<int>(options.obstacles.size());
+    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant,
+                                                                 device::MaterialKernel::specialized, terms);
     std::vector<Real> mask(prescribed.size());
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
     engine->model->set_mask(mask);
@@ -305,11 +337,51 @@ struct Simulation::Impl {
                       std::to_string(c.vertices[i]));
   }
 
+  // One implicit Euler step's data (see DynamicsOptions): the start x_n, the
+  // inertia's per-vertex coefficient c m_v and target y, and b / h.
+  struct EulerStep {
+    std::vector<double> start, coefficient, target;
+    double stiffness_damping = 0.0;
+  };
+
+  EulerStep euler_step(double h) const {
+    const DynamicsOptions& d = *options.dynamics;
+    EulerStep e;
+    e.start = x;
+    const double ah = d.damping.mass * h, c = (1.0 + ah) / (h * h);
+    e.coefficient.resize(mass.size());
+    for (size_t i = 0; i < mass.size(); ++i) e.coefficient[i] = c * mass[i];
+    // c M (x - y) = M (x - x~) / h^2 + a M (x - x_n) / h, x~ = x_n + h v_n.
+    e.target.resize(x.size());
+    for (size_t i = 0; i < x.size(); ++i) e.target[i] = (x[i] + h * v[i] + ah * x[i]) / (1.0 + ah);
+    e.stiffness_damping = d.damping.stiffness / h;
+    return e;
+  }
+
   template <typename Real>
   StepResult solve_in(Engine<Real>& engine, int s, std::vector<NewtonIteration>& history, Clock::time_point start,
-                      const ProgressCallback& progress) {
+                      const ProgressCallback& progress, const EulerStep* euler = nullptr) {
     device::use_viennacl(engine.viennacl_context_id);
-    engine.model->set_external_force(force_applied);
+    if (euler) {
+      // Rayleigh stiffness damping's linear part: f + (b/h) grad Psi(x_n).
+      std::vector<double> force = force_applied;
+      if (euler->stiffness_damping > 0.0) {
+        const std::vector<Real> xs(euler->start.begin(), euler->start.end());
+        viennacl::vector<Real> xn(xs.size()), fe(xs.size());
+        viennacl::copy(xs.begin(), xs.end(), xn.begin());
+        engine.model->elastic_forces(xn, fe);
+        std::vector<Real> host(xs.size());
+        viennacl::copy(fe.begin(), fe.end(), host.begin());
+        force.resize(host.size(), 0.0);
+        for (size_t i = 0; i < host.size(); ++i) force[i] -= euler->stiffness_damping * static_cast<double>(host[i]);
+      }
+      engine.model->set_external_force(force);
+      engine.model->set_inertia(euler->coefficient, euler->target, 1.0 + euler->stiffness_damping);
+    } else {
+      engine.model->set_external_force(force_applied);
+    }
+    if (!options.obstacles.empty())
+      engine.model->set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
     const std::vector<Real> xr(x.begin(), x.end());
     viennacl::vector<Real> xd(x.size());
     {
@@ -329,6 +401,9 @@ struct Simulation::Impl {
         });
       };
     StepResult step = engine.newton->solve_step(s, xd, tolerance, history, start, observe);
+    const solver::ContactState contact = engine.model->contact_state(xd);
+    step.contacts = contact.contacts;
+    step.max_penetration = contact.max_penetration;
     std::vector<Real> back(x.size());
     {
       solver::PhaseScope download(&engine.model->profiler(), solver::Phase::transfers);
@@ -359,63 +434,24 @@ struct Simulation::Impl {
       for (size_t i = 0; i < constraints[k].vertices.size(); ++i)
         for (int d = 0; d < 3; ++d) t.start[3 * i + d] = x[3 * constraints[k].vertices[i] + d];
     }
-    const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
-    bool in_double = options.precision == Precision::double_;
-    bool fell_back = false;
+    fell_back = false;
+    in_double = options.precision == Precision::double_;
     result.converged = true;
     for (int s = 1; s <= steps; ++s) {
       const auto step_clock = Clock::now();
       const double step_callbacks = callback_seconds;
       const solver::PhaseSeconds step_start_phases = phase_seconds();
-      const double fraction = static_cast<double>(s) / steps;
-      for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
-      force_applied.resize(force_to.size());
-      for (size_t i = 0; i < force_to.size(); ++i)
-        force_applied[i] = force_from[i] + fraction * (force_to[i] - force_from[i]);
-      require_defined(x, s);
-      const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
       StepResult step;
-      if (!in_double) {
-        step = solve_in(*single, s, result.history, start, progress);
-        step.precision_used = to_string(options.precision);
-      }
-      const bool failed = !in_double && !step.converged && step.status != "cancelled";
-      if (may_fall_back && (fell_back || failed)) {
-        if (!fell_back && !cl.info().has_fp64) {
-          result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + step.status +
-                                    ") and fallback_to_double was asked, but the device has no fp64");
-        } else {
-          std::string note;
-          if (!fell_back) {
-            std::ostringstream why;
-            why << "float " << step.status << " after " << step.newton_iterations << " Newton / " << step.cg_iterations
-                << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
-            note = why.str();
-            x = step_start;
-          }
-          const size_t first_record = result.history.size();
-          StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress);
-          redo.precision_used = "double";
-          if (!fell_back) {
-            if (first_record < result.history.size()) {
-              std::string& r = result.history[first_record].recovery;
-              r = "float " + step.status + " -> double" + (r.empty() ? "" : "; " + r);
-            }
-            redo.newton_iterations += step.newton_iterations;
-            redo.cg_iterations += step.cg_iterations;
-            redo.fallback = note;
-            result.warnings.push_back("step " + std::to_string(s) + ": " + note +
-                                      (redo.converged ? " (converged)" : " (did not converge: " + redo.status + ")") +
-                                      (s < steps ? "; the remaining steps run in double" : ""));
-          } else {
-            redo.fallback = "double (after a float failure in an earlier step)";
-          }
-          fell_back = true;
-          step = redo;
-        }
-      } else if (in_double) {
-        step = solve_in(*dual, s, result.history, start, progress);
-        step.precision_used = "double";
+      if (options.dynamics) {
+        step = time_step(s, steps, result, start, progress);
+      } else {
+        const double fraction = static_cast<double>(s) / steps;
+        for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+        if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
+        force_applied.resize(force_to.size());
+        for (size_t i = 0; i < force_to.size(); ++i)
+          force_applied[i] = force_from[i] + fraction * (force_to[i] - force_from[i]);
+        step = solve_step(s, steps, result, start, progress);
       }
       result.converged = result.converged && step.converged;
       result.final_residual_norm = step.residual_norm;
@@ -429,6 +465,107 @@ struct Simulation::Impl {
         break;
       }
     }
+    return finish(result, start, solve_start);
+  }
+
+  // Implicit Euler time step s of n: `substeps` minimizations of the
+  // incremental potential, the constraint targets interpolated linearly
+  // within the step. Newton and CG counts summed; the last substep's status.
+  StepResult time_step(int s, int steps, SolveResult& result, Clock::time_point start,
+                       const ProgressCallback& progress) {
+    const DynamicsOptions& d = *options.dynamics;
+    const double h = d.time_step / d.substeps;
+    bool defined_for_inversion = true;
+    for (const Material& m : materials.materials)
+      defined_for_inversion = defined_for_inversion && m.defined_for_inversion();
+    force_applied = force_to;
+    StepResult total;
+    total.step = s;
+    total.converged = true;
+    for (int j = 1; j <= d.substeps; ++j) {
+      const EulerStep euler = euler_step(h);
+      // Newton starts from x~ = x_n + h v_n (from x_n where a material is
+      // undefined for inverted elements and x~ could invert one).
+      if (defined_for_inversion)
+        for (size_t i = 0; i < x.size(); ++i) x[i] += h * v[i];
+      const double fraction = (s - 1 + static_cast<double>(j) / d.substeps) / steps;
+      for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+      if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
+      const StepResult sub = solve_step(s, steps, result, start, progress, &euler);
+      for (size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - euler.start[i]) / h;
+      time += h;
+      total.newton_iterations += sub.newton_iterations;
+      total.cg_iterations += sub.cg_iterations;
+      total.converged = total.converged && sub.converged;
+      total.residual_norm = sub.residual_norm;
+      total.status = sub.status;
+      total.precision_used = sub.precision_used;
+      total.contacts = sub.contacts;
+      total.max_penetration = sub.max_penetration;
+      if (!sub.fallback.empty()) total.fallback = sub.fallback;
+      if (sub.status == "cancelled") break;
+    }
+    total.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    total.time = time;
+    return total;
+  }
+
+  bool fell_back = false, in_double = true;
+
+  // One Newton solve from x at its step's targets and forces, with the
+  // float-to-double fallback.
+  StepResult solve_step(int s, int steps, SolveResult& result, Clock::time_point start,
+                        const ProgressCallback& progress, const EulerStep* euler = nullptr) {
+    const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
+    require_defined(x, s);
+    const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
+    StepResult step;
+    if (!in_double) {
+      step = solve_in(*single, s, result.history, start, progress, euler);
+      step.precision_used = to_string(options.precision);
+    }
+    const bool failed = !in_double && !step.converged && step.status != "cancelled";
+    if (may_fall_back && (fell_back || failed)) {
+      if (!fell_back && !cl.info().has_fp64) {
+        result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + step.status +
+                                  ") and fallback_to_double was asked, but the device has no fp64");
+      } else {
+        std::string note;
+        if (!fell_back) {
+          std::ostringstream why;
+          why << "float " << step.status << " after " << step.newton_iterations << " Newton / " << step.cg_iterations
+              << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
+          note = why.str();
+          x = step_start;
+        }
+        const size_t first_record = result.history.size();
+        StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress, euler);
+        redo.precision_used = "double";
+        if (!fell_back) {
+          if (first_record < result.history.size()) {
+            std::string& r = result.history[first_record].recovery;
+            r = "float " + step.status + " -> double" + (r.empty() ? "" : "; " + r);
+          }
+          redo.newton_iterations += step.newton_iterations;
+          redo.cg_iterations += step.cg_iterations;
+          redo.fallback = note;
+          result.warnings.push_back("step " + std::to_string(s) + ": " + note +
+                                    (redo.converged ? " (converged)" : " (did not converge: " + redo.status + ")") +
+                                    (s < steps ? "; the remaining steps run in double" : ""));
+        } else {
+          redo.fallback = "double (after a float failure in an earlier step)";
+        }
+        fell_back = true;
+        step = redo;
+      }
+    } else if (in_double) {
+      step = solve_in(*dual, s, result.history, start, progress, euler);
+      step.precision_used = "double";
+    }
+    return step;
+  }
+
+  SolveResult finish(SolveResult& result, Clock::time_point start, const solver::PhaseSeconds& solve_start) {
     // What this solve reached becomes where the next one starts from.
     for (size_t k = 0; k < constraints.size(); ++k) {
       Target& t = targets[k];
@@ -448,7 +585,7 @@ struct Simulation::Impl {
     result.profile =
         solver::make_profile(solver::difference(phase_seconds(), solve_start), result.seconds - callback_seconds);
     result.device_memory_bytes = device_memory_bytes();
-    return result;
+    return std::move(result);
   }
 };
 
@@ -505,7 +642,7 @@ void Simulation::set_external_force(const std::vector<double>& lumped) {
   validate_solve_inputs(impl_->mesh, {}, check);
   impl_->user_force = lumped;
   impl_->total_force(impl_->force_to);
-  solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
+  impl_->check_rigid_modes();
 }
 
 void Simulation::set_body_force(const std::array<double, 3>& per_rest_volume) {
@@ -515,7 +652,7 @@ void Simulation::set_body_force(const std::array<double, 3>& per_rest_volume) {
   impl_->body_force = per_rest_volume;
   impl_->update_body_force();
   impl_->total_force(impl_->force_to);
-  solver::check_rigid_modes(impl_->mesh, impl_->prescribed, impl_->force_to, impl_->warnings);
+  impl_->check_rigid_modes();
 }
 
 void Simulation::set_state(const std::vector<double>& positions) {
@@ -525,16 +662,30 @@ void Simulation::set_state(const std::vector<double>& positions) {
   impl_->x = positions;
 }
 
+void Simulation::set_velocities(const std::vector<double>& velocities) {
+  if (!impl_->options.dynamics) throw Error("set_velocities: the simulation has no dynamics (SolveOptions::dynamics)");
+  SolveOptions check;
+  check.dynamics = impl_->options.dynamics;
+  check.initial_velocities = velocities;
+  validate_solve_inputs(impl_->mesh, {}, check);
+  impl_->v = velocities.empty() ? std::vector<double>(3 * impl_->mesh.vertex_count(), 0.0) : velocities;
+}
+
 void Simulation::restart() {
   Impl& m = *impl_;
   m.x = m.options.initial_positions.empty() ? m.mesh.positions : m.options.initial_positions;
+  if (m.options.dynamics) {
+    m.v = m.options.initial_velocities.empty() ? std::vector<double>(3 * m.mesh.vertex_count(), 0.0)
+                                               : m.options.initial_velocities;
+    m.time = 0.0;
+  }
   m.targets.assign(m.constraints.size(), Impl::Target());
   m.user_force = m.options.external_force;
   m.body_force = m.options.body_force;
   m.update_body_force();
   m.total_force(m.force_to);
   m.force_from.assign(m.force_to.size(), 0.0);
-  if (!m.options.ramp_loads) m.force_from = m.force_to;
+  if (!m.options.ramp_loads || m.options.dynamics) m.force_from = m.force_to;
   m.force_applied.clear();
 }
 
@@ -543,6 +694,8 @@ SolveResult Simulation::solve(int load_steps, const ProgressCallback& progress, 
 }
 
 const std::vector<double>& Simulation::positions() const { return impl_->x; }
+const std::vector<double>& Simulation::velocities() const { return impl_->v; }
+double Simulation::time() const { return impl_->time; }
 const std::vector<double>& Simulation::applied_force() const { return impl_->force_applied; }
 const Mesh& Simulation::mesh() const { return impl_->mesh; }
 const MaterialMap& Simulation::materials() const { return impl_->materials; }

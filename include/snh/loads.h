@@ -18,4 +18,10 @@ namespace snh {
 // b h^3. Throws snh::Error for an invalid mesh (validate_mesh).
 std::vector<double> lump_body_force(const Mesh& mesh, const std::array<double, 3>& force_per_rest_volume);
 
+// Lumped (row-sum) mass per vertex of a uniform density: the same integral,
+// m_a = sum over elements and points of w_q N_a(xi_q) density, so a body
+// force density * g lumps to exactly m_a g. Throws snh::Error for an invalid
+// mesh or a density that is not finite and positive.
+std::vector<double> lumped_mass(const Mesh& mesh, double density);
+
 }  // namespace snh

@@ -125,8 +125,67 @@ enum class HessianMode {
   adaptive,
 };
 
+// Implicit (backward) Euler time stepping, each step the minimization of the
+// incremental potential (Simulation::solve with dynamics; README "Dynamics
+// and obstacles"): with h = time_step / substeps, x~ = x_n + h v_n,
+//   E(x) = 1/(2 h^2) |x - x~|^2_M + a/(2 h) |x - x_n|^2_M
+//        + Psi(x) + b/h [Psi(x) - Psi(x_n) - grad Psi(x_n)^T (x - x_n)] - f^T x,
+// M the lumped mass (row-sum lumping of rho with each element's quadrature,
+// snh::lumped_mass). Its gradient is M (x - x~)/h^2 + grad Psi(x) - f plus the
+// Rayleigh damping force (a M + b K) v to first order in h, v = (x - x_n)/h:
+// the mass term exactly, the stiffness term as the Bregman divergence of Psi
+// about x_n (gradient b/h (grad Psi(x) - grad Psi(x_n)) = b K v + O(h |v|^2)),
+// whose Hessian b/h K(x) reuses the elastic Hessian (projected with it).
+struct DynamicsOptions {
+  double time_step = 0.0;  // seconds per time step (> 0)
+  double density = 0.0;    // mass per rest volume (> 0)
+  struct Damping {
+    double mass = 0.0;       // a, 1/s (>= 0)
+    double stiffness = 0.0;  // b, s (>= 0)
+  } damping;
+  int substeps = 1;  // backward Euler steps of time_step / substeps per time step (>= 1)
+};
+
+// A kinematic obstacle the body cannot enter (README "Dynamics and
+// obstacles"). Its placement at load parameter t (as ConstraintSet::motion:
+// step s of n has t = s / n) is motion(t) applied to the one given here;
+// without a motion it stays.
+enum class ObstacleType { plane, sphere, cylinder };
+const char* to_string(ObstacleType type);  // "plane", "sphere", "cylinder"
+
+struct Obstacle {
+  ObstacleType type = ObstacleType::plane;
+  // plane: a point on it; sphere: its centre; cylinder: a point on its axis.
+  std::array<double, 3> point{0, 0, 0};
+  // plane: its normal (the free side); cylinder: its axis (infinite both
+  // ways). Normalized on use; unused for the sphere.
+  std::array<double, 3> direction{0, 0, 1};
+  double radius = 0.0;  // sphere and cylinder (> 0)
+  std::function<RigidTransform(double t)> motion;
+};
+
+// Contact with the obstacles as a penalty on every vertex in the depth
+// g = thickness - phi into the layer of `thickness` about each obstacle
+// (phi the signed distance): E = stiffness/2 max(g, 0)^2 per vertex and
+// obstacle, C^1, with the PSD Gauss-Newton Hessian stiffness grad phi
+// grad phi^T (kernels/contact/obstacle.h). stiffness is per vertex (force per
+// length): a body of weight W resting on n vertices sinks W / (n stiffness)
+// into the layer.
+struct ContactOptions {
+  double stiffness = 0.0;  // > 0 when there are obstacles
+  double thickness = 0.0;  // >= 0
+};
+
 struct SolveOptions {
   Precision precision = Precision::double_;
+  // Set: solve() advances time steps of implicit Euler instead of load steps
+  // (load_steps then counts time steps; loads are applied in full from the
+  // first step, ramp_loads is ignored; constrained vertices follow their
+  // targets at each time step, substeps interpolating linearly).
+  std::optional<DynamicsOptions> dynamics;
+  // Kinematic obstacles and their contact penalty (SNH_OBSTACLES kernels).
+  std::vector<Obstacle> obstacles;
+  ContactOptions contact;
   DeviceOptions device;
   int load_steps = 1;
   int max_newton_iterations = 50;
@@ -177,6 +236,8 @@ struct SolveOptions {
   bool fallback_to_double = false;
   // Starting positions of the first step (xyz per vertex); empty: rest.
   std::vector<double> initial_positions;
+  // Starting velocities with dynamics (xyz per vertex); empty: zero.
+  std::vector<double> initial_velocities;
   // Called after every Newton iteration with its record and the positions
   // it produced (xyz per vertex), e.g. to measure error against a reference
   // as the solve runs. Downloads the positions: leave empty when not needed.
@@ -223,6 +284,15 @@ struct StepResult {
   // newton_iterations and cg_iterations then count both attempts.
   std::string fallback;
   SolveProfile profile;  // this step's share of SolveResult::profile
+  // With dynamics: the simulated time at the end of this step (seconds);
+  // newton_iterations and cg_iterations then sum over the substeps.
+  double time = 0.0;
+  // With obstacles, at the end of the step: the vertices in some obstacle's
+  // contact layer, and the deepest penetration into a layer as the penalty
+  // sees it, max(thickness - phi) (0 when none; above `thickness` a vertex is
+  // inside the obstacle itself).
+  int contacts = 0;
+  double max_penetration = 0.0;
 };
 
 struct SolveResult {
@@ -286,14 +356,21 @@ class Simulation {
   void set_body_force(const std::array<double, 3>& per_rest_volume);
   // Replaces the state (xyz per vertex), e.g. to restart from a saved frame.
   void set_state(const std::vector<double>& positions);
+  // With dynamics: replaces the velocities (xyz per vertex; empty: zero).
+  void set_velocities(const std::vector<double>& velocities);
   // Back to the start: SolveOptions::initial_positions (else rest), every set
   // following its own callbacks, no force applied yet.
   void restart();
 
-  // load_steps: 0 for SolveOptions::load_steps.
+  // load_steps: 0 for SolveOptions::load_steps. With dynamics each step is
+  // a time step: the constraint targets of step s of n (as in a quasistatic
+  // solve) are reached at its end, the velocities are kept between solves.
   SolveResult solve(int load_steps = 0, const ProgressCallback& progress = {}, const StepCallback& on_step = {});
 
   const std::vector<double>& positions() const;
+  // With dynamics: the velocities (xyz per vertex) and the simulated time.
+  const std::vector<double>& velocities() const;
+  double time() const;
   // Per element F, J, stresses and energy density at the current state.
   ElementFields fields() const;
   // Per constraint set, the force and torque it exerts on the body at the

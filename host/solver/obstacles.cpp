@@ -1,0 +1,84 @@
+#include "solver/obstacles.h"
+
+#include <cmath>
+#include <string>
+
+#include "snh/error.h"
+
+namespace snh {
+
+const char* to_string(ObstacleType type) {
+  switch (type) {
+    case ObstacleType::plane:
+      return "plane";
+    case ObstacleType::sphere:
+      return "sphere";
+    case ObstacleType::cylinder:
+      return "cylinder";
+  }
+  return "?";
+}
+
+}  // namespace snh
+
+namespace snh::solver {
+
+namespace {
+
+// Record layout of kernels/contact/obstacle.h.
+constexpr int kRecord = 8;
+
+std::string name(size_t k, const Obstacle& o) {
+  return "obstacle " + std::to_string(k) + " (" + to_string(o.type) + ")";
+}
+
+double norm(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+}  // namespace
+
+void validate_obstacles(const std::vector<Obstacle>& obstacles, const ContactOptions& contact) {
+  if (!std::isfinite(contact.thickness) || !(contact.thickness >= 0.0))
+    throw Error("contact: thickness must be finite and >= 0 (got " + std::to_string(contact.thickness) + ")");
+  if (!std::isfinite(contact.stiffness) || contact.stiffness < 0.0)
+    throw Error("contact: stiffness must be finite and > 0 (got " + std::to_string(contact.stiffness) + ")");
+  if (obstacles.empty()) return;
+  if (!(contact.stiffness > 0.0))
+    throw Error("contact: stiffness must be > 0 with obstacles (got " + std::to_string(contact.stiffness) + ")");
+  for (size_t k = 0; k < obstacles.size(); ++k) {
+    const Obstacle& o = obstacles[k];
+    for (int d = 0; d < 3; ++d)
+      if (!std::isfinite(o.point[d]) || !std::isfinite(o.direction[d]))
+        throw Error(name(k, o) + ": non-finite point or direction");
+    if (o.type != ObstacleType::sphere && !(norm(o.direction) > 0.0))
+      throw Error(name(k, o) + (o.type == ObstacleType::plane ? ": zero normal" : ": zero axis"));
+    if (o.type != ObstacleType::plane && (!(o.radius > 0.0) || !std::isfinite(o.radius)))
+      throw Error(name(k, o) + ": radius must be finite and > 0 (got " + std::to_string(o.radius) + ")");
+  }
+}
+
+std::vector<double> obstacle_records(const std::vector<Obstacle>& obstacles, double t) {
+  std::vector<double> table(kRecord * obstacles.size(), 0.0);
+  for (size_t k = 0; k < obstacles.size(); ++k) {
+    const Obstacle& o = obstacles[k];
+    const RigidTransform motion = o.motion ? o.motion(t) : RigidTransform::identity();
+    const std::array<double, 3> point = motion.apply(o.point);
+    std::array<double, 3> direction{0, 0, 0};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) direction[r] += motion.rotation[3 * c + r] * o.direction[c];
+    const double length = norm(direction);
+    double* record = table.data() + kRecord * k;
+    record[0] = static_cast<double>(static_cast<int>(o.type));
+    for (int d = 0; d < 3; ++d) {
+      record[1 + d] = point[d];
+      record[4 + d] = o.type == ObstacleType::sphere ? 0.0 : direction[d] / length;
+    }
+    record[7] = o.type == ObstacleType::plane ? 0.0 : o.radius;
+    for (int i = 0; i < kRecord; ++i)
+      if (!std::isfinite(record[i]))
+        throw Error(name(k, o) + ": its motion at load parameter " + std::to_string(t) +
+                    " gives a non-finite placement");
+  }
+  return table;
+}
+
+}  // namespace snh::solver
