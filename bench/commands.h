@@ -13,7 +13,7 @@ void add_scene_command(CLI::App& app, int& exit_code);
 void add_errtime_command(CLI::App& app, int& exit_code);  // errtime.h: run_errtime for the suite
 void add_voxelize_command(CLI::App& app, int& exit_code);
 void add_hessian_command(CLI::App& app, int& exit_code);  // hessian_export.h
-void add_scale_command(CLI::App& app, int& exit_code);  // scale.h: run_scale for the suite
+void add_scale_command(CLI::App& app, int& exit_code);    // scale.h: run_scale for the suite
 
 // The default suite, run when no subcommand is given: the element check,
 // throughput, specialization, errtime and a small scale, into out_dir with a combined summary.{json,md}.
