@@ -26,15 +26,17 @@ Preconditioner parse_preconditioner(const std::string& text) {
   throw Error("preconditioner: expected automatic, none, block-jacobi or multigrid, got '" + text + "'");
 }
 
-// Measured with `snh-gpu-bench scene NAME --preconditioner P` (pocl, 2 CPU
-// cores, double, nu = 0.49; README "Multigrid on hex8 lattices"): on twist
-// at 12,288 DOFs multigrid takes 26 Newton / 69 CG against block-Jacobi's
-// 43 / 1,380 and less wall time, and its CG count per Newton iteration
-// stays nearly flat up to 107,811 DOFs; on the 3,519-DOF stretch its set-up
-// per Newton iteration costs more than block-Jacobi's extra CG iterations.
-// So: multigrid on hex8 lattices from 10,000 DOFs, block-Jacobi otherwise.
+// Measured with `snh-gpu-bench scale` (pocl, 2 CPU cores, double, nu = 0.49;
+// README "Multigrid on hex8 lattices"), seconds per load step block-Jacobi /
+// multigrid: twist 12,288 DOFs 1.87 / 1.50, twist 107,811 DOFs 34.4 / 17.4,
+// stretch 3,519 DOFs 0.27 / 0.42, stretch 23,859 DOFs 2.43 / 2.96, stretch
+// 73,059 DOFs 14.6 / 14.6. Multigrid's
+// CG count per Newton stays flat while block-Jacobi's grows with the mesh,
+// but its set-up per Newton iteration costs more than block-Jacobi's extra
+// CG iterations on the smaller and easier meshes. So: multigrid on hex8
+// lattices from 50,000 DOFs, block-Jacobi otherwise.
 Preconditioner default_preconditioner(const Mesh& mesh) {
-  constexpr size_t kMultigridFromDofs = 10000;
+  constexpr size_t kMultigridFromDofs = 50000;
   return 3 * mesh.vertex_count() >= kMultigridFromDofs && solver::is_hex8_lattice(mesh) ? Preconditioner::multigrid
                                                                                         : Preconditioner::block_jacobi;
 }
