@@ -4,7 +4,9 @@
 // construction must raise.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "reference/element_reference.h"
 #include "snh/error.h"
@@ -163,6 +165,29 @@ TEST(Simulation, ProgressCallbackCancelsAndTheNextSolveFinishes) {
   EXPECT_TRUE(rest.converged);
   EXPECT_FALSE(rest.cancelled);
   for (int32_t v : bar.pulled.vertices) EXPECT_NEAR(sim.positions()[3 * v], bar.mesh.positions[3 * v] + 1.0, 1e-14);
+}
+
+// Iteration records give wall time since their own solve began, less the
+// callbacks' time: a slow callback in one solve must not make a later
+// solve's records negative (the driver once kept subtracting it).
+TEST(Simulation, CallbackTimeOfOneSolveIsNotSubtractedFromTheNext) {
+  StretchedBar bar;
+  Simulation sim(bar.mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.45), {bar.held, bar.pulled});
+  const SolveResult slow = sim.solve(1, [](const NewtonIteration&) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    return true;
+  });
+  ASSERT_TRUE(slow.converged);
+  ASSERT_GE(slow.history.size(), 3u);  // at least 0.2 s in the callback
+  sim.set_transform("pulled", RigidTransform::translation_by({1.0, 0.01, 0.0}));
+  const SolveResult next = sim.solve(1, [](const NewtonIteration&) { return true; });
+  ASSERT_TRUE(next.converged);
+  double previous = 0.0;
+  for (const NewtonIteration& rec : next.history) {
+    EXPECT_GE(rec.seconds, previous) << "iteration " << rec.iteration;
+    previous = rec.seconds;
+  }
+  EXPECT_GT(next.history.front().seconds, 0.0);
 }
 
 TEST(Simulation, PerComponentConstraintsGiveHomogeneousUniaxialStress) {

@@ -79,15 +79,18 @@ class NewtonDriver {
   StepResult solve_step(int step, Vector& x, double tolerance, std::vector<NewtonIteration>& history,
                         Clock::time_point start, const Observer& observe = {});
 
-  // Wall time since `start`, less the time spent in observers.
+  // Wall time since `start`, less the time spent in observers since then
+  // (a solve's load steps share its start; a new start begins a new count).
   double elapsed(Clock::time_point start) const {
-    return std::chrono::duration<double>(Clock::now() - start).count() - observer_seconds_;
+    return std::chrono::duration<double>(Clock::now() - start).count() -
+           (start == observer_start_ ? observer_seconds_ : 0.0);
   }
 
  private:
   Problem& problem_;
   const SolveOptions& options_;
-  double observer_seconds_ = 0.0;
+  Clock::time_point observer_start_{};
+  double observer_seconds_ = 0.0;  // in observers since observer_start_
 };
 
 template <typename Problem>
@@ -278,6 +281,10 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     if (observe) {
       const auto paused = Clock::now();
       const bool go_on = observe(rec, x);
+      if (observer_start_ != start) {
+        observer_start_ = start;
+        observer_seconds_ = 0.0;
+      }
       observer_seconds_ += std::chrono::duration<double>(Clock::now() - paused).count();
       if (!go_on) {
         result.status = "cancelled";
