@@ -24,6 +24,7 @@
 #include <sstream>
 #include <vector>
 
+#include "fem/union_find.h"
 #include "snh/error.h"
 #include "snh/surface.h"
 
@@ -225,19 +226,7 @@ void mark_crossed(const TriangleSurface& surface, const Grid& grid, std::vector<
   }
 }
 
-struct UnionFind {
-  std::vector<int32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int32_t find(int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int32_t x, int32_t y) {
-    x = find(x);
-    y = find(y);
-    if (x != y) parent[std::max(x, y)] = std::min(x, y);
-  }
-};
+using fem::UnionFind;
 
 // VTK_HEXAHEDRON order as local corners (bit 0: +x, bit 1: +y, bit 2: +z).
 constexpr int kHexCorners[8] = {0, 1, 3, 2, 4, 5, 7, 6};

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <string>
 
+#include "fem/union_find.h"
 #include "snh/error.h"
 
 namespace snh::solver {
@@ -26,19 +27,7 @@ double child_weight(int o, int a, int corner) {
   return w;
 }
 
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smaller index represents: deterministic
-  }
-};
+using fem::UnionFind;
 
 // The coarser level of `fine` (its cells, children, vertices) and the
 // prolongation from it into `fine`.
