@@ -46,13 +46,6 @@ std::vector<Real> material_table(const MaterialMap& map) {
   return table;
 }
 
-namespace {
-template <typename T>
-void set_arg(cl_kernel k, cl_uint index, const T& value) {
-  check(clSetKernelArg(k, index, sizeof(T), &value), "clSetKernelArg");
-}
-}  // namespace
-
 template <typename Real>
 cl_uint set_material_args(cl_kernel k, cl_uint first, const Material& m) {
   const Real reals[] = {Real(m.mu),        Real(m.lambda),       Real(m.c0),      Real(m.c1),

@@ -20,6 +20,12 @@ namespace snh::device {
 // Throws snh::Error naming the call and the OpenCL error code.
 void check(cl_int status, const char* what);
 
+// clSetKernelArg for one value, checked.
+template <typename T>
+void set_arg(cl_kernel k, cl_uint index, const T& value) {
+  check(clSetKernelArg(k, index, sizeof(T), &value), "clSetKernelArg");
+}
+
 // Owning handles released on destruction.
 struct ProgramDeleter {
   void operator()(cl_program p) const { clReleaseProgram(p); }

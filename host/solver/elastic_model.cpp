@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "device/material_args.h"
+#include "fem/vertex_slots.h"
 #include "snh/error.h"
 #include "viennacl/linalg/prod.hpp"
 
@@ -12,19 +13,11 @@ namespace snh::solver {
 
 namespace {
 
-template <typename T>
-void set_arg(cl_kernel k, cl_uint index, const T& value) {
-  device::check(clSetKernelArg(k, index, sizeof(T), &value), "clSetKernelArg");
-}
+using device::set_arg;
 
 const MaterialMap& validated(const Mesh& mesh, const MaterialMap& map) {
   validate_material_map(mesh, map);
   return map;
-}
-
-template <typename Real>
-cl_mem mem(const viennacl::vector_base<Real>& v) {
-  return v.handle().opencl_handle().get();
 }
 
 }  // namespace
@@ -49,14 +42,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
   if (terms.obstacles > 0) defines_ += " -DSNH_OBSTACLES=" + std::to_string(terms.obstacles);
 
-  // Vertex -> (element * nodes + node) slots, in increasing slot order, so
-  // every gather sums in the same order on every run.
-  std::vector<int> offsets(vertex_count_ + 1, 0), adjacency(mesh.elements.size());
-  for (int32_t v : mesh.elements) ++offsets[v + 1];
-  for (size_t v = 0; v < vertex_count_; ++v) offsets[v + 1] += offsets[v];
-  std::vector<int> fill(offsets.begin(), offsets.end() - 1);
-  for (size_t slot = 0; slot < mesh.elements.size(); ++slot)
-    adjacency[fill[mesh.elements[slot]]++] = static_cast<int>(slot);
+  const fem::VertexSlots slots = fem::vertex_slots(mesh.elements, vertex_count_);
 
   const std::vector<Real> gradients(rest.gradients.begin(), rest.gradients.end());
   const std::vector<Real> weights(rest.weights.begin(), rest.weights.end());
@@ -64,8 +50,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   elements_ = cl_.buffer(CL_MEM_READ_ONLY, elements.size() * sizeof(int), elements.data());
   gradients_ = cl_.buffer(CL_MEM_READ_ONLY, gradients.size() * sizeof(Real), gradients.data());
   weights_ = cl_.buffer(CL_MEM_READ_ONLY, weights.size() * sizeof(Real), weights.data());
-  offsets_ = cl_.buffer(CL_MEM_READ_ONLY, offsets.size() * sizeof(int), offsets.data());
-  adjacency_ = cl_.buffer(CL_MEM_READ_ONLY, adjacency.size() * sizeof(int), adjacency.data());
+  offsets_ = cl_.buffer(CL_MEM_READ_ONLY, slots.offsets.size() * sizeof(int), slots.offsets.data());
+  adjacency_ = cl_.buffer(CL_MEM_READ_ONLY, slots.adjacency.size() * sizeof(int), slots.adjacency.data());
   const std::vector<Real> ones(dofs(), Real(1));
   mask_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), ones.data());
   external_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real));
@@ -267,7 +253,7 @@ void ElasticModel<Real>::set_inertia(const std::vector<double>& coefficient, con
 }
 
 template <typename Real>
-void ElasticModel<Real>::elastic_forces(const VectorBase& x, VectorBase& out) {
+void ElasticModel<Real>::run_forces_kernel(const VectorBase& x) const {
   cl_kernel k = forces_k_.get();
   const int count = static_cast<int>(element_count_);
   set_arg(k, 0, mem(x));
@@ -277,6 +263,11 @@ void ElasticModel<Real>::elastic_forces(const VectorBase& x, VectorBase& out) {
   set_arg(k, 4, count);
   set_arg(k, set_material_args(k, 5), element_scratch_.get());
   run_element_kernel(k);
+}
+
+template <typename Real>
+void ElasticModel<Real>::elastic_forces(const VectorBase& x, VectorBase& out) {
+  run_forces_kernel(x);
   gather(element_scratch_, out, false);
 }
 
@@ -415,15 +406,7 @@ void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase
 template <typename Real>
 void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
   PhaseScope timed(&profiler_, Phase::line_search_energies);
-  cl_kernel k = forces_k_.get();
-  const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, elements_.get());
-  set_arg(k, 2, gradients_.get());
-  set_arg(k, 3, weights_.get());
-  set_arg(k, 4, count);
-  set_arg(k, set_material_args(k, 5), element_scratch_.get());
-  run_element_kernel(k);
+  run_forces_kernel(x);
   if (terms_.obstacles > 0) contact(x);
   gather(element_scratch_, r, true, &x, 1, elastic_scale_);
 }

@@ -20,6 +20,12 @@
 
 namespace snh::solver {
 
+// The OpenCL buffer under a ViennaCL vector (to pass it to our kernels).
+template <typename Real>
+cl_mem mem(const viennacl::vector_base<Real>& v) {
+  return v.handle().opencl_handle().get();
+}
+
 // Terms beyond elasticity that a scene compiles into the kernels (printed in
 // the kernel specialization): only what it uses.
 struct ModelTerms {
@@ -130,6 +136,8 @@ class ElasticModel {
 
  private:
   void run_element_kernel(cl_kernel k) const;
+  // Per-element elastic forces at x into element_scratch_ (before the gather).
+  void run_forces_kernel(const VectorBase& x) const;
   void compute_element_matrices();
   // MATERIAL_ARGS from index first; returns the next index.
   cl_uint set_material_args(cl_kernel k, cl_uint first) const;

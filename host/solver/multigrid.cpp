@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fem/vertex_slots.h"
 #include "snh/error.h"
 #include "viennacl/linalg/norm_2.hpp"
 
@@ -10,15 +11,7 @@ namespace snh::solver {
 
 namespace {
 
-template <typename T>
-void set_arg(cl_kernel k, cl_uint index, const T& value) {
-  device::check(clSetKernelArg(k, index, sizeof(T), &value), "clSetKernelArg");
-}
-
-template <typename Real>
-cl_mem mem(const viennacl::vector_base<Real>& v) {
-  return v.handle().opencl_handle().get();
-}
+using device::set_arg;
 
 constexpr int kCellMatrix = 24 * 24;
 constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
@@ -82,14 +75,9 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     } else {
       L.elements = upload_int(h.elements, L.bytes);
       L.element_handle = L.elements.get();
-      std::vector<int> offsets(L.vertices + 1, 0), adjacency(h.elements.size());
-      for (int v : h.elements) ++offsets[v + 1];
-      for (size_t v = 0; v < L.vertices; ++v) offsets[v + 1] += offsets[v];
-      std::vector<int> fill(offsets.begin(), offsets.end() - 1);
-      for (size_t slot = 0; slot < h.elements.size(); ++slot)
-        adjacency[fill[h.elements[slot]]++] = static_cast<int>(slot);
-      L.offsets = upload_int(offsets, L.bytes);
-      L.adjacency = upload_int(adjacency, L.bytes);
+      const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
+      L.offsets = upload_int(slots.offsets, L.bytes);
+      L.adjacency = upload_int(slots.adjacency, L.bytes);
       L.children = upload_int(h.children, L.bytes);
       L.matrices = cl_.buffer(CL_MEM_READ_WRITE, L.cells * kCellMatrix * sizeof(Real));
       L.scratch = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 24 * sizeof(Real));
