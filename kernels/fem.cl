@@ -296,32 +296,38 @@ __kernel void snh_block_jacobi_apply(__global const real* inverse, __global cons
 /* Per element, the projected stiffness K_e = sum_q w_q B_q^T H_q B_q
  * (24 x 24 for hex8, 12 x 12 for tet4), column-major:
  * out[e * (3N)^2 + (3 b + d) * 3N + 3 a + i]. Column (b, d) is the response
- * to dF = e_d (dN_b/dX)^T. */
+ * to dF = e_d (dN_b/dX)^T. Its 3x3 diagonal blocks also go to
+ * diagonal_blocks, column-major per node: [e][9 b + 3 d + i] (the
+ * block-Jacobi preconditioner's, as snh_element_diagonal writes them). */
 #define SNH_DOFS (3 * SNH_NODES)
 __kernel void snh_element_matrices(__global const int* elements, __global const real* gradients,
                                    __global const real* weights, const int count, __global const real* cache,
-                                   __global real* out) {
+                                   __global real* out, __global real* diagonal_blocks) {
   const int e = get_global_id(0);
   if (e >= count) return;
-  __global real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
-  for (int i = 0; i < SNH_DOFS * SNH_DOFS; ++i) k[i] = SNH_R(0);
-  real g[3 * SNH_NODES];
+  real g[SNH_QUADRATURE][3 * SNH_NODES], qw[SNH_QUADRATURE];
+  principal_hessian h[SNH_QUADRATURE];
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
-    load_gradients(gradients, e, q, g);
-    const principal_hessian h = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
-    const real w = load_weight(weights, e, q);
-    for (int b = 0; b < SNH_NODES; ++b)
-      for (int d = 0; d < 3; ++d) {
-        mat3 df = mat3_zero();
-        for (int c = 0; c < 3; ++c) M3(df, d, c) = g[3 * b + c];
-        const mat3 dp = principal_hessian_action(&h, df);
-        __global real* column = k + SNH_DOFS * (3 * b + d);
-        for (int a = 0; a < SNH_NODES; ++a)
-          for (int i = 0; i < 3; ++i)
-            column[3 * a + i] +=
-                w * (M3(dp, i, 0) * g[3 * a] + M3(dp, i, 1) * g[3 * a + 1] + M3(dp, i, 2) * g[3 * a + 2]);
-      }
+    load_gradients(gradients, e, q, g[q]);
+    qw[q] = load_weight(weights, e, q);
+    h[q] = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
   }
+  /* Column by column, summed over the points in private memory and written
+   * once (not read-modify-written per point); its diagonal block's entries
+   * (rows of node b) go to the block-Jacobi blocks as well. */
+  __global real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
+  for (int b = 0; b < SNH_NODES; ++b)
+    for (int d = 0; d < 3; ++d) {
+      real column[SNH_DOFS];
+      for (int i = 0; i < SNH_DOFS; ++i) column[i] = SNH_R(0);
+      for (int q = 0; q < SNH_QUADRATURE; ++q) {
+        mat3 df = mat3_zero();
+        for (int c = 0; c < 3; ++c) M3(df, d, c) = g[q][3 * b + c];
+        element_scatter(principal_hessian_action(&h[q], df), g[q], qw[q], column);
+      }
+      for (int i = 0; i < SNH_DOFS; ++i) k[SNH_DOFS * (3 * b + d) + i] = column[i];
+      for (int i = 0; i < 3; ++i) diagonal_blocks[(size_t)9 * SNH_NODES * e + 9 * b + 3 * d + i] = column[3 * b + i];
+    }
 }
 
 /* y_e = K_e p_e from the stored element matrices. */
@@ -338,18 +344,6 @@ __kernel void snh_element_matrix_product(__global const real* p, __global const 
     for (int r = 0; r < SNH_DOFS; ++r) y[r] += k[SNH_DOFS * c + r] * pc;
   }
   for (int i = 0; i < SNH_DOFS; ++i) out[SNH_DOFS * e + i] = y[i];
-}
-
-/* The 3x3 diagonal blocks K_aa of stored element matrices, laid out as
- * snh_element_diagonal writes them: out[(e * NODES + a) * 9 + 3 d + i]. */
-__kernel void snh_element_matrix_diagonal(__global const real* matrices, const int count, __global real* out) {
-  const int e = get_global_id(0);
-  if (e >= count) return;
-  __global const real* k = matrices + (size_t)SNH_DOFS * SNH_DOFS * e;
-  for (int a = 0; a < SNH_NODES; ++a)
-    for (int d = 0; d < 3; ++d)
-      for (int i = 0; i < 3; ++i)
-        out[(size_t)9 * SNH_NODES * e + 9 * a + 3 * d + i] = k[SNH_DOFS * (3 * a + d) + 3 * a + i];
 }
 
 /* y = mask * y, elementwise (after an assembled product); with vertex terms

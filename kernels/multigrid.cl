@@ -13,7 +13,9 @@
  * one 24x24 matrix per coarse cell: the hierarchy stays element-wise, with
  * the fine level's Dirichlet masks and projected Hessians carried in exactly
  * (the design of the shared notes, after Dick, Georgii and Westermann 2011).
- * Element matrices are column-major, [cell][(3 b + d) * 24 + 3 a + i]. */
+ * Element matrices are column-major, [cell][(3 b + d) * 24 + 3 a + i]; both
+ * Galerkin kernels also write each cell's 3x3 diagonal blocks,
+ * [cell][9 b + 3 d + i] (the smoother's block-Jacobi blocks). */
 #include "fem/element_data.h"
 
 #if !SNH_HEX8
@@ -75,7 +77,7 @@ SNH_FN void child_weights_and_mask(int o, SNH_GLOBAL const int* nodes, SNH_GLOBA
 __kernel void snh_galerkin_from_cache(__global const int* children, __global const int* fine_elements,
                                       __global const real* gradients, __global const real* weights,
                                       __global const real* cache, __global const real* fine_mask, const int count,
-                                      __global real* out) {
+                                      __global real* out, __global real* blocks) {
   const int c = get_global_id(0);
   if (c >= count) return;
   real k[MG_DOFS * MG_DOFS];
@@ -107,6 +109,9 @@ __kernel void snh_galerkin_from_cache(__global const int* children, __global con
   }
   __global real* dst = out + (size_t)MG_DOFS * MG_DOFS * c;
   for (int i = 0; i < MG_DOFS * MG_DOFS; ++i) dst[i] = k[i];
+  for (int b = 0; b < 8; ++b)
+    for (int d = 0; d < 3; ++d)
+      for (int i = 0; i < 3; ++i) blocks[(size_t)72 * c + 9 * b + 3 * d + i] = k[MG_DOFS * (3 * b + d) + 3 * b + i];
 }
 
 /* Next coarser level from a level's element matrices (also the first, from
@@ -115,7 +120,7 @@ __kernel void snh_galerkin_from_cache(__global const int* children, __global con
  * sum_children sum_b W_o[b][B] m_bd W_o^T (m . column (b, d) of K_child). */
 __kernel void snh_galerkin_from_matrices(__global const int* children, __global const int* fine_elements,
                                          __global const real* fine_matrices, __global const real* fine_mask,
-                                         const int count, __global real* out) {
+                                         const int count, __global real* out, __global real* blocks) {
   const int item = get_global_id(0);
   if (item >= count * MG_DOFS) return;
   const int c = item / MG_DOFS, column_index = item % MG_DOFS, corner_b = column_index / 3, d = column_index % 3;
@@ -145,6 +150,7 @@ __kernel void snh_galerkin_from_matrices(__global const int* children, __global 
   }
   __global real* dst = out + (size_t)MG_DOFS * MG_DOFS * c + MG_DOFS * column_index;
   for (int i = 0; i < MG_DOFS; ++i) dst[i] = column[i];
+  for (int i = 0; i < 3; ++i) blocks[(size_t)72 * c + 9 * corner_b + 3 * d + i] = column[3 * corner_b + i];
 }
 
 /* fine += mask * P coarse: 8 (coarse vertex, weight) pairs per fine vertex. */

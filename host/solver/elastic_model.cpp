@@ -90,7 +90,6 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   matrices_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrices");
   matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
-  matrix_diagonal_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_diagonal");
   if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
   elements_host_ = elements;
   for (size_t e = 0; e < element_count_; ++e) {
@@ -155,6 +154,7 @@ void ElasticModel<Real>::compute_element_matrices() {
   set_arg(k, 3, count);
   set_arg(k, 4, cache_.get());
   set_arg(k, 5, element_matrices_.get());
+  set_arg(k, 6, element_blocks_.get());
   run_element_kernel(k);
 }
 
@@ -490,14 +490,9 @@ template <typename Real>
 void ElasticModel<Real>::setup_preconditioner() {
   PhaseScope timed(&profiler_, Phase::preconditioner_setup);
   const int count = static_cast<int>(element_count_);
-  if (projected_ && element_matrices_buffer()) {
-    // The projected element matrices are at hand: their diagonal blocks.
-    cl_kernel k = matrix_diagonal_k_.get();
-    set_arg(k, 0, element_matrices_.get());
-    set_arg(k, 1, count);
-    set_arg(k, 2, element_blocks_.get());
-    run_element_kernel(k);
-  } else {
+  if (!(projected_ && element_matrices_buffer())) {
+    // Else the projected element matrices' kernel wrote their diagonal
+    // blocks already.
     cl_kernel k = diagonal_k_.get();
     set_arg(k, 0, elements_.get());
     set_arg(k, 1, gradients_.get());

@@ -183,7 +183,7 @@ class ElasticModel {
   bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0; }
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
-      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_, matrix_diagonal_k_;
+      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;
 };
 
 }  // namespace snh::solver

@@ -45,7 +45,6 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   const std::string defines = model.specialization();
   galerkin_cache_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_cache");
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_matrices");
-  diagonal_blocks_k_ = cl_.kernel("fem.cl", defines, "snh_element_matrix_diagonal");
   prolong_k_ = cl_.kernel("multigrid.cl", defines, "snh_prolong_add");
   restrict_k_ = cl_.kernel("multigrid.cl", defines, "snh_restrict");
   matrix_product_k_ = cl_.kernel("fem.cl", defines, "snh_element_matrix_product");
@@ -179,6 +178,7 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, 5, F.mask.get());
       set_arg(k, 6, cells);
       set_arg(k, 7, L.matrices.get());
+      set_arg(k, 8, L.blocks.get());
       cl_.run(k, L.cells);
     } else {
       cl_kernel k = galerkin_matrices_k_.get();
@@ -188,13 +188,9 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, 3, F.mask.get());
       set_arg(k, 4, cells);
       set_arg(k, 5, L.matrices.get());
+      set_arg(k, 6, L.blocks.get());
       cl_.run(k, 24 * L.cells);
     }
-    cl_kernel d = diagonal_blocks_k_.get();
-    set_arg(d, 0, L.matrices.get());
-    set_arg(d, 1, cells);
-    set_arg(d, 2, L.blocks.get());
-    cl_.run(d, L.cells);
     cl_kernel s = jacobi_setup_k_.get();
     const int vertices = static_cast<int>(L.vertices);
     set_arg(s, 0, L.blocks.get());
