@@ -135,22 +135,21 @@ __kernel void snh_element_diagonal(__global const int* elements, __global const 
                                    __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
-  real g[3 * SNH_NODES], k[9 * SNH_NODES];
+  real g[3 * SNH_NODES], vg[3 * SNH_NODES], k[9 * SNH_NODES];
   for (int i = 0; i < 9 * SNH_NODES; ++i) k[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
     const principal_hessian h = principal_hessian_project(
         linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q)));
     const real w = load_weight(weights, e, q);
+    element_rotated_gradients(&h, g, vg);
     for (int a = 0; a < SNH_NODES; ++a)
       for (int d = 0; d < 3; ++d) {
-        /* dF = e_d (dN_a/dX)^T; column d of K_aa is w (H : dF) dN_a/dX. */
-        mat3 df = mat3_zero();
-        for (int c = 0; c < 3; ++c) M3(df, d, c) = g[3 * a + c];
-        const mat3 dp = principal_hessian_action(&h, df);
+        /* Column d of K_aa: node a's rows of the rank-one column (a, d). */
+        const mat3 m = element_column_frame(&h, vg, a, d);
         for (int i = 0; i < 3; ++i)
           k[9 * a + 3 * d + i] +=
-              w * (M3(dp, i, 0) * g[3 * a] + M3(dp, i, 1) * g[3 * a + 1] + M3(dp, i, 2) * g[3 * a + 2]);
+              w * (M3(m, i, 0) * vg[3 * a] + M3(m, i, 1) * vg[3 * a + 1] + M3(m, i, 2) * vg[3 * a + 2]);
       }
   }
   for (int i = 0; i < 9 * SNH_NODES; ++i) out[9 * SNH_NODES * e + i] = k[i];
@@ -305,26 +304,25 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
                                    __global real* out, __global real* diagonal_blocks) {
   const int e = get_global_id(0);
   if (e >= count) return;
-  real g[SNH_QUADRATURE][3 * SNH_NODES], qw[SNH_QUADRATURE];
+  real vg[SNH_QUADRATURE][3 * SNH_NODES], qw[SNH_QUADRATURE];
   principal_hessian h[SNH_QUADRATURE];
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
-    load_gradients(gradients, e, q, g[q]);
+    real g[3 * SNH_NODES];
+    load_gradients(gradients, e, q, g);
     qw[q] = load_weight(weights, e, q);
     h[q] = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    element_rotated_gradients(&h[q], g, vg[q]);
   }
-  /* Column by column, summed over the points in private memory and written
-   * once (not read-modify-written per point); its diagonal block's entries
-   * (rows of node b) go to the block-Jacobi blocks as well. */
+  /* Column by column (element.h's rank-one columns), summed over the points
+   * in private memory and written once; its diagonal block's entries (rows
+   * of node b) go to the block-Jacobi blocks as well. */
   __global real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
   for (int b = 0; b < SNH_NODES; ++b)
     for (int d = 0; d < 3; ++d) {
       real column[SNH_DOFS];
       for (int i = 0; i < SNH_DOFS; ++i) column[i] = SNH_R(0);
-      for (int q = 0; q < SNH_QUADRATURE; ++q) {
-        mat3 df = mat3_zero();
-        for (int c = 0; c < 3; ++c) M3(df, d, c) = g[q][3 * b + c];
-        element_scatter(principal_hessian_action(&h[q], df), g[q], qw[q], column);
-      }
+      for (int q = 0; q < SNH_QUADRATURE; ++q)
+        element_column_scatter(element_column_frame(&h[q], vg[q], b, d), vg[q], qw[q], column);
       for (int i = 0; i < SNH_DOFS; ++i) k[SNH_DOFS * (3 * b + d) + i] = column[i];
       for (int i = 0; i < 3; ++i) diagonal_blocks[(size_t)9 * SNH_NODES * e + 9 * b + 3 * d + i] = column[3 * b + i];
     }

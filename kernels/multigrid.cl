@@ -6,7 +6,9 @@
  * fine cell lies in one coarse cell, at octant o (bits x, y, z), and its node
  * a (VTK order) interpolates the coarse cell's corners A with the weights
  * W_o[a][A] = prod_d (1 - |p_d - c_d| / 2), p = octant + node offset in
- * {0,1,2}^3 and c = 2 * corner offset, in units of the fine spacing. The
+ * {0,1,2}^3 and c = 2 * corner offset, in units of the fine spacing (the
+ * host's child_weight, solver/lattice_hierarchy.h, passed as the table
+ * octant_weights[64 o + 8 a + A]). The
  * Galerkin operator A_c = P^T D A_f D P (D: the fine level's mask, 0 on
  * constrained DOFs) is then a sum over coarse cells of
  *   K_C = sum_children W_o^T (D K_child D) W_o    (kron I3),
@@ -23,27 +25,6 @@
 #endif
 
 #define MG_DOFS 24
-
-/* Offset (0 or 1) of hex8 node a (VTK order) along axis d. */
-SNH_FN int hex_node_bit(int a, int d) { return d == 0 ? ((a + 1) >> 1) & 1 : d == 1 ? (a >> 1) & 1 : (a >> 2) & 1; }
-
-/* W_o[a][A]: weight of coarse corner A at node a of the child in octant o,
- * a product of 1D weights 1 - |p - c| / 2 (p = octant bit + node bit in
- * {0, 1, 2}, c = 2 * corner bit): all 64 of octant o, w[8 a + A]. */
-SNH_FN void child_weights(int o, real* w) {
-  real axis[3][2][2]; /* [d][node bit][corner bit] */
-  for (int d = 0; d < 3; ++d)
-    for (int n = 0; n < 2; ++n) {
-      const int p = ((o >> d) & 1) + n;
-      axis[d][n][0] = SNH_R(1) - SNH_R(0.5) * (real)p;
-      axis[d][n][1] = SNH_R(0.5) * (real)p;
-    }
-  for (int a = 0; a < 8; ++a)
-    for (int corner = 0; corner < 8; ++corner)
-      w[8 * a + corner] = axis[0][hex_node_bit(a, 0)][hex_node_bit(corner, 0)] *
-                          axis[1][hex_node_bit(a, 1)][hex_node_bit(corner, 1)] *
-                          axis[2][hex_node_bit(a, 2)][hex_node_bit(corner, 2)];
-}
 
 /* k += W_o^T diag(m) col e_(b,d)^T ... : adds the masked column (b, d) of a
  * child's matrix, `column`, to the coarse matrix k through W_o on both sides. */
@@ -63,8 +44,9 @@ SNH_FN void galerkin_add_column(const real* w, const real* m, int b, int d, cons
   }
 }
 
-SNH_FN void child_weights_and_mask(int o, SNH_GLOBAL const int* nodes, SNH_GLOBAL const real* mask, real* w, real* m) {
-  child_weights(o, w);
+SNH_FN void child_weights_and_mask(SNH_GLOBAL const real* octant_weights, int o, SNH_GLOBAL const int* nodes,
+                                   SNH_GLOBAL const real* mask, real* w, real* m) {
+  for (int i = 0; i < 64; ++i) w[i] = octant_weights[64 * o + i];
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i) m[3 * a + i] = mask[3 * nodes[a] + i];
 }
@@ -74,10 +56,11 @@ SNH_FN void child_weights_and_mask(int o, SNH_GLOBAL const int* nodes, SNH_GLOBA
  * K = sum_q w_q B_q^T H_q B_q column by column, H as the cache holds it
  * (projected or true), so that the coarse operator is the Galerkin product of
  * the very operator CG solves with. */
-__kernel void snh_galerkin_from_cache(__global const int* children, __global const int* fine_elements,
-                                      __global const real* gradients, __global const real* weights,
-                                      __global const real* cache, __global const real* fine_mask, const int count,
-                                      __global real* out, __global real* blocks) {
+__kernel void snh_galerkin_from_cache(__global const real* octant_weights, __global const int* children,
+                                      __global const int* fine_elements, __global const real* gradients,
+                                      __global const real* weights, __global const real* cache,
+                                      __global const real* fine_mask, const int count, __global real* out,
+                                      __global real* blocks) {
   const int c = get_global_id(0);
   if (c >= count) return;
   real k[MG_DOFS * MG_DOFS];
@@ -85,25 +68,23 @@ __kernel void snh_galerkin_from_cache(__global const int* children, __global con
   for (int o = 0; o < 8; ++o) {
     const int e = children[8 * c + o];
     if (e < 0) continue;
-    real w[64], m[MG_DOFS], g[SNH_QUADRATURE][3 * SNH_NODES], qw[SNH_QUADRATURE];
+    real w[64], m[MG_DOFS], vg[SNH_QUADRATURE][3 * SNH_NODES], qw[SNH_QUADRATURE];
     principal_hessian h[SNH_QUADRATURE];
-    child_weights_and_mask(o, fine_elements + 8 * e, fine_mask, w, m);
+    child_weights_and_mask(octant_weights, o, fine_elements + 8 * e, fine_mask, w, m);
     for (int q = 0; q < SNH_QUADRATURE; ++q) {
-      load_gradients(gradients, e, q, g[q]);
+      real g[3 * SNH_NODES];
+      load_gradients(gradients, e, q, g);
       qw[q] = load_weight(weights, e, q);
       h[q] = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+      element_rotated_gradients(&h[q], g, vg[q]);
     }
     for (int b = 0; b < 8; ++b)
       for (int d = 0; d < 3; ++d) {
         if (m[3 * b + d] == SNH_R(0)) continue;
         real column[MG_DOFS];
         for (int i = 0; i < MG_DOFS; ++i) column[i] = SNH_R(0);
-        for (int q = 0; q < SNH_QUADRATURE; ++q) {
-          mat3 df = mat3_zero();
-          for (int cc = 0; cc < 3; ++cc) M3(df, d, cc) = g[q][3 * b + cc];
-          const mat3 dp = principal_hessian_action(&h[q], df);
-          element_scatter(dp, g[q], qw[q], column);
-        }
+        for (int q = 0; q < SNH_QUADRATURE; ++q)
+          element_column_scatter(element_column_frame(&h[q], vg[q], b, d), vg[q], qw[q], column);
         galerkin_add_column(w, m, b, d, column, k);
       }
   }
@@ -117,10 +98,12 @@ __kernel void snh_galerkin_from_cache(__global const int* children, __global con
 /* Next coarser level from a level's element matrices (also the first, from
  * the fine element matrices when the product variant keeps them). One
  * work-item per coarse cell and coarse column (B, d): column (B, d) of K_C is
- * sum_children sum_b W_o[b][B] m_bd W_o^T (m . column (b, d) of K_child). */
-__kernel void snh_galerkin_from_matrices(__global const int* children, __global const int* fine_elements,
-                                         __global const real* fine_matrices, __global const real* fine_mask,
-                                         const int count, __global real* out, __global real* blocks) {
+ * sum_children W_o^T D K_child D W_o e_(B,d). Branch-free (zero weights
+ * multiply), weights from the table. */
+__kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __global const int* children,
+                                         __global const int* fine_elements, __global const real* fine_matrices,
+                                         __global const real* fine_mask, const int count, __global real* out,
+                                         __global real* blocks) {
   const int item = get_global_id(0);
   if (item >= count * MG_DOFS) return;
   const int c = item / MG_DOFS, column_index = item % MG_DOFS, corner_b = column_index / 3, d = column_index % 3;
@@ -131,20 +114,21 @@ __kernel void snh_galerkin_from_matrices(__global const int* children, __global 
     if (e < 0) continue;
     SNH_GLOBAL const int* nodes = fine_elements + 8 * e;
     __global const real* ke = fine_matrices + (size_t)MG_DOFS * MG_DOFS * e;
-    real w[64], right[MG_DOFS];
-    child_weights(o, w);
-    /* right = K_child D W_o e_(B,d): the child's columns (b, d) weighted. */
+    __global const real* w = octant_weights + 64 * o;
+    real m[MG_DOFS], right[MG_DOFS];
+    for (int a = 0; a < 8; ++a)
+      for (int i = 0; i < 3; ++i) m[3 * a + i] = fine_mask[3 * nodes[a] + i];
+    /* right = D K_child D W_o e_(B,d): the child's columns (b, d) weighted. */
     for (int i = 0; i < MG_DOFS; ++i) right[i] = SNH_R(0);
     for (int b = 0; b < 8; ++b) {
-      const real wb = w[8 * b + corner_b] * fine_mask[3 * nodes[b] + d];
-      if (wb == SNH_R(0)) continue;
+      const real wb = w[8 * b + corner_b] * m[3 * b + d];
       __global const real* kb = ke + MG_DOFS * (3 * b + d);
       for (int i = 0; i < MG_DOFS; ++i) right[i] += wb * kb[i];
     }
     /* column += W_o^T D right */
     for (int a = 0; a < 8; ++a)
       for (int i = 0; i < 3; ++i) {
-        const real v = fine_mask[3 * nodes[a] + i] * right[3 * a + i];
+        const real v = m[3 * a + i] * right[3 * a + i];
         for (int corner = 0; corner < 8; ++corner) column[3 * corner + i] += w[8 * a + corner] * v;
       }
   }

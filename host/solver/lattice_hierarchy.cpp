@@ -11,21 +11,28 @@
 
 namespace snh::solver {
 
-namespace {
+int hex8_node_bit(int a, int d) { return d == 0 ? ((a + 1) >> 1) & 1 : d == 1 ? (a >> 1) & 1 : (a >> 2) & 1; }
 
-// Offset (0 or 1) of hex8 node a (VTK order) along axis d; as in
-// kernels/multigrid.cl.
-int node_bit(int a, int d) { return d == 0 ? ((a + 1) >> 1) & 1 : d == 1 ? (a >> 1) & 1 : (a >> 2) & 1; }
-
-// Weight of coarse corner `corner` at node a of the child in octant o.
+// Trilinear weights of the 2x refinement (1D: 1 - |p - c| / 2 with p the
+// fine node's and c the coarse corner's position in fine spacings).
 double child_weight(int o, int a, int corner) {
   double w = 1.0;
   for (int d = 0; d < 3; ++d) {
-    const int distance = std::abs(((o >> d) & 1) + node_bit(a, d) - 2 * node_bit(corner, d));
+    const int distance = std::abs(((o >> d) & 1) + hex8_node_bit(a, d) - 2 * hex8_node_bit(corner, d));
     w *= distance == 0 ? 1.0 : distance == 1 ? 0.5 : 0.0;
   }
   return w;
 }
+
+std::vector<double> octant_weights() {
+  std::vector<double> w(8 * 64);
+  for (int o = 0; o < 8; ++o)
+    for (int a = 0; a < 8; ++a)
+      for (int corner = 0; corner < 8; ++corner) w[64 * o + 8 * a + corner] = child_weight(o, a, corner);
+  return w;
+}
+
+namespace {
 
 using fem::UnionFind;
 
@@ -92,7 +99,7 @@ LatticeLevel coarsen(LatticeLevel& fine) {
       for (int corner = 0; corner < 8; ++corner) {
         if (child_weight(o, a, corner) == 0.0) continue;
         std::array<int, 3> point;
-        for (int d = 0; d < 3; ++d) point[d] = coarse.cells[cell][d] + node_bit(corner, d);
+        for (int d = 0; d < 3; ++d) point[d] = coarse.cells[cell][d] + hex8_node_bit(corner, d);
         const int slot = 8 * cell + corner;
         auto [it, inserted] = first_slot.try_emplace(point, slot);
         if (!inserted) slots.unite(it->second, slot);
@@ -153,7 +160,7 @@ bool is_hex8_lattice(const Mesh& mesh) {
     for (int a = 0; a < 8; ++a) {
       const auto x = mesh.vertex(mesh.elements[8 * e + a]);
       for (int d = 0; d < 3; ++d)
-        if (std::abs(x[d] - base[d] - h * node_bit(a, d)) > 1e-6 * h) return false;
+        if (std::abs(x[d] - base[d] - h * hex8_node_bit(a, d)) > 1e-6 * h) return false;
     }
   }
   return true;

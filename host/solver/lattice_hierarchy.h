@@ -39,6 +39,16 @@ struct LatticeHierarchy {
   std::vector<LatticeLevel> levels;  // levels[0] the mesh itself
 };
 
+// Offset (0 or 1) of hex8 node a (VTK order) along axis d.
+int hex8_node_bit(int a, int d);
+// Weight of coarse corner `corner` (VTK order) at node a of the child cell in
+// octant o (bits x, y, z) under trilinear prolongation: a product over the
+// axes of 1 - |p - c| / 2, p = octant bit + node bit and c = 2 * corner bit
+// in units of the fine spacing.
+double child_weight(int o, int a, int corner);
+// All of them, [64 o + 8 a + corner] (what the Galerkin kernels read).
+std::vector<double> octant_weights();
+
 // True when every element of `mesh` is an axis-aligned cube of one edge
 // length (relative tolerance 1e-6), nodes in VTK order.
 bool is_hex8_lattice(const Mesh& mesh);

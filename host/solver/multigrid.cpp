@@ -61,6 +61,8 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     bytes += r.size() * sizeof(Real);
     return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(r.size(), 1) * sizeof(Real), r.empty() ? nullptr : r.data());
   };
+  size_t table_bytes = 0;
+  octant_weights_ = upload_real(octant_weights(), table_bytes);
   for (size_t l = 0; l < hierarchy_.levels.size(); ++l) {
     const LatticeLevel& h = hierarchy_.levels[l];
     auto level = std::make_unique<Level>();
@@ -170,25 +172,27 @@ void MultigridPreconditioner<Real>::setup() {
     const cl_mem fine_matrices = l == 1 ? model_.element_matrices_buffer() : F.matrices.get();
     if (!fine_matrices) {
       cl_kernel k = galerkin_cache_k_.get();
-      set_arg(k, 0, L.children.get());
-      set_arg(k, 1, F.element_handle);
-      set_arg(k, 2, model_.gradients_buffer());
-      set_arg(k, 3, model_.weights_buffer());
-      set_arg(k, 4, model_.cache_buffer());
-      set_arg(k, 5, F.mask.get());
-      set_arg(k, 6, cells);
-      set_arg(k, 7, L.matrices.get());
-      set_arg(k, 8, L.blocks.get());
+      set_arg(k, 0, octant_weights_.get());
+      set_arg(k, 1, L.children.get());
+      set_arg(k, 2, F.element_handle);
+      set_arg(k, 3, model_.gradients_buffer());
+      set_arg(k, 4, model_.weights_buffer());
+      set_arg(k, 5, model_.cache_buffer());
+      set_arg(k, 6, F.mask.get());
+      set_arg(k, 7, cells);
+      set_arg(k, 8, L.matrices.get());
+      set_arg(k, 9, L.blocks.get());
       cl_.run(k, L.cells);
     } else {
       cl_kernel k = galerkin_matrices_k_.get();
-      set_arg(k, 0, L.children.get());
-      set_arg(k, 1, F.element_handle);
-      set_arg(k, 2, fine_matrices);
-      set_arg(k, 3, F.mask.get());
-      set_arg(k, 4, cells);
-      set_arg(k, 5, L.matrices.get());
-      set_arg(k, 6, L.blocks.get());
+      set_arg(k, 0, octant_weights_.get());
+      set_arg(k, 1, L.children.get());
+      set_arg(k, 2, F.element_handle);
+      set_arg(k, 3, fine_matrices);
+      set_arg(k, 4, F.mask.get());
+      set_arg(k, 5, cells);
+      set_arg(k, 6, L.matrices.get());
+      set_arg(k, 7, L.blocks.get());
       cl_.run(k, 24 * L.cells);
     }
     cl_kernel s = jacobi_setup_k_.get();

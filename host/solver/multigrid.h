@@ -69,8 +69,9 @@ class MultigridPreconditioner {
   MultigridOptions options_;
   LatticeHierarchy hierarchy_;
   std::vector<std::unique_ptr<Level>> levels_;
-  device::Kernel galerkin_cache_k_, galerkin_matrices_k_, prolong_k_, restrict_k_,
-      matrix_product_k_, gather_k_, jacobi_setup_k_, jacobi_apply_k_;
+  device::Kernel galerkin_cache_k_, galerkin_matrices_k_, prolong_k_, restrict_k_, matrix_product_k_, gather_k_,
+      jacobi_setup_k_, jacobi_apply_k_;
+  device::Buffer octant_weights_;  // lattice_hierarchy.h's octant_weights()
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
   bool coarsest_ok_ = false;
   mutable std::vector<Real> host_rhs_;

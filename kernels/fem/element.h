@@ -41,6 +41,34 @@ SNH_FN void element_scatter(mat3 p, const real* g, real w, real* out) {
       out[3 * a + i] += w * (M3(p, i, 0) * g[3 * a] + M3(p, i, 1) * g[3 * a + 1] + M3(p, i, 2) * g[3 * a + 2]);
 }
 
+/* Stiffness columns from rank-one dF. Column (b, d) of one point's
+ * w B^T H B is the response to dF = e_d g_b^T; in the SVD's frame that dF is
+ * R = U^T dF V = (U^T e_d)(V^T g_b)^T, and the scatter sum_j dP_ij g_aj of
+ * dP = U (H R) V^T is (U (H R) vg_a)_i with vg_a = V^T g_a. So with the
+ * rotated gradients vg (element_rotated_gradients, once per point) a column
+ * costs one rotated action, one 3x3 product and a 3x3 matrix-vector product
+ * per node, instead of two rotations of dF and a full scatter. */
+SNH_FN void element_rotated_gradients(const principal_hessian* h, const real* g, real* vg) {
+  for (int a = 0; a < SNH_NODES; ++a)
+    for (int j = 0; j < 3; ++j)
+      vg[3 * a + j] = M3(h->v, 0, j) * g[3 * a] + M3(h->v, 1, j) * g[3 * a + 1] + M3(h->v, 2, j) * g[3 * a + 2];
+}
+
+/* U (H R) for the column (b, d): its product with vg_a is node a's rows. */
+SNH_FN mat3 element_column_frame(const principal_hessian* h, const real* vg, int b, int d) {
+  mat3 r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) M3(r, i, j) = M3(h->u, d, i) * vg[3 * b + j];
+  return mat3_mul(h->u, principal_hessian_rotated_action(h, r));
+}
+
+/* column[3 a + i] += w (m vg_a)_i for every node a. */
+SNH_FN void element_column_scatter(mat3 m, const real* vg, real w, real* column) {
+  for (int a = 0; a < SNH_NODES; ++a)
+    for (int i = 0; i < 3; ++i)
+      column[3 * a + i] += w * (M3(m, i, 0) * vg[3 * a] + M3(m, i, 1) * vg[3 * a + 1] + M3(m, i, 2) * vg[3 * a + 2]);
+}
+
 SNH_FN void linearization_store(const principal_hessian* h, SNH_GLOBAL real* out) {
   for (int i = 0; i < 9; ++i) out[i] = h->u.a[i];
   for (int i = 0; i < 9; ++i) out[9 + i] = h->v.a[i];

@@ -53,9 +53,10 @@ SNH_FN principal_hessian principal_hessian_project(principal_hessian h) {
   return h;
 }
 
-/* dP = H : dF for the (possibly projected) system h. */
-SNH_FN mat3 principal_hessian_action(const principal_hessian* h, mat3 df) {
-  const mat3 r = mat3_mul(mat3_tmul(h->u, df), h->v); /* U^T dF V */
+/* The action in the SVD's frame: with R = U^T dF V, returns U^T (H : dF) V
+ * (the block on R's diagonal, each twist/flip pair on its off-diagonal
+ * pair). */
+SNH_FN mat3 principal_hessian_rotated_action(const principal_hessian* h, mat3 r) {
   mat3 out = mat3_zero();
   const vec3 d = vec3_make(M3(r, 0, 0), M3(r, 1, 1), M3(r, 2, 2));
   const vec3 bd = sym3_apply(h->block, d);
@@ -69,7 +70,13 @@ SNH_FN mat3 principal_hessian_action(const principal_hessian* h, mat3 df) {
     M3(out, i, j) = sym + anti;
     M3(out, j, i) = sym - anti;
   }
-  return mat3_mult(mat3_mul(h->u, out), h->v); /* U out V^T */
+  return out;
+}
+
+/* dP = H : dF for the (possibly projected) system h. */
+SNH_FN mat3 principal_hessian_action(const principal_hessian* h, mat3 df) {
+  const mat3 r = mat3_mul(mat3_tmul(h->u, df), h->v);                             /* U^T dF V */
+  return mat3_mult(mat3_mul(h->u, principal_hessian_rotated_action(h, r)), h->v); /* U out V^T */
 }
 
 /* All nine eigenpairs of h: values[0..2] from the block (ascending),
