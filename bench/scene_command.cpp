@@ -25,6 +25,7 @@
 #include "snh/fields.h"
 #include "snh/io.h"
 #include "snh/scenes.h"
+#include "snh/shape.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
 
@@ -37,8 +38,8 @@ struct SceneOptions {
   std::string name;
   int resolution = 0;
   std::string element = "hex8";
-  double youngs_modulus = 1.0;
-  double poisson_ratio = 0.49;
+  double youngs_modulus = std::numeric_limits<double>::quiet_NaN();  // NaN: the scene's (scene_defaults)
+  double poisson_ratio = std::numeric_limits<double>::quiet_NaN();
   std::string barrier = "auto";
   std::string model = "snh";
   double alpha = 1.0;
@@ -63,7 +64,31 @@ struct SceneOptions {
   std::string hessian = "adaptive";
 };
 
-json summary_json(const Scene& scene, const SolveOptions& options, const SolveResult& r) {
+// Per step, how far the body is from its rest shape (README "Dynamics and
+// obstacles", drop): volume, smallest J, and the RMS vertex distance after
+// the best rigid fit (snh/shape.h), absolute and relative to the rest
+// radius of gyration. Undefined for a non-finite state.
+struct StepShape {
+  bool defined = false;
+  double volume_ratio = 0.0, min_j = 0.0, rigid_fit_rms = 0.0, rigid_fit_rms_relative = 0.0;
+};
+
+StepShape step_shape(const Mesh& mesh, const std::vector<double>& x) {
+  StepShape s;
+  for (double v : x)
+    if (!std::isfinite(v)) return s;
+  const DeformationStatistics d = deformation_statistics(mesh, x);
+  const ShapeDeviation fit = shape_deviation(mesh, x);
+  s.defined = true;
+  s.volume_ratio = d.volume_ratio;
+  s.min_j = d.min_j;
+  s.rigid_fit_rms = fit.rms_distance;
+  s.rigid_fit_rms_relative = fit.relative();
+  return s;
+}
+
+json summary_json(const Scene& scene, const SolveOptions& options, const SolveResult& r,
+                  const std::vector<StepShape>& shapes) {
   json j;
   j["scene"] = scene.name;
   j["element_type"] = to_string(scene.mesh.type);
@@ -102,6 +127,13 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                  {"max_penetration", s.max_penetration},
                  {"profile", profile_json(s.profile)}};
     if (options.dynamics) step["time"] = s.time;
+    const size_t k = j["steps"].size();
+    if (k < shapes.size() && shapes[k].defined) {
+      step["volume_ratio"] = shapes[k].volume_ratio;
+      step["min_j"] = shapes[k].min_j;
+      step["rigid_fit_rms"] = shapes[k].rigid_fit_rms;
+      step["rigid_fit_rms_relative"] = shapes[k].rigid_fit_rms_relative;
+    }
     j["steps"].push_back(step);
   }
   j["wall_seconds"] = r.seconds;
@@ -161,6 +193,10 @@ int run_scene(const SceneOptions& given) {
   MaterialMap materials;  // a scene file's regions; else uniform
   SolveOptions options;
   std::optional<SceneFile> from_file;
+  // The material the scene is meant to run with unless --E / --nu say otherwise.
+  const SceneParameters defaults = scene_defaults(o.name);
+  if (std::isnan(o.youngs_modulus)) o.youngs_modulus = defaults.youngs_modulus;
+  if (std::isnan(o.poisson_ratio)) o.poisson_ratio = defaults.poisson_ratio;
   if (!o.file.empty()) {
     // A scene file carries its own material and solver settings; --json,
     // --vtu and --surface on the command line override its outputs.
@@ -241,8 +277,10 @@ int run_scene(const SceneOptions& given) {
   // Each step's positions, for the reactions computed after the solve (so
   // that they do not count in its time).
   std::vector<std::vector<double>> step_positions, step_forces;
+  std::vector<StepShape> shapes;
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
     if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
+    shapes.push_back(step_shape(mesh, x));
     write_surface(step, x);
     if (!o.json_path.empty()) {
       step_positions.push_back(x);
@@ -257,13 +295,22 @@ int run_scene(const SceneOptions& given) {
   if (!o.vtu_dir.empty()) write_pvd(o.vtu_dir + "/" + scene.name + ".pvd", written);
 
   for (const std::string& w : r.warnings) std::cerr << "warning: " << w << '\n';
-  const bool contact = !options.obstacles.empty();
+  const bool contact = !options.obstacles.empty(), dynamic = options.dynamics.has_value();
   std::cout << "step  newton  cg      status                 residual"
-            << (contact ? "    contacts  max_penetration" : "") << '\n';
-  for (const StepResult& s : r.steps) {
+            << (dynamic ? "    time      volume    min_J     shape_rms" : "")
+            << (contact ? "   contacts  max_penetration" : "") << '\n';
+  for (size_t k = 0; k < r.steps.size(); ++k) {
+    const StepResult& s = r.steps[k];
     std::cout << std::left << std::setw(6) << s.step << std::setw(8) << s.newton_iterations << std::setw(8)
               << s.cg_iterations << std::setw(23) << s.status << std::setw(12) << std::setprecision(3)
               << s.residual_norm;
+    if (dynamic) {
+      const StepShape sh = k < shapes.size() ? shapes[k] : StepShape{};
+      std::cout << std::setw(10) << std::setprecision(4) << s.time << std::setw(10) << std::setprecision(5)
+                << (sh.defined ? sh.volume_ratio : std::nan("")) << std::setw(10) << std::setprecision(3)
+                << (sh.defined ? sh.min_j : std::nan("")) << std::setw(12) << std::setprecision(3)
+                << (sh.defined ? sh.rigid_fit_rms_relative : std::nan(""));
+    }
     if (contact) std::cout << std::setw(10) << s.contacts << std::setprecision(3) << s.max_penetration;
     std::cout << '\n';
   }
@@ -275,7 +322,7 @@ int run_scene(const SceneOptions& given) {
     if (!parent.empty()) std::filesystem::create_directories(parent);
     std::ofstream out(o.json_path);
     if (!out) throw Error("cannot write " + o.json_path);
-    json j = summary_json(scene, options, r);
+    json j = summary_json(scene, options, r, shapes);
     j["tolerance"] = r.tolerance;
     j["model"] = to_string(material.model);
     j["material"] = material.description();
@@ -302,7 +349,7 @@ int run_scene(const SceneOptions& given) {
 
 void add_scene_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SceneOptions>();
-  CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex)");
+  CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex, drop)");
   cmd->add_option("name", o->name, "scene name (or --file)")->check(CLI::IsMember(scene_names()));
   cmd->add_option("--file", o->file,
                   "a scene in JSON: mesh (file or generator) or embed (a surface voxelized), material, constraints "
@@ -313,8 +360,8 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
       ->check(CLI::IsMember({"hex8", "tet4"}))
       ->capture_default_str();
-  cmd->add_option("--E", o->youngs_modulus, "Young's modulus")->capture_default_str();
-  cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();
+  cmd->add_option("--E", o->youngs_modulus, "Young's modulus (default: the scene's; 1, drop 5e4 Pa)");
+  cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio (default: the scene's; 0.49, drop 0.46)");
   cmd->add_option("--model", o->model,
                   "material: snh, fung, arruda-boyce, corotational, fixed-corotational, stvk-kikuuwe, neohookean "
                   "(normalized to the same small-strain E, nu; model settings at their defaults)")
