@@ -356,7 +356,8 @@ void add_scene_command(CLI::App& app, int& exit_code) {
                   "(ids/box/plane, rigid or keyframed motion), rig (bones and an animation: run frame by frame), "
                   "body_force, initial, dynamics (implicit Euler: solver.steps counts time steps), obstacles "
                   "(plane, sphere, cylinder; keyframes), contact, solver, output (see data/scenes/)");
-  cmd->add_option("--res", o->resolution, "cells across the scene's thickness (0: scene default)");
+  cmd->add_option("--res", o->resolution,
+                  "cells across the scene's thickness (0: scene default; drop: 1 the coarse mesh, 2 the default)");
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
       ->check(CLI::IsMember({"hex8", "tet4"}))
       ->capture_default_str();
@@ -380,7 +381,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--precision", o->precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  cmd->add_option("--steps", o->steps, "load steps (0: scene default)");
+  cmd->add_option("--steps", o->steps, "load steps (0: scene default; drop: frames over its 2 s, default 60)");
   cmd->add_option("--seed", o->seed, "random seed (scramble)")->capture_default_str();
   cmd->add_option("--json", o->json_path,
                   "write a JSON summary with the per-iteration history and each step's constraint reactions here");
