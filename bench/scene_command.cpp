@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "material_options.h"
+#include "obstacle_surface.h"
 #include "profile_json.h"
 #include "rig_frames.h"
 #include "scene_file.h"
@@ -253,14 +254,34 @@ int run_scene(const SceneOptions& given) {
   std::cerr << "scene " << scene.name << ": " << scene.description << "; " << scene.mesh.element_count() << " "
             << to_string(scene.mesh.type) << " elements, " << 3 * scene.mesh.vertex_count() << " dofs, "
             << to_string(options.precision) << '\n';
-  std::vector<std::pair<double, std::string>> written;
+  // The .pvd's entries: part 0 the body, part 1 the obstacles (if any) as
+  // <scene>_obstacles_NNNN.vtu surfaces (obstacle_surface.h), drawn to the
+  // rest bounding box's diagonal either side of its centre.
+  std::vector<PvdDataSet> written;
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  for (size_t v = 0; v < scene.mesh.vertex_count(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = v == 0 ? scene.mesh.positions[3 * v + k] : std::min(lo[k], scene.mesh.positions[3 * v + k]);
+      hi[k] = v == 0 ? scene.mesh.positions[3 * v + k] : std::max(hi[k], scene.mesh.positions[3 * v + k]);
+    }
+  const std::array<double, 3> middle{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+  const double extent = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  auto write_obstacles = [&](int step, double time) {
+    if (o.vtu_dir.empty() || options.obstacles.empty()) return;
+    char file[256];
+    std::snprintf(file, sizeof file, "%s_obstacles_%04d.vtu", scene.name.c_str(), step);
+    const double t = static_cast<double>(step) / options.load_steps;
+    write_surface_vtu(o.vtu_dir + "/" + file, obstacle_surface(options.obstacles, t, middle, extent));
+    written.push_back({time, file, 1});
+  };
   if (!o.vtu_dir.empty()) {
     std::filesystem::create_directories(o.vtu_dir);
     const std::vector<double>& x0 =
         options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
     const std::string file = scene.name + "_0000.vtu";
     write_step_vtu(o.vtu_dir + "/" + file, scene.mesh, materials, x0);
-    written.push_back({0.0, file});
+    written.push_back({0.0, file, 0});
+    write_obstacles(0, 0.0);
   }
   // The embedded surface per step as OBJ (scene files with "embed").
   auto write_surface = [&](int step, const std::vector<double>& x) {
@@ -290,9 +311,11 @@ int run_scene(const SceneOptions& given) {
     char file[256];
     std::snprintf(file, sizeof file, "%s_%04d.vtu", scene.name.c_str(), step);
     write_step_vtu(o.vtu_dir + "/" + file, mesh, materials, x);
-    written.push_back({options.dynamics ? solver.simulation().time() : static_cast<double>(step), file});
+    const double time = options.dynamics ? solver.simulation().time() : static_cast<double>(step);
+    written.push_back({time, file, 0});
+    write_obstacles(step, time);
   });
-  if (!o.vtu_dir.empty()) write_pvd(o.vtu_dir + "/" + scene.name + ".pvd", written);
+  if (!o.vtu_dir.empty()) write_pvd_parts(o.vtu_dir + "/" + scene.name + ".pvd", written);
 
   for (const std::string& w : r.warnings) std::cerr << "warning: " << w << '\n';
   const bool contact = !options.obstacles.empty(), dynamic = options.dynamics.has_value();

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "obstacle_surface.h"
 #include "scene_file.h"
 #include "snh/loads.h"
 #include "snh/mesh_io.h"
@@ -26,8 +27,8 @@ namespace {
 
 const std::string kData = SNH_DATA_DIR;
 
-TEST(Drop, ShippedOctopusMeshesReadCleanly) {
-  for (const char *file : {"blob.msh", "blob_coarse.msh"}) {
+TEST(Drop, ShippedBlobMeshesReadCleanly) {
+  for (const char* file : {"blob.msh", "blob_coarse.msh"}) {
     SCOPED_TRACE(file);
     const Mesh mesh = read_mesh(kData + "/meshes/" + file);
     EXPECT_EQ(mesh.type, ElementType::tet4);
@@ -114,6 +115,48 @@ TEST(Drop, BuiltInSceneMatchesTheSceneFile) {
   EXPECT_NEAR(gap, 3 * a.contact.thickness, 1e-12);
 }
 
+// What ParaView is shown of the obstacles: at t = 0.5 the upper cylinder's
+// tube lies on its moved surface, the walls' squares on their planes, and
+// every triangle faces the free side.
+TEST(Drop, ObstacleSurfaceFollowsTheMotion) {
+  const Scene scene = make_scene("drop", scene_defaults("drop"));
+  for (size_t k = 0; k < scene.options.obstacles.size(); ++k) {
+    SCOPED_TRACE(k);
+    const Obstacle& o = scene.options.obstacles[k];
+    const TriangleSurface s = bench::obstacle_surface({o}, 0.5, {0.0, 0.0, 0.0}, 0.2);
+    ASSERT_GT(s.triangle_count(), 0u);
+    const std::array<double, 3> p = o.motion ? o.motion(0.5).apply(o.point) : o.point;
+    // Signed distance of x from the placed obstacle and its outward normal
+    // (the axes and normals here are coordinate axes, so unit already).
+    auto phi = [&](const double* x, std::array<double, 3>& n) {
+      const std::array<double, 3> d{x[0] - p[0], x[1] - p[1], x[2] - p[2]};
+      if (o.type == ObstacleType::plane) {
+        n = o.direction;
+        return d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+      }
+      const double along = d[0] * o.direction[0] + d[1] * o.direction[1] + d[2] * o.direction[2];
+      const std::array<double, 3> radial{d[0] - along * o.direction[0], d[1] - along * o.direction[1],
+                                         d[2] - along * o.direction[2]};
+      const double r = std::sqrt(radial[0] * radial[0] + radial[1] * radial[1] + radial[2] * radial[2]);
+      n = {radial[0] / r, radial[1] / r, radial[2] / r};
+      return r - o.radius;
+    };
+    std::array<double, 3> n;
+    for (size_t v = 0; v < s.vertex_count(); ++v) EXPECT_NEAR(phi(&s.positions[3 * v], n), 0.0, 1e-12);
+    for (size_t t = 0; t < s.triangle_count(); ++t) {
+      const double* a = &s.positions[3 * s.triangles[3 * t]];
+      const double* b = &s.positions[3 * s.triangles[3 * t + 1]];
+      const double* c = &s.positions[3 * s.triangles[3 * t + 2]];
+      const std::array<double, 3> e{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, f{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      const std::array<double, 3> normal{e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2],
+                                         e[0] * f[1] - e[1] * f[0]};
+      const double centroid[3] = {(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
+      phi(centroid, n);
+      EXPECT_GT(normal[0] * n[0] + normal[1] * n[1] + normal[2] * n[2], 0.0) << "triangle " << t;
+    }
+  }
+}
+
 #ifdef SNH_BENCH_BINARY
 // The coarse blob (700 tets) in 10 frames of 0.2 s (4 substeps of 50 ms;
 // about 12 s on pocl) through the scene command: every step converged and
@@ -141,7 +184,7 @@ TEST(Drop, CoarseSquashAndReleaseThroughTheSceneCommand) {
   const double thickness = j["contact"]["thickness"].get<double>();
   double squashed_min_j = 1.0;
   for (size_t s = 0; s < j["steps"].size(); ++s) {
-    const nlohmann::json &step = j["steps"][s];
+    const nlohmann::json& step = j["steps"][s];
     SCOPED_TRACE("step " + std::to_string(s + 1));
     EXPECT_TRUE(step["converged"].get<bool>()) << step["status"];
     ASSERT_TRUE(step.contains("volume_ratio"));  // only absent for a non-finite state
@@ -163,25 +206,25 @@ TEST(Drop, CoarseSquashAndReleaseThroughTheSceneCommand) {
   RecordProperty("final_volume_ratio", std::to_string(last["volume_ratio"].get<double>()));
   RecordProperty("final_rigid_fit_rms_relative", std::to_string(last["rigid_fit_rms_relative"].get<double>()));
 
-  // ParaView: drop_0000.vtu (rest) .. drop_0020.vtu, and drop.pvd listing
-  // each with its simulated time.
-  for (int s = 0; s <= frames; ++s) {
-    char name[64];
-    std::snprintf(name, sizeof name, "drop_%04d.vtu", s);
-    EXPECT_TRUE(std::filesystem::exists(dir / "vtu" / name)) << name;
-  }
+  // ParaView: drop_0000.vtu (rest) .. drop_0010.vtu, the obstacles' surfaces
+  // drop_obstacles_0000.vtu .., and drop.pvd listing each with its
+  // simulated time, the body as part 0 and the obstacles as part 1.
   std::ifstream pvd(dir / "vtu" / "drop.pvd");
   ASSERT_TRUE(pvd.good());
   const std::string text((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
-  const std::regex entry(R"re(<DataSet\s+timestep="([^"]+)"[^>]*file="([^"]+)")re");
-  int count = 0;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it, ++count) {
+  const std::regex entry(R"re(<DataSet\s+timestep="([^"]+)"\s+group="[^"]*"\s+part="([01])"\s+file="([^"]+)")re");
+  int count[2] = {0, 0};
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it) {
+    const int part = std::stoi((*it)[2].str());
     char name[64];
-    std::snprintf(name, sizeof name, "drop_%04d.vtu", count);
-    EXPECT_EQ((*it)[2].str(), name);
-    EXPECT_NEAR(std::stod((*it)[1].str()), 2.0 * count / frames, 1e-9) << name;
+    std::snprintf(name, sizeof name, part == 0 ? "drop_%04d.vtu" : "drop_obstacles_%04d.vtu", count[part]);
+    EXPECT_EQ((*it)[3].str(), name);
+    EXPECT_TRUE(std::filesystem::exists(dir / "vtu" / name)) << name;
+    EXPECT_NEAR(std::stod((*it)[1].str()), 2.0 * count[part] / frames, 1e-12) << name;
+    ++count[part];
   }
-  EXPECT_EQ(count, frames + 1);
+  EXPECT_EQ(count[0], frames + 1);
+  EXPECT_EQ(count[1], frames + 1);
 }
 #endif
 
