@@ -231,6 +231,8 @@ double scene_cell_size(const Mesh& mesh) {
 
 std::vector<std::string> scene_names() { return {"stretch", "twist", "scramble", "flex", "drop"}; }
 
+std::vector<std::string> lattice_scene_names() { return {"stretch", "twist", "scramble", "flex"}; }
+
 std::string scene_data_dir() {
   if (const char* env = std::getenv("SNH_DATA_DIR"); env && *env) return env;
   return SNH_DEFAULT_DATA_DIR;

@@ -58,6 +58,11 @@ Scene make_scene(const std::string& name, const SceneParameters& parameters);
 
 std::vector<std::string> scene_names();
 
+// The scenes built on the paper's lattices and run as load steps (all but
+// "drop"): those whose resolution, element type and E the benchmarks that
+// sweep them (errtime, scale) can vary.
+std::vector<std::string> lattice_scene_names();
+
 // The parameters a scene is meant to run with: the struct's defaults, except
 // "drop"'s SI material (E = 5e4 Pa, nu = 0.46).
 SceneParameters scene_defaults(const std::string& name);
