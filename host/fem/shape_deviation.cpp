@@ -1,4 +1,5 @@
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -44,9 +45,9 @@ ShapeDeviation shape_deviation(const Mesh& mesh, const std::vector<double>& x) {
   }
   if (!(rest_square > 0.0)) throw Error("shape_deviation: the mesh's vertices all coincide");
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Vector3d s = svd.singularValues();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0) s[2] = -s[2];
-  const double residual = std::max(0.0, rest_square + square - 2.0 * s.sum());
+  const double reflection = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  const double fit = svd.singularValues()(0) + svd.singularValues()(1) + reflection * svd.singularValues()(2);
+  const double residual = std::max(0.0, rest_square + square - 2.0 * fit);
   ShapeDeviation out;
   out.rms_distance = std::sqrt(residual / static_cast<double>(count));
   out.radius_of_gyration = std::sqrt(rest_square / static_cast<double>(count));
