@@ -74,7 +74,6 @@ __kernel void snh_element_linearize(__global const real* x, __global const int* 
   if (e >= (size_t)count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
   load_nodes(x, elements + SNH_NODES * e, xs);
-  SNH_UNROLL
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
     principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
@@ -119,7 +118,6 @@ __kernel void snh_element_product_recompute(__global const real* p, __global con
   load_nodes(x, elements + SNH_NODES * e, xs);
   load_nodes(p, elements + SNH_NODES * e, ps);
   for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
-  SNH_UNROLL
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
     principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
