@@ -27,6 +27,11 @@
 #else
 #define SNH_FN static inline
 #endif
+/* The SVD and the eigensystem: left to the compiler's inlining. They do not
+ * vectorize across work-items on pocl 3.1 either way (README, throughput),
+ * and forcing them inline at every call site of every material more than
+ * doubled the kernels' build time. */
+#define SNH_FN_LARGE static inline
 
 /* Address space of device buffers; plain memory on the host. */
 #if SNH_IS_OPENCL

@@ -109,7 +109,7 @@ SNH_FN void eigen_sym3_set_column(mat3* m, int c, vec3 x) {
  * blended by selects, without branches, so that kernels calling this for
  * every quadrature point vectorize across work-items (the result is the same
  * as branching would give). */
-SNH_FN void eigen_sym3(sym3 a, vec3* values, mat3* vectors) {
+SNH_FN_LARGE void eigen_sym3(sym3 a, vec3* values, mat3* vectors) {
   real scale = SNH_R(0);
   SNH_UNROLL
   for (int i = 0; i < 6; ++i) scale = fmax(scale, fabs(a.a[i]));

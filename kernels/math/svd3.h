@@ -101,7 +101,7 @@ SNH_FN void svd3_jacobi_pair(mat3* b, mat3* v, int p, int q) {
   svd3_rotate_columns(v, p, q, rotate ? c : SNH_R(1), rotate ? s : SNH_R(0));
 }
 
-SNH_FN void svd3_rv(mat3 f, mat3* u, vec3* sigma, mat3* v) {
+SNH_FN_LARGE void svd3_rv(mat3 f, mat3* u, vec3* sigma, mat3* v) {
   mat3 b = f;
   *v = mat3_identity();
 
