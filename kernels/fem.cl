@@ -70,8 +70,8 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
 __kernel void snh_element_linearize(__global const real* x, __global const int* elements,
                                     __global const real* gradients, const int count, MATERIAL_ARGS, const int project,
                                     __global real* cache) {
-  const int e = get_global_id(0);
-  if (e >= count) return;
+  const size_t e = get_global_id(0);
+  if (e >= (size_t)count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
   load_nodes(x, elements + SNH_NODES * e, xs);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
@@ -93,11 +93,12 @@ SNH_FN void element_product(const principal_hessian* h, const real* ps, const re
 __kernel void snh_element_product_cached(__global const real* p, __global const int* elements,
                                          __global const real* gradients, __global const real* weights, const int count,
                                          __global const real* cache, __global real* out) {
-  const int e = get_global_id(0);
-  if (e >= count) return;
+  const size_t e = get_global_id(0);
+  if (e >= (size_t)count) return;
   real ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
   load_nodes(p, elements + SNH_NODES * e, ps);
   for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
+  SNH_UNROLL
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
     const principal_hessian h = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
@@ -111,8 +112,8 @@ __kernel void snh_element_product_recompute(__global const real* p, __global con
                                             __global const real* gradients, __global const real* weights,
                                             const int count, __global const real* x, MATERIAL_ARGS, const int project,
                                             __global real* out) {
-  const int e = get_global_id(0);
-  if (e >= count) return;
+  const size_t e = get_global_id(0);
+  if (e >= (size_t)count) return;
   real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
   load_nodes(x, elements + SNH_NODES * e, xs);
   load_nodes(p, elements + SNH_NODES * e, ps);

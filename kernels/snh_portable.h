@@ -18,14 +18,36 @@
 #define SNH_IS_OPENCL 0
 #endif
 
-/* Helper functions: file-local and inlinable in both languages. */
+/* Helper functions: file-local and inlinable in both languages. In kernels
+ * always inlined: pocl vectorizes a kernel across work-items only when its
+ * body is one call-free loop nest, and LLVM's own heuristics leave the
+ * larger helpers (SVD, eigensystem) out of line. */
+#if SNH_IS_OPENCL
+#define SNH_FN static inline __attribute__((always_inline))
+#else
 #define SNH_FN static inline
+#endif
+/* The SVD and the eigensystem: left to the compiler's inlining. They do not
+ * vectorize across work-items on pocl 3.1 either way (README, throughput),
+ * and forcing them inline at every call site of every material more than
+ * doubled the kernels' build time. */
+#define SNH_FN_LARGE static inline
 
 /* Address space of device buffers; plain memory on the host. */
 #if SNH_IS_OPENCL
 #define SNH_GLOBAL __global
 #else
 #define SNH_GLOBAL
+#endif
+
+/* Fully unroll the next loop (constant trip count) in kernels, so that the
+ * work-item loop pocl wraps around the kernel body is the innermost loop
+ * and LLVM's loop vectorizer can run across work-items. The host compiler
+ * decides for itself. */
+#if SNH_IS_OPENCL
+#define SNH_UNROLL _Pragma("unroll")
+#else
+#define SNH_UNROLL
 #endif
 
 /* A literal in the working precision; folded at compile time. */

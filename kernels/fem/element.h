@@ -27,18 +27,23 @@
 /* F = sum_a x_a (dN_a/dX)^T for node values xs[a][3]. */
 SNH_FN mat3 element_deformation_gradient(const real* xs, const real* g) {
   mat3 f = mat3_zero();
-  for (int a = 0; a < SNH_NODES; ++a)
-    for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r) M3(f, r, c) += xs[3 * a + r] * g[3 * a + c];
+  SNH_UNROLL
+  for (int a = 0; a < SNH_NODES; ++a) {
+    SNH_UNROLL
+    for (int i = 0; i < 9; ++i) M3(f, i % 3, i / 3) += xs[3 * a + i % 3] * g[3 * a + i / 3];
+  }
   return f;
 }
 
 /* out[a][i] += w sum_j P_ij dN_a/dX_j: the stress's work-conjugate nodal
  * vector (the internal force is its negative). */
 SNH_FN void element_scatter(mat3 p, const real* g, real w, real* out) {
-  for (int a = 0; a < SNH_NODES; ++a)
+  SNH_UNROLL
+  for (int a = 0; a < SNH_NODES; ++a) {
+    SNH_UNROLL
     for (int i = 0; i < 3; ++i)
       out[3 * a + i] += w * (M3(p, i, 0) * g[3 * a] + M3(p, i, 1) * g[3 * a + 1] + M3(p, i, 2) * g[3 * a + 2]);
+  }
 }
 
 /* Stiffness columns from rank-one dF. Column (b, d) of one point's
@@ -70,20 +75,31 @@ SNH_FN void element_column_scatter(mat3 m, const real* vg, real w, real* column)
 }
 
 SNH_FN void linearization_store(const principal_hessian* h, SNH_GLOBAL real* out) {
+  SNH_UNROLL
   for (int i = 0; i < 9; ++i) out[i] = h->u.a[i];
+  SNH_UNROLL
   for (int i = 0; i < 9; ++i) out[9 + i] = h->v.a[i];
+  SNH_UNROLL
   for (int i = 0; i < 6; ++i) out[18 + i] = h->block.a[i];
+  SNH_UNROLL
   for (int i = 0; i < 3; ++i) out[24 + i] = h->twist.a[i];
+  SNH_UNROLL
   for (int i = 0; i < 3; ++i) out[27 + i] = h->flip.a[i];
 }
 
 SNH_FN principal_hessian linearization_load(SNH_GLOBAL const real* in) {
   principal_hessian h;
+  SNH_UNROLL
   for (int i = 0; i < 9; ++i) h.u.a[i] = in[i];
+  SNH_UNROLL
   for (int i = 0; i < 9; ++i) h.v.a[i] = in[9 + i];
+  SNH_UNROLL
   for (int i = 0; i < 6; ++i) h.block.a[i] = in[18 + i];
+  SNH_UNROLL
   for (int i = 0; i < 3; ++i) h.twist.a[i] = in[24 + i];
+  SNH_UNROLL
   for (int i = 0; i < 3; ++i) h.flip.a[i] = in[27 + i];
+  SNH_UNROLL
   for (int i = 0; i < 3; ++i) h.sigma.a[i] = SNH_R(0);
   return h;
 }

@@ -15,16 +15,18 @@
 #endif
 
 SNH_FN void load_nodes(SNH_GLOBAL const real* x, SNH_GLOBAL const int* nodes, real* xs) {
+  SNH_UNROLL
   for (int a = 0; a < SNH_NODES; ++a)
     for (int i = 0; i < 3; ++i) xs[3 * a + i] = x[3 * nodes[a] + i];
 }
 
-SNH_FN void load_gradients(SNH_GLOBAL const real* gradients, int e, int q, real* g) {
+SNH_FN void load_gradients(SNH_GLOBAL const real* gradients, size_t e, int q, real* g) {
   SNH_GLOBAL const real* src = gradients + (size_t)3 * SNH_NODES * (SNH_QUADRATURE * REST_ELEMENT(e) + q);
+  SNH_UNROLL
   for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = src[i];
 }
 
-SNH_FN real load_weight(SNH_GLOBAL const real* weights, int e, int q) {
+SNH_FN real load_weight(SNH_GLOBAL const real* weights, size_t e, int q) {
   return weights[SNH_QUADRATURE * REST_ELEMENT(e) + q];
 }
 

@@ -20,6 +20,7 @@ typedef struct {
 SNH_FN mat3 invariant_pk1(mat3 f, invariant_terms t) {
   const mat3 g = mat3_cofactor(f);
   mat3 p;
+  SNH_UNROLL
   for (int i = 0; i < 9; ++i) p.a[i] = t.gamma_i * f.a[i] + t.gamma_h * g.a[i];
   return p;
 }
@@ -36,6 +37,7 @@ SNH_FN principal_hessian invariant_principal_hessian(mat3 u, vec3 sigma, mat3 v,
   h.block.a[1] = t.gamma_f * s0 * s1 + t.gamma_g * s0 * s1 * s2 * s2 + t.gamma_h * s2;
   h.block.a[2] = t.gamma_f * s0 * s2 + t.gamma_g * s0 * s2 * s1 * s1 + t.gamma_h * s1;
   h.block.a[4] = t.gamma_f * s1 * s2 + t.gamma_g * s1 * s2 * s0 * s0 + t.gamma_h * s0;
+  SNH_UNROLL
   for (int k = 0; k < 3; ++k) {
     h.twist.a[k] = t.gamma_i + t.gamma_h * sigma.a[k];
     h.flip.a[k] = t.gamma_i - t.gamma_h * sigma.a[k];

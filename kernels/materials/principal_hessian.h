@@ -34,7 +34,9 @@ SNH_FN principal_hessian principal_hessian_project(principal_hessian h) {
   mat3 vectors;
   eigen_sym3(h.block, &values, &vectors);
   sym3 b;
+  SNH_UNROLL
   for (int i = 0; i < 6; ++i) b.a[i] = SNH_R(0);
+  SNH_UNROLL
   for (int e = 0; e < 3; ++e) {
     const real w = fmax(values.a[e], SNH_R(0));
     const real x = M3(vectors, 0, e), y = M3(vectors, 1, e), z = M3(vectors, 2, e);
@@ -46,6 +48,7 @@ SNH_FN principal_hessian principal_hessian_project(principal_hessian h) {
     b.a[5] += w * z * z;
   }
   h.block = b;
+  SNH_UNROLL
   for (int k = 0; k < 3; ++k) {
     h.twist.a[k] = fmax(h.twist.a[k], SNH_R(0));
     h.flip.a[k] = fmax(h.flip.a[k], SNH_R(0));
@@ -63,6 +66,7 @@ SNH_FN mat3 principal_hessian_rotated_action(const principal_hessian* h, mat3 r)
   M3(out, 0, 0) = bd.a[0];
   M3(out, 1, 1) = bd.a[1];
   M3(out, 2, 2) = bd.a[2];
+  SNH_UNROLL
   for (int k = 0; k < 3; ++k) {
     const int i = principal_pair_i(k), j = principal_pair_j(k);
     const real anti = SNH_R(0.5) * h->twist.a[k] * (M3(r, i, j) - M3(r, j, i));
@@ -86,11 +90,13 @@ SNH_FN void principal_hessian_eigensystem(const principal_hessian* h, real* valu
   vec3 bv;
   mat3 bq;
   eigen_sym3(h->block, &bv, &bq);
+  SNH_UNROLL
   for (int e = 0; e < 3; ++e) {
     values[e] = bv.a[e];
     vectors[e] = mat3_udvt(h->u, vec3_make(M3(bq, 0, e), M3(bq, 1, e), M3(bq, 2, e)), h->v);
   }
   const real inv_sqrt2 = SNH_R(0.70710678118654752440084436210484904);
+  SNH_UNROLL
   for (int k = 0; k < 3; ++k) {
     const int i = principal_pair_i(k), j = principal_pair_j(k);
     mat3 t = mat3_zero(), f = mat3_zero();
