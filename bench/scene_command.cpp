@@ -27,6 +27,7 @@
 #include "snh/scenes.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
+#include "solver/self_contact.h"
 
 namespace snh::bench {
 namespace {
@@ -85,9 +86,12 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                      {"damping", {{"mass", d.damping.mass}, {"stiffness", d.damping.stiffness}}},
                      {"substeps", d.substeps}};
   }
-  if (!options.obstacles.empty()) {
+  if (!options.obstacles.empty() || options.contact.self) {
     j["obstacles"] = options.obstacles.size();
-    j["contact"] = {{"stiffness", options.contact.stiffness}, {"thickness", options.contact.thickness}};
+    j["contact"] = {{"stiffness", options.contact.stiffness},
+                    {"thickness", options.contact.thickness},
+                    {"self", options.contact.self}};
+    if (options.contact.self) j["contact"]["self_stiffness"] = options.contact.self_stiffness;
   }
   j["steps"] = json::array();
   for (const StepResult& s : r.steps) {
@@ -102,6 +106,10 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                  {"max_penetration", s.max_penetration},
                  {"profile", profile_json(s.profile)}};
     if (options.dynamics) step["time"] = s.time;
+    if (options.contact.self) {
+      step["self_contacts"] = s.self_contacts;
+      step["max_self_penetration"] = s.max_self_penetration;
+    }
     j["steps"].push_back(step);
   }
   j["wall_seconds"] = r.seconds;
@@ -241,8 +249,21 @@ int run_scene(const SceneOptions& given) {
   // Each step's positions, for the reactions computed after the solve (so
   // that they do not count in its time).
   std::vector<std::vector<double>> step_positions, step_forces;
+  // A scene with a contact stiffness but self-contact off: the same detector
+  // measures, after each step, the self-penetration the penalty would see
+  // (reported, not resisted; outside the solve's time).
+  std::unique_ptr<solver::SelfContactDetector> unresolved;
+  if (!options.contact.self && options.contact.stiffness > 0.0)
+    unresolved = std::make_unique<solver::SelfContactDetector>(mesh);
+  std::vector<std::pair<int, double>> unresolved_steps;
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
     if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
+    if (unresolved) {
+      double deepest = 0.0;
+      const auto pairs = unresolved->detect(x);
+      for (const auto& c : pairs) deepest = std::max(deepest, solver::self_contact_length(c, x));
+      unresolved_steps.push_back({static_cast<int>(pairs.size()), deepest});
+    }
     write_surface(step, x);
     if (!o.json_path.empty()) {
       step_positions.push_back(x);
@@ -257,14 +278,29 @@ int run_scene(const SceneOptions& given) {
   if (!o.vtu_dir.empty()) write_pvd(o.vtu_dir + "/" + scene.name + ".pvd", written);
 
   for (const std::string& w : r.warnings) std::cerr << "warning: " << w << '\n';
-  const bool contact = !options.obstacles.empty();
+  const bool contact = !options.obstacles.empty() || options.contact.self;
+  const bool self_column = options.contact.self || unresolved;
   std::cout << "step  newton  cg      status                 residual"
-            << (contact ? "    contacts  max_penetration" : "") << '\n';
-  for (const StepResult& s : r.steps) {
+            << (contact ? "    contacts  max_penetration" : "")
+            << (options.contact.self ? "  self_contacts  max_self_penetration"
+                : unresolved         ? "  unresolved_self_contacts  max_self_penetration"
+                                     : "")
+            << '\n';
+  for (size_t i = 0; i < r.steps.size(); ++i) {
+    const StepResult& s = r.steps[i];
     std::cout << std::left << std::setw(6) << s.step << std::setw(8) << s.newton_iterations << std::setw(8)
               << s.cg_iterations << std::setw(23) << s.status << std::setw(12) << std::setprecision(3)
               << s.residual_norm;
-    if (contact) std::cout << std::setw(10) << s.contacts << std::setprecision(3) << s.max_penetration;
+    if (contact) std::cout << std::setw(10) << s.contacts << std::setw(17) << std::setprecision(3) << s.max_penetration;
+    if (self_column) {
+      const int n = options.contact.self          ? s.self_contacts
+                    : i < unresolved_steps.size() ? unresolved_steps[i].first
+                                                  : 0;
+      const double d = options.contact.self          ? s.max_self_penetration
+                       : i < unresolved_steps.size() ? unresolved_steps[i].second
+                                                     : 0.0;
+      std::cout << "  " << std::setw(13) << n << std::setprecision(3) << d;
+    }
     std::cout << '\n';
   }
   std::cout << "converged " << (r.converged ? "yes" : "no") << ", " << std::setprecision(4) << r.seconds
@@ -276,6 +312,11 @@ int run_scene(const SceneOptions& given) {
     std::ofstream out(o.json_path);
     if (!out) throw Error("cannot write " + o.json_path);
     json j = summary_json(scene, options, r);
+    // Self-contact off: what the detector measured after each step.
+    for (size_t i = 0; i < unresolved_steps.size() && i < j["steps"].size(); ++i) {
+      j["steps"][i]["unresolved_self_contacts"] = unresolved_steps[i].first;
+      j["steps"][i]["max_self_penetration"] = unresolved_steps[i].second;
+    }
     j["tolerance"] = r.tolerance;
     j["model"] = to_string(material.model);
     j["material"] = material.description();

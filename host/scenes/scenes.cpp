@@ -109,6 +109,42 @@ Scene flex(const SceneParameters& p) {
   return s;
 }
 
+// A longer limb than flex, flexed 140 degrees so that the inner (z-) sides
+// of the two halves meet: self-contact keeps them from passing through each
+// other. The bones stop 1.25 thicknesses short of the joint on either side,
+// so at 140 degrees (20 degrees from the joint to each arm's axis, sin 20 =
+// 0.34) the rigid bones stay 0.36 thicknesses apart while the flesh below
+// them (0.25 thick) folds onto itself from 1.46 thicknesses out.
+Scene elbow(const SceneParameters& p) {
+  Scene s;
+  const int res = resolution_or(p, 4);
+  const double w = 1.0, h = w / res, length = 6.0 * w;
+  s.mesh = make_box_lattice(6 * res, res, res, h);
+  ConstraintSet upper{"upper_bone", {}, {}, {}}, lower{"lower_bone", {}, {}, {}};
+  for (size_t v = 0; v < s.mesh.vertex_count(); ++v) {
+    const auto x = s.mesh.vertex(v);
+    const bool core = std::abs(x[1] - 0.5 * w) <= 0.25 * w + 1e-9 && std::abs(x[2] - 0.5 * w) <= 0.25 * w + 1e-9;
+    if (!core) continue;
+    if (x[0] >= 0.25 * w - 1e-9 && x[0] <= 0.5 * length - 1.25 * w + 1e-9)
+      upper.vertices.push_back(static_cast<int32_t>(v));
+    if (x[0] >= 0.5 * length + 1.25 * w - 1e-9 && x[0] <= length - 0.25 * w + 1e-9)
+      lower.vertices.push_back(static_cast<int32_t>(v));
+  }
+  const std::array<double, 3> joint{0.5 * length, 0.5 * w, 0.5 * w};
+  const double angle = 140.0 / 180.0 * kPi;
+  lower.motion = [joint, angle](double t) { return RigidTransform::rotation_about({0.0, 1.0, 0.0}, t * angle, joint); };
+  s.constraints = {upper, lower};
+  s.options.load_steps = p.steps > 0 ? p.steps : 14;
+  // Springs of 40 E h per sample (force per length, E = 1 at the scene's
+  // scale): the contact pressure at 140 degrees pushes samples a small
+  // fraction of the thickness 0.1 h in.
+  s.options.contact.self = true;
+  s.options.contact.stiffness = 40.0 * p.youngs_modulus * h;
+  s.options.contact.thickness = 0.1 * h;
+  s.description = "6:1:1 limb flexed 140 degrees by two rigid bones, inner side folding onto itself (self-contact)";
+  return s;
+}
+
 // Edge length of the first element (the scenes' lattices are uniform).
 // Edge length of the first hex (the scenes' lattices are uniform).
 double scene_cell_size(const Mesh& mesh) {
@@ -118,7 +154,7 @@ double scene_cell_size(const Mesh& mesh) {
 
 }  // namespace
 
-std::vector<std::string> scene_names() { return {"stretch", "twist", "scramble", "flex"}; }
+std::vector<std::string> scene_names() { return {"stretch", "twist", "scramble", "flex", "elbow"}; }
 
 Scene make_scene(const std::string& name, const SceneParameters& p) {
   Scene s;
@@ -130,8 +166,10 @@ Scene make_scene(const std::string& name, const SceneParameters& p) {
     s = scramble(p);
   else if (name == "flex")
     s = flex(p);
+  else if (name == "elbow")
+    s = elbow(p);
   else
-    throw Error("scene: unknown scene '" + name + "' (known: stretch, twist, scramble, flex)");
+    throw Error("scene: unknown scene '" + name + "' (known: stretch, twist, scramble, flex, elbow)");
   s.name = name;
   const double h = scene_cell_size(s.mesh);
   // Vertices (and so the constraint sets) are the lattice's either way.

@@ -44,6 +44,9 @@ struct Scene {
 //   volume, four bottom corners pinned at rest; it must recover.
 // "flex": a 4:1:1 limb-like hex lattice driven by two rigid bones (vertex sets
 //   in its core); one bone fixed, the other bent 90 degrees about the joint.
+// "elbow": a 6:1:1 limb flexed 140 degrees by two bones with self-contact on
+//   (SolveOptions::contact.self), so the inner side folds without passing
+//   through itself.
 // Throws snh::Error for an unknown name or out-of-range parameters.
 Scene make_scene(const std::string& name, const SceneParameters& parameters);
 
