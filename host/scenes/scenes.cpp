@@ -110,34 +110,40 @@ Scene flex(const SceneParameters& p) {
 }
 
 // A longer limb than flex, flexed 140 degrees so that the inner (z-) sides
-// of the two halves meet: self-contact keeps them from passing through each
-// other. The bones stop 1.25 thicknesses short of the joint on either side,
-// so at 140 degrees (20 degrees from the joint to each arm's axis, sin 20 =
-// 0.34) the rigid bones stay 0.36 thicknesses apart while the flesh below
-// them (0.25 thick) folds onto itself from 1.46 thicknesses out.
+// of the two halves meet. The bones lie in the upper half of the core
+// (0.5 <= z <= 0.75 thicknesses, |y - 0.5| <= 0.25), leaving half a
+// thickness of flesh below them (a biceps); the joint axis (along y) runs
+// through the bones' centre line, and the bones stop 0.75 thicknesses short
+// of it on either side. At 140 degrees (20 degrees from the joint to each
+// arm) the rigid bones stay 2 (0.75 sin 20 - 0.125) = 0.26 thicknesses
+// apart, while the inner surfaces, 0.625 below the axis, overlap from
+// 0.625 / sin 20 = 1.83 thicknesses out: without self-contact that flesh
+// passes through itself. 28 steps of 5 degrees: the bones' tips move about
+// one cell per step (larger steps start Newton from states where the
+// flesh next to the moved bones is tangled).
 Scene elbow(const SceneParameters& p) {
   Scene s;
   const int res = resolution_or(p, 4);
   const double w = 1.0, h = w / res, length = 6.0 * w;
   s.mesh = make_box_lattice(6 * res, res, res, h);
   ConstraintSet upper{"upper_bone", {}, {}, {}}, lower{"lower_bone", {}, {}, {}};
+  const double tol = 1e-9;
   for (size_t v = 0; v < s.mesh.vertex_count(); ++v) {
     const auto x = s.mesh.vertex(v);
-    const bool core = std::abs(x[1] - 0.5 * w) <= 0.25 * w + 1e-9 && std::abs(x[2] - 0.5 * w) <= 0.25 * w + 1e-9;
+    const bool core = std::abs(x[1] - 0.5 * w) <= 0.25 * w + tol && x[2] >= 0.5 * w - tol && x[2] <= 0.75 * w + tol;
     if (!core) continue;
-    if (x[0] >= 0.25 * w - 1e-9 && x[0] <= 0.5 * length - 1.25 * w + 1e-9)
+    if (x[0] >= 0.25 * w - tol && x[0] <= 0.5 * length - 0.75 * w + tol)
       upper.vertices.push_back(static_cast<int32_t>(v));
-    if (x[0] >= 0.5 * length + 1.25 * w - 1e-9 && x[0] <= length - 0.25 * w + 1e-9)
+    if (x[0] >= 0.5 * length + 0.75 * w - tol && x[0] <= length - 0.25 * w + tol)
       lower.vertices.push_back(static_cast<int32_t>(v));
   }
-  const std::array<double, 3> joint{0.5 * length, 0.5 * w, 0.5 * w};
+  const std::array<double, 3> joint{0.5 * length, 0.5 * w, 0.625 * w};
   const double angle = 140.0 / 180.0 * kPi;
   lower.motion = [joint, angle](double t) { return RigidTransform::rotation_about({0.0, 1.0, 0.0}, t * angle, joint); };
   s.constraints = {upper, lower};
-  s.options.load_steps = p.steps > 0 ? p.steps : 14;
-  // Springs of 40 E h per sample (force per length, E = 1 at the scene's
-  // scale): the contact pressure at 140 degrees pushes samples a small
-  // fraction of the thickness 0.1 h in.
+  s.options.load_steps = p.steps > 0 ? p.steps : 28;
+  // Springs of 40 E h per sample (force per length): the contact pressure
+  // at 140 degrees keeps samples within the thickness 0.1 h.
   s.options.contact.self = true;
   s.options.contact.stiffness = 40.0 * p.youngs_modulus * h;
   s.options.contact.thickness = 0.1 * h;

@@ -310,11 +310,13 @@ template <typename Real>
 ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
   ContactState state;
   if (terms_.self_contact) {
-    // Detected afresh at x (the frozen set may be an iteration old).
+    // The springs the penalty has at x: the set refreshed there (samples
+    // already in contact keep theirs).
+    refresh_self_contact(x);
     std::vector<Real> xh(dofs());
     viennacl::copy(x.begin(), x.end(), xh.begin());
     const std::vector<double> xd(xh.begin(), xh.end());
-    for (const SelfContactPair& c : detector_->detect(xd)) {
+    for (const SelfContactPair& c : self_pairs_) {
       ++state.self_contacts;
       state.max_self_penetration = std::max(state.max_self_penetration, self_contact_length(c, xd));
     }
@@ -342,7 +344,7 @@ void ElasticModel<Real>::set_self_contact_stiffness(double stiffness) {
 }
 
 template <typename Real>
-bool ElasticModel<Real>::refresh_self_contact(const VectorBase& x) {
+bool ElasticModel<Real>::refresh_self_contact(const VectorBase& x, bool new_step) {
   if (!terms_.self_contact) return false;
   std::vector<Real> xh(dofs());
   {
@@ -350,6 +352,19 @@ bool ElasticModel<Real>::refresh_self_contact(const VectorBase& x) {
     viennacl::copy(x.begin(), x.end(), xh.begin());
   }
   std::vector<SelfContactPair> pairs = detector_->detect(std::vector<double>(xh.begin(), xh.end()));
+  // Within a step a sample still in contact keeps its spring (triangle and
+  // weights) from when it was found; new samples get theirs, samples no
+  // longer inside an element lose theirs. Measured on the elbow (res 3, step
+  // 25 of 28): re-weighting every Newton iteration made Newton a fixed-point
+  // iteration in w (the residual fell from 7e-3 to 3e-3 in 30 iterations, the
+  // step stopped at 200) while the set of samples no longer changed.
+  if (!new_step) {
+    size_t k = 0;
+    for (SelfContactPair& p : pairs) {
+      while (k < self_pairs_.size() && self_pairs_[k].sample < p.sample) ++k;
+      if (k < self_pairs_.size() && self_pairs_[k].sample == p.sample) p = self_pairs_[k];
+    }
+  }
   if (pairs == self_pairs_) return false;
   self_pairs_ = std::move(pairs);
   upload_self_contacts();

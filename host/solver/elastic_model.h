@@ -78,10 +78,11 @@ class ElasticModel {
   ContactState contact_state(const VectorBase& x);
   // Self-contact (ModelTerms::self_contact): the springs' stiffness, and the
   // active set detected at x, frozen until the next refresh (energy,
-  // residual, products and preconditioner all use it). Returns whether the
-  // set changed. snh::Error without the term.
+  // residual, products and preconditioner all use it). Within a step
+  // (new_step false) a sample still in contact keeps the spring it had.
+  // Returns whether the set changed. contact_state(x) refreshes it at x.
   void set_self_contact_stiffness(double stiffness);
-  bool refresh_self_contact(const VectorBase& x);
+  bool refresh_self_contact(const VectorBase& x, bool new_step = false);
   const std::vector<SelfContactPair>& self_contacts() const { return self_pairs_; }
   const SelfContactDetector* self_contact_detector() const { return detector_.get(); }
 

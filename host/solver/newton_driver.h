@@ -25,7 +25,7 @@
 // and optionally
 //   double energy_magnitude() const;     // the size of the terms the last energy() summed
 // for the rounding noise of energies that are small sums of large terms, and
-//   bool refresh(const Vector& x);       // re-detect an active set (contact) at x
+//   bool refresh(const Vector& x, bool new_step);  // re-detect an active set (contact) at x
 // called at the start of the step and of every Newton iteration, before that
 // iteration's energy, residual and convergence test; the set stays frozen for
 // the iteration's linearization, linear solve and line search. Returns
@@ -70,12 +70,12 @@ double energy_magnitude_of(const P& problem) {
 template <typename P, typename = void>
 struct HasRefresh : std::false_type {};
 template <typename P>
-struct HasRefresh<P, std::void_t<decltype(std::declval<P&>().refresh(std::declval<const typename P::Vector&>()))>>
+struct HasRefresh<P, std::void_t<decltype(std::declval<P&>().refresh(std::declval<const typename P::Vector&>(), true))>>
     : std::true_type {};
 template <typename P>
-bool refresh_of(P& problem, const typename P::Vector& x) {
+bool refresh_of(P& problem, const typename P::Vector& x, bool new_step) {
   if constexpr (HasRefresh<P>::value)
-    return problem.refresh(x);
+    return problem.refresh(x, new_step);
   else
     return false;
 }
@@ -125,7 +125,7 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
 
   StepResult result;
   result.step = step;
-  refresh_of(problem_, x);
+  refresh_of(problem_, x, true);
   problem_.residual(x, r);
   double rn = problem_.norm(r);
   double energy = problem_.energy(x);
@@ -139,7 +139,7 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     // The active set at this iterate: energy, residual and the convergence
     // test below all see it (so convergence is judged with the set of the
     // final x).
-    if (it > 0 && refresh_of(problem_, x)) {
+    if (it > 0 && refresh_of(problem_, x, false)) {
       problem_.residual(x, r);
       rn = problem_.norm(r);
       energy = problem_.energy(x);

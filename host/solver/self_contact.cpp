@@ -60,8 +60,9 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
 }
 
 // Barycentric coordinates (b1, b2, b3) of p in tet (x0..x3); false when the
-// tet is degenerate or p is outside.
-bool in_tet(const double* p, const double* x0, const double* x1, const double* x2, const double* x3, Vec3& b) {
+// tet is degenerate or p is outside. *orientation: the sign of its volume.
+bool in_tet(const double* p, const double* x0, const double* x1, const double* x2, const double* x3, Vec3& b,
+            int* orientation = nullptr) {
   const Vec3 e1 = sub(x1, x0), e2 = sub(x2, x0), e3 = sub(x3, x0), r = sub(p, x0);
   const Vec3 c23{e2[1] * e3[2] - e2[2] * e3[1], e2[2] * e3[0] - e2[0] * e3[2], e2[0] * e3[1] - e2[1] * e3[0]};
   const Vec3 c31{e3[1] * e1[2] - e3[2] * e1[1], e3[2] * e1[0] - e3[0] * e1[2], e3[0] * e1[1] - e3[1] * e1[0]};
@@ -69,6 +70,7 @@ bool in_tet(const double* p, const double* x0, const double* x1, const double* x
   const double det = dot(e1, c23);
   const double scale = std::sqrt(dot(e1, e1) * dot(e2, e2) * dot(e3, e3));
   if (!(std::abs(det) > 1e-12 * scale)) return false;
+  if (orientation) *orientation = det > 0.0 ? 1 : -1;
   b = {dot(r, c23) / det, dot(r, c31) / det, dot(r, c12) / det};
   return b[0] >= 0.0 && b[1] >= 0.0 && b[2] >= 0.0 && b[0] + b[1] + b[2] <= 1.0;
 }
@@ -239,7 +241,16 @@ bool SelfContactDetector::locate(int element, const double* p, const std::vector
     int v[4];
     for (int i = 0; i < 4; ++i) v[i] = type_ == ElementType::hex8 ? n[kCornerNode[kKuhn[t][i]]] : n[i];
     Vec3 b;
-    if (!in_tet(p, &x[3 * v[0]], &x[3 * v[1]], &x[3 * v[2]], &x[3 * v[3]], b)) continue;
+    int deformed = 0, rest = 0;
+    if (!in_tet(p, &x[3 * v[0]], &x[3 * v[1]], &x[3 * v[2]], &x[3 * v[3]], b, &deformed)) continue;
+    // Only through a tet that keeps its rest orientation: an inverted tet's
+    // map to rest space is no reference map (measured: on the elbow, the
+    // first Newton iterates of a load step, where the bones have moved and
+    // the flesh not yet, invert elements next to the bones, and samples
+    // located in them were glued to far-off surface points).
+    Vec3 unused;
+    in_tet(&rest_[3 * v[0]], &rest_[3 * v[0]], &rest_[3 * v[1]], &rest_[3 * v[2]], &rest_[3 * v[3]], unused, &rest);
+    if (deformed != rest) continue;
     const double b0 = 1.0 - b[0] - b[1] - b[2];
     for (int d = 0; d < 3; ++d)
       X[d] = b0 * rest_[3 * v[0] + d] + b[0] * rest_[3 * v[1] + d] + b[1] * rest_[3 * v[2] + d] +
