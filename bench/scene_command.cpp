@@ -343,7 +343,7 @@ int run_scene(const SceneOptions& given) {
 
 void add_scene_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SceneOptions>();
-  CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex)");
+  CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex, elbow)");
   cmd->add_option("name", o->name, "scene name (or --file)")->check(CLI::IsMember(scene_names()));
   cmd->add_option("--file", o->file,
                   "a scene in JSON: mesh (file or generator) or embed (a surface voxelized), material, constraints "
