@@ -140,7 +140,7 @@ TEST(SceneFileDynamics, KeysNameTheirErrors) {
 TEST(SceneFileDynamics, ShippedElbowLoadsWithSelfContact) {
   const bench::SceneFile f = bench::load_scene_file(std::string(SNH_DATA_DIR) + "/scenes/elbow.json");
   EXPECT_TRUE(f.scene.options.contact.self);
-  EXPECT_EQ(f.scene.options.contact.stiffness, 10.0);
+  EXPECT_EQ(f.scene.options.contact.stiffness, 20.0);
   EXPECT_EQ(f.scene.options.contact.thickness, 0.025);
   EXPECT_EQ(f.scene.options.load_steps, 28);
   EXPECT_EQ(f.scene.mesh.element_count(), 24u * 4 * 4);

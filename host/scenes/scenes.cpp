@@ -142,10 +142,10 @@ Scene elbow(const SceneParameters& p) {
   lower.motion = [joint, angle](double t) { return RigidTransform::rotation_about({0.0, 1.0, 0.0}, t * angle, joint); };
   s.constraints = {upper, lower};
   s.options.load_steps = p.steps > 0 ? p.steps : 28;
-  // Springs of 40 E h per sample (force per length): the contact pressure
+  // Springs of 80 E h per sample (force per length): the contact pressure
   // at 140 degrees keeps samples within the thickness 0.1 h.
   s.options.contact.self = true;
-  s.options.contact.stiffness = 40.0 * p.youngs_modulus * h;
+  s.options.contact.stiffness = 80.0 * p.youngs_modulus * h;
   s.options.contact.thickness = 0.1 * h;
   s.description = "6:1:1 limb flexed 140 degrees by two rigid bones, inner side folding onto itself (self-contact)";
   return s;

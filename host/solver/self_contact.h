@@ -17,9 +17,12 @@
 // paper does ("a tetrahedralization of the hexahedral mesh"): linear, so one
 // 3x3 solve per tet, exact and defined for inverted elements, where
 // inverting the trilinear map needs Newton iterations that may fail.
+// Only tets (hex pieces) that keep their rest orientation locate a sample:
+// an inverted piece has no reference map.
 // Excluded for sample s: every element that shares a vertex with an element
-// of s (the one-ring of s's elements, not only the elements of s), and every
-// rest triangle with a vertex in those elements. At a crease compressed
+// of s (the one-ring of s's elements, not only the elements of s; on tet4
+// meshes one ring more, self_contact.cpp), and every rest triangle with a
+// vertex in those elements. At a crease compressed
 // elements overlap their immediate neighbours (and a hex's Kuhn tets no
 // longer cover the trilinear hex exactly), so a sample would otherwise be
 // found in the element next to its own and pulled toward a surface point
