@@ -703,7 +703,7 @@ void add_errtime_command(CLI::App& app, int& exit_code) {
       "errtime_<scene>.png");
   cmd->add_option("--scenes", o->scenes, "comma-separated scenes")
       ->delimiter(',')
-      ->check(CLI::IsMember(scene_names()))
+      ->check(CLI::IsMember(lattice_scene_names()))
       ->capture_default_str();
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
       ->check(CLI::IsMember({"hex8", "tet4"}))

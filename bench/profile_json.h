@@ -1,5 +1,6 @@
 // The per-phase profile (snh::SolveProfile) as the reports write it: a JSON
-// object with one key per phase, and the phases in a fixed order for tables.
+// object with one key per phase, and the phases in a fixed order for tables,
+// then `kernels`: seconds per OpenCL kernel by name.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -27,6 +28,10 @@ inline std::vector<std::pair<std::string, double>> profile_parts(const SolveProf
 inline nlohmann::ordered_json profile_json(const SolveProfile& p) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& [key, seconds] : profile_parts(p)) j[key] = seconds;
+  // Per kernel (a breakdown of the phases above, not a part of total).
+  nlohmann::ordered_json kernels = nlohmann::ordered_json::object();
+  for (const auto& [name, seconds] : p.kernels) kernels[name] = seconds;
+  j["kernels"] = kernels;
   return j;
 }
 

@@ -370,7 +370,7 @@ void add_scale_command(CLI::App& app, int& exit_code) {
       "per step, device memory and the per-phase profile against DOF; writes scale.{json,csv,md} and scale.png");
   cmd->add_option("--scenes", o->scenes, "comma-separated scenes")
       ->delimiter(',')
-      ->check(CLI::IsMember(scene_names()))
+      ->check(CLI::IsMember(lattice_scene_names()))
       ->capture_default_str();
   cmd->add_option("--res", o->resolutions, "comma-separated resolutions (cells across each scene's thickness)")
       ->delimiter(',')

@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "material_options.h"
+#include "obstacle_surface.h"
 #include "profile_json.h"
 #include "rig_frames.h"
 #include "scene_file.h"
@@ -25,6 +26,7 @@
 #include "snh/fields.h"
 #include "snh/io.h"
 #include "snh/scenes.h"
+#include "snh/shape.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
 #include "solver/self_contact.h"
@@ -38,8 +40,8 @@ struct SceneOptions {
   std::string name;
   int resolution = 0;
   std::string element = "hex8";
-  double youngs_modulus = 1.0;
-  double poisson_ratio = 0.49;
+  double youngs_modulus = std::numeric_limits<double>::quiet_NaN();  // NaN: the scene's (scene_defaults)
+  double poisson_ratio = std::numeric_limits<double>::quiet_NaN();
   std::string barrier = "auto";
   std::string model = "snh";
   double alpha = 1.0;
@@ -64,7 +66,31 @@ struct SceneOptions {
   std::string hessian = "adaptive";
 };
 
-json summary_json(const Scene& scene, const SolveOptions& options, const SolveResult& r) {
+// Per step, how far the body is from its rest shape (README "Dynamics and
+// obstacles", drop): volume, smallest J, and the RMS vertex distance after
+// the best rigid fit (snh/shape.h), absolute and relative to the rest
+// radius of gyration. Undefined for a non-finite state.
+struct StepShape {
+  bool defined = false;
+  double volume_ratio = 0.0, min_j = 0.0, rigid_fit_rms = 0.0, rigid_fit_rms_relative = 0.0;
+};
+
+StepShape step_shape(const Mesh& mesh, const std::vector<double>& x) {
+  StepShape s;
+  for (double v : x)
+    if (!std::isfinite(v)) return s;
+  const DeformationStatistics d = deformation_statistics(mesh, x);
+  const ShapeDeviation fit = shape_deviation(mesh, x);
+  s.defined = true;
+  s.volume_ratio = d.volume_ratio;
+  s.min_j = d.min_j;
+  s.rigid_fit_rms = fit.rms_distance;
+  s.rigid_fit_rms_relative = fit.relative();
+  return s;
+}
+
+json summary_json(const Scene& scene, const SolveOptions& options, const SolveResult& r,
+                  const std::vector<StepShape>& shapes) {
   json j;
   j["scene"] = scene.name;
   j["element_type"] = to_string(scene.mesh.type);
@@ -109,6 +135,13 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
     if (options.contact.self) {
       step["self_contacts"] = s.self_contacts;
       step["max_self_penetration"] = s.max_self_penetration;
+    }
+    const size_t k = j["steps"].size();
+    if (k < shapes.size() && shapes[k].defined) {
+      step["volume_ratio"] = shapes[k].volume_ratio;
+      step["min_j"] = shapes[k].min_j;
+      step["rigid_fit_rms"] = shapes[k].rigid_fit_rms;
+      step["rigid_fit_rms_relative"] = shapes[k].rigid_fit_rms_relative;
     }
     j["steps"].push_back(step);
   }
@@ -169,6 +202,10 @@ int run_scene(const SceneOptions& given) {
   MaterialMap materials;  // a scene file's regions; else uniform
   SolveOptions options;
   std::optional<SceneFile> from_file;
+  // The material the scene is meant to run with unless --E / --nu say otherwise.
+  const SceneParameters defaults = scene_defaults(o.name);
+  if (std::isnan(o.youngs_modulus)) o.youngs_modulus = defaults.youngs_modulus;
+  if (std::isnan(o.poisson_ratio)) o.poisson_ratio = defaults.poisson_ratio;
   if (!o.file.empty()) {
     // A scene file carries its own material and solver settings; --json,
     // --vtu and --surface on the command line override its outputs.
@@ -225,14 +262,34 @@ int run_scene(const SceneOptions& given) {
   std::cerr << "scene " << scene.name << ": " << scene.description << "; " << scene.mesh.element_count() << " "
             << to_string(scene.mesh.type) << " elements, " << 3 * scene.mesh.vertex_count() << " dofs, "
             << to_string(options.precision) << '\n';
-  std::vector<std::pair<double, std::string>> written;
+  // The .pvd's entries: part 0 the body, part 1 the obstacles (if any) as
+  // <scene>_obstacles_NNNN.vtu surfaces (obstacle_surface.h), drawn to the
+  // rest bounding box's diagonal either side of its centre.
+  std::vector<PvdDataSet> written;
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  for (size_t v = 0; v < scene.mesh.vertex_count(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = v == 0 ? scene.mesh.positions[3 * v + k] : std::min(lo[k], scene.mesh.positions[3 * v + k]);
+      hi[k] = v == 0 ? scene.mesh.positions[3 * v + k] : std::max(hi[k], scene.mesh.positions[3 * v + k]);
+    }
+  const std::array<double, 3> middle{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+  const double extent = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  auto write_obstacles = [&](int step, double time) {
+    if (o.vtu_dir.empty() || options.obstacles.empty()) return;
+    char file[256];
+    std::snprintf(file, sizeof file, "%s_obstacles_%04d.vtu", scene.name.c_str(), step);
+    const double t = static_cast<double>(step) / options.load_steps;
+    write_surface_vtu(o.vtu_dir + "/" + file, obstacle_surface(options.obstacles, t, middle, extent));
+    written.push_back({time, file, 1});
+  };
   if (!o.vtu_dir.empty()) {
     std::filesystem::create_directories(o.vtu_dir);
     const std::vector<double>& x0 =
         options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
     const std::string file = scene.name + "_0000.vtu";
     write_step_vtu(o.vtu_dir + "/" + file, scene.mesh, materials, x0);
-    written.push_back({0.0, file});
+    written.push_back({0.0, file, 0});
+    write_obstacles(0, 0.0);
   }
   // The embedded surface per step as OBJ (scene files with "embed").
   auto write_surface = [&](int step, const std::vector<double>& x) {
@@ -256,8 +313,10 @@ int run_scene(const SceneOptions& given) {
   if (!options.contact.self && options.contact.stiffness > 0.0)
     unresolved = std::make_unique<solver::SelfContactDetector>(mesh);
   std::vector<std::pair<int, double>> unresolved_steps;
+  std::vector<StepShape> shapes;
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
     if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
+    shapes.push_back(step_shape(mesh, x));
     if (unresolved) {
       double deepest = 0.0;
       const auto pairs = unresolved->detect(x);
@@ -273,31 +332,41 @@ int run_scene(const SceneOptions& given) {
     char file[256];
     std::snprintf(file, sizeof file, "%s_%04d.vtu", scene.name.c_str(), step);
     write_step_vtu(o.vtu_dir + "/" + file, mesh, materials, x);
-    written.push_back({options.dynamics ? solver.simulation().time() : static_cast<double>(step), file});
+    const double time = options.dynamics ? solver.simulation().time() : static_cast<double>(step);
+    written.push_back({time, file, 0});
+    write_obstacles(step, time);
   });
-  if (!o.vtu_dir.empty()) write_pvd(o.vtu_dir + "/" + scene.name + ".pvd", written);
+  if (!o.vtu_dir.empty()) write_pvd_parts(o.vtu_dir + "/" + scene.name + ".pvd", written);
 
   for (const std::string& w : r.warnings) std::cerr << "warning: " << w << '\n';
-  const bool contact = !options.obstacles.empty() || options.contact.self;
+  const bool contact = !options.obstacles.empty() || options.contact.self, dynamic = options.dynamics.has_value();
   const bool self_column = options.contact.self || unresolved;
   std::cout << "step  newton  cg      status                 residual"
-            << (contact ? "    contacts  max_penetration" : "")
+            << (dynamic ? "    time      volume    min_J     shape_rms" : "")
+            << (contact ? "   contacts  max_penetration" : "")
             << (options.contact.self ? "  self_contacts  max_self_penetration"
                 : unresolved         ? "  unresolved_self_contacts  max_self_penetration"
                                      : "")
             << '\n';
-  for (size_t i = 0; i < r.steps.size(); ++i) {
-    const StepResult& s = r.steps[i];
+  for (size_t k = 0; k < r.steps.size(); ++k) {
+    const StepResult& s = r.steps[k];
     std::cout << std::left << std::setw(6) << s.step << std::setw(8) << s.newton_iterations << std::setw(8)
               << s.cg_iterations << std::setw(23) << s.status << std::setw(12) << std::setprecision(3)
               << s.residual_norm;
+    if (dynamic) {
+      const StepShape sh = k < shapes.size() ? shapes[k] : StepShape{};
+      std::cout << std::setw(10) << std::setprecision(4) << s.time << std::setw(10) << std::setprecision(5)
+                << (sh.defined ? sh.volume_ratio : std::nan("")) << std::setw(10) << std::setprecision(3)
+                << (sh.defined ? sh.min_j : std::nan("")) << std::setw(12) << std::setprecision(3)
+                << (sh.defined ? sh.rigid_fit_rms_relative : std::nan(""));
+    }
     if (contact) std::cout << std::setw(10) << s.contacts << std::setw(17) << std::setprecision(3) << s.max_penetration;
     if (self_column) {
       const int n = options.contact.self          ? s.self_contacts
-                    : i < unresolved_steps.size() ? unresolved_steps[i].first
+                    : k < unresolved_steps.size() ? unresolved_steps[k].first
                                                   : 0;
       const double d = options.contact.self          ? s.max_self_penetration
-                       : i < unresolved_steps.size() ? unresolved_steps[i].second
+                       : k < unresolved_steps.size() ? unresolved_steps[k].second
                                                      : 0.0;
       std::cout << "  " << std::setw(13) << n << std::setprecision(3) << d;
     }
@@ -311,7 +380,7 @@ int run_scene(const SceneOptions& given) {
     if (!parent.empty()) std::filesystem::create_directories(parent);
     std::ofstream out(o.json_path);
     if (!out) throw Error("cannot write " + o.json_path);
-    json j = summary_json(scene, options, r);
+    json j = summary_json(scene, options, r, shapes);
     // Self-contact off: what the detector measured after each step.
     for (size_t i = 0; i < unresolved_steps.size() && i < j["steps"].size(); ++i) {
       j["steps"][i]["unresolved_self_contacts"] = unresolved_steps[i].first;
@@ -343,19 +412,21 @@ int run_scene(const SceneOptions& given) {
 
 void add_scene_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SceneOptions>();
-  CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex, elbow)");
+  CLI::App* cmd =
+      app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex, drop, elbow)");
   cmd->add_option("name", o->name, "scene name (or --file)")->check(CLI::IsMember(scene_names()));
   cmd->add_option("--file", o->file,
                   "a scene in JSON: mesh (file or generator) or embed (a surface voxelized), material, constraints "
                   "(ids/box/plane, rigid or keyframed motion), rig (bones and an animation: run frame by frame), "
                   "body_force, initial, dynamics (implicit Euler: solver.steps counts time steps), obstacles "
                   "(plane, sphere, cylinder; keyframes), contact, solver, output (see data/scenes/)");
-  cmd->add_option("--res", o->resolution, "cells across the scene's thickness (0: scene default)");
+  cmd->add_option("--res", o->resolution,
+                  "cells across the scene's thickness (0: scene default; drop: 1 the coarse mesh, 2 the default)");
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
       ->check(CLI::IsMember({"hex8", "tet4"}))
       ->capture_default_str();
-  cmd->add_option("--E", o->youngs_modulus, "Young's modulus")->capture_default_str();
-  cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();
+  cmd->add_option("--E", o->youngs_modulus, "Young's modulus (default: the scene's; 1, drop 5e4 Pa)");
+  cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio (default: the scene's; 0.49, drop 0.46)");
   cmd->add_option("--model", o->model,
                   "material: snh, fung, arruda-boyce, corotational, fixed-corotational, stvk-kikuuwe, neohookean "
                   "(normalized to the same small-strain E, nu; model settings at their defaults)")
@@ -374,7 +445,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--precision", o->precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  cmd->add_option("--steps", o->steps, "load steps (0: scene default)");
+  cmd->add_option("--steps", o->steps, "load steps (0: scene default; drop: frames over its 2 s, default 60)");
   cmd->add_option("--seed", o->seed, "random seed (scramble)")->capture_default_str();
   cmd->add_option("--json", o->json_path,
                   "write a JSON summary with the per-iteration history and each step's constraint reactions here");

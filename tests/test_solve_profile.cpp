@@ -77,6 +77,30 @@ TEST(SolveProfile, PartsAddUpToTheWallTime) {
   EXPECT_GT(r.device_memory_bytes, 10 * 3 * scene.mesh.vertex_count() * sizeof(double));
 }
 
+// The per-kernel seconds break the phases down: the element kernels that ran
+// are there, each > 0, all of them within the device phases' total; the
+// steps' kernels add up to the solve's.
+TEST(SolveProfile, KernelSecondsBreakDownTheDevicePhases) {
+  const Scene scene = small_twist();
+  const SolveResult r = solve(scene, Preconditioner::block_jacobi);
+  ASSERT_TRUE(r.converged);
+  for (const char* name : {"snh_element_linearize", "snh_element_energy", "snh_element_forces", "snh_gather_vectors",
+                           "snh_block_jacobi_apply"})
+    EXPECT_TRUE(r.profile.kernels.count(name)) << name;
+  double kernels = 0.0;
+  for (const auto& [name, seconds] : r.profile.kernels) {
+    EXPECT_GT(seconds, 0.0) << name;
+    kernels += seconds;
+  }
+  const SolveProfile& p = r.profile;
+  EXPECT_LE(kernels, p.total - p.other - p.transfers + 1e-6);
+  EXPECT_LE(r.profile.kernels.at("snh_element_linearize"), p.linearization + 1e-6);
+  SolveProfile steps;
+  for (const StepResult& s : r.steps) steps += s.profile;
+  ASSERT_EQ(steps.kernels.size(), r.profile.kernels.size());
+  for (const auto& [name, seconds] : r.profile.kernels) EXPECT_NEAR(steps.kernels[name], seconds, 1e-9) << name;
+}
+
 TEST(SolveProfile, NoPreconditionerTimeWithoutOne) {
   const SolveResult r = solve(small_twist(), Preconditioner::none);
   ASSERT_TRUE(r.converged);

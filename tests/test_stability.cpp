@@ -41,13 +41,34 @@ TEST_P(StabilitySmallCases, NoNanInEitherPrecision) {
 
 INSTANTIATE_TEST_SUITE_P(Stability, StabilitySmallCases,
                          ::testing::Values("nu0.4999", "scramble_seed3", "crush_plane", "crush_line", "crush_point",
-                                           "twist_2pi", "stretch_5x", "inverted_start", "flip_top", "push_through"),
+                                           "twist_2pi", "stretch_5x", "inverted_start", "flip_top", "push_through",
+                                           "squash_nu0.499"),
                          [](const auto& info) {
                            std::string n = info.param;
                            for (char& c : n)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
                          });
+
+// The squash between planes (a cube in a box whose lid closes to 5% of its
+// height and opens) at 2^3 hexes: squashed to near-zero volume, never a
+// vertex deeper than the contact layer, and the rest volume recovered after
+// release, at each nu.
+TEST(Stability, SquashToNearZeroVolumeAndRelease) {
+  for (const char* name : {"squash_nu0.46", "squash_nu0.49", "squash_nu0.499"}) {
+    SCOPED_TRACE(name);
+    const bench::StabilityRun r = bench::run_stability_case(name, Precision::double_, 2);
+    EXPECT_TRUE(r.error.empty()) << r.error;
+    EXPECT_EQ(r.non_finite_positions, 0);
+    EXPECT_EQ(r.nan_in_history, 0);
+    EXPECT_EQ(r.contact_thickness, 0.01);
+    EXPECT_LT(r.min_volume_ratio, 0.06);
+    EXPECT_GT(r.max_penetration, 0.0);
+    EXPECT_LE(r.max_penetration, r.contact_thickness);
+    EXPECT_NEAR(r.volume_ratio, 1.0, 1e-3);
+    EXPECT_EQ(r.inverted_elements, 0);
+  }
+}
 
 TEST(Stability, SmallCasesConvergeInDouble) {
   for (const char* name : {"nu0.4999", "crush_point", "twist_2pi", "inverted_start"}) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 
@@ -224,9 +225,14 @@ void OpenClContext::run(cl_kernel kernel, size_t global_size) {
       kernel_max > 0)
     local = std::min(local, kernel_max);
   const size_t global = (global_size + local - 1) / local * local;  // kernels bound-check their index
+  char name[256] = {0};  // asked each time: a released kernel's handle may be reused
+  if (clGetKernelInfo(kernel, CL_KERNEL_FUNCTION_NAME, sizeof name - 1, name, nullptr) != CL_SUCCESS)
+    std::strcpy(name, "(unnamed)");
+  const auto start = std::chrono::steady_clock::now();
   check(clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global, &local, 0, nullptr, nullptr),
         "clEnqueueNDRangeKernel");
   check(clFinish(queue_), "clFinish");
+  kernel_seconds_[name] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace device

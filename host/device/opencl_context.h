@@ -67,8 +67,11 @@ class OpenClContext {
   void write(cl_mem buffer, size_t bytes, const void* data);
   void read(cl_mem buffer, size_t bytes, void* data);
   // Runs `kernel` over global_size work-items (rounded up to whole groups)
-  // and waits for it.
+  // and waits for it; its wall time is added to kernel_seconds().
   void run(cl_kernel kernel, size_t global_size);
+  // Seconds from launch to completion of every kernel run() ran, by kernel
+  // name, since this context was made (ViennaCL's own kernels not included).
+  const std::map<std::string, double>& kernel_seconds() const { return kernel_seconds_; }
   // Waits for everything queued (ViennaCL's operations share the queue).
   void finish();
 
@@ -81,6 +84,7 @@ class OpenClContext {
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
   std::map<std::string, Program> programs_;
+  std::map<std::string, double> kernel_seconds_;
 };
 
 }  // namespace snh::device

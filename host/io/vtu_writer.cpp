@@ -266,6 +266,9 @@ void write_pvd_parts(const std::string& path, const std::vector<PvdDataSet>& dat
   }
   std::ofstream file;
   io::open_for_writing(file, path);
+  // Times in full: at 6 digits two steps of a long run (1000.001 s and
+  // 1000.002 s) would share a timestep.
+  file << std::setprecision(std::numeric_limits<double>::max_digits10);
   file << "<?xml version=\"1.0\"?>\n"
        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
        << "  <Collection>\n";

@@ -73,6 +73,7 @@ SolveProfile& SolveProfile::operator+=(const SolveProfile& o) {
   transfers += o.transfers;
   other += o.other;
   total += o.total;
+  for (const auto& [name, seconds] : o.kernels) kernels[name] += seconds;
   return *this;
 }
 
@@ -119,8 +120,9 @@ struct Simulation::Impl {
   std::vector<double> user_force;
   std::array<double, 3> body_force{0, 0, 0};
   std::unique_ptr<Engine<float>> single;
-  std::unique_ptr<Engine<double>> dual;  // double: the main engine or the float fallback
-  double callback_seconds = 0.0;         // in the caller's callbacks during the current solve
+  std::unique_ptr<Engine<double>> dual;               // double: the main engine or the float fallback
+  double callback_seconds = 0.0;                      // in the caller's callbacks during the current solve
+  std::map<std::string, double> solve_start_kernels;  // kernel_seconds() when the current solve began
 
   // Seconds per phase so far, over the engines built so far.
   solver::PhaseSeconds phase_seconds() const {
@@ -128,6 +130,25 @@ struct Simulation::Impl {
     if (single) s = solver::sum(s, single->model->profiler().seconds());
     if (dual) s = solver::sum(s, dual->model->profiler().seconds());
     return s;
+  }
+
+  // Seconds per kernel so far, over the contexts of the engines built so far.
+  std::map<std::string, double> kernel_seconds() const {
+    std::map<std::string, double> s = cl.kernel_seconds();
+    for (const device::OpenClContext* c :
+         {single ? single->own_context.get() : nullptr, dual ? dual->own_context.get() : nullptr})
+      if (c)
+        for (const auto& [name, seconds] : c->kernel_seconds()) s[name] += seconds;
+    return s;
+  }
+  static std::map<std::string, double> kernel_difference(std::map<std::string, double> now,
+                                                         const std::map<std::string, double>& before) {
+    for (auto it = now.begin(); it != now.end();) {
+      const auto b = before.find(it->first);
+      if (b != before.end()) it->second -= b->second;
+      it = it->second > 0.0 ? std::next(it) : now.erase(it);  // not run since
+    }
+    return now;
   }
 
   size_t device_memory_bytes() const {
@@ -430,6 +451,7 @@ struct Simulation::Impl {
     const auto start = Clock::now();
     callback_seconds = 0.0;
     const solver::PhaseSeconds solve_start = phase_seconds();
+    solve_start_kernels = kernel_seconds();
     SolveResult result;
     result.device = cl.info();
     result.product = product;
@@ -451,6 +473,7 @@ struct Simulation::Impl {
       const auto step_clock = Clock::now();
       const double step_callbacks = callback_seconds;
       const solver::PhaseSeconds step_start_phases = phase_seconds();
+      const std::map<std::string, double> step_start_kernels = kernel_seconds();
       StepResult step;
       if (options.dynamics) {
         step = time_step(s, steps, result, start, progress);
@@ -468,6 +491,7 @@ struct Simulation::Impl {
       step.profile = solver::make_profile(
           solver::difference(phase_seconds(), step_start_phases),
           std::chrono::duration<double>(Clock::now() - step_clock).count() - (callback_seconds - step_callbacks));
+      step.profile.kernels = kernel_difference(kernel_seconds(), step_start_kernels);
       result.steps.push_back(step);
       if (on_step) in_callback([&] { on_step(s, x); });
       if (step.status == "cancelled") {
@@ -596,6 +620,7 @@ struct Simulation::Impl {
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     result.profile =
         solver::make_profile(solver::difference(phase_seconds(), solve_start), result.seconds - callback_seconds);
+    result.profile.kernels = kernel_difference(kernel_seconds(), solve_start_kernels);
     result.device_memory_bytes = device_memory_bytes();
     return std::move(result);
   }

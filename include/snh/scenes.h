@@ -47,9 +47,32 @@ struct Scene {
 // "elbow": a 6:1:1 limb flexed 140 degrees by two bones with self-contact on
 //   (SolveOptions::contact.self), so the inner side folds without passing
 //   through itself.
+// "drop": the paper's octopus test (Fig. 11) in miniature, in SI units: a
+//   soft Gmsh tet body (data/meshes/blob.msh: an ellipsoid of radii 5, 5, 4
+//   cm, 6,117 tets; resolution 1: blob_coarse.msh, 700 tets) under gravity
+//   and implicit Euler (density 1000 kg/m^3, 2 s in `steps` frames, default
+//   60, 4 substeps each) falls onto three parallel horizontal cylinders
+//   between two walls; a fourth, broad cylinder comes down and squashes it
+//   against them (to 6 mm above the middle one), goes back up, and the body
+//   must recover its shape. Its E and nu come from scene_defaults("drop")
+//   (5e4 Pa, 0.46); element_type does not apply (the mesh is tet4).
 // Throws snh::Error for an unknown name or out-of-range parameters.
 Scene make_scene(const std::string& name, const SceneParameters& parameters);
 
 std::vector<std::string> scene_names();
+
+// The scenes built on the paper's lattices and run as load steps (all but
+// "drop" and "elbow", whose self-contact refuses the multigrid that scale
+// sweeps): those whose resolution, element type and E the benchmarks that
+// sweep them (errtime, scale) can vary.
+std::vector<std::string> lattice_scene_names();
+
+// The parameters a scene is meant to run with: the struct's defaults, except
+// "drop"'s SI material (E = 5e4 Pa, nu = 0.46).
+SceneParameters scene_defaults(const std::string& name);
+
+// Where scenes find their shipped files (drop's mesh): the environment
+// variable SNH_DATA_DIR if set, else the source tree's data/ folder.
+std::string scene_data_dir();
 
 }  // namespace snh
