@@ -29,6 +29,7 @@
 #include "snh/shape.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
+#include "solver/self_contact.h"
 
 namespace snh::bench {
 namespace {
@@ -111,9 +112,12 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                      {"damping", {{"mass", d.damping.mass}, {"stiffness", d.damping.stiffness}}},
                      {"substeps", d.substeps}};
   }
-  if (!options.obstacles.empty()) {
+  if (!options.obstacles.empty() || options.contact.self) {
     j["obstacles"] = options.obstacles.size();
-    j["contact"] = {{"stiffness", options.contact.stiffness}, {"thickness", options.contact.thickness}};
+    j["contact"] = {{"stiffness", options.contact.stiffness},
+                    {"thickness", options.contact.thickness},
+                    {"self", options.contact.self}};
+    if (options.contact.self) j["contact"]["self_stiffness"] = options.contact.self_stiffness;
   }
   j["steps"] = json::array();
   for (const StepResult& s : r.steps) {
@@ -128,6 +132,10 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                  {"max_penetration", s.max_penetration},
                  {"profile", profile_json(s.profile)}};
     if (options.dynamics) step["time"] = s.time;
+    if (options.contact.self) {
+      step["self_contacts"] = s.self_contacts;
+      step["max_self_penetration"] = s.max_self_penetration;
+    }
     const size_t k = j["steps"].size();
     if (k < shapes.size() && shapes[k].defined) {
       step["volume_ratio"] = shapes[k].volume_ratio;
@@ -298,10 +306,23 @@ int run_scene(const SceneOptions& given) {
   // Each step's positions, for the reactions computed after the solve (so
   // that they do not count in its time).
   std::vector<std::vector<double>> step_positions, step_forces;
+  // A scene with a contact stiffness but self-contact off: the same detector
+  // measures, after each step, the self-penetration the penalty would see
+  // (reported, not resisted; outside the solve's time).
+  std::unique_ptr<solver::SelfContactDetector> unresolved;
+  if (!options.contact.self && options.contact.stiffness > 0.0)
+    unresolved = std::make_unique<solver::SelfContactDetector>(mesh);
+  std::vector<std::pair<int, double>> unresolved_steps;
   std::vector<StepShape> shapes;
   const SolveResult r = solver.solve([&](int step, const std::vector<double>& x) {
     if (terminal) std::cerr << "  step " << step << "/" << options.load_steps << " done\n";
     shapes.push_back(step_shape(mesh, x));
+    if (unresolved) {
+      double deepest = 0.0;
+      const auto pairs = unresolved->detect(x);
+      for (const auto& c : pairs) deepest = std::max(deepest, solver::self_contact_length(c, x));
+      unresolved_steps.push_back({static_cast<int>(pairs.size()), deepest});
+    }
     write_surface(step, x);
     if (!o.json_path.empty()) {
       step_positions.push_back(x);
@@ -318,10 +339,15 @@ int run_scene(const SceneOptions& given) {
   if (!o.vtu_dir.empty()) write_pvd_parts(o.vtu_dir + "/" + scene.name + ".pvd", written);
 
   for (const std::string& w : r.warnings) std::cerr << "warning: " << w << '\n';
-  const bool contact = !options.obstacles.empty(), dynamic = options.dynamics.has_value();
+  const bool contact = !options.obstacles.empty() || options.contact.self, dynamic = options.dynamics.has_value();
+  const bool self_column = options.contact.self || unresolved;
   std::cout << "step  newton  cg      status                 residual"
             << (dynamic ? "    time      volume    min_J     shape_rms" : "")
-            << (contact ? "   contacts  max_penetration" : "") << '\n';
+            << (contact ? "   contacts  max_penetration" : "")
+            << (options.contact.self ? "  self_contacts  max_self_penetration"
+                : unresolved         ? "  unresolved_self_contacts  max_self_penetration"
+                                     : "")
+            << '\n';
   for (size_t k = 0; k < r.steps.size(); ++k) {
     const StepResult& s = r.steps[k];
     std::cout << std::left << std::setw(6) << s.step << std::setw(8) << s.newton_iterations << std::setw(8)
@@ -334,7 +360,16 @@ int run_scene(const SceneOptions& given) {
                 << (sh.defined ? sh.min_j : std::nan("")) << std::setw(12) << std::setprecision(3)
                 << (sh.defined ? sh.rigid_fit_rms_relative : std::nan(""));
     }
-    if (contact) std::cout << std::setw(10) << s.contacts << std::setprecision(3) << s.max_penetration;
+    if (contact) std::cout << std::setw(10) << s.contacts << std::setw(17) << std::setprecision(3) << s.max_penetration;
+    if (self_column) {
+      const int n = options.contact.self          ? s.self_contacts
+                    : k < unresolved_steps.size() ? unresolved_steps[k].first
+                                                  : 0;
+      const double d = options.contact.self          ? s.max_self_penetration
+                       : k < unresolved_steps.size() ? unresolved_steps[k].second
+                                                     : 0.0;
+      std::cout << "  " << std::setw(13) << n << std::setprecision(3) << d;
+    }
     std::cout << '\n';
   }
   std::cout << "converged " << (r.converged ? "yes" : "no") << ", " << std::setprecision(4) << r.seconds
@@ -346,6 +381,11 @@ int run_scene(const SceneOptions& given) {
     std::ofstream out(o.json_path);
     if (!out) throw Error("cannot write " + o.json_path);
     json j = summary_json(scene, options, r, shapes);
+    // Self-contact off: what the detector measured after each step.
+    for (size_t i = 0; i < unresolved_steps.size() && i < j["steps"].size(); ++i) {
+      j["steps"][i]["unresolved_self_contacts"] = unresolved_steps[i].first;
+      j["steps"][i]["max_self_penetration"] = unresolved_steps[i].second;
+    }
     j["tolerance"] = r.tolerance;
     j["model"] = to_string(material.model);
     j["material"] = material.description();
@@ -372,7 +412,8 @@ int run_scene(const SceneOptions& given) {
 
 void add_scene_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SceneOptions>();
-  CLI::App* cmd = app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex, drop)");
+  CLI::App* cmd =
+      app.add_subcommand("scene", "Run one of the paper's scenes (stretch, twist, scramble, flex, drop, elbow)");
   cmd->add_option("name", o->name, "scene name (or --file)")->check(CLI::IsMember(scene_names()));
   cmd->add_option("--file", o->file,
                   "a scene in JSON: mesh (file or generator) or embed (a surface voxelized), material, constraints "

@@ -365,14 +365,17 @@ SceneFile load_scene_file(const std::string& path) {
   if (doc.contains("obstacles")) s.options.obstacles = read_obstacles(r, doc["obstacles"]);
   if (doc.contains("contact")) {
     const json& c = doc["contact"];
-    r.keys(c, "contact", {"stiffness", "thickness", "self"});
+    r.keys(c, "contact", {"stiffness", "thickness", "self", "self_stiffness"});
     s.options.contact.stiffness = r.number(c, "contact", "stiffness", 0.0);
     s.options.contact.thickness = r.number(c, "contact", "thickness", 0.0);
+    s.options.contact.self_stiffness = r.number(c, "contact", "self_stiffness", 0.0);
     if (c.contains("self")) {
       if (!c["self"].is_boolean()) r.fail("contact.self", "expected true or false");
-      if (c["self"].get<bool>())
-        r.fail("contact.self", "self-collision is not implemented yet (only obstacles); use false");
+      s.options.contact.self = c["self"].get<bool>();
     }
+    if (!(s.options.contact.self_stiffness >= 0.0)) r.fail("contact.self_stiffness", "must be >= 0");
+    if (s.options.contact.self && !(s.options.contact.stiffness > 0.0) && !(s.options.contact.self_stiffness > 0.0))
+      r.fail("contact.stiffness", "missing (self-contact needs stiffness or self_stiffness > 0)");
     if (!(s.options.contact.thickness >= 0.0)) r.fail("contact.thickness", "must be >= 0");
     if (s.options.contact.stiffness < 0.0) r.fail("contact.stiffness", "must be > 0");
   }

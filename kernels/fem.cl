@@ -12,6 +12,9 @@
  *   SNH_OBSTACLES     number of kinematic obstacles (0: none); their contact
  *                     penalty per vertex (contact/obstacle.h) joins the same
  *                     per-vertex kernels
+ *   SNH_SELF_CONTACT  self-collision springs (solver/self_contact.h): the
+ *                     per-contact differences d_c = a_c^T u and their
+ *                     per-vertex gather k a_i d_c in the same kernels
  * Element kernels write per-element nodal values; gather kernels sum them per
  * vertex over a fixed adjacency order, so results are bitwise reproducible
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
@@ -26,7 +29,21 @@
 #ifndef SNH_OBSTACLES
 #define SNH_OBSTACLES 0
 #endif
-#define SNH_VERTEX_TERMS (SNH_INERTIA || SNH_OBSTACLES)
+#ifndef SNH_SELF_CONTACT
+#define SNH_SELF_CONTACT 0
+#endif
+#define SNH_VERTEX_TERMS (SNH_INERTIA || SNH_OBSTACLES || SNH_SELF_CONTACT)
+/* Self-contact arguments of the per-vertex kernels: per vertex v the entries
+ * self_offsets[v] .. self_offsets[v + 1] of (contact c = self_entries[k],
+ * coefficient k a_i = self_coefficients[k]), in contact order, and the
+ * contacts' differences d_c (xyz) of snh_self_contact_differences. */
+#define SNH_SELF_ARGS                                                                                         \
+  __global const int *self_offsets, __global const int *self_entries, __global const real *self_coefficients, \
+      __global const real *self_d
+/* sum over v's entries of coefficient * d_c[r] */
+#define SNH_SELF_SUM(v, r, out)                                    \
+  for (int k_ = self_offsets[v]; k_ < self_offsets[(v) + 1]; ++k_) \
+    out += self_coefficients[k_] * self_d[3 * self_entries[k_] + (r)];
 
 /* Strain energy of each element, sum_q w_q psi(F_q), and its smallest J. */
 __kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,
@@ -184,6 +201,10 @@ __kernel void snh_gather_vectors(__global const real* element_values, __global c
                                  ,
                                  __global const real* contact_force, __global const real* contact_blocks
 #endif
+#if SNH_SELF_CONTACT
+                                 ,
+                                 SNH_SELF_ARGS
+#endif
 ) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
@@ -228,6 +249,19 @@ __kernel void snh_gather_vectors(__global const real* element_values, __global c
     s2 += b[2] * p0 + b[5] * p1 + b[8] * p2;
   }
 #endif
+#if SNH_SELF_CONTACT
+  /* residual (u = x): -k a_i d_c; product (u = p): +k a_i d_c */
+  if (vertex_mode != 0) {
+    real c0 = SNH_R(0), c1 = SNH_R(0), c2 = SNH_R(0);
+    SNH_SELF_SUM(v, 0, c0)
+    SNH_SELF_SUM(v, 1, c1)
+    SNH_SELF_SUM(v, 2, c2)
+    const real sg = vertex_mode == 1 ? SNH_R(-1) : SNH_R(1);
+    s0 += sg * c0;
+    s1 += sg * c1;
+    s2 += sg * c2;
+  }
+#endif
   out[3 * v] = mask[3 * v] * s0;
   out[3 * v + 1] = mask[3 * v + 1] * s1;
   out[3 * v + 2] = mask[3 * v + 2] * s2;
@@ -251,6 +285,10 @@ __kernel void snh_block_jacobi_setup(__global const real* element_blocks, __glob
                                      ,
                                      __global const real* contact_blocks
 #endif
+#if SNH_SELF_CONTACT
+                                     ,
+                                     __global const real* self_diagonal
+#endif
 ) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
@@ -265,6 +303,10 @@ __kernel void snh_block_jacobi_setup(__global const real* element_blocks, __glob
 #endif
 #if SNH_OBSTACLES
   for (int i = 0; i < 9; ++i) b.a[i] += contact_blocks[9 * v + i];
+#endif
+#if SNH_SELF_CONTACT
+  /* the springs' diagonal blocks: sum over v's contacts of k a_v^2 I */
+  for (int d = 0; d < 3; ++d) M3(b, d, d) += self_diagonal[v];
 #endif
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) M3(b, r, c) *= mask[3 * v + r] * mask[3 * v + c];
@@ -360,6 +402,10 @@ __kernel void snh_apply_mask(__global const real* mask, const int size, __global
                              ,
                              __global const real* contact_blocks
 #endif
+#if SNH_SELF_CONTACT
+                             ,
+                             SNH_SELF_ARGS
+#endif
 ) {
   const int i = get_global_id(0);
   if (i >= size) return;
@@ -374,6 +420,9 @@ __kernel void snh_apply_mask(__global const real* mask, const int size, __global
     __global const real* b = contact_blocks + 9 * v;
     s += b[r] * p[3 * v] + b[3 + r] * p[3 * v + 1] + b[6 + r] * p[3 * v + 2];
   }
+#endif
+#if SNH_SELF_CONTACT
+  SNH_SELF_SUM(i / 3, i % 3, s)
 #endif
   y[i] = mask[i] * s;
 #else
@@ -397,5 +446,20 @@ __kernel void snh_contact_vertices(__global const real* x, __global const real* 
   for (int i = 0; i < 3; ++i) force[3 * v + i] = f[i];
   for (int i = 0; i < 9; ++i) blocks[9 * v + i] = h[i];
   depth[v] = g;
+}
+#endif
+
+#if SNH_SELF_CONTACT
+/* Per self-contact c (solver/self_contact.h): d_c = u_s - sum_j w_j u_j,
+ * i.e. a_c^T u with a_c = [1, -w0, -w1, -w2] over pairs[4c..4c+3] =
+ * (s, j0, j1, j2); u = x gives the spring, u = p the Hessian's a^T p. */
+__kernel void snh_self_contact_differences(__global const real* u, __global const int* pairs,
+                                           __global const real* weights, const int count, __global real* d) {
+  const int c = get_global_id(0);
+  if (c >= count) return;
+  const int s = pairs[4 * c], j0 = pairs[4 * c + 1], j1 = pairs[4 * c + 2], j2 = pairs[4 * c + 3];
+  const real w0 = weights[3 * c], w1 = weights[3 * c + 1], w2 = weights[3 * c + 2];
+  for (int r = 0; r < 3; ++r)
+    d[3 * c + r] = u[3 * s + r] - (w0 * u[3 * j0 + r] + w1 * u[3 * j1 + r] + w2 * u[3 * j2 + r]);
 }
 #endif

@@ -13,6 +13,7 @@
 
 #include "scene_file.h"
 #include "snh/error.h"
+#include "snh/scenes.h"
 #include "snh/simulation.h"
 
 namespace snh::test {
@@ -123,15 +124,30 @@ TEST(SceneFileDynamics, KeysNameTheirErrors) {
   EXPECT_NE(error(R"("obstacles": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}])")
                 .find("contact.stiffness: missing"),
             std::string::npos);
-  EXPECT_NE(
-      error(R"("contact": {"stiffness": 1, "self": true})").find("contact.self: self-collision is not implemented yet"),
-      std::string::npos);
+  EXPECT_EQ(error(R"("contact": {"stiffness": 1, "self": true})"), "no error");
+  EXPECT_EQ(error(R"("contact": {"self": true, "self_stiffness": 2})"), "no error");
+  EXPECT_NE(error(R"("contact": {"self": true})").find("contact.stiffness: missing"), std::string::npos);
+  EXPECT_NE(error(R"("contact": {"stiffness": 1, "self": true, "self_stiffness": -1})").find("contact.self_stiffness"),
+            std::string::npos);
   EXPECT_NE(error(R"("contact": {"stiffness": 1, "self": "no"})").find("contact.self: expected true or false"),
             std::string::npos);
   EXPECT_NE(error(R"("contact": {"stiffness": 1, "thickness": -1})").find("contact.thickness"), std::string::npos);
   EXPECT_NE(error(R"("contact": {"stiffness": 1, "friction": 0.3})").find("contact.friction: unknown key"),
             std::string::npos);
   EXPECT_EQ(error(R"("contact": {"stiffness": 1, "self": false})"), "no error");
+}
+
+TEST(SceneFileDynamics, ShippedElbowLoadsWithSelfContact) {
+  const bench::SceneFile f = bench::load_scene_file(std::string(SNH_DATA_DIR) + "/scenes/elbow.json");
+  EXPECT_TRUE(f.scene.options.contact.self);
+  EXPECT_EQ(f.scene.options.contact.stiffness, 20.0);
+  EXPECT_EQ(f.scene.options.contact.thickness, 0.025);
+  EXPECT_EQ(f.scene.options.load_steps, 28);
+  EXPECT_EQ(f.scene.mesh.element_count(), 24u * 4 * 4);
+  const Scene builtin = make_scene("elbow", {});
+  ASSERT_EQ(builtin.constraints.size(), f.scene.constraints.size());
+  for (size_t k = 0; k < builtin.constraints.size(); ++k)
+    EXPECT_EQ(builtin.constraints[k].vertices, f.scene.constraints[k].vertices) << builtin.constraints[k].name;
 }
 
 TEST(SceneFileDynamics, ShippedDropBlockLoads) {

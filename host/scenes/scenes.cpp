@@ -112,6 +112,48 @@ Scene flex(const SceneParameters& p) {
   return s;
 }
 
+// A longer limb than flex, flexed 140 degrees so that the inner (z-) sides
+// of the two halves meet. The bones lie in the upper half of the core
+// (0.5 <= z <= 0.75 thicknesses, |y - 0.5| <= 0.25), leaving half a
+// thickness of flesh below them (a biceps); the joint axis (along y) runs
+// through the bones' centre line, and the bones stop 0.75 thicknesses short
+// of it on either side. At 140 degrees (20 degrees from the joint to each
+// arm) the rigid bones stay 2 (0.75 sin 20 - 0.125) = 0.26 thicknesses
+// apart, while the inner surfaces, 0.625 below the axis, overlap from
+// 0.625 / sin 20 = 1.83 thicknesses out: without self-contact that flesh
+// passes through itself. 28 steps of 5 degrees: the bones' tips move about
+// one cell per step (larger steps start Newton from states where the
+// flesh next to the moved bones is tangled).
+Scene elbow(const SceneParameters& p) {
+  Scene s;
+  const int res = resolution_or(p, 4);
+  const double w = 1.0, h = w / res, length = 6.0 * w;
+  s.mesh = make_box_lattice(6 * res, res, res, h);
+  ConstraintSet upper{"upper_bone", {}, {}, {}}, lower{"lower_bone", {}, {}, {}};
+  const double tol = 1e-9;
+  for (size_t v = 0; v < s.mesh.vertex_count(); ++v) {
+    const auto x = s.mesh.vertex(v);
+    const bool core = std::abs(x[1] - 0.5 * w) <= 0.25 * w + tol && x[2] >= 0.5 * w - tol && x[2] <= 0.75 * w + tol;
+    if (!core) continue;
+    if (x[0] >= 0.25 * w - tol && x[0] <= 0.5 * length - 0.75 * w + tol)
+      upper.vertices.push_back(static_cast<int32_t>(v));
+    if (x[0] >= 0.5 * length + 0.75 * w - tol && x[0] <= length - 0.25 * w + tol)
+      lower.vertices.push_back(static_cast<int32_t>(v));
+  }
+  const std::array<double, 3> joint{0.5 * length, 0.5 * w, 0.625 * w};
+  const double angle = 140.0 / 180.0 * kPi;
+  lower.motion = [joint, angle](double t) { return RigidTransform::rotation_about({0.0, 1.0, 0.0}, t * angle, joint); };
+  s.constraints = {upper, lower};
+  s.options.load_steps = p.steps > 0 ? p.steps : 28;
+  // Springs of 80 E h per sample (force per length): the contact pressure
+  // at 140 degrees keeps samples within the thickness 0.1 h.
+  s.options.contact.self = true;
+  s.options.contact.stiffness = 80.0 * p.youngs_modulus * h;
+  s.options.contact.thickness = 0.1 * h;
+  s.description = "6:1:1 limb flexed 140 degrees by two rigid bones, inner side folding onto itself (self-contact)";
+  return s;
+}
+
 // "drop" (README "Dynamics and obstacles"), SI units. The keyframes of the
 // squashing cylinder, on the load parameter t in [0, 1] over the scene's 2 s:
 // waiting above while the body falls and settles (to t = 0.2), down to a gap
@@ -229,7 +271,7 @@ double scene_cell_size(const Mesh& mesh) {
 
 }  // namespace
 
-std::vector<std::string> scene_names() { return {"stretch", "twist", "scramble", "flex", "drop"}; }
+std::vector<std::string> scene_names() { return {"stretch", "twist", "scramble", "flex", "drop", "elbow"}; }
 
 std::vector<std::string> lattice_scene_names() { return {"stretch", "twist", "scramble", "flex"}; }
 
@@ -262,8 +304,10 @@ Scene make_scene(const std::string& name, const SceneParameters& p) {
     s = scramble(p);
   else if (name == "flex")
     s = flex(p);
+  else if (name == "elbow")
+    s = elbow(p);
   else
-    throw Error("scene: unknown scene '" + name + "' (known: stretch, twist, scramble, flex, drop)");
+    throw Error("scene: unknown scene '" + name + "' (known: stretch, twist, scramble, flex, drop, elbow)");
   s.name = name;
   const double h = scene_cell_size(s.mesh);
   // Vertices (and so the constraint sets) are the lattice's either way.

@@ -53,6 +53,8 @@ class DeviceProblem {
   double last_min_j() const { return model_.last_min_j(); }
   double energy_magnitude() const { return model_.last_energy_magnitude(); }
   void residual(const Vector& x, Vector& r) { model_.residual(x, r); }
+  // The self-contact set refreshed at x (no-op without self-contact).
+  bool refresh(const Vector& x, bool new_step) { return model_.refresh_self_contact(x, new_step); }
   bool has_true_hessian() const { return true; }
 
   double norm(const Vector& v) const {

@@ -4,6 +4,7 @@
 // Internal to the library.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "snh/regions.h"
 #include "snh/simulation.h"
 #include "solver/phase_profile.h"
+#include "solver/self_contact.h"
 #include "viennacl/compressed_matrix.hpp"
 #include "viennacl/vector.hpp"
 
@@ -29,14 +31,17 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 // Terms beyond elasticity that a scene compiles into the kernels (printed in
 // the kernel specialization): only what it uses.
 struct ModelTerms {
-  bool inertia = false;  // implicit Euler's inertia (SNH_INERTIA)
-  int obstacles = 0;     // kinematic obstacles' contact penalty (SNH_OBSTACLES)
+  bool inertia = false;       // implicit Euler's inertia (SNH_INERTIA)
+  int obstacles = 0;          // kinematic obstacles' contact penalty (SNH_OBSTACLES)
+  bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
 };
 
-// Contact with the obstacles at some x.
+// Contact with the obstacles, and self-contact, at some x.
 struct ContactState {
-  int contacts = 0;              // vertices with g = thickness - phi > 0
-  double max_penetration = 0.0;  // the largest g (0: none)
+  int contacts = 0;                   // vertices with g = thickness - phi > 0
+  double max_penetration = 0.0;       // the largest g (0: none)
+  int self_contacts = 0;              // surface vertices in self-contact (detected at x)
+  double max_self_penetration = 0.0;  // their largest spring length (0: none)
 };
 
 template <typename Real>
@@ -71,6 +76,15 @@ class ElasticModel {
   // their contact force, the Hessian their Gauss-Newton blocks.
   void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
   ContactState contact_state(const VectorBase& x);
+  // Self-contact (ModelTerms::self_contact): the springs' stiffness, and the
+  // active set detected at x, frozen until the next refresh (energy,
+  // residual, products and preconditioner all use it). Within a step
+  // (new_step false) a sample still in contact keeps the spring it had.
+  // Returns whether the set changed. contact_state(x) refreshes it at x.
+  void set_self_contact_stiffness(double stiffness);
+  bool refresh_self_contact(const VectorBase& x, bool new_step = false);
+  const std::vector<SelfContactPair>& self_contacts() const { return self_pairs_; }
+  const SelfContactDetector* self_contact_detector() const { return detector_.get(); }
 
   // Total potential energy: elastic energy minus external work, summed on the
   // host in double and in element order. Non-finite when any element's is.
@@ -180,7 +194,20 @@ class ElasticModel {
   device::Kernel contact_k_;
   // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
   void contact(const VectorBase& x, bool linearization = false) const;
-  bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0; }
+  bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0 || terms_.self_contact; }
+  // Self-contact: detector, frozen set and its device arrays (pairs s, j0..j2
+  // and weights per contact; per-vertex CSR of (contact, k a_i); per-vertex
+  // k sum a_i^2 for block-Jacobi; the differences d_c).
+  std::unique_ptr<SelfContactDetector> detector_;
+  std::vector<SelfContactPair> self_pairs_;
+  double self_stiffness_ = 0.0;
+  device::Buffer self_pairs_buf_, self_weights_buf_, self_offsets_buf_, self_entries_buf_, self_coefficients_buf_,
+      self_d_buf_, self_diagonal_buf_;
+  device::Kernel self_k_;
+  void upload_self_contacts();
+  // d_c = a_c^T u for the frozen set (before a gather that uses them).
+  void self_differences(const VectorBase& u) const;
+  cl_uint set_self_args(cl_kernel k, cl_uint next) const;
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
       setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;

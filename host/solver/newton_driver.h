@@ -24,7 +24,12 @@
 //   bool has_true_hessian() const;       // whether linearize(x, false) is available
 // and optionally
 //   double energy_magnitude() const;     // the size of the terms the last energy() summed
-// for the rounding noise of energies that are small sums of large terms.
+// for the rounding noise of energies that are small sums of large terms, and
+//   bool refresh(const Vector& x, bool new_step);  // re-detect an active set (contact) at x
+// called at the start of the step and of every Newton iteration, before that
+// iteration's energy, residual and convergence test; the set stays frozen for
+// the iteration's linearization, linear solve and line search. Returns
+// whether the set changed (the energy and residual are then recomputed).
 #pragma once
 
 #include <algorithm>
@@ -59,6 +64,20 @@ double energy_magnitude_of(const P& problem) {
     return problem.energy_magnitude();
   else
     return 0.0;
+}
+
+// The problem's refresh(x), or false (no active set) when it has none.
+template <typename P, typename = void>
+struct HasRefresh : std::false_type {};
+template <typename P>
+struct HasRefresh<P, std::void_t<decltype(std::declval<P&>().refresh(std::declval<const typename P::Vector&>(), true))>>
+    : std::true_type {};
+template <typename P>
+bool refresh_of(P& problem, const typename P::Vector& x, bool new_step) {
+  if constexpr (HasRefresh<P>::value)
+    return problem.refresh(x, new_step);
+  else
+    return false;
 }
 
 template <typename Problem>
@@ -106,6 +125,7 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
 
   StepResult result;
   result.step = step;
+  refresh_of(problem_, x, true);
   problem_.residual(x, r);
   double rn = problem_.norm(r);
   double energy = problem_.energy(x);
@@ -116,6 +136,14 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
   double last_alpha = 0.0;
 
   for (int it = 0;; ++it) {
+    // The active set at this iterate: energy, residual and the convergence
+    // test below all see it (so convergence is judged with the set of the
+    // final x).
+    if (it > 0 && refresh_of(problem_, x, false)) {
+      problem_.residual(x, r);
+      rn = problem_.norm(r);
+      energy = problem_.energy(x);
+    }
     NewtonIteration rec;
     rec.step = step;
     rec.iteration = it;

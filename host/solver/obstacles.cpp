@@ -41,6 +41,10 @@ void validate_obstacles(const std::vector<Obstacle>& obstacles, const ContactOpt
     throw Error("contact: thickness must be finite and >= 0 (got " + std::to_string(contact.thickness) + ")");
   if (!std::isfinite(contact.stiffness) || contact.stiffness < 0.0)
     throw Error("contact: stiffness must be finite and > 0 (got " + std::to_string(contact.stiffness) + ")");
+  if (!std::isfinite(contact.self_stiffness) || contact.self_stiffness < 0.0)
+    throw Error("contact: self_stiffness must be finite and >= 0 (got " + std::to_string(contact.self_stiffness) + ")");
+  if (contact.self && !(contact.self_stiffness > 0.0) && !(contact.stiffness > 0.0))
+    throw Error("contact: self-contact needs stiffness or self_stiffness > 0");
   if (obstacles.empty()) return;
   if (!(contact.stiffness > 0.0))
     throw Error("contact: stiffness must be > 0 with obstacles (got " + std::to_string(contact.stiffness) + ")");

@@ -187,12 +187,16 @@ struct Simulation::Impl {
     validate_material_map(mesh, materials);
     // The multigrid's coarse levels carry the elastic Hessian only: no
     // inertia, no contact blocks (and its kernels lack those arguments).
-    if (options.dynamics || !options.obstacles.empty()) {
+    if (options.dynamics || !options.obstacles.empty() || options.contact.self) {
       if (options.preconditioner == Preconditioner::multigrid)
         throw Error(std::string("preconditioner multigrid: its coarse levels do not carry the ") +
-                    (options.dynamics ? "inertia" : "obstacle contact") +
+                    (options.dynamics            ? "inertia"
+                     : options.obstacles.empty() ? "self-contact"
+                                                 : "obstacle contact") +
                     " terms yet; use block-jacobi (or automatic) with " +
-                    (options.dynamics ? "dynamics" : "obstacles"));
+                    (options.dynamics            ? "dynamics"
+                     : options.obstacles.empty() ? "self-contact"
+                                                 : "obstacles"));
       if (preconditioner == Preconditioner::multigrid) preconditioner = Preconditioner::block_jacobi;
     }
     if (preconditioner == Preconditioner::multigrid) solver::require_hex8_lattice(mesh);
@@ -256,6 +260,7 @@ struct Simulation::Impl {
     solver::ModelTerms terms;
     terms.inertia = options.dynamics.has_value();
     terms.obstacles = static_cast<int>(options.obstacles.size());
+    terms.self_contact = options.contact.self;
     engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant,
                                                                  device::MaterialKernel::specialized, terms);
     std::vector<Real> mask(prescribed.size());
@@ -403,6 +408,9 @@ struct Simulation::Impl {
     }
     if (!options.obstacles.empty())
       engine.model->set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
+    if (options.contact.self)
+      engine.model->set_self_contact_stiffness(options.contact.self_stiffness > 0.0 ? options.contact.self_stiffness
+                                                                                    : options.contact.stiffness);
     const std::vector<Real> xr(x.begin(), x.end());
     viennacl::vector<Real> xd(x.size());
     {
@@ -423,8 +431,10 @@ struct Simulation::Impl {
       };
     StepResult step = engine.newton->solve_step(s, xd, tolerance, history, start, observe);
     const solver::ContactState contact = engine.model->contact_state(xd);
-    step.contacts = contact.contacts;
-    step.max_penetration = contact.max_penetration;
+    step.contacts = contact.contacts + contact.self_contacts;
+    step.max_penetration = std::max(contact.max_penetration, contact.max_self_penetration);
+    step.self_contacts = contact.self_contacts;
+    step.max_self_penetration = contact.max_self_penetration;
     std::vector<Real> back(x.size());
     {
       solver::PhaseScope download(&engine.model->profiler(), solver::Phase::transfers);
@@ -526,6 +536,8 @@ struct Simulation::Impl {
       total.precision_used = sub.precision_used;
       total.contacts = sub.contacts;
       total.max_penetration = sub.max_penetration;
+      total.self_contacts = sub.self_contacts;
+      total.max_self_penetration = sub.max_self_penetration;
       if (!sub.fallback.empty()) total.fallback = sub.fallback;
       if (sub.status == "cancelled") break;
     }

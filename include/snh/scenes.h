@@ -44,6 +44,9 @@ struct Scene {
 //   volume, four bottom corners pinned at rest; it must recover.
 // "flex": a 4:1:1 limb-like hex lattice driven by two rigid bones (vertex sets
 //   in its core); one bone fixed, the other bent 90 degrees about the joint.
+// "elbow": a 6:1:1 limb flexed 140 degrees by two bones with self-contact on
+//   (SolveOptions::contact.self), so the inner side folds without passing
+//   through itself.
 // "drop": the paper's octopus test (Fig. 11) in miniature, in SI units: a
 //   soft Gmsh tet body (data/meshes/blob.msh: an ellipsoid of radii 5, 5, 4
 //   cm, 6,117 tets; resolution 1: blob_coarse.msh, 700 tets) under gravity
@@ -59,7 +62,8 @@ Scene make_scene(const std::string& name, const SceneParameters& parameters);
 std::vector<std::string> scene_names();
 
 // The scenes built on the paper's lattices and run as load steps (all but
-// "drop"): those whose resolution, element type and E the benchmarks that
+// "drop" and "elbow", whose self-contact refuses the multigrid that scale
+// sweeps): those whose resolution, element type and E the benchmarks that
 // sweep them (errtime, scale) can vary.
 std::vector<std::string> lattice_scene_names();
 

@@ -172,9 +172,20 @@ struct Obstacle {
 // grad phi^T (kernels/contact/obstacle.h). stiffness is per vertex (force per
 // length): a body of weight W resting on n vertices sinks W / (n stiffness)
 // into the layer.
+//
+// self: self-collision by the reference-map penalty (Smith et al. 2018
+// sec. 6; README "Self-collision"): a surface vertex found inside a deformed
+// element not adjacent to it is pulled by a spring of self_stiffness (0: the
+// same as stiffness; force per length, like stiffness) to the deformed
+// position of the closest rest-surface point of where it sits in rest space,
+// E = k/2 |x_s - sum_j w_j x_j|^2, the weights frozen for a Newton
+// iteration. hex8 and tet4, with or without obstacles and dynamics (not with
+// the multigrid preconditioner).
 struct ContactOptions {
-  double stiffness = 0.0;  // > 0 when there are obstacles
+  double stiffness = 0.0;  // > 0 when there are obstacles (or self without self_stiffness)
   double thickness = 0.0;  // >= 0
+  bool self = false;
+  double self_stiffness = 0.0;  // >= 0; 0: stiffness
 };
 
 struct SolveOptions {
@@ -297,8 +308,14 @@ struct StepResult {
   // contact layer, and the deepest penetration into a layer as the penalty
   // sees it, max(thickness - phi) (0 when none; above `thickness` a vertex is
   // inside the obstacle itself).
+  // With ContactOptions::self, `contacts` also counts the surface vertices
+  // in self-contact (self_contacts of them) and max_penetration also covers
+  // their spring lengths |x_s - sum_j w_j x_j| (max_self_penetration), the
+  // self-penetration as the penalty sees it.
   int contacts = 0;
   double max_penetration = 0.0;
+  int self_contacts = 0;
+  double max_self_penetration = 0.0;
 };
 
 struct SolveResult {
