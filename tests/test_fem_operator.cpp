@@ -28,6 +28,7 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "reference/element_reference.h"
 #include "reference/fem_reference.h"
@@ -48,20 +49,6 @@ constexpr double kH = 0.5;  // lattice spacing
 
 template <typename Real>
 constexpr Precision precision_of = std::is_same_v<Real, double> ? Precision::double_ : Precision::single;
-
-// One OpenCL context per precision for the whole suite (kernels are built
-// once per context), each with its own ViennaCL context id.
-device::OpenClContext& device_for(Precision precision) {
-  static std::unique_ptr<device::OpenClContext> contexts[2];
-  static long ids[2];
-  const int k = precision == Precision::double_ ? 1 : 0;
-  if (!contexts[k]) {
-    contexts[k] = std::make_unique<device::OpenClContext>(DeviceOptions{}, precision);
-    ids[k] = device::bind_viennacl(*contexts[k]);
-  }
-  device::use_viennacl(ids[k]);
-  return *contexts[k];
-}
 
 struct Scene {
   std::string name;

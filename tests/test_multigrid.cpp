@@ -14,6 +14,7 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
 #include "snh/material.h"
@@ -204,17 +205,6 @@ TEST(LatticeHierarchy, RefusesMeshesThatAreNotLattices) {
 
 // --- on the device ------------------------------------------------------------
 
-device::OpenClContext& device_context() {
-  static std::unique_ptr<device::OpenClContext> context;
-  static long id = 0;
-  if (!context) {
-    context = std::make_unique<device::OpenClContext>(DeviceOptions{}, Precision::double_);
-    id = device::bind_viennacl(*context);
-  }
-  device::use_viennacl(id);
-  return *context;
-}
-
 viennacl::vector<double> upload(const std::vector<double>& v) {
   viennacl::vector<double> out(v.size());
   viennacl::copy(v.begin(), v.end(), out.begin());
@@ -258,7 +248,7 @@ class CoarseOperator : public ::testing::TestWithParam<std::tuple<ProductVariant
 TEST_P(CoarseOperator, IsTheAssembledGalerkinProduct) {
   const auto [variant, projected] = GetParam();
   DeviceCase c;
-  device::OpenClContext& cl = device_context();
+  device::OpenClContext& cl = device_for(Precision::double_);
   solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), variant);
   MultigridOptions options;
   options.coarsest_dofs = 1;
@@ -315,7 +305,7 @@ INSTANTIATE_TEST_SUITE_P(Multigrid, CoarseOperator,
 
 TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
   DeviceCase c;
-  device::OpenClContext& cl = device_context();
+  device::OpenClContext& cl = device_for(Precision::double_);
   solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), ProductVariant::cached);
   std::vector<double> mask(c.mask.begin(), c.mask.end());
   model.set_mask(mask);
@@ -467,7 +457,7 @@ namespace {
 // blocks up to rounding.
 TEST(Multigrid, BlockJacobiBlocksFromElementMatricesMatchTheCache) {
   DeviceCase c;
-  device::OpenClContext& cl = device_context();
+  device::OpenClContext& cl = device_for(Precision::double_);
   std::vector<std::vector<double>> blocks;
   for (ProductVariant v : {ProductVariant::cached, ProductVariant::element_matrices}) {
     solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), v);

@@ -12,6 +12,7 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "reference/element_reference.h"
 #include "snh/error.h"
@@ -152,18 +153,6 @@ TEST(Obstacles, RecordsFollowKeyframedRigidMotion) {
   EXPECT_EQ(at1[7], 0.25);
 }
 
-// One OpenCL context for these tests (kernels built once).
-device::OpenClContext& device() {
-  static std::unique_ptr<device::OpenClContext> context;
-  static long id = 0;
-  if (!context) {
-    context = std::make_unique<device::OpenClContext>(DeviceOptions{}, Precision::double_);
-    id = device::bind_viennacl(*context);
-  }
-  device::use_viennacl(id);
-  return *context;
-}
-
 // The device kernels against the host reference: with obstacles the model's
 // energy, residual and product gain exactly the per-vertex contact terms.
 TEST(Obstacles, DeviceContactTermsMatchTheHostReference) {
@@ -175,9 +164,9 @@ TEST(Obstacles, DeviceContactTermsMatchTheHostReference) {
   const std::vector<double> records = solver::obstacle_records(obstacles, 0.0);
   solver::ModelTerms terms;
   terms.obstacles = 3;
-  solver::ElasticModel<double> with(device(), mesh, rest, map, ProductVariant::cached,
+  solver::ElasticModel<double> with(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached,
                                     device::MaterialKernel::specialized, terms);
-  solver::ElasticModel<double> without(device(), mesh, rest, map, ProductVariant::cached);
+  solver::ElasticModel<double> without(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached);
   EXPECT_NE(with.specialization().find("-DSNH_OBSTACLES=3"), std::string::npos) << with.specialization();
   EXPECT_EQ(without.specialization().find("SNH_OBSTACLES"), std::string::npos);
   with.set_obstacles(records, kStiffness, kThickness);

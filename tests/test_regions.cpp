@@ -30,6 +30,7 @@
 #include "device/material_args.h"
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "reference/fem_reference.h"
 #include "scene_file.h"
@@ -54,18 +55,6 @@ constexpr ProductVariant kVariants[] = {ProductVariant::cached, ProductVariant::
 
 template <typename Real>
 constexpr Precision precision_of = std::is_same_v<Real, double> ? Precision::double_ : Precision::single;
-
-device::OpenClContext& device_for(Precision precision) {
-  static std::unique_ptr<device::OpenClContext> contexts[2];
-  static long ids[2];
-  const int k = precision == Precision::double_ ? 1 : 0;
-  if (!contexts[k]) {
-    contexts[k] = std::make_unique<device::OpenClContext>(DeviceOptions{}, precision);
-    ids[k] = device::bind_viennacl(*contexts[k]);
-  }
-  device::use_viennacl(ids[k]);
-  return *contexts[k];
-}
 
 Material snh(double e, double nu) { return Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, e, nu); }
 

@@ -12,6 +12,7 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
@@ -168,17 +169,6 @@ TEST(SelfContact, FrozenPenaltyGradientHessianAndPsd) {
   }
 }
 
-device::OpenClContext& device() {
-  static std::unique_ptr<device::OpenClContext> context;
-  static long id = 0;
-  if (!context) {
-    context = std::make_unique<device::OpenClContext>(DeviceOptions{}, Precision::double_);
-    id = device::bind_viennacl(*context);
-  }
-  device::use_viennacl(id);
-  return *context;
-}
-
 // The SNH_SELF_CONTACT kernels against the host reference: energy, residual,
 // Hessian product (cached and assembled variants) and the block-Jacobi
 // diagonal gain exactly the frozen springs' terms.
@@ -188,9 +178,9 @@ TEST(SelfContact, DeviceTermsMatchTheHostReference) {
   const MaterialMap map = uniform_material(mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3));
   solver::ModelTerms terms;
   terms.self_contact = true;
-  solver::ElasticModel<double> with(device(), mesh, rest, map, ProductVariant::cached,
+  solver::ElasticModel<double> with(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached,
                                     device::MaterialKernel::specialized, terms);
-  solver::ElasticModel<double> without(device(), mesh, rest, map, ProductVariant::cached);
+  solver::ElasticModel<double> without(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached);
   EXPECT_NE(with.specialization().find("-DSNH_SELF_CONTACT=1"), std::string::npos) << with.specialization();
   EXPECT_EQ(without.specialization().find("SNH_SELF_CONTACT"), std::string::npos);
   const double k = 7.0;
