@@ -61,8 +61,7 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     bytes += r.size() * sizeof(Real);
     return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(r.size(), 1) * sizeof(Real), r.empty() ? nullptr : r.data());
   };
-  size_t table_bytes = 0;
-  octant_weights_ = upload_real(octant_weights(), table_bytes);
+  octant_weights_ = upload_real(octant_weights(), table_bytes_);
   for (size_t l = 0; l < hierarchy_.levels.size(); ++l) {
     const LatticeLevel& h = hierarchy_.levels[l];
     auto level = std::make_unique<Level>();
@@ -384,7 +383,7 @@ std::vector<double> MultigridPreconditioner<Real>::eigenvalue_estimates() const 
 
 template <typename Real>
 size_t MultigridPreconditioner<Real>::memory_bytes() const {
-  size_t bytes = 0;
+  size_t bytes = table_bytes_;
   for (const auto& L : levels_) bytes += L->bytes;
   return bytes;
 }

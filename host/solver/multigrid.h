@@ -72,6 +72,7 @@ class MultigridPreconditioner {
   device::Kernel galerkin_cache_k_, galerkin_matrices_k_, prolong_k_, restrict_k_, matrix_product_k_, gather_k_,
       jacobi_setup_k_, jacobi_apply_k_;
   device::Buffer octant_weights_;  // lattice_hierarchy.h's octant_weights()
+  size_t table_bytes_ = 0;         // its device memory
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
   bool coarsest_ok_ = false;
   mutable std::vector<Real> host_rhs_;
