@@ -347,25 +347,16 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
                                    __global real* out, __global real* diagonal_blocks) {
   const int e = get_global_id(0);
   if (e >= count) return;
-  real vg[SNH_QUADRATURE][3 * SNH_NODES], qw[SNH_QUADRATURE];
-  principal_hessian h[SNH_QUADRATURE];
-  for (int q = 0; q < SNH_QUADRATURE; ++q) {
-    real g[3 * SNH_NODES];
-    load_gradients(gradients, e, q, g);
-    qw[q] = load_weight(weights, e, q);
-    h[q] = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
-    element_rotated_gradients(&h[q], g, vg[q]);
-  }
-  /* Column by column (element.h's rank-one columns), summed over the points
-   * in private memory and written once; its diagonal block's entries (rows
-   * of node b) go to the block-Jacobi blocks as well. */
+  element_linearization l;
+  element_linearization_load(gradients, weights, cache, e, &l);
+  /* Column by column, summed over the points in private memory and written
+   * once; its diagonal block's entries (rows of node b) go to the
+   * block-Jacobi blocks as well. */
   __global real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
   for (int b = 0; b < SNH_NODES; ++b)
     for (int d = 0; d < 3; ++d) {
       real column[SNH_DOFS];
-      for (int i = 0; i < SNH_DOFS; ++i) column[i] = SNH_R(0);
-      for (int q = 0; q < SNH_QUADRATURE; ++q)
-        element_column_scatter(element_column_frame(&h[q], vg[q], b, d), vg[q], qw[q], column);
+      element_stiffness_column(&l, b, d, column);
       for (int i = 0; i < SNH_DOFS; ++i) k[SNH_DOFS * (3 * b + d) + i] = column[i];
       for (int i = 0; i < 3; ++i) diagonal_blocks[(size_t)9 * SNH_NODES * e + 9 * b + 3 * d + i] = column[3 * b + i];
     }

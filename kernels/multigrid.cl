@@ -68,23 +68,15 @@ __kernel void snh_galerkin_from_cache(__global const real* octant_weights, __glo
   for (int o = 0; o < 8; ++o) {
     const int e = children[8 * c + o];
     if (e < 0) continue;
-    real w[64], m[MG_DOFS], vg[SNH_QUADRATURE][3 * SNH_NODES], qw[SNH_QUADRATURE];
-    principal_hessian h[SNH_QUADRATURE];
+    real w[64], m[MG_DOFS];
+    element_linearization l;
     child_weights_and_mask(octant_weights, o, fine_elements + 8 * e, fine_mask, w, m);
-    for (int q = 0; q < SNH_QUADRATURE; ++q) {
-      real g[3 * SNH_NODES];
-      load_gradients(gradients, e, q, g);
-      qw[q] = load_weight(weights, e, q);
-      h[q] = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
-      element_rotated_gradients(&h[q], g, vg[q]);
-    }
+    element_linearization_load(gradients, weights, cache, e, &l);
     for (int b = 0; b < 8; ++b)
       for (int d = 0; d < 3; ++d) {
         if (m[3 * b + d] == SNH_R(0)) continue;
         real column[MG_DOFS];
-        for (int i = 0; i < MG_DOFS; ++i) column[i] = SNH_R(0);
-        for (int q = 0; q < SNH_QUADRATURE; ++q)
-          element_column_scatter(element_column_frame(&h[q], vg[q], b, d), vg[q], qw[q], column);
+        element_stiffness_column(&l, b, d, column);
         galerkin_add_column(w, m, b, d, column, k);
       }
   }

@@ -30,4 +30,32 @@ SNH_FN real load_weight(SNH_GLOBAL const real* weights, size_t e, int q) {
   return weights[SNH_QUADRATURE * REST_ELEMENT(e) + q];
 }
 
+/* What a stiffness column of element e reads at each of its points: the
+ * rotated gradients (element_rotated_gradients), the weight and the cached
+ * linearization. */
+typedef struct {
+  real vg[SNH_QUADRATURE][3 * SNH_NODES];
+  real qw[SNH_QUADRATURE];
+  principal_hessian h[SNH_QUADRATURE];
+} element_linearization;
+
+SNH_FN void element_linearization_load(SNH_GLOBAL const real* gradients, SNH_GLOBAL const real* weights,
+                                       SNH_GLOBAL const real* cache, size_t e, element_linearization* out) {
+  for (int q = 0; q < SNH_QUADRATURE; ++q) {
+    real g[3 * SNH_NODES];
+    load_gradients(gradients, e, q, g);
+    out->qw[q] = load_weight(weights, e, q);
+    out->h[q] = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    element_rotated_gradients(&out->h[q], g, out->vg[q]);
+  }
+}
+
+/* Column (b, d) of the element's stiffness sum_q w_q B_q^T H_q B_q
+ * (element.h's rank-one columns), into column[3 N]. */
+SNH_FN void element_stiffness_column(const element_linearization* l, int b, int d, real* column) {
+  for (int i = 0; i < 3 * SNH_NODES; ++i) column[i] = SNH_R(0);
+  for (int q = 0; q < SNH_QUADRATURE; ++q)
+    element_column_scatter(element_column_frame(&l->h[q], l->vg[q], b, d), l->vg[q], l->qw[q], column);
+}
+
 #endif /* SNH_FEM_ELEMENT_DATA_H */
