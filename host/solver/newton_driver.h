@@ -8,7 +8,9 @@
 // inexact linear solve of the (projected or true) Hessian, a descent-direction
 // check with the preconditioned steepest descent as fallback, and Armijo
 // backtracking on the energy that never accepts a non-finite energy or
-// residual; a failed line search is retried once along the steepest descent.
+// residual; a failed line search is retried once along the steepest descent;
+// a full step that shows negative curvature along its direction (off a
+// saddle) is extended by doubling.
 //
 // A Problem provides, with `Vector` its vector type:
 //   size_t dofs() const;                 double epsilon() const;  // working precision
@@ -121,7 +123,9 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
   constexpr int kProjectionCooldown = 3;
   const int max_halvings = options_.line_search_halvings;
   const double eps = problem_.epsilon();
+  constexpr int kMaxDoublings = 10;
   Vector r = problem_.vector(), p = problem_.vector(), trial = problem_.vector(), r_trial = problem_.vector();
+  Vector far = problem_.vector(), r_far = problem_.vector();  // the extrapolation's trial
 
   StepResult result;
   result.step = step;
@@ -290,6 +294,38 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     }
     if (non_finite_residual)
       rec.recovery += std::string(rec.recovery.empty() ? "" : "; ") + "non_finite_residual -> shorter_step";
+    // Negative curvature along p (the energy still falls at alpha = 1 at
+    // least as steeply as at 0, as when sliding off a saddle, which the
+    // projected Hessian cannot see): extrapolate, doubling alpha while the
+    // energy keeps its sufficient decrease from the last point and the
+    // descent does not flatten (the bracketing phase of Nocedal & Wright's
+    // Algorithm 3.5, which expands before it zooms). Elsewhere (positive
+    // curvature along p) nothing changes.
+    if (accepted == 1.0) {
+      double descent = problem_.dot(r_trial, p);  // -dE/dalpha at the accepted point
+      int doublings = 0;
+      while (doublings < kMaxDoublings && std::isfinite(descent) && descent >= slope && descent > 0.0) {
+        const double next = 2.0 * accepted;
+        problem_.step(x, next, p, far);
+        const double far_energy = problem_.energy(far);
+        if (!std::isfinite(far_energy) || !(far_energy <= trial_energy - kArmijo * (next - accepted) * descent)) break;
+        problem_.residual(far, r_far);
+        const double far_rn = problem_.norm(r_far);
+        if (!std::isfinite(far_rn)) break;
+        problem_.swap(trial, far);
+        problem_.swap(r_trial, r_far);
+        trial_energy = far_energy;
+        trial_rn = far_rn;
+        accepted = next;
+        ++doublings;
+        const double next_descent = problem_.dot(r_trial, p);
+        if (!(next_descent >= descent)) break;
+        descent = next_descent;
+      }
+      if (doublings > 0)
+        rec.recovery += std::string(rec.recovery.empty() ? "" : "; ") + "negative_curvature -> step x" +
+                        std::to_string(1 << doublings);
+    }
     rec.step_length = accepted;
     if (accepted == 0.0) {
       result.cg_iterations += rec.cg_iterations;
