@@ -60,6 +60,7 @@ SolveOptions solve_options(const Scene& scene, const ScaleOptions& o, Preconditi
   options.precision = parse_precision(o.precision);
   options.device.match = o.device;
   options.preconditioner = preconditioner;
+  if (o.multigrid_rebuild_every > 0) options.multigrid.rebuild_every = o.multigrid_rebuild_every;
   return options;
 }
 
@@ -393,6 +394,10 @@ void add_scale_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");
+  cmd->add_option("--multigrid-rebuild-every", o->multigrid_rebuild_every,
+                  "multigrid: rebuild the hierarchy at least every N Newton linearizations (1: every one; default: "
+                  "MultigridOptions::rebuild_every)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--out", o->out_dir, "folder for scale.csv, scale.json, scale.md and scale.png")
       ->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "do not draw scale.png");

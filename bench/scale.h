@@ -26,6 +26,7 @@ struct ScaleOptions {
   double poisson_ratio = 0.49;
   std::string precision = "double";       // float or double
   std::string device;                     // substring of "<platform> / <device>"
+  int multigrid_rebuild_every = 0;        // > 0: MultigridOptions::rebuild_every
   std::string out_dir = "bench-results";  // scale.* written here
   bool plots = true;                      // run bench/plot_scale.py
 };

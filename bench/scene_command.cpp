@@ -58,6 +58,7 @@ struct SceneOptions {
   std::string device;
   std::string variant = "automatic";
   std::string preconditioner = "automatic";
+  int multigrid_rebuild_every = 0;  // 0: MultigridOptions' default
   double strain_tolerance = 0.0;
   double relative_tolerance = -1.0;
   double absolute_tolerance = -1.0;
@@ -131,6 +132,8 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                  {"contacts", s.contacts},
                  {"max_penetration", s.max_penetration},
                  {"profile", profile_json(s.profile)}};
+    if (options.preconditioner == Preconditioner::multigrid || s.preconditioner_builds > 0)
+      step["preconditioner_builds"] = s.preconditioner_builds;
     if (options.dynamics) step["time"] = s.time;
     if (options.contact.self) {
       step["self_contacts"] = s.self_contacts;
@@ -243,6 +246,7 @@ int run_scene(const SceneOptions& given) {
     options.device.match = o.device;
     options.product = parse_product_variant(o.variant);
     options.preconditioner = parse_preconditioner(o.preconditioner);
+    if (o.multigrid_rebuild_every > 0) options.multigrid.rebuild_every = o.multigrid_rebuild_every;
     if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
     if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
     if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
@@ -465,6 +469,10 @@ void add_scene_command(CLI::App& app, int& exit_code) {
                   "automatic (measured default), block-jacobi, multigrid (hex8 lattices) or none")
       ->check(CLI::IsMember({"automatic", "block-jacobi", "multigrid", "none"}))
       ->capture_default_str();
+  cmd->add_option("--multigrid-rebuild-every", o->multigrid_rebuild_every,
+                  "multigrid: rebuild the hierarchy at least every N Newton linearizations (1: every one; default: "
+                  "MultigridOptions::rebuild_every)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option(
       "--strain-tol", o->strain_tolerance,
       "stop at the residual of this strain error, |r| <= tol E h^2 sqrt(vertices) (default 1e-6; float 1e-4)");

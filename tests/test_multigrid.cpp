@@ -384,7 +384,8 @@ TEST(Multigrid, PatchTestSolvesToTheAffineField) {
               r.steps[0].newton_iterations, r.steps[0].cg_iterations);
 }
 
-SolveResult twist(Preconditioner preconditioner, int res, double nu) {
+SolveResult twist(Preconditioner preconditioner, int res, double nu,
+                  int rebuild_every = MultigridOptions{}.rebuild_every, int steps = 1) {
   const Mesh mesh = make_box_lattice(res, res, res, 1.0 / res);
   std::vector<int32_t> bottom, top;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -401,6 +402,8 @@ SolveResult twist(Preconditioner preconditioner, int res, double nu) {
   SolveOptions options;
   options.preconditioner = preconditioner;
   options.multigrid.coarsest_dofs = 100;
+  options.multigrid.rebuild_every = rebuild_every;
+  options.load_steps = steps;
   QuasistaticSolver solver(mesh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, nu),
                            {fixed, turned}, options);
   return solver.solve();
@@ -421,6 +424,94 @@ TEST(Multigrid, SameAnswerAsBlockJacobiInFewerCgIterationsAndRepeatable) {
   std::printf("twist 6^3: block-Jacobi %d Newton / %d CG, multigrid %d / %d; max position difference %.2e\n",
               jacobi.steps[0].newton_iterations, jacobi.steps[0].cg_iterations, mg.steps[0].newton_iterations,
               mg.steps[0].cg_iterations, worst);
+}
+
+// The hierarchy reused between linearizations (MultigridOptions::
+// rebuild_every) preconditions the same Newton iterations: the same answer
+// within the Newton tolerance, built fewer times than there were
+// linearizations, and at least once per load step.
+TEST(Multigrid, ReusedHierarchyGivesTheSameAnswerWithFewerBuilds) {
+  const SolveResult every = twist(Preconditioner::multigrid, 6, 0.49, 1, 2);
+  const SolveResult reused = twist(Preconditioner::multigrid, 6, 0.49, 8, 2);
+  ASSERT_TRUE(every.converged);
+  ASSERT_TRUE(reused.converged);
+  double worst = 0.0;
+  for (size_t i = 0; i < every.positions.size(); ++i)
+    worst = std::max(worst, std::abs(every.positions[i] - reused.positions[i]));
+  EXPECT_LT(worst, 1e-6);
+  int every_builds = 0, reused_builds = 0, reused_newton = 0;
+  for (const StepResult& s : every.steps) {
+    EXPECT_GE(s.preconditioner_builds,
+              s.newton_iterations);  // one per linearization (two where CG met negative curvature)
+    every_builds += s.preconditioner_builds;
+  }
+  for (const StepResult& s : reused.steps) {
+    EXPECT_GE(s.preconditioner_builds, 1) << "step " << s.step;
+    reused_builds += s.preconditioner_builds;
+    reused_newton += s.newton_iterations;
+  }
+  EXPECT_LT(reused_builds, reused_newton);
+  std::printf(
+      "twist 6^3, 2 steps: rebuilt every linearization %d builds / %d CG; reused %d builds for %d Newton / "
+      "%d CG; max position difference %.2e\n",
+      every_builds, every.steps[0].cg_iterations + every.steps[1].cg_iterations, reused_builds, reused_newton,
+      reused.steps[0].cg_iterations + reused.steps[1].cg_iterations, worst);
+  SolveOptions bad;
+  bad.preconditioner = Preconditioner::multigrid;
+  bad.multigrid.rebuild_every = 0;
+  const Mesh mesh = make_box_lattice(2, 2, 2, 0.5);
+  std::vector<int32_t> bottom;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (mesh.positions[3 * v + 2] < 1e-9) bottom.push_back(static_cast<int32_t>(v));
+  try {
+    QuasistaticSolver solver(mesh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, 0.3),
+                             {{"bottom", bottom, {}, {}}}, bad);
+    FAIL() << "rebuild_every 0 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("rebuild_every"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MultigridRebuild, BuildsAtStepsAfterEveryAndWhenCgSlowsDown) {
+  MultigridOptions o;
+  o.rebuild_every = 3;
+  o.rebuild_growth = 2.0;
+  solver::MultigridRebuild r(o);
+  EXPECT_TRUE(r.due(true));  // nothing built yet
+  r.built(true);
+  r.solved(1, 0.05, true);  // one iteration: not compared, no baseline
+  EXPECT_FALSE(r.due(true));
+  r.reused();
+  r.solved(4, 1e-4, true);  // baseline: 1 decade per iteration
+  EXPECT_FALSE(r.due(true));
+  r.reused();
+  EXPECT_TRUE(r.due(true));  // three linearizations served
+  r.built(true);
+  r.solved(4, 1e-4, true);
+  r.solved(6, 1e-3, true);  // 0.5 decades per iteration: half the rate, not less
+  EXPECT_FALSE(r.due(true));
+  r.solved(8, 1e-3, true);  // 0.375: slower than half
+  EXPECT_TRUE(r.due(true));
+  r.built(true);
+  r.solved(3, 0.5, false);  // did not reach its tolerance
+  EXPECT_TRUE(r.due(true));
+  r.built(true);
+  r.new_step();
+  EXPECT_TRUE(r.due(true));
+  // A true Hessian reuses a projected build, even when one is due, but is
+  // not kept once a projected linearization comes.
+  r.built(true);
+  EXPECT_FALSE(r.due(false));
+  r.new_step();
+  EXPECT_FALSE(r.due(false));
+  EXPECT_TRUE(r.due(true));
+  solver::MultigridRebuild first(o);
+  EXPECT_TRUE(first.due(false));
+  first.built(false);
+  EXPECT_FALSE(first.due(false));
+  EXPECT_TRUE(first.due(true));
+  EXPECT_EQ(first.builds(), 1);
+  EXPECT_EQ(r.builds(), 5);
 }
 
 TEST(Multigrid, RefusesTetMeshesByName) {

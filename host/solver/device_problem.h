@@ -32,7 +32,8 @@ class DeviceProblem {
         op_(model),
         multigrid_(std::move(multigrid)),
         precond_(model, preconditioner, multigrid_.get()),
-        preconditioner_(preconditioner) {
+        preconditioner_(preconditioner),
+        rebuild_(multigrid_ ? multigrid_->options() : MultigridOptions{}) {
     if (preconditioner == Preconditioner::multigrid && !multigrid_)
       throw Error("solver: the multigrid preconditioner was not built");
     if (preconditioner == Preconditioner::automatic)
@@ -42,10 +43,10 @@ class DeviceProblem {
   size_t dofs() const { return model_.dofs(); }
   // Device memory at the solve's peak: the model's buffers, the
   // preconditioner's, and the vectors of a Newton iteration (x and the
-  // driver's r, p, trial, r_trial) with those of ViennaCL's CG inside it
-  // (result, residual, tmp, z, p).
+  // driver's r, p, trial, r_trial, far, r_far) with those of ViennaCL's CG
+  // inside it (result, residual, tmp, z, p).
   size_t memory_bytes() const {
-    return model_.memory_bytes() + 10 * model_.dofs() * sizeof(Real) + (multigrid_ ? multigrid_->memory_bytes() : 0);
+    return model_.memory_bytes() + 12 * model_.dofs() * sizeof(Real) + (multigrid_ ? multigrid_->memory_bytes() : 0);
   }
   double epsilon() const { return std::numeric_limits<Real>::epsilon(); }
   Vector vector() const { return Vector(viennacl::scalar_vector<Real>(model_.dofs(), Real(0))); }
@@ -53,8 +54,12 @@ class DeviceProblem {
   double last_min_j() const { return model_.last_min_j(); }
   double energy_magnitude() const { return model_.last_energy_magnitude(); }
   void residual(const Vector& x, Vector& r) { model_.residual(x, r); }
-  // The self-contact set refreshed at x (no-op without self-contact).
-  bool refresh(const Vector& x, bool new_step) { return model_.refresh_self_contact(x, new_step); }
+  // The self-contact set refreshed at x (no-op without self-contact); a new
+  // load step also asks for a new multigrid hierarchy.
+  bool refresh(const Vector& x, bool new_step) {
+    if (new_step) rebuild_.new_step();
+    return model_.refresh_self_contact(x, new_step);
+  }
   bool has_true_hessian() const { return true; }
 
   double norm(const Vector& v) const {
@@ -73,12 +78,21 @@ class DeviceProblem {
 
   void linearize(const Vector& x, bool projected) {
     model_.linearize(x, projected);
-    if (preconditioner_ != Preconditioner::none) {
-      PhaseScope timed(&model_.profiler(), Phase::preconditioner_setup);
-      model_.setup_preconditioner();  // the multigrid's fine smoother too
-      if (multigrid_) multigrid_->setup();
+    if (preconditioner_ == Preconditioner::none) return;
+    PhaseScope timed(&model_.profiler(), Phase::preconditioner_setup);
+    if (multigrid_ && !rebuild_.due(projected)) {  // the last hierarchy, its fine bound for this operator
+      multigrid_->update_fine_bound();
+      rebuild_.reused();
+      return;
+    }
+    model_.setup_preconditioner();  // the multigrid's fine smoother too
+    if (multigrid_) {
+      multigrid_->setup();
+      rebuild_.built(projected);
     }
   }
+  // Multigrid hierarchies built so far (0 without multigrid).
+  int preconditioner_builds() const { return rebuild_.builds(); }
 
   LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations) {
     PhaseScope timed(&model_.profiler(), Phase::cg_vector_work);
@@ -93,6 +107,7 @@ class DeviceProblem {
     s.relative_residual = cg.tag().error();
     s.negative_curvature = op_.negative_curvature();
     s.breakdown = op_.breakdown();
+    if (multigrid_) rebuild_.solved(s.iterations, s.relative_residual, s.relative_residual <= eta);
     return s;
   }
 
@@ -137,6 +152,7 @@ class DeviceProblem {
   std::unique_ptr<MultigridPreconditioner<Real>> multigrid_;
   CgPreconditioner<Real> precond_;
   Preconditioner preconditioner_;
+  MultigridRebuild rebuild_;
   mutable std::vector<Real> a_, b_;
 };
 

@@ -41,6 +41,11 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   if (options.smoother_degree < 1 || options.smoother_degree > 16)
     throw Error("multigrid: smoother_degree must be in 1..16, got " + std::to_string(options.smoother_degree));
   if (options.max_levels < 2) throw Error("multigrid: max_levels must be at least 2");
+  if (options.rebuild_every < 1)
+    throw Error("multigrid: rebuild_every must be at least 1 (1: rebuild at every linearization), got " +
+                std::to_string(options.rebuild_every));
+  if (!(options.rebuild_growth >= 1.0))
+    throw Error("multigrid: rebuild_growth must be at least 1, got " + std::to_string(options.rebuild_growth));
   hierarchy_ = build_lattice_hierarchy(mesh, mask, options.coarsest_dofs, options.max_levels);
   const std::string defines = model.specialization();
   galerkin_cache_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_cache");
@@ -210,38 +215,46 @@ void MultigridPreconditioner<Real>::setup() {
   // the last eigenvector estimate, whose operator changed by one Newton step
   // only. Norms are reduced on the device in a fixed order.
   const size_t smoothed = levels_.size() == 1 || !coarsest_ok_ ? levels_.size() : levels_.size() - 1;
-  for (size_t l = 0; l < smoothed; ++l) {
-    Level& L = *levels_[l];
-    const bool warm = L.eigenvector.size() == 3 * L.vertices;
-    if (!warm) {
-      const LatticeLevel& h = hierarchy_.levels[l];
-      std::vector<Real> start(3 * L.vertices);
-      uint32_t state = 12345u;
-      for (size_t i = 0; i < start.size(); ++i) {
-        state = state * 1664525u + 1013904223u;
-        start[i] = h.mask[i] ? Real(0.5 + static_cast<double>(state >> 8) / 16777216.0) : Real(0);
-      }
-      L.eigenvector = viennacl::vector<Real>(3 * L.vertices);
-      viennacl::copy(start.begin(), start.end(), L.eigenvector.begin());
-      L.bytes += 3 * L.vertices * sizeof(Real);
+  for (size_t l = 0; l < smoothed; ++l) estimate_bound(l);
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::update_fine_bound() {
+  estimate_bound(0);
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::estimate_bound(size_t l) {
+  Level& L = *levels_[l];
+  const bool warm = L.eigenvector.size() == 3 * L.vertices;
+  if (!warm) {
+    const LatticeLevel& h = hierarchy_.levels[l];
+    std::vector<Real> start(3 * L.vertices);
+    uint32_t state = 12345u;
+    for (size_t i = 0; i < start.size(); ++i) {
+      state = state * 1664525u + 1013904223u;
+      start[i] = h.mask[i] ? Real(0.5 + static_cast<double>(state >> 8) / 16777216.0) : Real(0);
     }
-    double lambda = 0.0;
-    const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
-    for (int it = 0; it < iterations; ++it) {
-      const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
-      if (!(norm > 0.0) || !std::isfinite(norm)) break;
-      L.eigenvector *= Real(1.0 / norm);
-      product(static_cast<int>(l), L.eigenvector, L.t);
-      inverse_diagonal(static_cast<int>(l), L.t);
-      lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
-      L.eigenvector.fast_swap(L.t);
-    }
-    if (!(std::isfinite(lambda) && lambda > 0.0)) {  // start again next time
-      L.eigenvector = viennacl::vector<Real>();
-      lambda = 1.0;
-    }
-    L.lambda = lambda;
+    L.eigenvector = viennacl::vector<Real>(3 * L.vertices);
+    viennacl::copy(start.begin(), start.end(), L.eigenvector.begin());
+    L.bytes += 3 * L.vertices * sizeof(Real);
   }
+  double lambda = 0.0;
+  const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
+  for (int it = 0; it < iterations; ++it) {
+    const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
+    if (!(norm > 0.0) || !std::isfinite(norm)) break;
+    L.eigenvector *= Real(1.0 / norm);
+    product(static_cast<int>(l), L.eigenvector, L.t);
+    inverse_diagonal(static_cast<int>(l), L.t);
+    lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
+    L.eigenvector.fast_swap(L.t);
+  }
+  if (!(std::isfinite(lambda) && lambda > 0.0)) {  // start again next time
+    L.eigenvector = viennacl::vector<Real>();
+    lambda = 1.0;
+  }
+  L.lambda = lambda;
 }
 
 template <typename Real>

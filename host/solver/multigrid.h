@@ -15,10 +15,14 @@
 //   - Coarsest level: assembled and factored (sparse LDL^T, Eigen) on the
 //     host; where that factor is not positive (a true Hessian that is not
 //     positive definite there) the coarsest level is smoothed instead.
+//   - Reuse (MultigridRebuild below): the operators built at one Newton
+//     linearization serve the next few; in between only the fine level's
+//     Chebyshev bound is re-estimated for the new fine operator.
 // Constrained DOFs stay exactly zero on every level (masked transfers).
 #pragma once
 
 #include <Eigen/SparseCholesky>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -26,6 +30,63 @@
 #include "solver/lattice_hierarchy.h"
 
 namespace snh::solver {
+
+// When the multigrid's operators are rebuilt (MultigridOptions::rebuild_every
+// and rebuild_growth): at a load step's first linearization, at a projected
+// linearization after rebuild_every linearizations in all, and at the next
+// one after a CG solve that did not reach its tolerance or converged at less
+// than 1 / rebuild_growth of the rate of the first solve after the build. The
+// rate is decades of relative residual per CG iteration, which unlike the
+// iteration count does not follow the forcing term's tolerance; solves of a
+// single iteration (a loose tolerance met by the first step) say little about
+// it and are not compared. Builds come from projected linearizations: a true
+// Hessian (adaptive mode) reuses the last build, which is positive definite,
+// unless there is none. rebuild_every 1 builds at every linearization,
+// projected or not. Host bookkeeping only.
+class MultigridRebuild {
+ public:
+  explicit MultigridRebuild(const MultigridOptions& options)
+      : every_(options.rebuild_every), growth_(options.rebuild_growth) {}
+  // Whether a linearization (projected or true Hessian) must rebuild.
+  bool due(bool projected) const {
+    if (every_ <= 1 || !built_ || (!built_projected_ && projected)) return true;
+    return projected && (stale_ || uses_ >= every_);
+  }
+  // The linearization rebuilt the hierarchy.
+  void built(bool projected) {
+    built_ = true;
+    built_projected_ = projected;
+    stale_ = false;
+    uses_ = 1;
+    baseline_ = 0.0;
+    ++builds_;
+  }
+  void reused() { ++uses_; }
+  // A CG solve with this build ended after `iterations` at relative residual
+  // `relative_residual`; `converged`: it reached its tolerance.
+  void solved(int iterations, double relative_residual, bool converged) {
+    if (!built_) return;
+    if (!converged) {
+      stale_ = true;
+      return;
+    }
+    if (iterations < 2 || !(relative_residual > 0.0) || !std::isfinite(relative_residual)) return;
+    const double rate = -std::log10(relative_residual) / iterations;
+    if (baseline_ == 0.0)
+      baseline_ = rate;
+    else if (rate * growth_ < baseline_)
+      stale_ = true;
+  }
+  void new_step() { stale_ = true; }
+  int builds() const { return builds_; }
+
+ private:
+  int every_;
+  double growth_;
+  bool built_ = false, built_projected_ = false, stale_ = false;
+  int uses_ = 0, builds_ = 0;
+  double baseline_ = 0.0;  // the rate of the first compared solve after the build (0: none yet)
+};
 
 template <typename Real>
 class MultigridPreconditioner {
@@ -42,10 +103,15 @@ class MultigridPreconditioner {
   // After model.linearize() and model.setup_preconditioner(): coarse
   // operators, smoother bounds, the coarsest factorization.
   void setup();
+  // After model.linearize() alone, keeping the hierarchy of the last
+  // setup(): re-estimates the fine level's Chebyshev bound for the new fine
+  // operator.
+  void update_fine_bound();
   // z <- V-cycle applied to z (z holds the residual; constrained entries 0).
   void apply(VectorBase& z) const;
 
   const LatticeHierarchy& hierarchy() const { return hierarchy_; }
+  const MultigridOptions& options() const { return options_; }
   int levels() const { return static_cast<int>(hierarchy_.levels.size()); }
   // The coarse cells' matrices of level >= 1 (tests), column-major 24x24 each.
   std::vector<Real> level_matrices(int level) const;
@@ -63,6 +129,7 @@ class MultigridPreconditioner {
   void vcycle(int level) const;
   void coarse_solve() const;
   void factor_coarsest();
+  void estimate_bound(size_t level);  // lambda_max(D^-1 A) by power iteration
 
   ElasticModel<Real>& model_;
   device::OpenClContext& cl_;

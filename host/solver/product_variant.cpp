@@ -42,4 +42,14 @@ ProductVariant default_product_variant(ElementType type, Precision, bool gpu) {
   return type == ElementType::hex8 ? ProductVariant::element_matrices : ProductVariant::assembled;
 }
 
+// Measured with `snh-gpu-bench scene twist --res 32 --preconditioner
+// multigrid --variant V` (pocl, 2 CPU cores, double, nu = 0.49; README):
+// element matrices rebuilt at every linearization 24.4 s, cached 24.7 s; with
+// the hierarchy reused (rebuild_every 4) element matrices 22.7 s (their
+// per-Newton build and product stay), cached 19.2-19.9 s.
+ProductVariant default_product_variant(ElementType type, Precision precision, bool gpu, Preconditioner preconditioner) {
+  if (!gpu && preconditioner == Preconditioner::multigrid) return ProductVariant::cached;
+  return default_product_variant(type, precision, gpu);
+}
+
 }  // namespace snh

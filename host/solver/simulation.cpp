@@ -133,6 +133,11 @@ struct Simulation::Impl {
   }
 
   // Seconds per kernel so far, over the contexts of the engines built so far.
+  int preconditioner_builds() const {
+    return (dual ? dual->problem->preconditioner_builds() : 0) +
+           (single ? single->problem->preconditioner_builds() : 0);
+  }
+
   std::map<std::string, double> kernel_seconds() const {
     std::map<std::string, double> s = cl.kernel_seconds();
     for (const device::OpenClContext* c :
@@ -200,6 +205,8 @@ struct Simulation::Impl {
       if (preconditioner == Preconditioner::multigrid) preconditioner = Preconditioner::block_jacobi;
     }
     if (preconditioner == Preconditioner::multigrid) solver::require_hex8_lattice(mesh);
+    if (options.product == ProductVariant::automatic)
+      product = default_product_variant(mesh.type, options.precision, cl.info().is_gpu, preconditioner);
     tolerance = residual_tolerance(mesh, materials, options);
     prescribed = solver::prescribed_dofs(mesh, constraints);
     user_force = options.external_force;
@@ -282,7 +289,7 @@ struct Simulation::Impl {
       auto context = std::make_unique<device::OpenClContext>(options.device, Precision::double_);
       const ProductVariant variant =
           options.product == ProductVariant::automatic
-              ? default_product_variant(mesh.type, Precision::double_, context->info().is_gpu)
+              ? default_product_variant(mesh.type, Precision::double_, context->info().is_gpu, preconditioner)
               : options.product;
       dual = make_engine<double>(std::move(context), variant);
     }
@@ -474,6 +481,7 @@ struct Simulation::Impl {
       const double step_callbacks = callback_seconds;
       const solver::PhaseSeconds step_start_phases = phase_seconds();
       const std::map<std::string, double> step_start_kernels = kernel_seconds();
+      const int step_start_builds = preconditioner_builds();
       StepResult step;
       if (options.dynamics) {
         step = time_step(s, steps, result, start, progress);
@@ -492,6 +500,7 @@ struct Simulation::Impl {
           solver::difference(phase_seconds(), step_start_phases),
           std::chrono::duration<double>(Clock::now() - step_clock).count() - (callback_seconds - step_callbacks));
       step.profile.kernels = kernel_difference(kernel_seconds(), step_start_kernels);
+      step.preconditioner_builds = preconditioner_builds() - step_start_builds;
       result.steps.push_back(step);
       if (on_step) in_callback([&] { on_step(s, x); });
       if (step.status == "cancelled") {

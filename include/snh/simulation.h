@@ -85,6 +85,13 @@ Preconditioner parse_preconditioner(const std::string& text);  // the names abov
 // What `automatic` resolves to for this mesh (README, `snh-gpu-bench scale`).
 Preconditioner default_preconditioner(const Mesh& mesh);
 
+// The variant `automatic` resolves to with this preconditioner: as above,
+// except multigrid on CPU devices, which reuses its hierarchy between
+// linearizations (MultigridOptions::rebuild_every) and so needs no element
+// matrices there: the cached linearization (README "Multigrid on hex8
+// lattices").
+ProductVariant default_product_variant(ElementType type, Precision precision, bool gpu, Preconditioner preconditioner);
+
 // The multigrid preconditioner's settings: a symmetric V-cycle whose levels
 // are the hex8 lattice coarsened 2x per axis, Galerkin coarse operators from
 // the current Newton linearization, Chebyshev smoothing over block-Jacobi
@@ -94,6 +101,18 @@ struct MultigridOptions {
   int smoother_degree = 2;      // Chebyshev degree of each pre- and post-smoothing (operator products each)
   size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
   int max_levels = 12;
+  // Reuse between Newton linearizations (PETSc's SNESSetLagPreconditioner,
+  // made adaptive): the coarse operators, the coarsest factor and the fine
+  // block-Jacobi blocks are built at the first linearization of each load
+  // step, then reused for at most `rebuild_every` linearizations in all, and
+  // rebuilt sooner when a CG solve converged at less than 1 / rebuild_growth
+  // of the rate (decades of residual per iteration) of the first solve after
+  // the build, or when the build came from a true (not projected) Hessian.
+  // A reused V-cycle stays symmetric positive definite; only the fine
+  // smoother's eigenvalue bound follows each linearization. 1: rebuild at
+  // every linearization.
+  int rebuild_every = 4;
+  double rebuild_growth = 2.0;
 };
 
 struct NewtonIteration {
@@ -316,6 +335,10 @@ struct StepResult {
   double max_penetration = 0.0;
   int self_contacts = 0;
   double max_self_penetration = 0.0;
+  // Multigrid hierarchies built in this step's linearizations (the others
+  // reused one, MultigridOptions::rebuild_every); 0 with other
+  // preconditioners.
+  int preconditioner_builds = 0;
 };
 
 struct SolveResult {
