@@ -572,10 +572,10 @@ namespace snh::test {
 namespace {
 
 TEST(Multigrid, AutomaticChoosesMultigridOnLargeLattices) {
-  EXPECT_EQ(default_preconditioner(make_box_lattice(26, 26, 26, 0.1)), Preconditioner::multigrid);     // 59,049 DOFs
-  EXPECT_EQ(default_preconditioner(make_box_lattice(20, 20, 20, 0.1)), Preconditioner::block_jacobi);  // 27,783
-  EXPECT_EQ(default_preconditioner(make_tet_box(26, 26, 26, 0.1)), Preconditioner::block_jacobi);
-  Mesh jittered = make_box_lattice(26, 26, 26, 0.1);
+  EXPECT_EQ(default_preconditioner(make_box_lattice(15, 15, 15, 0.1)), Preconditioner::multigrid);     // 12,288 DOFs
+  EXPECT_EQ(default_preconditioner(make_box_lattice(12, 12, 12, 0.1)), Preconditioner::block_jacobi);  // 6,591
+  EXPECT_EQ(default_preconditioner(make_tet_box(15, 15, 15, 0.1)), Preconditioner::block_jacobi);
+  Mesh jittered = make_box_lattice(15, 15, 15, 0.1);
   jittered.positions[3 * 100] += 0.01;
   EXPECT_EQ(default_preconditioner(jittered), Preconditioner::block_jacobi);
 }

@@ -27,16 +27,18 @@ Preconditioner parse_preconditioner(const std::string& text) {
 }
 
 // Measured with `snh-gpu-bench scale` (pocl, 2 CPU cores, double, nu = 0.49;
-// README "Multigrid on hex8 lattices"), seconds per load step block-Jacobi /
-// multigrid: twist 12,288 DOFs 1.87 / 1.50, twist 107,811 DOFs 34.4 / 17.4,
-// stretch 3,519 DOFs 0.27 / 0.42, stretch 23,859 DOFs 2.43 / 2.96, stretch
-// 73,059 DOFs 14.6 / 14.6. Multigrid's
-// CG count per Newton stays flat while block-Jacobi's grows with the mesh,
-// but its set-up per Newton iteration costs more than block-Jacobi's extra
-// CG iterations on the smaller and easier meshes. So: multigrid on hex8
-// lattices from 50,000 DOFs, block-Jacobi otherwise.
+// README "Multigrid on hex8 lattices"), with the hierarchy reused between
+// linearizations (MultigridOptions::rebuild_every), seconds per load step
+// block-Jacobi / multigrid: twist 3,993 DOFs 0.452 / 0.363, 6,591 0.757 /
+// 0.618, 12,288 1.43 / 1.05, 107,811 23.7 / 10.3; stretch 3,519 0.21 / 0.244,
+// 6,363 0.418 / 0.447, 10,275 0.693 / 0.718, 23,859 1.73 / 1.68. Multigrid's
+// CG count per Newton stays flat while block-Jacobi's grows with the mesh;
+// below about 10,000 DOFs its set-up and V-cycle cost about what
+// block-Jacobi's extra CG iterations do (stretch loses up to 15% there,
+// twist gains 25%). So: multigrid on hex8 lattices from 10,000 DOFs,
+// block-Jacobi otherwise.
 Preconditioner default_preconditioner(const Mesh& mesh) {
-  constexpr size_t kMultigridFromDofs = 50000;
+  constexpr size_t kMultigridFromDofs = 10000;
   return 3 * mesh.vertex_count() >= kMultigridFromDofs && solver::is_hex8_lattice(mesh) ? Preconditioner::multigrid
                                                                                         : Preconditioner::block_jacobi;
 }
