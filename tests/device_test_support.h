@@ -4,9 +4,12 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "solver/elastic_model.h"
+#include "viennacl/vector.hpp"
 
 namespace snh::test {
 
@@ -20,6 +23,22 @@ inline device::OpenClContext& device_for(Precision precision) {
   }
   device::use_viennacl(ids[k]);
   return *contexts[k];
+}
+
+// What run(model, out) writes for a model with some term less what it writes
+// for the same model without it, downloaded: that term's own contribution to
+// a residual or product.
+template <typename Run>
+std::vector<double> model_difference(solver::ElasticModel<double>& with, solver::ElasticModel<double>& without,
+                                     Run run) {
+  viennacl::vector<double> a(with.dofs()), b(without.dofs());
+  run(with, a);
+  run(without, b);
+  std::vector<double> ha(a.size()), hb(b.size());
+  viennacl::copy(a.begin(), a.end(), ha.begin());
+  viennacl::copy(b.begin(), b.end(), hb.begin());
+  for (size_t i = 0; i < ha.size(); ++i) ha[i] -= hb[i];
+  return ha;
 }
 
 }  // namespace snh::test
