@@ -49,12 +49,11 @@ class MultigridRebuild {
       : every_(options.rebuild_every), growth_(options.rebuild_growth) {}
   // Whether a linearization (projected or true Hessian) must rebuild.
   bool due(bool projected) const {
-    if (every_ <= 1 || !built_ || (!built_projected_ && projected)) return true;
+    if (every_ <= 1 || builds_ == 0 || (!built_projected_ && projected)) return true;
     return projected && (stale_ || uses_ >= every_);
   }
   // The linearization rebuilt the hierarchy.
   void built(bool projected) {
-    built_ = true;
     built_projected_ = projected;
     stale_ = false;
     uses_ = 1;
@@ -65,7 +64,7 @@ class MultigridRebuild {
   // A CG solve with this build ended after `iterations` at relative residual
   // `relative_residual`; `converged`: it reached its tolerance.
   void solved(int iterations, double relative_residual, bool converged) {
-    if (!built_) return;
+    if (builds_ == 0) return;
     if (!converged) {
       stale_ = true;
       return;
@@ -83,7 +82,7 @@ class MultigridRebuild {
  private:
   int every_;
   double growth_;
-  bool built_ = false, built_projected_ = false, stale_ = false;
+  bool built_projected_ = false, stale_ = false;
   int uses_ = 0, builds_ = 0;
   double baseline_ = 0.0;  // the rate of the first compared solve after the build (0: none yet)
 };

@@ -153,6 +153,7 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     rec.iteration = it;
     rec.residual_norm = rn;
     rec.energy = energy;
+    auto note = [&rec](const std::string& what) { rec.recovery += (rec.recovery.empty() ? "" : "; ") + what; };
     auto finish = [&](const char* status) {
       result.status = status;
       rec.seconds = elapsed(start);
@@ -286,14 +287,11 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     double accepted = line_search();
     if (accepted == 0.0 && !steepest) {
       // Once more along the preconditioned steepest descent before giving up.
-      const std::string before = rec.recovery;
       use_steepest_descent();
       accepted = line_search();
-      rec.recovery = (before.empty() ? "" : before + "; ") + "line_search_failed -> steepest_descent" +
-                     (accepted == 0.0 ? " failed" : "");
+      note(std::string("line_search_failed -> steepest_descent") + (accepted == 0.0 ? " failed" : ""));
     }
-    if (non_finite_residual)
-      rec.recovery += std::string(rec.recovery.empty() ? "" : "; ") + "non_finite_residual -> shorter_step";
+    if (non_finite_residual) note("non_finite_residual -> shorter_step");
     // Negative curvature along p (the energy still falls at alpha = 1 at
     // least as steeply as at 0, as when sliding off a saddle, which the
     // projected Hessian cannot see): extrapolate, doubling alpha while the
@@ -322,9 +320,7 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
         if (!(next_descent >= descent)) break;
         descent = next_descent;
       }
-      if (doublings > 0)
-        rec.recovery += std::string(rec.recovery.empty() ? "" : "; ") + "negative_curvature -> step x" +
-                        std::to_string(1 << doublings);
+      if (doublings > 0) note("negative_curvature -> step x" + std::to_string(1 << doublings));
     }
     rec.step_length = accepted;
     if (accepted == 0.0) {
