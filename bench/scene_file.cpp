@@ -162,7 +162,8 @@ std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m
 // "obstacles": planes, spheres and cylinders, each with optional
 // "keyframes": the keys of a keyframed constraint motion
 // ([{"t", "angle", "translation"}], rotation about z through the origin), or
-// an object as a constraint's "motion" (with "axis" and "center").
+// an object as a constraint's "motion" (with "axis" and "center"), and an
+// optional "friction" coefficient (else contact.friction).
 std::vector<Obstacle> read_obstacles(const Reader& r, const json& list) {
   if (!list.is_array()) r.fail("obstacles", "expected an array");
   std::vector<Obstacle> out;
@@ -173,17 +174,17 @@ std::vector<Obstacle> read_obstacles(const Reader& r, const json& list) {
     Obstacle obstacle;
     const std::string type = r.text(o, key, "type", "");
     if (type == "plane") {
-      r.keys(o, key, {"type", "point", "normal", "keyframes"});
+      r.keys(o, key, {"type", "point", "normal", "keyframes", "friction"});
       obstacle.type = ObstacleType::plane;
       obstacle.point = r.required_vec3(o, key, "point");
       obstacle.direction = r.required_vec3(o, key, "normal");
     } else if (type == "sphere") {
-      r.keys(o, key, {"type", "center", "radius", "keyframes"});
+      r.keys(o, key, {"type", "center", "radius", "keyframes", "friction"});
       obstacle.type = ObstacleType::sphere;
       obstacle.point = r.required_vec3(o, key, "center");
       obstacle.radius = r.required_number(o, key, "radius");
     } else if (type == "cylinder") {
-      r.keys(o, key, {"type", "point", "axis", "radius", "keyframes"});
+      r.keys(o, key, {"type", "point", "axis", "radius", "keyframes", "friction"});
       obstacle.type = ObstacleType::cylinder;
       obstacle.point = r.required_vec3(o, key, "point");
       obstacle.direction = r.required_vec3(o, key, "axis");
@@ -191,6 +192,10 @@ std::vector<Obstacle> read_obstacles(const Reader& r, const json& list) {
     } else {
       r.fail(key + ".type", type.empty() ? "missing (plane, sphere or cylinder)"
                                          : "expected plane, sphere or cylinder, got '" + type + "'");
+    }
+    if (o.contains("friction")) {
+      obstacle.friction = r.required_number(o, key, "friction");
+      if (!(*obstacle.friction >= 0.0)) r.fail(key + ".friction", "must be >= 0");
     }
     if (o.contains("keyframes")) {
       const json& k = o["keyframes"];
@@ -365,7 +370,11 @@ SceneFile load_scene_file(const std::string& path) {
   if (doc.contains("obstacles")) s.options.obstacles = read_obstacles(r, doc["obstacles"]);
   if (doc.contains("contact")) {
     const json& c = doc["contact"];
-    r.keys(c, "contact", {"stiffness", "thickness", "self", "self_stiffness"});
+    r.keys(c, "contact", {"stiffness", "thickness", "self", "self_stiffness", "friction", "friction_slip"});
+    s.options.contact.friction = r.number(c, "contact", "friction", 0.0);
+    s.options.contact.friction_slip = r.number(c, "contact", "friction_slip", 0.0);
+    if (!(s.options.contact.friction >= 0.0)) r.fail("contact.friction", "must be >= 0");
+    if (!(s.options.contact.friction_slip >= 0.0)) r.fail("contact.friction_slip", "must be >= 0 (0: automatic)");
     s.options.contact.stiffness = r.number(c, "contact", "stiffness", 0.0);
     s.options.contact.thickness = r.number(c, "contact", "thickness", 0.0);
     s.options.contact.self_stiffness = r.number(c, "contact", "self_stiffness", 0.0);

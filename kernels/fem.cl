@@ -12,6 +12,9 @@
  *   SNH_OBSTACLES     number of kinematic obstacles (0: none); their contact
  *                     penalty per vertex (contact/obstacle.h) joins the same
  *                     per-vertex kernels
+ *   SNH_FRICTION      lagged Coulomb friction against the obstacles
+ *                     (contact/obstacle.h, obstacle_friction) in
+ *                     snh_contact_vertices; only with SNH_OBSTACLES
  *   SNH_SELF_CONTACT  self-collision springs (solver/self_contact.h): the
  *                     per-contact differences d_c = a_c^T u and their
  *                     per-vertex gather k a_i d_c in the same kernels
@@ -31,6 +34,9 @@
 #endif
 #ifndef SNH_SELF_CONTACT
 #define SNH_SELF_CONTACT 0
+#endif
+#ifndef SNH_FRICTION
+#define SNH_FRICTION 0
 #endif
 #define SNH_VERTEX_TERMS (SNH_INERTIA || SNH_OBSTACLES || SNH_SELF_CONTACT)
 /* Self-contact arguments of the per-vertex kernels: per vertex v the entries
@@ -424,16 +430,29 @@ __kernel void snh_apply_mask(__global const real* mask, const int size, __global
 #if SNH_OBSTACLES
 /* Per vertex, the obstacles' contact penalty at x (contact/obstacle.h):
  * energy, force (xyz), Gauss-Newton Hessian block (column-major) and the
- * deepest g = thickness - phi (0: no contact). */
+ * deepest g = thickness - phi (0: no contact). With SNH_FRICTION, plus the
+ * lagged friction potential from the step's start positions x_start, the
+ * obstacles' records then (start_obstacles) and their friction records. */
 __kernel void snh_contact_vertices(__global const real* x, __global const real* obstacles, const real stiffness,
                                    const real thickness, const int vertex_count, __global real* energy,
-                                   __global real* force, __global real* blocks, __global real* depth) {
+                                   __global real* force, __global real* blocks, __global real* depth
+#if SNH_FRICTION
+                                   ,
+                                   __global const real* x_start, __global const real* start_obstacles,
+                                   __global const real* friction, const real slip
+#endif
+) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
   const real xv[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
   real f[3] = {SNH_R(0), SNH_R(0), SNH_R(0)}, h[9], g = SNH_R(0);
   for (int i = 0; i < 9; ++i) h[i] = SNH_R(0);
-  energy[v] = obstacle_contact(obstacles, SNH_OBSTACLES, stiffness, thickness, xv, f, h, &g);
+  real e = obstacle_contact(obstacles, SNH_OBSTACLES, stiffness, thickness, xv, f, h, &g);
+#if SNH_FRICTION
+  const real x0[3] = {x_start[3 * v], x_start[3 * v + 1], x_start[3 * v + 2]};
+  e += obstacle_friction(start_obstacles, friction, SNH_OBSTACLES, stiffness, thickness, slip, x0, xv, f, h);
+#endif
+  energy[v] = e;
   for (int i = 0; i < 3; ++i) force[3 * v + i] = f[i];
   for (int i = 0; i < 9; ++i) blocks[9 * v + i] = h[i];
   depth[v] = g;

@@ -109,5 +109,12 @@ struct ObstacleContact {
 template <typename Real>
 ObstacleContact<Real> obstacle_contact(const std::vector<Real>& records, Real stiffness, Real thickness,
                                        const std::array<Real, 3>& x);
+// The lagged friction potential of kernels/contact/obstacle.h
+// (obstacle_friction) at x from start position x0: energy, force and Hessian
+// (depth 0).
+template <typename Real>
+ObstacleContact<Real> obstacle_friction(const std::vector<Real>& start_records,
+                                        const std::vector<Real>& friction_records, Real stiffness, Real thickness,
+                                        Real slip, const std::array<Real, 3>& x0, const std::array<Real, 3>& x);
 
 }  // namespace snh::reference

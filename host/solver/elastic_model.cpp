@@ -42,6 +42,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
   if (terms.obstacles > 0) defines_ += " -DSNH_OBSTACLES=" + std::to_string(terms.obstacles);
   if (terms.self_contact) defines_ += " -DSNH_SELF_CONTACT=1";
+  if (terms.friction && terms.obstacles == 0) throw Error("solver: friction needs obstacles");
+  if (terms.friction) defines_ += " -DSNH_FRICTION=1";
 
   const fem::VertexSlots slots = fem::vertex_slots(mesh.elements, vertex_count_);
 
@@ -77,6 +79,14 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
     contact_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real), zeros.data());
     contact_scratch_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real));
     contact_depth_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
+  }
+  if (terms.friction) {
+    // Until set_friction: coefficients of 0, no friction.
+    const std::vector<Real> zeros(std::max<size_t>(dofs(), 16 * terms.obstacles), Real(0));
+    friction_start_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), zeros.data());
+    friction_start_records_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * terms.obstacles * sizeof(Real), zeros.data());
+    friction_records_ = cl_.buffer(CL_MEM_READ_ONLY, 16 * terms.obstacles * sizeof(Real), zeros.data());
+    friction_slip_ = 1.0;
   }
 
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
@@ -143,7 +153,9 @@ size_t ElasticModel<Real>::memory_bytes() const {
   size_t bytes = material_.memory_bytes() + linearized_x_.size() * sizeof(Real);
   for (const device::Buffer* b :
        {&elements_, &gradients_, &weights_, &offsets_, &adjacency_, &mask_, &external_, &element_scratch_,
-        &element_blocks_, &cache_, &energies_, &min_j_, &inverse_blocks_, &element_matrices_})
+        &element_blocks_, &cache_, &energies_, &min_j_, &inverse_blocks_, &element_matrices_, &inertia_mass_,
+        &inertia_target_, &obstacles_, &contact_energy_, &contact_force_, &contact_blocks_, &contact_scratch_,
+        &contact_depth_, &friction_start_, &friction_start_records_, &friction_records_})
     bytes += device::OpenClContext::bytes(b->get());
   if (assembled_ready_)
     bytes += csr_columns_.size() * (sizeof(Real) + sizeof(unsigned)) + csr_rows_.size() * sizeof(unsigned);
@@ -290,6 +302,24 @@ void ElasticModel<Real>::set_obstacles(const std::vector<double>& records, doubl
 }
 
 template <typename Real>
+void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions,
+                                      const std::vector<double>& start_records,
+                                      const std::vector<double>& friction_records, double slip) {
+  if (!terms_.friction) throw Error("solver: set_friction on a model built without friction");
+  if (start_positions.size() != dofs() || start_records.size() != static_cast<size_t>(8 * terms_.obstacles) ||
+      friction_records.size() != static_cast<size_t>(16 * terms_.obstacles))
+    throw Error("solver: set_friction with arrays of the wrong size");
+  if (!(slip > 0.0) || !std::isfinite(slip)) throw Error("solver: friction slip must be finite and > 0");
+  const std::vector<Real> x0(start_positions.begin(), start_positions.end());
+  const std::vector<Real> r0(start_records.begin(), start_records.end());
+  const std::vector<Real> fr(friction_records.begin(), friction_records.end());
+  cl_.write(friction_start_.get(), x0.size() * sizeof(Real), x0.data());
+  cl_.write(friction_start_records_.get(), r0.size() * sizeof(Real), r0.data());
+  cl_.write(friction_records_.get(), fr.size() * sizeof(Real), fr.data());
+  friction_slip_ = slip;
+}
+
+template <typename Real>
 void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const {
   cl_kernel k = contact_k_.get();
   const Real stiffness = static_cast<Real>(contact_stiffness_), thickness = static_cast<Real>(contact_thickness_);
@@ -303,6 +333,12 @@ void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const 
   set_arg(k, 6, contact_force_.get());
   set_arg(k, 7, linearization ? contact_blocks_.get() : contact_scratch_.get());
   set_arg(k, 8, contact_depth_.get());
+  if (terms_.friction) {
+    set_arg(k, 9, friction_start_.get());
+    set_arg(k, 10, friction_start_records_.get());
+    set_arg(k, 11, friction_records_.get());
+    set_arg(k, 12, static_cast<Real>(friction_slip_));
+  }
   cl_.run(k, vertex_count_);
 }
 

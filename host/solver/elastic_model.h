@@ -34,6 +34,7 @@ struct ModelTerms {
   bool inertia = false;       // implicit Euler's inertia (SNH_INERTIA)
   int obstacles = 0;          // kinematic obstacles' contact penalty (SNH_OBSTACLES)
   bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
+  bool friction = false;      // lagged Coulomb friction against the obstacles (SNH_FRICTION)
 };
 
 // Contact with the obstacles, and self-contact, at some x.
@@ -75,6 +76,12 @@ class ElasticModel {
   // energy gains sum over vertices of their contact energy, the residual
   // their contact force, the Hessian their Gauss-Newton blocks.
   void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
+  // Friction (ModelTerms::friction) for the coming solve: the step's start
+  // positions (xyz per vertex), the obstacles' records at the step's start,
+  // their friction records (solver/obstacles.h) and the slip eps > 0. The
+  // energy, residual and Hessian blocks gain the lagged friction potential.
+  void set_friction(const std::vector<double>& start_positions, const std::vector<double>& start_records,
+                    const std::vector<double>& friction_records, double slip);
   ContactState contact_state(const VectorBase& x);
   // Self-contact (ModelTerms::self_contact): the springs' stiffness, and the
   // active set detected at x, frozen until the next refresh (energy,
@@ -191,6 +198,8 @@ class ElasticModel {
   // products use; other evaluations write theirs to contact_scratch_.
   device::Buffer obstacles_, contact_energy_, contact_force_, contact_blocks_, contact_scratch_, contact_depth_;
   double contact_stiffness_ = 0.0, contact_thickness_ = 0.0;
+  device::Buffer friction_start_, friction_start_records_, friction_records_;
+  double friction_slip_ = 0.0;
   device::Kernel contact_k_;
   // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
   void contact(const VectorBase& x, bool linearization = false) const;

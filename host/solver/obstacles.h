@@ -18,4 +18,15 @@ void validate_obstacles(const std::vector<Obstacle>& obstacles, const ContactOpt
 // that gives a non-finite placement.
 std::vector<double> obstacle_records(const std::vector<Obstacle>& obstacles, double t);
 
+// Obstacle k's friction coefficient: its own, else the contact option's.
+double friction_coefficient(const Obstacle& obstacle, const ContactOptions& contact);
+// Whether any obstacle has friction (the kernels then carry SNH_FRICTION).
+bool has_friction(const std::vector<Obstacle>& obstacles, const ContactOptions& contact);
+
+// SNH_FRICTION_RECORD reals per obstacle (kernels/contact/obstacle.h): its
+// coefficient and the rigid map (R column-major, t) that takes the obstacle
+// placed at load parameter t0 to its placement at t1.
+std::vector<double> friction_records(const std::vector<Obstacle>& obstacles, const ContactOptions& contact, double t0,
+                                     double t1);
+
 }  // namespace snh::solver

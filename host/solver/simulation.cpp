@@ -5,6 +5,7 @@
 #include "snh/simulation.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -114,6 +115,11 @@ struct Simulation::Impl {
   std::vector<double> v, mass;
   double time = 0.0;
   std::vector<double> obstacle_table;  // the obstacles placed for the coming Newton solve
+  // Friction's lag (ContactOptions::friction): the step's start positions,
+  // the obstacles placed at the step's start and their motion over the step.
+  bool friction = false;
+  double friction_slip = 0.0;
+  std::vector<double> friction_start, friction_start_table, friction_table;
   std::vector<Target> targets;
   std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
   std::vector<double> body_force_lumped;
@@ -229,6 +235,17 @@ struct Simulation::Impl {
                          std::to_string(mesh_warnings.unused_vertices.front()) + "); they do not move");
     x = options.initial_positions.empty() ? mesh.positions : options.initial_positions;
     targets.resize(constraints.size());
+    friction = solver::has_friction(options.obstacles, options.contact);
+    if (friction) {
+      friction_slip = options.contact.friction_slip;
+      if (!(friction_slip > 0.0)) {
+        // 1% of the vertex spacing (rest volume / vertices in elements)^(1/3).
+        std::vector<char> used(mesh.vertex_count(), 0);
+        for (int32_t vertex : mesh.elements) used[vertex] = 1;
+        const double n = static_cast<double>(std::count(used.begin(), used.end(), 1));
+        friction_slip = 0.01 * std::cbrt(mesh_volume(mesh, mesh.positions) / n);
+      }
+    }
     if (options.precision == Precision::double_)
       dual = make_engine<double>(nullptr, product);
     else
@@ -268,6 +285,7 @@ struct Simulation::Impl {
     terms.inertia = options.dynamics.has_value();
     terms.obstacles = static_cast<int>(options.obstacles.size());
     terms.self_contact = options.contact.self;
+    terms.friction = friction;
     engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant,
                                                                  device::MaterialKernel::specialized, terms);
     std::vector<Real> mask(prescribed.size());
@@ -415,6 +433,7 @@ struct Simulation::Impl {
     }
     if (!options.obstacles.empty())
       engine.model->set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
+    if (friction) engine.model->set_friction(friction_start, friction_start_table, friction_table, friction_slip);
     if (options.contact.self)
       engine.model->set_self_contact_stiffness(options.contact.self_stiffness > 0.0 ? options.contact.self_stiffness
                                                                                     : options.contact.stiffness);
@@ -487,6 +506,7 @@ struct Simulation::Impl {
         step = time_step(s, steps, result, start, progress);
       } else {
         const double fraction = static_cast<double>(s) / steps;
+        if (friction) lag_friction(x, static_cast<double>(s - 1) / steps, fraction);
         for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
         if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
         force_applied.resize(force_to.size());
@@ -511,6 +531,13 @@ struct Simulation::Impl {
     return finish(result, start, solve_start);
   }
 
+  // Friction's lag for a step from load parameter t0 (positions `start`) to t1.
+  void lag_friction(const std::vector<double>& start, double t0, double t1) {
+    friction_start = start;
+    friction_start_table = solver::obstacle_records(options.obstacles, t0);
+    friction_table = solver::friction_records(options.obstacles, options.contact, t0, t1);
+  }
+
   // Implicit Euler time step s of n: `substeps` minimizations of the
   // incremental potential, the constraint targets interpolated linearly
   // within the step. Newton and CG counts summed; the last substep's status.
@@ -532,6 +559,7 @@ struct Simulation::Impl {
       if (defined_for_inversion)
         for (size_t i = 0; i < x.size(); ++i) x[i] += h * v[i];
       const double fraction = (s - 1 + static_cast<double>(j) / d.substeps) / steps;
+      if (friction) lag_friction(euler.start, (s - 1 + static_cast<double>(j - 1) / d.substeps) / steps, fraction);
       for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
       if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
       const StepResult sub = solve_step(s, steps, result, start, progress, &euler);

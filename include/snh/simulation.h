@@ -182,6 +182,9 @@ struct Obstacle {
   std::array<double, 3> direction{0, 0, 1};
   double radius = 0.0;  // sphere and cylinder (> 0)
   std::function<RigidTransform(double t)> motion;
+  // Coulomb friction coefficient against this obstacle (>= 0); unset:
+  // ContactOptions::friction.
+  std::optional<double> friction;
 };
 
 // Contact with the obstacles as a penalty on every vertex in the depth
@@ -200,11 +203,26 @@ struct Obstacle {
 // E = k/2 |x_s - sum_j w_j x_j|^2, the weights frozen for a Newton
 // iteration. hex8 and tet4, with or without obstacles and dynamics (not with
 // the multigrid preconditioner).
+//
+// friction: Coulomb friction against the obstacles (each obstacle's
+// Obstacle::friction, else this), lagged as in IPC (Li et al. 2020): per
+// vertex and obstacle, the normal force stiffness * max(thickness - phi, 0)
+// and the normal at the step's start (load step, or time step's substep),
+// carried by the obstacle's motion over the step, and the dissipative
+// potential mu * that force * f0(|slip|), the slip the tangential part of the
+// vertex's motion relative to the obstacle since the step's start: a stiff
+// spring (static friction) up to a slip of friction_slip, the kinetic force
+// beyond (kernels/contact/obstacle.h). Kernels carry it (SNH_FRICTION) only
+// when some obstacle's coefficient is > 0.
 struct ContactOptions {
   double stiffness = 0.0;  // > 0 when there are obstacles (or self without self_stiffness)
   double thickness = 0.0;  // >= 0
   bool self = false;
   double self_stiffness = 0.0;  // >= 0; 0: stiffness
+  double friction = 0.0;        // >= 0, the obstacles' coefficient unless they set their own
+  // The slip (length) below which friction sticks as a spring (> 0); 0:
+  // 1% of the mesh's vertex spacing (rest volume / vertices)^(1/3).
+  double friction_slip = 0.0;
 };
 
 struct SolveOptions {

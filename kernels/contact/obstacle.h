@@ -15,7 +15,26 @@
  * dropping -k g hess(phi) (for the sphere and cylinder, hess(phi) is PSD
  * outside the axis, so the dropped term is negative semidefinite and H is
  * PSD: the projection the notes on contact ask for; for the plane it is
- * exact). */
+ * exact).
+ *
+ * Coulomb friction (obstacle_friction), lagged as in IPC (Li et al. 2020,
+ * "Incremental Potential Contact", sec. 5): the normal force magnitude
+ * lambda = k max(d - phi0, 0) and the normal n0 are those at the step's start
+ * x0 against the obstacle as it was then (its record at the step's start);
+ * both are carried by the obstacle's rigid motion over the step (R, t of its
+ * friction record), the vertex's anchor to a = R x0 + t and the normal to
+ * n = R n0. The slip is the tangential part of x - a,
+ *   u = (I - n n^T)(x - a),  y = |u|,
+ * and the dissipative potential, a fixed function of x within the step,
+ *   D = mu lambda f0(y),  f0(y) = y^2/eps - y^3/(3 eps^2) + eps/3 (y < eps),
+ *                         f0(y) = y                          (y >= eps),
+ * with f0' = f1, f1(y) = 2y/eps - y^2/eps^2 below eps and 1 above: static
+ * friction as a stiff spring up to a slip of eps, then the kinetic force
+ * mu lambda. f0 is C^2. Force -dD/dx = -mu lambda (f1(y)/y) u; Hessian, exact,
+ *   mu lambda [ (f1/y) P + (f1' - f1/y) u u^T / y^2 ],  P = I - n n^T,
+ * which is PSD: its eigenvalues are 0 (along n), f1/y (in the plane, normal
+ * to u) and f1' >= 0 (along u). (f1' - f1/y)/y^2 is -1/(eps^2 y) below eps,
+ * -1/y^3 above. */
 #ifndef SNH_CONTACT_OBSTACLE_H
 #define SNH_CONTACT_OBSTACLE_H
 
@@ -25,6 +44,9 @@
 #define SNH_OBSTACLE_SPHERE 1
 #define SNH_OBSTACLE_CYLINDER 2
 #define SNH_OBSTACLE_RECORD 8
+/* Friction record per obstacle: [mu, R (3x3, column-major), t, 0 0 0], the
+ * rigid map from the obstacle at the step's start to the obstacle now. */
+#define SNH_FRICTION_RECORD 16
 
 /* phi at x and its unit gradient n. At a sphere's centre or on a cylinder's
  * axis (no direction) n is the axis-free choice e_z (resp. any unit vector
@@ -81,6 +103,50 @@ SNH_FN real obstacle_contact(SNH_GLOBAL const real* table, int count, real stiff
       for (int c = 0; c < 3; ++c)
         for (int i = 0; i < 3; ++i) hessian[3 * c + i] += stiffness * n[i] * n[c];
       *depth = fmax(*depth, g);
+    }
+  }
+  return energy;
+}
+
+/* Sum over `count` obstacles of the lagged friction potential at vertex
+ * position x (start position x0; `start` the obstacle records at the step's
+ * start, `friction` the friction records): returns the energy, adds the
+ * force to force[3] and the Hessian to hessian[9] (column-major). eps > 0. */
+SNH_FN real obstacle_friction(SNH_GLOBAL const real* start, SNH_GLOBAL const real* friction, int count,
+                              real stiffness, real thickness, real eps, const real* x0, const real* x, real* force,
+                              real* hessian) {
+  real energy = SNH_R(0);
+  for (int o = 0; o < count; ++o) {
+    SNH_GLOBAL const real* fr = friction + SNH_FRICTION_RECORD * o;
+    real n0[3];
+    const real phi0 = obstacle_distance(start + SNH_OBSTACLE_RECORD * o, x0, n0);
+    const real c = fr[0] * stiffness * fmax(thickness - phi0, SNH_R(0)); /* mu lambda */
+    if (c > SNH_R(0)) {
+      real n[3], w[3];
+      for (int i = 0; i < 3; ++i) {
+        n[i] = fr[1 + i] * n0[0] + fr[4 + i] * n0[1] + fr[7 + i] * n0[2];
+        w[i] = x[i] - (fr[10 + i] + fr[1 + i] * x0[0] + fr[4 + i] * x0[1] + fr[7 + i] * x0[2]);
+      }
+      const real along = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
+      real u[3];
+      for (int i = 0; i < 3; ++i) u[i] = w[i] - along * n[i];
+      const real y = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      real f0, f1_y, curl;
+      if (y < eps) {
+        f0 = y * y / eps - y * y * y / (SNH_R(3) * eps * eps) + eps / SNH_R(3);
+        f1_y = SNH_R(2) / eps - y / (eps * eps);
+        curl = y > SNH_R(0) ? SNH_R(-1) / (eps * eps * y) : SNH_R(0);
+      } else {
+        f0 = y;
+        f1_y = SNH_R(1) / y;
+        curl = SNH_R(-1) / (y * y * y);
+      }
+      energy += c * f0;
+      for (int i = 0; i < 3; ++i) force[i] -= c * f1_y * u[i];
+      for (int col = 0; col < 3; ++col)
+        for (int i = 0; i < 3; ++i)
+          hessian[3 * col + i] +=
+              c * (f1_y * ((i == col ? SNH_R(1) : SNH_R(0)) - n[i] * n[col]) + curl * u[i] * u[col]);
     }
   }
   return energy;
