@@ -79,10 +79,13 @@ Scene crush(const std::string& shape, int res, Precision precision) {
 // opens again, then the body is left to recover (README "Stability"). The
 // walls keep it from spreading sideways, so the squash takes its volume to
 // about 5% whatever nu is (a laterally free body at nu -> 1/2 would keep its
-// volume and only get thinner).
-constexpr double kSquashThickness = 0.01, kSquashStiffness = 1.0e4, kSquashHeight = 0.05;
+// volume and only get thinner). The floor and the lid grip the body with
+// Coulomb friction (squash_nu*); without it (squash_frictionless_nu*) the
+// squashed state at nu = 0.499 is a saddle whose shear mode the body takes
+// (README "Stability").
+constexpr double kSquashThickness = 0.01, kSquashStiffness = 1.0e4, kSquashHeight = 0.05, kSquashFriction = 0.5;
 
-Scene squash(double nu, int res, Precision precision) {
+Scene squash(double nu, int res, Precision precision, double friction) {
   Scene s;
   const double h = 1.0 / res, d = kSquashThickness;
   s.mesh = make_box_lattice(res, res, res, h);
@@ -115,11 +118,17 @@ Scene squash(double nu, int res, Precision precision) {
     const double height = start * std::pow(kSquashHeight / start, w);
     return RigidTransform::translation_by({0.0, 0.0, height - start});
   };
+  // Rough platens: the floor and the lid grip the body (Coulomb friction,
+  // ContactOptions::friction), the walls are frictionless (a lubricated die).
+  s.options.obstacles.front().friction = friction;
+  s.options.obstacles.back().friction = friction;
   s.options.contact.stiffness = kSquashStiffness;
   s.options.contact.thickness = d;
   set_tolerance(s, precision, h);
   std::ostringstream text;
-  text << "cube in a box of planes, lid closed to " << kSquashHeight << " of its height and opened, nu = " << nu;
+  text << "cube in a box of planes, lid closed to " << kSquashHeight << " of its height and opened, nu = " << nu
+       << (friction > 0.0 ? ", floor and lid friction " : ", frictionless");
+  if (friction > 0.0) text << friction;
   s.description = text.str();
   return s;
 }
@@ -142,7 +151,9 @@ Scene make_case(const std::string& name, Precision precision, int resolution) {
     s.description = "scramble, seed " + name.substr(13);
     return s;
   }
-  if (name.rfind("squash_nu", 0) == 0) return squash(std::stod(name.substr(9)), res_or(4), precision);
+  if (name.rfind("squash_nu", 0) == 0) return squash(std::stod(name.substr(9)), res_or(4), precision, kSquashFriction);
+  if (name.rfind("squash_frictionless_nu", 0) == 0)
+    return squash(std::stod(name.substr(22)), res_or(4), precision, 0.0);
   if (name == "crush_plane") return crush("plane", res_or(4), precision);
   if (name == "crush_line") return crush("line", res_or(4), precision);
   if (name == "crush_point") return crush("point", res_or(4), precision);
@@ -259,6 +270,7 @@ json run_json(const StabilityRun& r, const std::string& note) {
   j["nan_in_history"] = r.nan_in_history;
   j["recoveries"] = r.recoveries;
   j["precision_per_step"] = r.precisions_used;
+  j["unconverged_steps"] = r.unconverged_steps;
   j["warnings"] = r.warnings;
   j["error"] = r.error;
   j["note"] = note;
@@ -366,7 +378,8 @@ std::vector<std::string> stability_case_names() {
   return {"nu0.45",         "nu0.49",         "nu0.499",        "nu0.4999",      "scramble_seed1",
           "scramble_seed2", "scramble_seed3", "scramble_seed4", "crush_plane",   "crush_line",
           "crush_point",    "twist_2pi",      "stretch_3.4x",   "stretch_5x",    "inverted_start",
-          "flip_top",       "push_through",   "squash_nu0.46",  "squash_nu0.49", "squash_nu0.499"};
+          "flip_top",       "push_through",   "squash_nu0.46",  "squash_nu0.49", "squash_nu0.499",
+                                          "squash_frictionless_nu0.499"};
 }
 
 Scene make_stability_case(const std::string& name, Precision precision, int resolution) {
@@ -410,6 +423,12 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
       r.cg_iterations += step.cg_iterations;
       r.precisions_used.push_back(step.precision_used);
       if (!step.converged && r.status == "converged") r.status = step.status;
+      if (!step.converged) {
+        std::ostringstream why;
+        why << "step " << step.step << ": " << step.status << " after " << step.newton_iterations
+            << " Newton, residual " << step.residual_norm << " of tolerance " << s.tolerance;
+        r.unconverged_steps.push_back(why.str());
+      }
       r.max_penetration = std::max(r.max_penetration, step.max_penetration);
     }
     if (!scene.options.obstacles.empty()) r.contact_thickness = scene.options.contact.thickness;
@@ -437,7 +456,7 @@ void add_stability_command(CLI::App& app, int& exit_code) {
       "stability",
       "Stiff and extreme cases in float and double: nu to 0.4999, scramble, crush to a plane/line/point, twist to "
       "2 pi, stretch to 3.4x and 5x, elements inverted mid-solve, squash to near-zero volume in a box of planes "
-      "and release (nu 0.46, 0.49, 0.499)");
+      "with a rough floor and lid and release (nu 0.46, 0.49, 0.499; frictionless at 0.499)");
   cmd->add_option("--res", o->resolution, "cells across each case (0: the cases' small defaults)")
       ->capture_default_str();
   cmd->add_option("--precision", o->precision, "float, double or both")

@@ -54,6 +54,9 @@ struct StabilityRun {
   int nan_in_history = 0;                    // NaN residuals or energies in the history (must be 0)
   std::map<std::string, int> recoveries;     // NewtonIteration::recovery -> count
   std::vector<std::string> precisions_used;  // per step
+  // "step N: status after K Newton, residual R of tolerance T", per step that
+  // did not converge.
+  std::vector<std::string> unconverged_steps;
   std::vector<std::string> warnings;
   std::string error;  // an snh::Error, if the run threw
 };

@@ -70,6 +70,24 @@ TEST(Stability, SquashToNearZeroVolumeAndRelease) {
   }
 }
 
+// At 4^3 hexes and nu = 0.499 the squashed state between frictionless
+// planes is a saddle (README "Stability"): the body shears, folds at release
+// and ends 3% short of its volume with an element inverted. Friction on the
+// floor and the lid (squash_nu0.499) holds the shear mode: the body recovers.
+// The frictionless case is run by `snh-gpu-bench stability` only (over a
+// minute here).
+TEST(Stability, SquashBetweenRoughPlatensRecoversAtNu0499) {
+  const bench::StabilityRun r = bench::run_stability_case("squash_nu0.499", Precision::double_, 4);
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.non_finite_positions, 0);
+  EXPECT_EQ(r.nan_in_history, 0);
+  EXPECT_LT(r.min_volume_ratio, 0.06);
+  EXPECT_LE(r.max_penetration, r.contact_thickness);
+  EXPECT_NEAR(r.volume_ratio, 1.0, 1e-3);
+  EXPECT_NEAR(r.min_j, 1.0, 1e-3);
+  EXPECT_EQ(r.inverted_elements, 0);
+}
+
 TEST(Stability, SmallCasesConvergeInDouble) {
   for (const char* name : {"nu0.4999", "crush_point", "twist_2pi", "inverted_start"}) {
     const bench::StabilityRun r = bench::run_stability_case(name, Precision::double_, 2);
