@@ -79,10 +79,10 @@ Scene crush(const std::string& shape, int res, Precision precision) {
 // opens again, then the body is left to recover (README "Stability"). The
 // walls keep it from spreading sideways, so the squash takes its volume to
 // about 5% whatever nu is (a laterally free body at nu -> 1/2 would keep its
-// volume and only get thinner). The floor and the lid grip the body with
-// Coulomb friction (squash_nu*); without it (squash_frictionless_nu*) the
-// squashed state at nu = 0.499 is a saddle whose shear mode the body takes
-// (README "Stability").
+// volume and only get thinner). squash_nu*: frictionless planes; at
+// nu = 0.499 the squashed state is then a saddle whose shear mode the body
+// takes (README "Stability"). squash_rough_nu*: the floor and the lid grip
+// the body with Coulomb friction (walls frictionless, a lubricated die).
 constexpr double kSquashThickness = 0.01, kSquashStiffness = 1.0e4, kSquashHeight = 0.05, kSquashFriction = 0.5;
 
 Scene squash(double nu, int res, Precision precision, double friction) {
@@ -118,10 +118,12 @@ Scene squash(double nu, int res, Precision precision, double friction) {
     const double height = start * std::pow(kSquashHeight / start, w);
     return RigidTransform::translation_by({0.0, 0.0, height - start});
   };
-  // Rough platens: the floor and the lid grip the body (Coulomb friction,
-  // ContactOptions::friction), the walls are frictionless (a lubricated die).
-  s.options.obstacles.front().friction = friction;
-  s.options.obstacles.back().friction = friction;
+  // Rough platens (friction > 0): the floor and the lid grip the body
+  // (Coulomb friction, Obstacle::friction); the walls stay frictionless.
+  if (friction > 0.0) {
+    s.options.obstacles.front().friction = friction;
+    s.options.obstacles.back().friction = friction;
+  }
   s.options.contact.stiffness = kSquashStiffness;
   s.options.contact.thickness = d;
   set_tolerance(s, precision, h);
@@ -151,9 +153,9 @@ Scene make_case(const std::string& name, Precision precision, int resolution) {
     s.description = "scramble, seed " + name.substr(13);
     return s;
   }
-  if (name.rfind("squash_nu", 0) == 0) return squash(std::stod(name.substr(9)), res_or(4), precision, kSquashFriction);
-  if (name.rfind("squash_frictionless_nu", 0) == 0)
-    return squash(std::stod(name.substr(22)), res_or(4), precision, 0.0);
+  if (name.rfind("squash_nu", 0) == 0) return squash(std::stod(name.substr(9)), res_or(4), precision, 0.0);
+  if (name.rfind("squash_rough_nu", 0) == 0)
+    return squash(std::stod(name.substr(15)), res_or(4), precision, kSquashFriction);
   if (name == "crush_plane") return crush("plane", res_or(4), precision);
   if (name == "crush_line") return crush("line", res_or(4), precision);
   if (name == "crush_point") return crush("point", res_or(4), precision);
@@ -312,7 +314,7 @@ int run_stability(const StabilityOptions& o) {
     std::map<std::string, StabilityRun> by_precision;
     for (Precision p : precisions) {
       StabilityRun r = run_stability_case(name, p, o.resolution, false, o.device);
-      std::cerr << "  " << std::left << std::setw(16) << name << std::setw(8) << r.precision << r.status << ", "
+      std::cerr << "  " << std::left << std::setw(22) << name << std::setw(8) << r.precision << r.status << ", "
                 << r.newton_iterations << " Newton, " << r.cg_iterations << " CG, " << fixed(r.seconds, 2) << " s\n";
       by_precision[r.precision] = r;
       rows.push_back({r, ""});
@@ -379,7 +381,7 @@ std::vector<std::string> stability_case_names() {
           "scramble_seed2", "scramble_seed3", "scramble_seed4", "crush_plane",   "crush_line",
           "crush_point",    "twist_2pi",      "stretch_3.4x",   "stretch_5x",    "inverted_start",
           "flip_top",       "push_through",   "squash_nu0.46",  "squash_nu0.49", "squash_nu0.499",
-                                          "squash_frictionless_nu0.499"};
+          "squash_rough_nu0.46", "squash_rough_nu0.49", "squash_rough_nu0.499"};
 }
 
 Scene make_stability_case(const std::string& name, Precision precision, int resolution) {
@@ -456,7 +458,7 @@ void add_stability_command(CLI::App& app, int& exit_code) {
       "stability",
       "Stiff and extreme cases in float and double: nu to 0.4999, scramble, crush to a plane/line/point, twist to "
       "2 pi, stretch to 3.4x and 5x, elements inverted mid-solve, squash to near-zero volume in a box of planes "
-      "with a rough floor and lid and release (nu 0.46, 0.49, 0.499; frictionless at 0.499)");
+      "and release, frictionless and with a rough floor and lid (nu 0.46, 0.49, 0.499)");
   cmd->add_option("--res", o->resolution, "cells across each case (0: the cases' small defaults)")
       ->capture_default_str();
   cmd->add_option("--precision", o->precision, "float, double or both")

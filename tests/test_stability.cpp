@@ -72,12 +72,12 @@ TEST(Stability, SquashToNearZeroVolumeAndRelease) {
 
 // At 4^3 hexes and nu = 0.499 the squashed state between frictionless
 // planes is a saddle (README "Stability"): the body shears, folds at release
-// and ends 3% short of its volume with an element inverted. Friction on the
-// floor and the lid (squash_nu0.499) holds the shear mode: the body recovers.
-// The frictionless case is run by `snh-gpu-bench stability` only (over a
-// minute here).
+// and ends 3% short of its volume with an element inverted (squash_nu0.499,
+// run by `snh-gpu-bench stability` only: over a minute here). Friction on the
+// floor and the lid (squash_rough_nu0.499) holds the shear mode: the body
+// recovers.
 TEST(Stability, SquashBetweenRoughPlatensRecoversAtNu0499) {
-  const bench::StabilityRun r = bench::run_stability_case("squash_nu0.499", Precision::double_, 4);
+  const bench::StabilityRun r = bench::run_stability_case("squash_rough_nu0.499", Precision::double_, 4);
   EXPECT_TRUE(r.error.empty()) << r.error;
   EXPECT_EQ(r.non_finite_positions, 0);
   EXPECT_EQ(r.nan_in_history, 0);

@@ -239,11 +239,11 @@ struct Simulation::Impl {
     if (friction) {
       friction_slip = options.contact.friction_slip;
       if (!(friction_slip > 0.0)) {
-        // 1% of the vertex spacing (rest volume / vertices in elements)^(1/3).
+        // 1e-4 of the vertex spacing (rest volume / vertices in elements)^(1/3).
         std::vector<char> used(mesh.vertex_count(), 0);
         for (int32_t vertex : mesh.elements) used[vertex] = 1;
         const double n = static_cast<double>(std::count(used.begin(), used.end(), 1));
-        friction_slip = 0.01 * std::cbrt(mesh_volume(mesh, mesh.positions) / n);
+        friction_slip = 1e-4 * std::cbrt(mesh_volume(mesh, mesh.positions) / n);
       }
     }
     if (options.precision == Precision::double_)

@@ -221,7 +221,8 @@ struct ContactOptions {
   double self_stiffness = 0.0;  // >= 0; 0: stiffness
   double friction = 0.0;        // >= 0, the obstacles' coefficient unless they set their own
   // The slip (length) below which friction sticks as a spring (> 0); 0:
-  // 1% of the mesh's vertex spacing (rest volume / vertices)^(1/3).
+  // 1e-4 of the mesh's vertex spacing (rest volume / vertices)^(1/3). A
+  // sticking vertex may creep by up to this much per step (the lag).
   double friction_slip = 0.0;
 };
 
