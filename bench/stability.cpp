@@ -377,11 +377,29 @@ int run_stability(const StabilityOptions& o) {
 }  // namespace
 
 std::vector<std::string> stability_case_names() {
-  return {"nu0.45",         "nu0.49",         "nu0.499",        "nu0.4999",      "scramble_seed1",
-          "scramble_seed2", "scramble_seed3", "scramble_seed4", "crush_plane",   "crush_line",
-          "crush_point",    "twist_2pi",      "stretch_3.4x",   "stretch_5x",    "inverted_start",
-          "flip_top",       "push_through",   "squash_nu0.46",  "squash_nu0.49", "squash_nu0.499",
-          "squash_rough_nu0.46", "squash_rough_nu0.49", "squash_rough_nu0.499"};
+  return {"nu0.45",
+          "nu0.49",
+          "nu0.499",
+          "nu0.4999",
+          "scramble_seed1",
+          "scramble_seed2",
+          "scramble_seed3",
+          "scramble_seed4",
+          "crush_plane",
+          "crush_line",
+          "crush_point",
+          "twist_2pi",
+          "stretch_3.4x",
+          "stretch_5x",
+          "inverted_start",
+          "flip_top",
+          "push_through",
+          "squash_nu0.46",
+          "squash_nu0.49",
+          "squash_nu0.499",
+          "squash_rough_nu0.46",
+          "squash_rough_nu0.49",
+          "squash_rough_nu0.499"};
 }
 
 Scene make_stability_case(const std::string& name, Precision precision, int resolution) {

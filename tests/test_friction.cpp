@@ -48,8 +48,8 @@ Lag lag(Obstacle o) {
 }
 
 reference::ObstacleContact<double> friction_at(const Lag& l, const Eigen::Vector3d& x0, const Eigen::Vector3d& x) {
-  return reference::obstacle_friction<double>(l.start, l.friction, kStiffness, kThickness, kSlip,
-                                              {x0[0], x0[1], x0[2]}, {x[0], x[1], x[2]});
+  return reference::obstacle_friction<double>(l.start, l.friction, kStiffness, kThickness, kSlip, {x0[0], x0[1], x0[2]},
+                                              {x[0], x[1], x[2]});
 }
 
 struct Case {
@@ -285,8 +285,8 @@ TEST(Friction, BlockSlidesDownAnInclineWithTheCoulombAcceleration) {
     const Incline r = slide(mu, theta, 30);
     ASSERT_TRUE(r.converged) << mu;
     // Kernels carry friction only when some coefficient is > 0.
-    EXPECT_EQ(r.specialization.find("-DSNH_FRICTION=1") != std::string::npos, mu > 0.0) << mu << " "
-                                                                                          << r.specialization;
+    EXPECT_EQ(r.specialization.find("-DSNH_FRICTION=1") != std::string::npos, mu > 0.0)
+        << mu << " " << r.specialization;
     const double expected = g * (std::sin(theta) - mu * std::cos(theta)) * t;
     EXPECT_NEAR(r.mean_velocity_along, expected, 0.01 * expected) << mu;
     EXPECT_NEAR(r.mean_velocity_normal, 0.0, 1e-3 * expected) << mu;

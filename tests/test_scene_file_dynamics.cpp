@@ -137,15 +137,16 @@ TEST(SceneFileDynamics, KeysNameTheirErrors) {
             std::string::npos);
   EXPECT_NE(error(R"("contact": {"stiffness": 1, "friction_slip": -1})").find("contact.friction_slip: must be >= 0"),
             std::string::npos);
-  EXPECT_NE(error(R"("contact": {"stiffness": 1, "static_friction": 0.3})").find("contact.static_friction: unknown key"),
-            std::string::npos);
+  EXPECT_NE(
+      error(R"("contact": {"stiffness": 1, "static_friction": 0.3})").find("contact.static_friction: unknown key"),
+      std::string::npos);
   EXPECT_EQ(error(R"("obstacles": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "friction": 0.5}], )" +
                   contact),
             "no error");
-  EXPECT_NE(error(R"("obstacles": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "friction": -1}], )" +
-                  contact)
-                .find("obstacles[0].friction: must be >= 0"),
-            std::string::npos);
+  EXPECT_NE(
+      error(R"("obstacles": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "friction": -1}], )" + contact)
+          .find("obstacles[0].friction: must be >= 0"),
+      std::string::npos);
   EXPECT_EQ(error(R"("contact": {"stiffness": 1, "self": false})"), "no error");
 }
 

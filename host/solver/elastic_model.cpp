@@ -151,11 +151,15 @@ size_t ElasticModel<Real>::variant_memory_bytes() const {
 template <typename Real>
 size_t ElasticModel<Real>::memory_bytes() const {
   size_t bytes = material_.memory_bytes() + linearized_x_.size() * sizeof(Real);
-  for (const device::Buffer* b :
-       {&elements_, &gradients_, &weights_, &offsets_, &adjacency_, &mask_, &external_, &element_scratch_,
-        &element_blocks_, &cache_, &energies_, &min_j_, &inverse_blocks_, &element_matrices_, &inertia_mass_,
-        &inertia_target_, &obstacles_, &contact_energy_, &contact_force_, &contact_blocks_, &contact_scratch_,
-        &contact_depth_, &friction_start_, &friction_start_records_, &friction_records_})
+  for (const device::Buffer* b : {&elements_,        &gradients_,        &weights_,
+                                  &offsets_,         &adjacency_,        &mask_,
+                                  &external_,        &element_scratch_,  &element_blocks_,
+                                  &cache_,           &energies_,         &min_j_,
+                                  &inverse_blocks_,  &element_matrices_, &inertia_mass_,
+                                  &inertia_target_,  &obstacles_,        &contact_energy_,
+                                  &contact_force_,   &contact_blocks_,   &contact_scratch_,
+                                  &contact_depth_,   &friction_start_,   &friction_start_records_,
+                                  &friction_records_})
     bytes += device::OpenClContext::bytes(b->get());
   if (assembled_ready_)
     bytes += csr_columns_.size() * (sizeof(Real) + sizeof(unsigned)) + csr_rows_.size() * sizeof(unsigned);

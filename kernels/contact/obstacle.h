@@ -112,9 +112,8 @@ SNH_FN real obstacle_contact(SNH_GLOBAL const real* table, int count, real stiff
  * position x (start position x0; `start` the obstacle records at the step's
  * start, `friction` the friction records): returns the energy, adds the
  * force to force[3] and the Hessian to hessian[9] (column-major). eps > 0. */
-SNH_FN real obstacle_friction(SNH_GLOBAL const real* start, SNH_GLOBAL const real* friction, int count,
-                              real stiffness, real thickness, real eps, const real* x0, const real* x, real* force,
-                              real* hessian) {
+SNH_FN real obstacle_friction(SNH_GLOBAL const real* start, SNH_GLOBAL const real* friction, int count, real stiffness,
+                              real thickness, real eps, const real* x0, const real* x, real* force, real* hessian) {
   real energy = SNH_R(0);
   for (int o = 0; o < count; ++o) {
     SNH_GLOBAL const real* fr = friction + SNH_FRICTION_RECORD * o;
