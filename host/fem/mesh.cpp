@@ -377,4 +377,11 @@ double mesh_volume(const Mesh& mesh, const std::vector<double>& x) {
   return volume;
 }
 
+double vertex_spacing(const Mesh& mesh) {
+  std::vector<char> used(mesh.vertex_count(), 0);
+  for (int32_t v : mesh.elements) used[v] = 1;
+  const double n = static_cast<double>(std::count(used.begin(), used.end(), 1));
+  return std::cbrt(mesh_volume(mesh, mesh.positions) / n);
+}
+
 }  // namespace snh

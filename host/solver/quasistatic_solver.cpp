@@ -152,7 +152,7 @@ double residual_tolerance(const Mesh& mesh, const MaterialMap& materials, const 
     std::vector<char> used(mesh.vertex_count(), 0);
     for (int32_t v : mesh.elements) used[v] = 1;
     const double n = static_cast<double>(std::count(used.begin(), used.end(), 1));
-    const double h = std::cbrt(mesh_volume(mesh, mesh.positions) / n);
+    const double h = vertex_spacing(mesh);
     scale = strain * youngs * h * h * std::sqrt(n);
   }
   return std::max(scale, options.absolute_tolerance);

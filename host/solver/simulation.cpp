@@ -5,7 +5,6 @@
 #include "snh/simulation.h"
 
 #include <Eigen/Geometry>
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -238,13 +237,7 @@ struct Simulation::Impl {
     friction = solver::has_friction(options.obstacles, options.contact);
     if (friction) {
       friction_slip = options.contact.friction_slip;
-      if (!(friction_slip > 0.0)) {
-        // 1e-4 of the vertex spacing (rest volume / vertices in elements)^(1/3).
-        std::vector<char> used(mesh.vertex_count(), 0);
-        for (int32_t vertex : mesh.elements) used[vertex] = 1;
-        const double n = static_cast<double>(std::count(used.begin(), used.end(), 1));
-        friction_slip = 1e-4 * std::cbrt(mesh_volume(mesh, mesh.positions) / n);
-      }
+      if (!(friction_slip > 0.0)) friction_slip = 1e-4 * vertex_spacing(mesh);
     }
     if (options.precision == Precision::double_)
       dual = make_engine<double>(nullptr, product);

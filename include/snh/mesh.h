@@ -103,4 +103,7 @@ Mesh split_hexes_into_tets(const Mesh& hexes);
 // elements and quadrature points of det F times the rest volume.
 double mesh_volume(const Mesh& mesh, const std::vector<double>& x);
 
+// The mesh's vertex spacing: (rest volume / vertices in elements)^(1/3).
+double vertex_spacing(const Mesh& mesh);
+
 }  // namespace snh
