@@ -3,6 +3,8 @@
 // call makes current.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <memory>
 #include <vector>
 
@@ -39,6 +41,34 @@ std::vector<double> model_difference(solver::ElasticModel<double>& with, solver:
   viennacl::copy(b.begin(), b.end(), hb.begin());
   for (size_t i = 0; i < ha.size(); ++i) ha[i] -= hb[i];
   return ha;
+}
+
+// A term beyond elasticity (obstacle contact, friction, self-contact springs)
+// seen through the model:
+// the model with it less the model without it gains exactly the host
+// reference's energy, force (residual) and Hessian times p (products of the
+// cached and assembled variants, linearized at x, with another residual
+// evaluation in between that must not change the linearization's blocks).
+inline void expect_vertex_term_matches(solver::ElasticModel<double>& with, solver::ElasticModel<double>& without,
+                                       const viennacl::vector<double>& xd, const viennacl::vector<double>& pd,
+                                       double energy, const std::vector<double>& force,
+                                       const std::vector<double>& product) {
+  EXPECT_NEAR(with.energy(xd) - without.energy(xd), energy, 1e-12 * (1 + energy));
+  auto difference = [&](auto run) { return model_difference(with, without, run); };
+  const std::vector<double> dr =
+      difference([&](solver::ElasticModel<double>& m, viennacl::vector<double>& out) { m.residual(xd, out); });
+  for (size_t i = 0; i < force.size(); ++i) EXPECT_NEAR(dr[i], force[i], 1e-12) << i;
+  for (ProductVariant variant : {ProductVariant::cached, ProductVariant::assembled}) {
+    with.set_variant(variant);
+    without.set_variant(variant);
+    const std::vector<double> dp = difference([&](solver::ElasticModel<double>& m, viennacl::vector<double>& out) {
+      m.linearize(xd, true);
+      const viennacl::vector<double> elsewhere = xd + pd;
+      m.residual(elsewhere, out);  // another evaluation must not change the linearization's terms
+      m.product(pd, out);
+    });
+    for (size_t i = 0; i < product.size(); ++i) EXPECT_NEAR(dp[i], product[i], 1e-12) << to_string(variant) << " " << i;
+  }
 }
 
 }  // namespace snh::test

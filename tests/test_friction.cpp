@@ -219,20 +219,7 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
     active += c.energy > 0.0;
   }
   ASSERT_GT(active, 5);
-  EXPECT_NEAR(with.energy(xd) - without.energy(xd), energy, 1e-12 * (1 + energy));
-  auto difference = [&](auto run) { return model_difference(with, without, run); };
-  const std::vector<double> dr =
-      difference([&](solver::ElasticModel<double>& m, viennacl::vector<double>& out) { m.residual(xd, out); });
-  for (size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(dr[i], force[i], 1e-12) << i;
-  for (ProductVariant variant : {ProductVariant::cached, ProductVariant::assembled}) {
-    with.set_variant(variant);
-    without.set_variant(variant);
-    const std::vector<double> dp = difference([&](solver::ElasticModel<double>& m, viennacl::vector<double>& out) {
-      m.linearize(xd, true);
-      m.product(pd, out);
-    });
-    for (size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(dp[i], product[i], 1e-12) << to_string(variant) << " " << i;
-  }
+  expect_vertex_term_matches(with, without, xd, pd, energy, force, product);
 }
 
 // A stiff block resting on a plane, gravity tilted by theta (an incline),
