@@ -432,14 +432,15 @@ __kernel void snh_apply_mask(__global const real* mask, const int size, __global
  * energy, force (xyz), Gauss-Newton Hessian block (column-major) and the
  * deepest g = thickness - phi (0: no contact). With SNH_FRICTION, plus the
  * lagged friction potential from the step's start positions x_start, the
- * obstacles' records then (start_obstacles) and their friction records. */
+ * friction anchors (3 per vertex and obstacle), the obstacles' records at
+ * the step's start (start_obstacles) and their friction records. */
 __kernel void snh_contact_vertices(__global const real* x, __global const real* obstacles, const real stiffness,
                                    const real thickness, const int vertex_count, __global real* energy,
                                    __global real* force, __global real* blocks, __global real* depth
 #if SNH_FRICTION
                                    ,
-                                   __global const real* x_start, __global const real* start_obstacles,
-                                   __global const real* friction, const real slip
+                                   __global const real* x_start, __global const real* anchors,
+                                   __global const real* start_obstacles, __global const real* friction, const real slip
 #endif
 ) {
   const int v = get_global_id(0);
@@ -450,12 +451,35 @@ __kernel void snh_contact_vertices(__global const real* x, __global const real* 
   real e = obstacle_contact(obstacles, SNH_OBSTACLES, stiffness, thickness, xv, f, h, &g);
 #if SNH_FRICTION
   const real x0[3] = {x_start[3 * v], x_start[3 * v + 1], x_start[3 * v + 2]};
-  e += obstacle_friction(start_obstacles, friction, SNH_OBSTACLES, stiffness, thickness, slip, x0, xv, f, h);
+  e += obstacle_friction(start_obstacles, friction, SNH_OBSTACLES, stiffness, thickness, slip, x0,
+                         anchors + 3 * SNH_OBSTACLES * v, xv, f, h);
 #endif
   energy[v] = e;
   for (int i = 0; i < 3; ++i) force[3 * v + i] = f[i];
   for (int i = 0; i < 9; ++i) blocks[9 * v + i] = h[i];
   depth[v] = g;
+}
+#endif
+
+#if SNH_FRICTION
+/* Per vertex and obstacle, after a step ending at x: the friction anchors for
+ * the next step (contact/obstacle.h, obstacle_friction_anchor), in place. */
+__kernel void snh_friction_anchors(__global const real* x, __global const real* x_start, __global const real* obstacles,
+                                   __global const real* start_obstacles, __global const real* friction,
+                                   const real thickness, const real slip, const int vertex_count,
+                                   __global real* anchors) {
+  const int v = get_global_id(0);
+  if (v >= vertex_count) return;
+  const real xv[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
+  const real x0[3] = {x_start[3 * v], x_start[3 * v + 1], x_start[3 * v + 2]};
+  for (int o = 0; o < SNH_OBSTACLES; ++o) {
+    __global real* a = anchors + 3 * (SNH_OBSTACLES * v + o);
+    const real before[3] = {a[0], a[1], a[2]};
+    real after[3];
+    obstacle_friction_anchor(start_obstacles + SNH_OBSTACLE_RECORD * o, friction + SNH_FRICTION_RECORD * o,
+                             obstacles + SNH_OBSTACLE_RECORD * o, thickness, slip, x0, before, xv, after);
+    for (int i = 0; i < 3; ++i) a[i] = after[i];
+  }
 }
 #endif
 

@@ -49,7 +49,7 @@ Lag lag(Obstacle o) {
 
 reference::ObstacleContact<double> friction_at(const Lag& l, const Eigen::Vector3d& x0, const Eigen::Vector3d& x) {
   return reference::obstacle_friction<double>(l.start, l.friction, kStiffness, kThickness, kSlip, {x0[0], x0[1], x0[2]},
-                                              {x[0], x[1], x[2]});
+                                              {x0[0], x0[1], x0[2]}, {x[0], x[1], x[2]});
 }
 
 struct Case {
@@ -200,7 +200,12 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
   for (double& e : x0) e += jitter(rng);
   for (size_t i = 0; i < x.size(); ++i) x[i] = x0[i] + 0.5 * jitter(rng);
   for (double& e : p) e = jitter(rng);
-  with.set_friction(x0, start, friction, kSlip);
+  // Anchors near the start positions (kept from earlier steps), per obstacle.
+  std::vector<double> anchors(3 * x0.size());
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    for (int o = 0; o < 3; ++o)
+      for (int d = 0; d < 3; ++d) anchors[3 * (3 * v + o) + d] = x0[3 * v + d] + 0.2 * jitter(rng);
+  with.set_friction(x0, anchors, start, friction, kSlip);
   viennacl::vector<double> xd(x.size()), pd(x.size());
   viennacl::copy(x.begin(), x.end(), xd.begin());
   viennacl::copy(p.begin(), p.end(), pd.begin());
@@ -208,9 +213,10 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
   std::vector<double> force(x.size()), product(x.size());
   int active = 0;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const auto c = reference::obstacle_friction<double>(start, friction, kStiffness, kThickness, kSlip,
-                                                        {x0[3 * v], x0[3 * v + 1], x0[3 * v + 2]},
-                                                        {x[3 * v], x[3 * v + 1], x[3 * v + 2]});
+    const auto c = reference::obstacle_friction<double>(
+        start, friction, kStiffness, kThickness, kSlip, {x0[3 * v], x0[3 * v + 1], x0[3 * v + 2]},
+        std::vector<double>(anchors.begin() + 9 * v, anchors.begin() + 9 * v + 9),
+        {x[3 * v], x[3 * v + 1], x[3 * v + 2]});
     energy += c.energy;
     for (int i = 0; i < 3; ++i) {
       force[3 * v + i] = c.force[i];
@@ -220,6 +226,54 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
   }
   ASSERT_GT(active, 5);
   expect_vertex_term_matches(with, without, xd, pd, energy, force, product);
+  // The anchors for the next step, on the device and by the reference.
+  const std::vector<double> next = with.next_friction_anchors(xd);
+  ASSERT_EQ(next.size(), anchors.size());
+  int moved = 0, reset = 0;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    for (int o = 0; o < 3; ++o) {
+      auto slice = [o](const std::vector<double>& t, int n) {
+        return std::vector<double>(t.begin() + n * o, t.begin() + n * o + n);
+      };
+      const size_t k = 3 * (3 * v + o);
+      const auto expected = reference::obstacle_friction_anchor<double>(
+          slice(start, 8), slice(friction, 16), slice(records, 8), kThickness, kSlip,
+          {x0[3 * v], x0[3 * v + 1], x0[3 * v + 2]}, {anchors[k], anchors[k + 1], anchors[k + 2]},
+          {x[3 * v], x[3 * v + 1], x[3 * v + 2]});
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(next[k + d], expected[d], 1e-15) << v << " " << o;
+      moved += expected[0] != anchors[k] || expected[1] != anchors[k + 1];
+      reset += expected[0] == x[3 * v] && expected[1] == x[3 * v + 1] && expected[2] == x[3 * v + 2];
+    }
+  EXPECT_GT(moved, 0);
+  EXPECT_GT(reset, 0);
+}
+
+// The anchor kept for the next step (return mapping): out of contact at the
+// end it is the vertex itself; in contact it stays where the vertex stuck
+// (slip <= eps), is dragged to eps behind where it slid, and is carried by
+// the obstacle's motion.
+TEST(Friction, AnchorStaysWhereItSticksAndFollowsWhereItSlides) {
+  Obstacle belt = plane({0, 0, 0}, {0, 0, 1});
+  belt.motion = [](double t) { return RigidTransform::translation_by({0.3 * t, 0.0, 0.0}); };
+  belt.friction = kMu;
+  const std::vector<double> start = solver::obstacle_records({belt}, 0.0), end = solver::obstacle_records({belt}, 1.0),
+                            friction = solver::friction_records({belt}, ContactOptions{}, 0.0, 1.0);
+  auto next = [&](const Vec3& x0, const Vec3& anchor, const Vec3& x) {
+    return reference::obstacle_friction_anchor<double>(start, friction, end, kThickness, kSlip, x0, anchor, x);
+  };
+  const Vec3 x0{0.1, 0.2, 0.01}, anchor{0.1 + 0.5 * kSlip, 0.2, 0.01};
+  // Carried by the belt (anchor + 0.3 in x), the vertex within eps of it: kept.
+  const Vec3 stuck = next(x0, anchor, {0.4 + 0.2 * kSlip, 0.2, 0.012});
+  EXPECT_NEAR(stuck[0], 0.4 + 0.5 * kSlip, 1e-15);
+  EXPECT_NEAR(stuck[1], 0.2, 1e-15);
+  // Left 0.1 behind the carried anchor: dragged to eps behind the vertex.
+  const Vec3 slid = next(x0, anchor, {0.3, 0.2, 0.01});
+  EXPECT_NEAR(slid[0], 0.3 + kSlip, 1e-15);
+  EXPECT_NEAR(slid[1], 0.2, 1e-15);
+  // Off the belt's layer at the end: the vertex itself.
+  const Vec3 free = next(x0, anchor, {0.3, 0.2, kThickness + 0.01});
+  EXPECT_EQ(free[0], 0.3);
+  EXPECT_EQ(free[2], kThickness + 0.01);
 }
 
 // A stiff block resting on a plane, gravity tilted by theta (an incline),
@@ -227,6 +281,7 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
 // depth, so the lagged normal force is the weight's share from step one.
 struct Incline {
   double mean_velocity_along = 0.0, mean_velocity_normal = 0.0, displacement_along = 0.0;
+  double bottom_displacement_along = 0.0;  // mean over the vertices on the plane
   bool converged = false;
   std::string specialization;
 };
@@ -260,6 +315,8 @@ Incline slide(double mu, double theta, int steps, double plane_speed = 0.0) {
     out.mean_velocity_along += v[3 * i] / n;
     out.mean_velocity_normal += v[3 * i + 2] / n;
     out.displacement_along += (r.positions[3 * i] - mesh.positions[3 * i]) / n;
+    if (mesh.positions[3 * i + 2] == 0.0)
+      out.bottom_displacement_along += (r.positions[3 * i] - mesh.positions[3 * i]) / 4;
   }
   return out;
 }
@@ -280,14 +337,21 @@ TEST(Friction, BlockSlidesDownAnInclineWithTheCoulombAcceleration) {
   }
 }
 
-// Sticking (mu > tan theta): the lagged static spring lets the block creep by
-// under the slip eps per step, nothing like the 0.14 m it slides without
-// friction.
+// Sticking (mu > tan theta): the anchors stay, so the bottom moves by less
+// than the slip eps over all 30 steps (the static spring's stretch; anchors
+// reset every step let it creep by about 0.36 eps per step), nothing like
+// the 0.14 m it slides without friction. The block as a whole leans by
+// about 1.3e-4 on the penalty's compliance (its weight's moment against
+// k = 1e4 per vertex), and no further: the same after 30 and 60 steps.
 TEST(Friction, BlockSticksOnAnInclineSteeperThanItsFrictionAngleAllows) {
   const double theta = std::acos(-1.0) / 6;
-  const Incline r = slide(0.8, theta, 30);
+  const Incline r = slide(0.8, theta, 30), longer = slide(0.8, theta, 60);
   ASSERT_TRUE(r.converged);
-  EXPECT_LT(std::abs(r.displacement_along), 30 * 1e-5);
+  ASSERT_TRUE(longer.converged);
+  EXPECT_LT(std::abs(r.bottom_displacement_along), 1e-5);
+  EXPECT_LT(std::abs(longer.bottom_displacement_along), 1e-5);
+  EXPECT_LT(std::abs(r.displacement_along), 3e-4);
+  EXPECT_LT(std::abs(longer.displacement_along - r.displacement_along), 1e-5);
   EXPECT_LT(std::abs(r.mean_velocity_along), 1e-5 / 0.01);
 }
 

@@ -110,11 +110,20 @@ template <typename Real>
 ObstacleContact<Real> obstacle_contact(const std::vector<Real>& records, Real stiffness, Real thickness,
                                        const std::array<Real, 3>& x);
 // The lagged friction potential of kernels/contact/obstacle.h
-// (obstacle_friction) at x from start position x0: energy, force and Hessian
-// (depth 0).
+// (obstacle_friction) at x from start position x0 and anchors (xyz per
+// obstacle): energy, force and Hessian (depth 0).
 template <typename Real>
 ObstacleContact<Real> obstacle_friction(const std::vector<Real>& start_records,
                                         const std::vector<Real>& friction_records, Real stiffness, Real thickness,
-                                        Real slip, const std::array<Real, 3>& x0, const std::array<Real, 3>& x);
+                                        Real slip, const std::array<Real, 3>& x0, const std::vector<Real>& anchors,
+                                        const std::array<Real, 3>& x);
+// The anchor kept for the next step against one obstacle (its start record,
+// friction record and record at the step's end; obstacle_friction_anchor).
+template <typename Real>
+std::array<Real, 3> obstacle_friction_anchor(const std::vector<Real>& start_record,
+                                             const std::vector<Real>& friction_record,
+                                             const std::vector<Real>& end_record, Real thickness, Real slip,
+                                             const std::array<Real, 3>& x0, const std::array<Real, 3>& anchor,
+                                             const std::array<Real, 3>& x);
 
 }  // namespace snh::reference

@@ -82,8 +82,9 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   }
   if (terms.friction) {
     // Until set_friction: coefficients of 0, no friction.
-    const std::vector<Real> zeros(std::max<size_t>(dofs(), 16 * terms.obstacles), Real(0));
+    const std::vector<Real> zeros(std::max<size_t>(terms.obstacles * dofs(), 16 * terms.obstacles), Real(0));
     friction_start_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), zeros.data());
+    friction_anchors_ = cl_.buffer(CL_MEM_READ_WRITE, terms.obstacles * dofs() * sizeof(Real), zeros.data());
     friction_start_records_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * terms.obstacles * sizeof(Real), zeros.data());
     friction_records_ = cl_.buffer(CL_MEM_READ_ONLY, 16 * terms.obstacles * sizeof(Real), zeros.data());
     friction_slip_ = 1.0;
@@ -102,6 +103,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
   if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
+  if (terms.friction) friction_anchors_k_ = cl_.kernel("fem.cl", defines_, "snh_friction_anchors");
   if (terms.self_contact) {
     detector_ = std::make_unique<SelfContactDetector>(mesh);
     self_k_ = cl_.kernel("fem.cl", defines_, "snh_self_contact_differences");
@@ -151,14 +153,31 @@ size_t ElasticModel<Real>::variant_memory_bytes() const {
 template <typename Real>
 size_t ElasticModel<Real>::memory_bytes() const {
   size_t bytes = material_.memory_bytes() + linearized_x_.size() * sizeof(Real);
-  for (const device::Buffer* b : {&elements_,        &gradients_,        &weights_,
-                                  &offsets_,         &adjacency_,        &mask_,
-                                  &external_,        &element_scratch_,  &element_blocks_,
-                                  &cache_,           &energies_,         &min_j_,
-                                  &inverse_blocks_,  &element_matrices_, &inertia_mass_,
-                                  &inertia_target_,  &obstacles_,        &contact_energy_,
-                                  &contact_force_,   &contact_blocks_,   &contact_scratch_,
-                                  &contact_depth_,   &friction_start_,   &friction_start_records_,
+  for (const device::Buffer* b : {&elements_,
+                                  &gradients_,
+                                  &weights_,
+                                  &offsets_,
+                                  &adjacency_,
+                                  &mask_,
+                                  &external_,
+                                  &element_scratch_,
+                                  &element_blocks_,
+                                  &cache_,
+                                  &energies_,
+                                  &min_j_,
+                                  &inverse_blocks_,
+                                  &element_matrices_,
+                                  &inertia_mass_,
+                                  &inertia_target_,
+                                  &obstacles_,
+                                  &contact_energy_,
+                                  &contact_force_,
+                                  &contact_blocks_,
+                                  &contact_scratch_,
+                                  &contact_depth_,
+                                  &friction_start_,
+                                  &friction_anchors_,
+                                  &friction_start_records_,
                                   &friction_records_})
     bytes += device::OpenClContext::bytes(b->get());
   if (assembled_ready_)
@@ -306,14 +325,17 @@ void ElasticModel<Real>::set_obstacles(const std::vector<double>& records, doubl
 }
 
 template <typename Real>
-void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions,
+void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions, const std::vector<double>& anchors,
                                       const std::vector<double>& start_records,
                                       const std::vector<double>& friction_records, double slip) {
   if (!terms_.friction) throw Error("solver: set_friction on a model built without friction");
-  if (start_positions.size() != dofs() || start_records.size() != static_cast<size_t>(8 * terms_.obstacles) ||
+  if (start_positions.size() != dofs() || anchors.size() != terms_.obstacles * dofs() ||
+      start_records.size() != static_cast<size_t>(8 * terms_.obstacles) ||
       friction_records.size() != static_cast<size_t>(16 * terms_.obstacles))
     throw Error("solver: set_friction with arrays of the wrong size");
   if (!(slip > 0.0) || !std::isfinite(slip)) throw Error("solver: friction slip must be finite and > 0");
+  const std::vector<Real> a(anchors.begin(), anchors.end());
+  cl_.write(friction_anchors_.get(), a.size() * sizeof(Real), a.data());
   const std::vector<Real> x0(start_positions.begin(), start_positions.end());
   const std::vector<Real> r0(start_records.begin(), start_records.end());
   const std::vector<Real> fr(friction_records.begin(), friction_records.end());
@@ -321,6 +343,29 @@ void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions
   cl_.write(friction_start_records_.get(), r0.size() * sizeof(Real), r0.data());
   cl_.write(friction_records_.get(), fr.size() * sizeof(Real), fr.data());
   friction_slip_ = slip;
+}
+
+template <typename Real>
+std::vector<double> ElasticModel<Real>::next_friction_anchors(const VectorBase& x) {
+  if (!terms_.friction) throw Error("solver: next_friction_anchors on a model built without friction");
+  cl_kernel k = friction_anchors_k_.get();
+  const int count = static_cast<int>(vertex_count_);
+  set_arg(k, 0, mem(x));
+  set_arg(k, 1, friction_start_.get());
+  set_arg(k, 2, obstacles_.get());
+  set_arg(k, 3, friction_start_records_.get());
+  set_arg(k, 4, friction_records_.get());
+  set_arg(k, 5, static_cast<Real>(contact_thickness_));
+  set_arg(k, 6, static_cast<Real>(friction_slip_));
+  set_arg(k, 7, count);
+  set_arg(k, 8, friction_anchors_.get());
+  cl_.run(k, vertex_count_);
+  std::vector<Real> a(terms_.obstacles * dofs());
+  {
+    PhaseScope transfer(&profiler_, Phase::transfers);
+    cl_.read(friction_anchors_.get(), a.size() * sizeof(Real), a.data());
+  }
+  return std::vector<double>(a.begin(), a.end());
 }
 
 template <typename Real>
@@ -339,9 +384,10 @@ void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const 
   set_arg(k, 8, contact_depth_.get());
   if (terms_.friction) {
     set_arg(k, 9, friction_start_.get());
-    set_arg(k, 10, friction_start_records_.get());
-    set_arg(k, 11, friction_records_.get());
-    set_arg(k, 12, static_cast<Real>(friction_slip_));
+    set_arg(k, 10, friction_anchors_.get());
+    set_arg(k, 11, friction_start_records_.get());
+    set_arg(k, 12, friction_records_.get());
+    set_arg(k, 13, static_cast<Real>(friction_slip_));
   }
   cl_.run(k, vertex_count_);
 }

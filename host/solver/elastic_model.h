@@ -77,11 +77,15 @@ class ElasticModel {
   // their contact force, the Hessian their Gauss-Newton blocks.
   void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
   // Friction (ModelTerms::friction) for the coming solve: the step's start
-  // positions (xyz per vertex), the obstacles' records at the step's start,
-  // their friction records (solver/obstacles.h) and the slip eps > 0. The
-  // energy, residual and Hessian blocks gain the lagged friction potential.
-  void set_friction(const std::vector<double>& start_positions, const std::vector<double>& start_records,
-                    const std::vector<double>& friction_records, double slip);
+  // positions (xyz per vertex), the anchors (xyz per vertex and obstacle,
+  // vertex-major), the obstacles' records at the step's start, their
+  // friction records (solver/obstacles.h) and the slip eps > 0. The energy,
+  // residual and Hessian blocks gain the lagged friction potential.
+  void set_friction(const std::vector<double>& start_positions, const std::vector<double>& anchors,
+                    const std::vector<double>& start_records, const std::vector<double>& friction_records, double slip);
+  // After the solve, at its end x: the anchors for the next step
+  // (kernels/contact/obstacle.h, obstacle_friction_anchor), same layout.
+  std::vector<double> next_friction_anchors(const VectorBase& x);
   ContactState contact_state(const VectorBase& x);
   // Self-contact (ModelTerms::self_contact): the springs' stiffness, and the
   // active set detected at x, frozen until the next refresh (energy,
@@ -198,7 +202,8 @@ class ElasticModel {
   // products use; other evaluations write theirs to contact_scratch_.
   device::Buffer obstacles_, contact_energy_, contact_force_, contact_blocks_, contact_scratch_, contact_depth_;
   double contact_stiffness_ = 0.0, contact_thickness_ = 0.0;
-  device::Buffer friction_start_, friction_start_records_, friction_records_;
+  device::Buffer friction_start_, friction_anchors_, friction_start_records_, friction_records_;
+  device::Kernel friction_anchors_k_;
   double friction_slip_ = 0.0;
   device::Kernel contact_k_;
   // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).

@@ -115,10 +115,20 @@ struct Simulation::Impl {
   double time = 0.0;
   std::vector<double> obstacle_table;  // the obstacles placed for the coming Newton solve
   // Friction's lag (ContactOptions::friction): the step's start positions,
-  // the obstacles placed at the step's start and their motion over the step.
+  // the obstacles placed at the step's start and their motion over the step;
+  // the anchors (xyz per vertex and obstacle) kept across steps.
   bool friction = false;
   double friction_slip = 0.0;
-  std::vector<double> friction_start, friction_start_table, friction_table;
+  std::vector<double> friction_start, friction_start_table, friction_table, friction_anchor;
+  // Anchors at x: no history of sticking.
+  void reset_friction_anchors() {
+    if (!friction) return;
+    const size_t count = options.obstacles.size();
+    friction_anchor.resize(count * x.size());
+    for (size_t v = 0; v < x.size() / 3; ++v)
+      for (size_t o = 0; o < count; ++o)
+        for (int d = 0; d < 3; ++d) friction_anchor[3 * (count * v + o) + d] = x[3 * v + d];
+  }
   std::vector<Target> targets;
   std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
   std::vector<double> body_force_lumped;
@@ -238,6 +248,7 @@ struct Simulation::Impl {
     if (friction) {
       friction_slip = options.contact.friction_slip;
       if (!(friction_slip > 0.0)) friction_slip = 1e-4 * vertex_spacing(mesh);
+      reset_friction_anchors();
     }
     if (options.precision == Precision::double_)
       dual = make_engine<double>(nullptr, product);
@@ -426,7 +437,8 @@ struct Simulation::Impl {
     }
     if (!options.obstacles.empty())
       engine.model->set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
-    if (friction) engine.model->set_friction(friction_start, friction_start_table, friction_table, friction_slip);
+    if (friction)
+      engine.model->set_friction(friction_start, friction_anchor, friction_start_table, friction_table, friction_slip);
     if (options.contact.self)
       engine.model->set_self_contact_stiffness(options.contact.self_stiffness > 0.0 ? options.contact.self_stiffness
                                                                                     : options.contact.stiffness);
@@ -449,6 +461,7 @@ struct Simulation::Impl {
         });
       };
     StepResult step = engine.newton->solve_step(s, xd, tolerance, history, start, observe);
+    if (friction) friction_anchor = engine.model->next_friction_anchors(xd);
     const solver::ContactState contact = engine.model->contact_state(xd);
     step.contacts = contact.contacts + contact.self_contacts;
     step.max_penetration = std::max(contact.max_penetration, contact.max_self_penetration);
@@ -585,6 +598,7 @@ struct Simulation::Impl {
     const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
     require_defined(x, s);
     const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
+    const std::vector<double> anchor_start = may_fall_back ? friction_anchor : std::vector<double>();
     StepResult step;
     if (!in_double) {
       step = solve_in(*single, s, result.history, start, progress, euler);
@@ -603,6 +617,7 @@ struct Simulation::Impl {
               << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
           note = why.str();
           x = step_start;
+          friction_anchor = anchor_start;
         }
         const size_t first_record = result.history.size();
         StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress, euler);
@@ -727,6 +742,7 @@ void Simulation::set_state(const std::vector<double>& positions) {
   check.initial_positions = positions;
   validate_solve_inputs(impl_->mesh, {}, check);
   impl_->x = positions;
+  impl_->reset_friction_anchors();
 }
 
 void Simulation::set_velocities(const std::vector<double>& velocities) {
@@ -741,6 +757,7 @@ void Simulation::set_velocities(const std::vector<double>& velocities) {
 void Simulation::restart() {
   Impl& m = *impl_;
   m.x = m.options.initial_positions.empty() ? m.mesh.positions : m.options.initial_positions;
+  m.reset_friction_anchors();
   if (m.options.dynamics) {
     m.v = m.options.initial_velocities.empty() ? std::vector<double>(3 * m.mesh.vertex_count(), 0.0)
                                                : m.options.initial_velocities;

@@ -20,10 +20,12 @@
  * Coulomb friction (obstacle_friction), lagged as in IPC (Li et al. 2020,
  * "Incremental Potential Contact", sec. 5): the normal force magnitude
  * lambda = k max(d - phi0, 0) and the normal n0 are those at the step's start
- * x0 against the obstacle as it was then (its record at the step's start);
- * both are carried by the obstacle's rigid motion over the step (R, t of its
- * friction record), the vertex's anchor to a = R x0 + t and the normal to
- * n = R n0. The slip is the tangential part of x - a,
+ * x0 against the obstacle as it was then (its record at the step's start).
+ * Each vertex keeps an anchor A per obstacle across steps (a return mapping,
+ * obstacle_friction_anchor): where it sticks the anchor stays, so static
+ * friction does not creep from step to step. Anchor and normal are carried
+ * by the obstacle's rigid motion over the step (R, t of its friction
+ * record): a = R A + t, n = R n0. The slip is the tangential part of x - a,
  *   u = (I - n n^T)(x - a),  y = |u|,
  * and the dissipative potential, a fixed function of x within the step,
  *   D = mu lambda f0(y),  f0(y) = y^2/eps - y^3/(3 eps^2) + eps/3 (y < eps),
@@ -109,11 +111,13 @@ SNH_FN real obstacle_contact(SNH_GLOBAL const real* table, int count, real stiff
 }
 
 /* Sum over `count` obstacles of the lagged friction potential at vertex
- * position x (start position x0; `start` the obstacle records at the step's
- * start, `friction` the friction records): returns the energy, adds the
- * force to force[3] and the Hessian to hessian[9] (column-major). eps > 0. */
+ * position x (start position x0, anchors[3 count] per obstacle at the step's
+ * start; `start` the obstacle records at the step's start, `friction` the
+ * friction records): returns the energy, adds the force to force[3] and the
+ * Hessian to hessian[9] (column-major). eps > 0. */
 SNH_FN real obstacle_friction(SNH_GLOBAL const real* start, SNH_GLOBAL const real* friction, int count, real stiffness,
-                              real thickness, real eps, const real* x0, const real* x, real* force, real* hessian) {
+                              real thickness, real eps, const real* x0, SNH_GLOBAL const real* anchors, const real* x,
+                              real* force, real* hessian) {
   real energy = SNH_R(0);
   for (int o = 0; o < count; ++o) {
     SNH_GLOBAL const real* fr = friction + SNH_FRICTION_RECORD * o;
@@ -124,7 +128,8 @@ SNH_FN real obstacle_friction(SNH_GLOBAL const real* start, SNH_GLOBAL const rea
       real n[3], w[3];
       for (int i = 0; i < 3; ++i) {
         n[i] = fr[1 + i] * n0[0] + fr[4 + i] * n0[1] + fr[7 + i] * n0[2];
-        w[i] = x[i] - (fr[10 + i] + fr[1 + i] * x0[0] + fr[4 + i] * x0[1] + fr[7 + i] * x0[2]);
+        w[i] = x[i] - (fr[10 + i] + fr[1 + i] * anchors[3 * o] + fr[4 + i] * anchors[3 * o + 1] +
+                       fr[7 + i] * anchors[3 * o + 2]);
       }
       const real along = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
       real u[3];
@@ -149,6 +154,30 @@ SNH_FN real obstacle_friction(SNH_GLOBAL const real* start, SNH_GLOBAL const rea
     }
   }
   return energy;
+}
+
+/* The anchor a vertex keeps against one obstacle for the next step, from its
+ * anchor at this step's start (anchor[3]) and its position x at the end: out
+ * of contact at the end (against `now`, the obstacle's record at the end),
+ * x itself; in contact, the anchor carried by the obstacle's motion
+ * (a = R anchor + t), dragged along the slip u (tangential to n = R n0, n0
+ * the normal at x0 against `start`) to within eps of x where |u| > eps (it
+ * slid: the kinetic force goes on), kept where |u| <= eps (it stuck). */
+SNH_FN void obstacle_friction_anchor(SNH_GLOBAL const real* start, SNH_GLOBAL const real* friction,
+                                     SNH_GLOBAL const real* now, real thickness, real eps, const real* x0,
+                                     const real* anchor, const real* x, real* out) {
+  real n0[3], n_now[3], n[3], a[3], u[3];
+  obstacle_distance(start, x0, n0);
+  const real phi = obstacle_distance(now, x, n_now);
+  for (int i = 0; i < 3; ++i) {
+    n[i] = friction[1 + i] * n0[0] + friction[4 + i] * n0[1] + friction[7 + i] * n0[2];
+    a[i] = friction[10 + i] + friction[1 + i] * anchor[0] + friction[4 + i] * anchor[1] + friction[7 + i] * anchor[2];
+  }
+  const real along = n[0] * (x[0] - a[0]) + n[1] * (x[1] - a[1]) + n[2] * (x[2] - a[2]);
+  for (int i = 0; i < 3; ++i) u[i] = x[i] - a[i] - along * n[i];
+  const real y = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  const real drag = y > eps ? (y - eps) / y : SNH_R(0);
+  for (int i = 0; i < 3; ++i) out[i] = thickness - phi > SNH_R(0) ? a[i] + drag * u[i] : x[i];
 }
 
 #endif /* SNH_CONTACT_OBSTACLE_H */
