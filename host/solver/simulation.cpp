@@ -247,7 +247,7 @@ struct Simulation::Impl {
     friction = solver::has_friction(options.obstacles, options.contact);
     if (friction) {
       friction_slip = options.contact.friction_slip;
-      if (!(friction_slip > 0.0)) friction_slip = 1e-4 * vertex_spacing(mesh);
+      if (!(friction_slip > 0.0)) friction_slip = 1e-2 * vertex_spacing(mesh);
       reset_friction_anchors();
     }
     if (options.precision == Precision::double_)

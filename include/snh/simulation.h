@@ -210,9 +210,11 @@ struct Obstacle {
 // and the normal at the step's start (load step, or time step's substep),
 // carried by the obstacle's motion over the step, and the dissipative
 // potential mu * that force * f0(|slip|), the slip the tangential part of the
-// vertex's motion relative to the obstacle since the step's start: a stiff
-// spring (static friction) up to a slip of friction_slip, the kinetic force
-// beyond (kernels/contact/obstacle.h). Kernels carry it (SNH_FRICTION) only
+// vertex's position relative to an anchor it keeps across steps (carried by
+// the obstacle; kept while the vertex sticks, dragged along where it slides,
+// reset out of contact and by set_state/restart): a stiff spring (static
+// friction) up to a slip of friction_slip, the kinetic force beyond
+// (kernels/contact/obstacle.h). Kernels carry it (SNH_FRICTION) only
 // when some obstacle's coefficient is > 0.
 struct ContactOptions {
   double stiffness = 0.0;  // > 0 when there are obstacles (or self without self_stiffness)
@@ -221,8 +223,7 @@ struct ContactOptions {
   double self_stiffness = 0.0;  // >= 0; 0: stiffness
   double friction = 0.0;        // >= 0, the obstacles' coefficient unless they set their own
   // The slip (length) below which friction sticks as a spring (> 0); 0:
-  // 1e-4 of the mesh's vertex spacing (rest volume / vertices)^(1/3). A
-  // sticking vertex may creep by up to this much per step (the lag).
+  // 1% of the mesh's vertex spacing (rest volume / vertices)^(1/3).
   double friction_slip = 0.0;
 };
 
