@@ -137,6 +137,9 @@ OpenClContext::OpenClContext(const DeviceOptions& options, Precision precision) 
   }
   info_ = chosen->info;
   device_ = chosen->id;
+  cl_ulong largest = 0;
+  clGetDeviceInfo(device_, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof largest, &largest, nullptr);
+  max_allocation_bytes_ = largest;
   if (precision == Precision::double_ && !info_.has_fp64)
     throw Error("OpenCL: device '" + describe(info_) +
                 "' has no double precision (cl_khr_fp64); choose --precision float or another device");
@@ -192,6 +195,10 @@ Kernel OpenClContext::kernel(const std::string& file, const std::string& defines
 Buffer OpenClContext::buffer(cl_mem_flags flags, size_t bytes, const void* host) {
   cl_int status = CL_SUCCESS;
   if (host) flags |= CL_MEM_COPY_HOST_PTR;
+  if (max_allocation_bytes_ > 0 && bytes > max_allocation_bytes_)
+    throw Error("OpenCL: clCreateBuffer failed: " + std::to_string(bytes) +
+                " bytes exceed the device's largest allocation (" + std::to_string(max_allocation_bytes_) +
+                " bytes, CL_DEVICE_MAX_MEM_ALLOC_SIZE): the mesh is too large for the device's memory");
   Buffer b(clCreateBuffer(context_, flags, std::max<size_t>(bytes, 1), const_cast<void*>(host), &status));
   check(status, "clCreateBuffer");
   return b;

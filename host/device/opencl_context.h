@@ -81,6 +81,9 @@ class OpenClContext {
   DeviceInfo info_;
   Precision precision_;
   cl_device_id device_ = nullptr;
+  // CL_DEVICE_MAX_MEM_ALLOC_SIZE: checked here because some drivers (NVIDIA's)
+  // accept larger buffers and fail only later, or not at all until used.
+  unsigned long long max_allocation_bytes_ = 0;
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
   std::map<std::string, Program> programs_;

@@ -34,9 +34,12 @@ ProductVariant parse_product_variant(const std::string& text) {
 // double 12^3: 0.136 ms per product + 19.9 ms setup, against 0.93 + 5.1
 // cached, 0.41 + 21.8 assembled, 5.9 + 5.2 recomputed); tet4: the assembled
 // matrix wins in 3 of 4 cases (double 12^3: 0.196 + 10.8 against 0.255 + 9.4
-// element matrices). No GPU was measured: there the cached linearization,
-// with the least memory of the fast variants, is the default until a
-// measurement says otherwise.
+// element matrices). On an NVIDIA H100 (NVIDIA's OpenCL, session 8,
+// `throughput --size 48,96`) the cached linearization wins every hex8 and
+// tet4 double case so scored (hex8 double 48^3: 0.196 ms + 0.59 ms setup,
+// against 0.363 + 4.5 element matrices, 0.186 + 482 assembled; tet4 double
+// 48^3: 0.246 + 0.44 against 0.120 + 641 assembled) and ties the recomputed
+// product for tet4 float (0.147 against 0.143 ms), so it is the GPU default.
 ProductVariant default_product_variant(ElementType type, Precision, bool gpu) {
   if (gpu) return ProductVariant::cached;
   return type == ElementType::hex8 ? ProductVariant::element_matrices : ProductVariant::assembled;
