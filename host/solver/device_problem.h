@@ -1,7 +1,7 @@
 // The device model as a Newton problem (solver/newton_driver.h): energies,
 // residuals and the matrix-free Hessian on the OpenCL device, linear solves by
 // ViennaCL's CG with the block-Jacobi or multigrid preconditioner. Norms and dot products
-// are summed on the host in double and in index order: deterministic.
+// are summed in double in a fixed order (solver/device_reduction.h): deterministic.
 // Every call charges its time to a phase of the model's profiler
 // (solver/phase_profile.h): the CG solve to its vector work, less the
 // products and preconditioner applications inside it.
@@ -62,19 +62,8 @@ class DeviceProblem {
   }
   bool has_true_hessian() const { return true; }
 
-  double norm(const Vector& v) const {
-    download(v, a_);
-    double s = 0.0;
-    for (Real x : a_) s += static_cast<double>(x) * static_cast<double>(x);
-    return std::sqrt(s);
-  }
-  double dot(const Vector& u, const Vector& v) const {
-    download(u, a_);
-    download(v, b_);
-    double s = 0.0;
-    for (size_t i = 0; i < a_.size(); ++i) s += static_cast<double>(a_[i]) * static_cast<double>(b_[i]);
-    return s;
-  }
+  double norm(const Vector& v) const { return std::sqrt(model_.reduction().sum_of_squares(mem(v), v.size())); }
+  double dot(const Vector& u, const Vector& v) const { return model_.reduction().dot(mem(u), mem(v), u.size()); }
 
   void linearize(const Vector& x, bool projected) {
     model_.linearize(x, projected);
@@ -141,19 +130,12 @@ class DeviceProblem {
     }
   };
 
-  void download(const Vector& v, std::vector<Real>& out) const {
-    PhaseScope timed(&model_.profiler(), Phase::transfers);
-    out.resize(v.size());
-    viennacl::copy(v.begin(), v.end(), out.begin());
-  }
-
   ElasticModel<Real>& model_;
   HessianOperator<Real> op_;
   std::unique_ptr<MultigridPreconditioner<Real>> multigrid_;
   CgPreconditioner<Real> precond_;
   Preconditioner preconditioner_;
   MultigridRebuild rebuild_;
-  mutable std::vector<Real> a_, b_;
 };
 
 }  // namespace snh::solver

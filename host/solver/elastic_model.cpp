@@ -28,6 +28,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
                                  const ModelTerms& terms)
     : cl_(cl),
       profiler_([&cl] { cl.finish(); }),
+      reduction_(cl, sizeof(Real), &profiler_),
       vertex_count_(mesh.vertex_count()),
       element_count_(mesh.element_count()),
       nodes_(rest.nodes),
@@ -547,23 +548,13 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   set_arg(k, next, energies_.get());
   set_arg(k, next + 1, min_j_.get());
   run_element_kernel(k);
-  std::vector<Real> e(element_count_), j(element_count_);
-  {
-    PhaseScope transfer(&profiler_, Phase::transfers);
-    cl_.read(energies_.get(), e.size() * sizeof(Real), e.data());
-    cl_.read(min_j_.get(), j.size() * sizeof(Real), j.data());
-  }
-  double sum = 0.0;
-  for (Real v : e) sum += static_cast<double>(v);
-  sum *= elastic_scale_;
+  double sum = reduction_.sum(energies_.get(), element_count_) * elastic_scale_;
+  last_min_j_ = reduction_.min(min_j_.get(), element_count_);
   last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
   if (terms_.obstacles > 0) {
     contact(x);
-    std::vector<Real> c(vertex_count_);
-    cl_.read(contact_energy_.get(), c.size() * sizeof(Real), c.data());
-    for (Real v : c) sum += static_cast<double>(v);
+    sum += reduction_.sum(contact_energy_.get(), vertex_count_);
   }
-  last_min_j_ = j.empty() ? 0.0 : static_cast<double>(*std::min_element(j.begin(), j.end()));
   if (has_external_ || terms_.inertia || terms_.self_contact) {
     std::vector<Real> xh(dofs());
     {

@@ -15,6 +15,7 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
+#include "solver/device_reduction.h"
 #include "solver/phase_profile.h"
 #include "solver/self_contact.h"
 #include "viennacl/compressed_matrix.hpp"
@@ -158,6 +159,8 @@ class ElasticModel {
   // Where this model's solves spend their time (solver/phase_profile.h); the
   // model charges its own work, its users (DeviceProblem) theirs.
   PhaseProfiler& profiler() const { return profiler_; }
+  // Sums and minima of device vectors (solver/device_reduction.h).
+  const DeviceReduction& reduction() const { return reduction_; }
 
  private:
   void run_element_kernel(cl_kernel k) const;
@@ -174,6 +177,7 @@ class ElasticModel {
 
   device::OpenClContext& cl_;
   mutable PhaseProfiler profiler_;
+  DeviceReduction reduction_;
   size_t vertex_count_, element_count_;
   int nodes_, quadrature_;
   device::MaterialArgs<Real> material_;

@@ -1,0 +1,61 @@
+/* Deterministic partial sums and minima for the Newton loop's energies,
+ * norms and dot products (host/solver/device_reduction.h), so that only one
+ * double per SNH_REDUCE_SPAN entries crosses to the host instead of every
+ * entry. Work-group g covers the entries [g SPAN, (g + 1) SPAN); its item l
+ * adds the entries l, l + GROUP, l + 2 GROUP, ... in that order, and the
+ * group then folds its GROUP values in a fixed tree in local memory. No
+ * atomics: the same input gives bitwise the same partials on the same device.
+ * Sums accumulate in double whatever the working precision (as the host did
+ * with every entry), so the program is built only where the device has
+ * cl_khr_fp64. */
+#include "snh_portable.h"
+
+#if !SNH_DOUBLE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#endif
+
+#define SNH_REDUCE_GROUP 64
+#define SNH_REDUCE_SPAN (SNH_REDUCE_GROUP * 64)
+
+/* mode 0: sum a; 1: sum a^2; 2: sum a b (b is read only in mode 2). */
+__kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_partial_sums(
+    __global const real* a, __global const real* b, const int n, const int mode, __global double* partial) {
+  __local double fold[SNH_REDUCE_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  const int begin = g * SNH_REDUCE_SPAN;
+  const int end = min(begin + SNH_REDUCE_SPAN, n);
+  double s = 0.0;
+  for (int i = begin + l; i < end; i += SNH_REDUCE_GROUP) {
+    const double x = (double)a[i];
+    s += mode == 0 ? x : mode == 1 ? x * x : x * (double)b[i];
+  }
+  fold[l] = s;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int h = SNH_REDUCE_GROUP / 2; h > 0; h >>= 1) {
+    if (l < h) fold[l] += fold[l + h];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0) partial[g] = fold[0];
+}
+
+/* The smallest entry of each span, by x < m (a NaN entry is passed over
+ * unless it is the span's first). */
+__kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_partial_minima(
+    __global const real* a, const int n, __global double* partial) {
+  __local double fold[SNH_REDUCE_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  const int begin = g * SNH_REDUCE_SPAN;
+  const int end = min(begin + SNH_REDUCE_SPAN, n);
+  double m = (double)a[begin];
+  for (int i = begin + l; i < end; i += SNH_REDUCE_GROUP) {
+    const double x = (double)a[i];
+    m = x < m ? x : m;
+  }
+  fold[l] = m;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int h = SNH_REDUCE_GROUP / 2; h > 0; h >>= 1) {
+    if (l < h) fold[l] = fold[l + h] < fold[l] ? fold[l + h] : fold[l];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0) partial[g] = fold[0];
+}
