@@ -100,5 +100,58 @@ TEST(NewtonDriver, ConvexStartTakesNoExtendedStep) {
   EXPECT_EQ(run.extended, 0);
 }
 
+// A problem whose active set (as self-contact's) changes at each of its
+// first 12 iterates, each change moving the minimum of E = (x - c)^2 / 2 one
+// unit on: every Newton step lands on the last minimum, where the new set
+// gives the same residual and energy again. Within a set Newton converges at
+// once; comparing residuals and energies across sets would see neither fall
+// and call the step stagnated.
+class ChangingSetProblem {
+ public:
+  using Vector = std::vector<double>;
+  size_t dofs() const { return 1; }
+  double epsilon() const { return 2.220446049250313e-16; }
+  Vector vector() const { return Vector(1, 0.0); }
+  double energy(const Vector& v) { return 0.5 * (v[0] - center_) * (v[0] - center_); }
+  double last_min_j() const { return 1.0; }
+  void residual(const Vector& v, Vector& r) { r = {center_ - v[0]}; }
+  double norm(const Vector& v) const { return std::abs(v[0]); }
+  double dot(const Vector& a, const Vector& b) const { return a[0] * b[0]; }
+  void linearize(const Vector&, bool) {}
+  solver::LinearSolve solve(const Vector& r, Vector& p, double, int) {
+    solver::LinearSolve s;
+    s.iterations = 1;
+    p = r;
+    return s;
+  }
+  void precondition(const Vector& r, Vector& p) { p = r; }
+  void step(const Vector& x, double alpha, const Vector& p, Vector& out) { out = {x[0] + alpha * p[0]}; }
+  void swap(Vector& a, Vector& b) { a.swap(b); }
+  bool has_true_hessian() const { return true; }
+  bool refresh(const Vector&, bool new_step) {
+    if (new_step || changes_ == 12) return false;
+    ++changes_;
+    center_ += 1.0;
+    return true;
+  }
+
+ private:
+  double center_ = 1.0;
+  int changes_ = 0;
+};
+
+TEST(NewtonDriver, ProgressIsJudgedWithinOneActiveSet) {
+  ChangingSetProblem problem;
+  SolveOptions options;
+  options.max_newton_iterations = 100;
+  solver::NewtonDriver<ChangingSetProblem> newton(problem, options);
+  std::vector<double> x = {0.0};
+  std::vector<NewtonIteration> history;
+  const StepResult r = newton.solve_step(1, x, 1e-12, history, std::chrono::steady_clock::now());
+  EXPECT_TRUE(r.converged) << r.status << " after " << r.newton_iterations;
+  EXPECT_NEAR(x[0], 13.0, 1e-12);
+  EXPECT_EQ(r.newton_iterations, 13);
+}
+
 }  // namespace
 }  // namespace snh::test

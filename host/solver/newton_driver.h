@@ -147,6 +147,9 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
       problem_.residual(x, r);
       rn = problem_.norm(r);
       energy = problem_.energy(x);
+      // A new active set is a new objective: progress is judged from here.
+      residuals.clear();
+      energies.clear();
     }
     NewtonIteration rec;
     rec.step = step;
