@@ -53,24 +53,18 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
   device::Buffer a = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real)),
                  b = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real), init.data()),
                  c = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real), init.data());
-  device::Kernel triad = cl.kernel("roofline.cl", "", "snh_triad");
-  const Real s = Real(0.5);
-  arg(triad.get(), 0, a.get());
-  arg(triad.get(), 1, b.get());
-  arg(triad.get(), 2, c.get());
-  arg(triad.get(), 3, s);
-  arg(triad.get(), 4, n);
-  const double t_triad = best_seconds([&] { cl.run(triad.get(), n); }, min_seconds);
-  device::Kernel triad4 = cl.kernel("roofline.cl", "", "snh_triad4");
-  const int n4 = n / 4;
-  arg(triad4.get(), 0, a.get());
-  arg(triad4.get(), 1, b.get());
-  arg(triad4.get(), 2, c.get());
-  arg(triad4.get(), 3, s);
-  arg(triad4.get(), 4, n4);
-  const double t_triad4 = best_seconds([&] { cl.run(triad4.get(), n4); }, min_seconds);
-  r.bandwidth_scalar = 3.0 * n * sizeof(Real) / t_triad;
-  r.bandwidth_vector = 3.0 * n * sizeof(Real) / t_triad4;
+  // The scalar triad over n entries, then the 4-wide one over n / 4 vectors.
+  auto triad_seconds = [&](const char* name, int items) {
+    device::Kernel triad = cl.kernel("roofline.cl", "", name);
+    arg(triad.get(), 0, a.get());
+    arg(triad.get(), 1, b.get());
+    arg(triad.get(), 2, c.get());
+    arg(triad.get(), 3, Real(0.5));
+    arg(triad.get(), 4, items);
+    return best_seconds([&] { cl.run(triad.get(), static_cast<size_t>(items)); }, min_seconds);
+  };
+  r.bandwidth_scalar = 3.0 * n * sizeof(Real) / triad_seconds("snh_triad", n);
+  r.bandwidth_vector = 3.0 * n * sizeof(Real) / triad_seconds("snh_triad4", n / 4);
   r.bandwidth = std::max(r.bandwidth_scalar, r.bandwidth_vector);
 
   const int items = 1 << 16;

@@ -20,6 +20,15 @@ DeviceReduction::DeviceReduction(device::OpenClContext& cl, size_t real_bytes, P
   }
 }
 
+size_t DeviceReduction::partials_for(size_t n) const {
+  const size_t groups = (n + kSpan - 1) / kSpan;
+  if (groups > partial_capacity_) {
+    partial_ = cl_.buffer(CL_MEM_READ_WRITE, groups * sizeof(double));
+    partial_capacity_ = groups;
+  }
+  return groups;
+}
+
 void DeviceReduction::read_partials(size_t groups) const {
   host_.resize(groups);
   PhaseScope transfer(profiler_, Phase::transfers);
@@ -48,11 +57,7 @@ double DeviceReduction::reduce(cl_mem a, cl_mem b, size_t n, int mode) const {
     for (size_t i = 0; i < n; ++i) s += mode == 0 ? x[i] : mode == 1 ? x[i] * x[i] : x[i] * y[i];
     return s;
   }
-  const size_t groups = (n + kSpan - 1) / kSpan;
-  if (groups > partial_capacity_) {
-    partial_ = cl_.buffer(CL_MEM_READ_WRITE, groups * sizeof(double));
-    partial_capacity_ = groups;
-  }
+  const size_t groups = partials_for(n);
   const int count = static_cast<int>(n);
   cl_kernel k = sums_.get();
   device::set_arg(k, 0, a);
@@ -73,11 +78,7 @@ double DeviceReduction::min(cl_mem a, size_t n) const {
     const std::vector<double> x = read_all(a, n);
     return *std::min_element(x.begin(), x.end());
   }
-  const size_t groups = (n + kSpan - 1) / kSpan;
-  if (groups > partial_capacity_) {
-    partial_ = cl_.buffer(CL_MEM_READ_WRITE, groups * sizeof(double));
-    partial_capacity_ = groups;
-  }
+  const size_t groups = partials_for(n);
   const int count = static_cast<int>(n);
   cl_kernel k = minima_.get();
   device::set_arg(k, 0, a);

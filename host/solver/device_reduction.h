@@ -33,6 +33,8 @@ class DeviceReduction {
 
  private:
   double reduce(cl_mem a, cl_mem b, size_t n, int mode) const;
+  // The work-groups for n entries, with a partials buffer large enough.
+  size_t partials_for(size_t n) const;
   void read_partials(size_t groups) const;
   std::vector<double> read_all(cl_mem a, size_t n) const;
 
