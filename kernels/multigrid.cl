@@ -129,6 +129,71 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
   for (int i = 0; i < 3; ++i) blocks[(size_t)72 * c + 9 * corner_b + 3 * d + i] = column[3 * corner_b + i];
 }
 
+#ifndef SNH_INERTIA
+#define SNH_INERTIA 0
+#endif
+#ifndef SNH_OBSTACLES
+#define SNH_OBSTACLES 0
+#endif
+
+#if SNH_INERTIA || SNH_OBSTACLES
+/* The fine operator's per-vertex terms on the first coarse level. The fine
+ * Hessian is s K + sum_v B_v (s: implicit Euler's elastic scale; B_v the
+ * vertex's 3x3 block, c_v I for inertia plus its obstacle contact and
+ * friction blocks). Each B_v is shared out equally to the fine cells around
+ * v (share[v] = 1 / their count), so that P^T D (sum_v B_v) D P is a sum over
+ * coarse cells of W_o^T (D B_a share D) W_o over children and their nodes a,
+ * like the elastic part. This kernel scales a cell's elastic Galerkin matrix
+ * (from either kernel above) by s, adds those terms, and rewrites the cell's
+ * diagonal blocks. */
+__kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __global const int* children,
+                                        __global const int* fine_elements, __global const real* share,
+                                        __global const real* fine_mask, const int count, const real elastic_scale,
+#if SNH_INERTIA
+                                        __global const real* inertia,
+#endif
+#if SNH_OBSTACLES
+                                        __global const real* contact_blocks,
+#endif
+                                        __global real* out, __global real* blocks) {
+  const int c = get_global_id(0);
+  if (c >= count) return;
+  __global real* k = out + (size_t)MG_DOFS * MG_DOFS * c;
+  for (int i = 0; i < MG_DOFS * MG_DOFS; ++i) k[i] *= elastic_scale;
+  for (int o = 0; o < 8; ++o) {
+    const int e = children[8 * c + o];
+    if (e < 0) continue;
+    real w[64], m[MG_DOFS];
+    child_weights_and_mask(octant_weights, o, fine_elements + 8 * e, fine_mask, w, m);
+    for (int a = 0; a < 8; ++a) {
+      const int v = fine_elements[8 * e + a];
+      real b[9];
+      for (int i = 0; i < 9; ++i) b[i] = SNH_R(0);
+#if SNH_INERTIA
+      for (int d = 0; d < 3; ++d) b[4 * d] += inertia[v];
+#endif
+#if SNH_OBSTACLES
+      for (int i = 0; i < 9; ++i) b[i] += contact_blocks[9 * v + i];
+#endif
+      /* b(i, j) column-major (as the model's 3x3 blocks), masked on both sides */
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) b[3 * j + i] *= share[v] * m[3 * a + i] * m[3 * a + j];
+      for (int cj = 0; cj < 8; ++cj) {
+        const real wj = w[8 * a + cj];
+        for (int ci = 0; ci < 8; ++ci) {
+          const real wij = w[8 * a + ci] * wj;
+          for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) k[MG_DOFS * (3 * cj + j) + 3 * ci + i] += wij * b[3 * j + i];
+        }
+      }
+    }
+  }
+  for (int b = 0; b < 8; ++b)
+    for (int d = 0; d < 3; ++d)
+      for (int i = 0; i < 3; ++i) blocks[(size_t)72 * c + 9 * b + 3 * d + i] = k[MG_DOFS * (3 * b + d) + 3 * b + i];
+}
+#endif
+
 /* fine += mask * P coarse: 8 (coarse vertex, weight) pairs per fine vertex. */
 __kernel void snh_prolong_add(__global const real* coarse, __global const int* vertices, __global const real* weights,
                               __global const real* mask, const int count, __global real* fine) {

@@ -300,9 +300,15 @@ TEST(Dynamics, OptionsAreChecked) {
   EXPECT_NE(message(with([](SolveOptions& o) { o.dynamics->substeps = 0; })).find("substeps"), std::string::npos);
   EXPECT_NE(message(with([](SolveOptions& o) { o.initial_velocities = {1.0}; })).find("initial_velocities"),
             std::string::npos);
+  // Multigrid carries the inertia on its coarse levels (since session 8),
+  // not the self-contact springs.
+  EXPECT_EQ(message(with([](SolveOptions& o) { o.preconditioner = Preconditioner::multigrid; })), "");
   EXPECT_NE(message(with([](SolveOptions& o) {
               o.preconditioner = Preconditioner::multigrid;
-            })).find("preconditioner multigrid: its coarse levels do not carry the inertia"),
+              o.contact.self = true;
+              o.contact.stiffness = 1.0;
+              o.contact.thickness = 0.01;
+            })).find("preconditioner multigrid: its coarse levels do not carry the self-contact springs"),
             std::string::npos);
   SolveOptions quasistatic;
   quasistatic.initial_velocities.assign(24, 0.0);

@@ -141,6 +141,15 @@ class ElasticModel {
                : nullptr;
   }
   size_t element_count() const { return element_count_; }
+  // The per-vertex terms a multigrid's coarse levels take in (solver/multigrid.h):
+  // the terms built in, the elastic energy's scale (implicit Euler's), the
+  // inertia coefficients c_v (null without inertia) and the obstacle
+  // contact (and friction) 3x3 blocks of the last linearize() (null without
+  // obstacles).
+  const ModelTerms& terms() const { return terms_; }
+  double elastic_scale() const { return elastic_scale_; }
+  cl_mem inertia_buffer() const { return terms_.inertia ? inertia_mass_.get() : nullptr; }
+  cl_mem contact_blocks_buffer() const { return terms_.obstacles > 0 ? contact_blocks_.get() : nullptr; }
   ProductVariant variant() const { return variant_; }
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
@@ -19,6 +21,21 @@ constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
 // the upper part of the spectrum, which the coarse levels do not resolve
 // (PETSc's defaults for a Chebyshev smoother; Adams et al. 2003).
 constexpr double kLower = 0.1, kUpper = 1.1;
+
+// The kernel switches less the per-vertex terms: the coarse levels carry
+// those inside their cell matrices (snh_galerkin_vertex_terms), so their
+// products, gathers and block-Jacobi smoothers are the elastic-only builds.
+std::string without_vertex_terms(const std::string& defines) {
+  std::istringstream in(defines);
+  std::string token, out;
+  while (in >> token) {
+    bool vertex_term = false;
+    for (const char* term : {"-DSNH_INERTIA=", "-DSNH_OBSTACLES=", "-DSNH_SELF_CONTACT=", "-DSNH_FRICTION="})
+      vertex_term = vertex_term || token.rfind(term, 0) == 0;
+    if (!vertex_term) out += (out.empty() ? "" : " ") + token;
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -46,16 +63,30 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
                 std::to_string(options.rebuild_every));
   if (!(options.rebuild_growth >= 1.0))
     throw Error("multigrid: rebuild_growth must be at least 1, got " + std::to_string(options.rebuild_growth));
+  if (model.terms().self_contact)
+    throw Error("multigrid: its coarse levels do not carry the self-contact springs (use block-jacobi)");
   hierarchy_ = build_lattice_hierarchy(mesh, mask, options.coarsest_dofs, options.max_levels);
-  const std::string defines = model.specialization();
-  galerkin_cache_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_cache");
-  galerkin_matrices_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_from_matrices");
-  prolong_k_ = cl_.kernel("multigrid.cl", defines, "snh_prolong_add");
-  restrict_k_ = cl_.kernel("multigrid.cl", defines, "snh_restrict");
-  matrix_product_k_ = cl_.kernel("fem.cl", defines, "snh_element_matrix_product");
-  gather_k_ = cl_.kernel("fem.cl", defines, "snh_gather_vectors");
-  jacobi_setup_k_ = cl_.kernel("fem.cl", defines, "snh_block_jacobi_setup");
-  jacobi_apply_k_ = cl_.kernel("fem.cl", defines, "snh_block_jacobi_apply");
+  const std::string defines = model.specialization(), coarse = without_vertex_terms(defines);
+  galerkin_cache_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_cache");
+  galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
+  prolong_k_ = cl_.kernel("multigrid.cl", coarse, "snh_prolong_add");
+  restrict_k_ = cl_.kernel("multigrid.cl", coarse, "snh_restrict");
+  matrix_product_k_ = cl_.kernel("fem.cl", coarse, "snh_element_matrix_product");
+  gather_k_ = cl_.kernel("fem.cl", coarse, "snh_gather_vectors");
+  jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
+  jacobi_apply_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_apply");
+  vertex_terms_ = model.terms().inertia || model.terms().obstacles > 0;
+  if (vertex_terms_) {
+    galerkin_vertex_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_vertex_terms");
+    // Each vertex's terms shared out equally to the cells around it.
+    std::vector<int> around(mesh.vertex_count(), 0);
+    for (int32_t v : mesh.elements) ++around[static_cast<size_t>(v)];
+    std::vector<Real> share(mesh.vertex_count(), Real(0));
+    for (size_t v = 0; v < share.size(); ++v)
+      if (around[v] > 0) share[v] = Real(1) / static_cast<Real>(around[v]);
+    vertex_share_ = cl_.buffer(CL_MEM_READ_ONLY, share.size() * sizeof(Real), share.data());
+    table_bytes_ += share.size() * sizeof(Real);
+  }
 
   auto upload_int = [&](const std::vector<int>& v, size_t& bytes) {
     bytes += v.size() * sizeof(int);
@@ -198,6 +229,22 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, 6, L.matrices.get());
       set_arg(k, 7, L.blocks.get());
       cl_.run(k, 24 * L.cells);
+    }
+    if (l == 1 && vertex_terms_) {
+      cl_kernel k = galerkin_vertex_k_.get();
+      cl_uint next = 0;
+      set_arg(k, next++, octant_weights_.get());
+      set_arg(k, next++, L.children.get());
+      set_arg(k, next++, F.element_handle);
+      set_arg(k, next++, vertex_share_.get());
+      set_arg(k, next++, F.mask.get());
+      set_arg(k, next++, cells);
+      set_arg(k, next++, static_cast<Real>(model_.elastic_scale()));
+      if (model_.inertia_buffer()) set_arg(k, next++, model_.inertia_buffer());
+      if (model_.contact_blocks_buffer()) set_arg(k, next++, model_.contact_blocks_buffer());
+      set_arg(k, next++, L.matrices.get());
+      set_arg(k, next++, L.blocks.get());
+      cl_.run(k, L.cells);
     }
     cl_kernel s = jacobi_setup_k_.get();
     const int vertices = static_cast<int>(L.vertices);

@@ -137,6 +137,12 @@ class MultigridPreconditioner {
   std::vector<std::unique_ptr<Level>> levels_;
   device::Kernel galerkin_cache_k_, galerkin_matrices_k_, prolong_k_, restrict_k_, matrix_product_k_, gather_k_,
       jacobi_setup_k_, jacobi_apply_k_;
+  // Inertia or obstacle contact in the fine operator: added to the first
+  // coarse level's cell matrices (snh_galerkin_vertex_terms) with each
+  // vertex's share 1 / (cells around it).
+  bool vertex_terms_ = false;
+  device::Kernel galerkin_vertex_k_;
+  device::Buffer vertex_share_;
   device::Buffer octant_weights_;  // lattice_hierarchy.h's octant_weights()
   size_t table_bytes_ = 0;         // its device memory
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
