@@ -1,6 +1,7 @@
 // `snh-gpu-bench probe` and the default suite, run as a user would.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -23,7 +24,8 @@ struct CommandRun {
 CommandRun run_bench(const std::string& arguments, const std::string& input) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "snh_probe_test";
   std::filesystem::create_directories(dir);
-  const std::filesystem::path in = dir / "input.jsonl";
+  // One file per process: ctest -j runs the tests of this file side by side.
+  const std::filesystem::path in = dir / ("input_" + std::to_string(getpid()) + ".jsonl");
   std::ofstream(in) << input;
   const std::string command = std::string(SNH_BENCH_BINARY) + " " + arguments + " < " + in.string() + " 2>/dev/null";
   FILE* pipe = popen(command.c_str(), "r");
