@@ -561,6 +561,50 @@ TEST(MultigridRebuild, BuildsAtStepsAfterEveryAndWhenCgSlowsDown) {
   EXPECT_TRUE(first.due(true));
   EXPECT_EQ(first.builds(), 1);
   EXPECT_EQ(r.builds(), 5);
+  // Carried across steps (dynamics' default): a new step alone does not
+  // rebuild; the count still does.
+  o.rebuild_each_load_step = false;
+  solver::MultigridRebuild carried(o);
+  carried.built(true);
+  carried.new_step();
+  EXPECT_FALSE(carried.due(true));
+  carried.reused();
+  carried.new_step();
+  carried.reused();
+  EXPECT_TRUE(carried.due(true));
+}
+
+// Unset, the per-step rebuild follows the solve: on for quasistatic load
+// steps, off under dynamics; set, it is kept.
+TEST(Multigrid, PerStepRebuildFollowsDynamicsUnlessSet) {
+  const Mesh mesh = make_box_lattice(4, 4, 4, 0.25);
+  SolveOptions options;
+  options.preconditioner = Preconditioner::multigrid;
+  options.multigrid.coarsest_dofs = 50;
+  options.load_steps = 4;
+  DynamicsOptions dynamics;
+  dynamics.time_step = 0.1;
+  dynamics.density = 1.0;
+  options.body_force = {0.0, 0.0, -1.0};
+  const Material material = StableNeoHookean::from_youngs_modulus(10.0, 0.4);
+  auto builds = [&](std::optional<DynamicsOptions> d, std::optional<bool> each) {
+    SolveOptions o = options;
+    o.dynamics = d;
+    o.multigrid.rebuild_each_load_step = each;
+    ConstraintSet bottom{"bottom", {}, {}, {}};
+    for (size_t v = 0; v < mesh.vertex_count(); ++v)
+      if (mesh.positions[3 * v + 2] == 0.0) bottom.vertices.push_back(static_cast<int32_t>(v));
+    const SolveResult r = Simulation(mesh, material, {bottom}, o).solve();
+    EXPECT_TRUE(r.converged);
+    std::vector<int> per_step;
+    for (const StepResult& s : r.steps) per_step.push_back(s.preconditioner_builds);
+    return per_step;
+  };
+  for (int b : builds(std::nullopt, std::nullopt)) EXPECT_GE(b, 1);  // quasistatic: every load step
+  const std::vector<int> carried = builds(dynamics, std::nullopt);
+  EXPECT_EQ(carried.front(), 1);
+  EXPECT_GE(std::count(carried.begin(), carried.end(), 0), 1);  // some time steps reuse the last build
+  for (int b : builds(dynamics, true)) EXPECT_GE(b, 1);         // asked for: every time step
 }
 
 TEST(Multigrid, RefusesTetMeshesByName) {
@@ -617,6 +661,22 @@ TEST(Multigrid, AutomaticChoosesMultigridOnLargeLattices) {
   Mesh jittered = make_box_lattice(15, 15, 15, 0.1);
   jittered.positions[3 * 100] += 0.01;
   EXPECT_EQ(default_preconditioner(jittered), Preconditioner::block_jacobi);
+  // The same with dynamics (one time step of a free fall), but block-Jacobi
+  // with self-contact, which the coarse levels do not carry.
+  SolveOptions options;
+  DynamicsOptions dynamics;
+  dynamics.time_step = 0.01;
+  dynamics.density = 1.0;
+  options.dynamics = dynamics;
+  options.body_force = {0.0, 0.0, -1.0};
+  options.load_steps = 1;
+  const Mesh lattice = make_box_lattice(15, 15, 15, 0.1);
+  const Material material = StableNeoHookean::from_youngs_modulus(10.0, 0.3);
+  EXPECT_EQ(Simulation(lattice, material, {}, options).solve().preconditioner, Preconditioner::multigrid);
+  options.contact.self = true;
+  options.contact.stiffness = 1.0;
+  options.contact.thickness = 0.01;
+  EXPECT_EQ(Simulation(lattice, material, {}, options).solve().preconditioner, Preconditioner::block_jacobi);
 }
 
 // A block dropped onto a plane under implicit Euler, on a lattice large

@@ -46,7 +46,9 @@ namespace snh::solver {
 class MultigridRebuild {
  public:
   explicit MultigridRebuild(const MultigridOptions& options)
-      : every_(options.rebuild_every), growth_(options.rebuild_growth) {}
+      : every_(options.rebuild_every),
+        growth_(options.rebuild_growth),
+        each_step_(options.rebuild_each_load_step.value_or(true)) {}
   // Whether a linearization (projected or true Hessian) must rebuild.
   bool due(bool projected) const {
     if (every_ <= 1 || builds_ == 0 || (!built_projected_ && projected)) return true;
@@ -76,12 +78,15 @@ class MultigridRebuild {
     else if (rate * growth_ < baseline_)
       stale_ = true;
   }
-  void new_step() { stale_ = true; }
+  void new_step() {
+    if (each_step_) stale_ = true;
+  }
   int builds() const { return builds_; }
 
  private:
   int every_;
   double growth_;
+  bool each_step_;
   bool built_projected_ = false, stale_ = false;
   int uses_ = 0, builds_ = 0;
   double baseline_ = 0.0;  // the rate of the first compared solve after the build (0: none yet)

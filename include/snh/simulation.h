@@ -113,6 +113,12 @@ struct MultigridOptions {
   // every linearization.
   int rebuild_every = 4;
   double rebuild_growth = 2.0;
+  // Whether each load step's first linearization rebuilds; unset: yes for
+  // quasistatic load steps, no under dynamics (SolveOptions::dynamics),
+  // whose time steps move the operator little and take one to three Newton
+  // iterations each, so the hierarchy is carried across them and rebuilt
+  // by the rules above only (README, "Multigrid on hex8 lattices").
+  std::optional<bool> rebuild_each_load_step;
 };
 
 struct NewtonIteration {
