@@ -312,9 +312,10 @@ INSTANTIATE_TEST_SUITE_P(Multigrid, CoarseOperator,
                          ::testing::Combine(::testing::Values(ProductVariant::cached, ProductVariant::element_matrices),
                                             ::testing::Bool()));
 
-// With implicit Euler's inertia (and its elastic scale) and an obstacle
+// With implicit Euler's inertia (and its elastic scale) and a rough obstacle
 // pressing into the top, the first coarse level carries their per-vertex
-// blocks too: still exactly P^T D A D P of the operator CG solves with.
+// blocks (inertia, contact, friction) too: still exactly P^T D A D P of the
+// operator CG solves with.
 TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
   DeviceCase c;
   double top = 0.0;
@@ -323,9 +324,11 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
   lid.type = ObstacleType::plane;
   lid.point = {0.0, 0.0, top - 0.5 * kH};
   lid.direction = {0.0, 0.0, -1.0};
+  lid.friction = 0.5;
   solver::ModelTerms terms;
   terms.inertia = true;
   terms.obstacles = 1;
+  terms.friction = true;
   for (ProductVariant variant : {ProductVariant::cached, ProductVariant::element_matrices}) {
     solver::ElasticModel<double> model(device_for(Precision::double_), c.mesh, c.rest,
                                        uniform_material(c.mesh, c.material), variant,
@@ -333,7 +336,12 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
     std::vector<double> coefficient(c.mesh.vertex_count());
     for (size_t v = 0; v < coefficient.size(); ++v) coefficient[v] = 2.0 + 0.1 * static_cast<double>(v % 7);
     model.set_inertia(coefficient, c.x, 0.3);
-    model.set_obstacles(solver::obstacle_records({lid}, 0.0), 10.0, 0.1 * kH);
+    const std::vector<double> records = solver::obstacle_records({lid}, 0.0);
+    model.set_obstacles(records, 10.0, 0.1 * kH);
+    // The step started at the rest positions with its anchors there: the
+    // pressed vertices have slid since, so their friction blocks are not zero.
+    model.set_friction(c.mesh.positions, c.mesh.positions, records,
+                       solver::friction_records({lid}, ContactOptions{}, 0.0, 0.0), 0.01 * kH);
     MultigridOptions options;
     options.coarsest_dofs = 1;
     solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
