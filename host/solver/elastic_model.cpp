@@ -39,6 +39,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   // Build-time specialization: only what this scene uses is compiled in.
   defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " + material_.defines() +
              " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+  elastic_defines_ = defines_;
   terms_ = terms;
   if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
   if (terms.obstacles > 0) defines_ += " -DSNH_OBSTACLES=" + std::to_string(terms.obstacles);

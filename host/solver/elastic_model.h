@@ -125,6 +125,10 @@ class ElasticModel {
   std::vector<Real> preconditioner_blocks() const;
 
   std::string specialization() const { return defines_; }
+  // The same switches without the per-vertex terms (inertia, obstacles,
+  // friction, self-contact): the builds of a multigrid's coarse levels,
+  // whose cell matrices carry those terms already.
+  std::string elastic_specialization() const { return elastic_defines_; }
   // What the multigrid preconditioner reads (solver/multigrid.h): the
   // context, the mesh's element and rest-state buffers, the linearization
   // cache and the constraint mask (host copy and buffer).
@@ -191,7 +195,7 @@ class ElasticModel {
   int nodes_, quadrature_;
   device::MaterialArgs<Real> material_;
   ProductVariant variant_;
-  std::string defines_;
+  std::string defines_, elastic_defines_;
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
       element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
   bool has_external_ = false;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
 
 #include "fem/vertex_slots.h"
@@ -21,21 +20,6 @@ constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
 // the upper part of the spectrum, which the coarse levels do not resolve
 // (PETSc's defaults for a Chebyshev smoother; Adams et al. 2003).
 constexpr double kLower = 0.1, kUpper = 1.1;
-
-// The kernel switches less the per-vertex terms: the coarse levels carry
-// those inside their cell matrices (snh_galerkin_vertex_terms), so their
-// products, gathers and block-Jacobi smoothers are the elastic-only builds.
-std::string without_vertex_terms(const std::string& defines) {
-  std::istringstream in(defines);
-  std::string token, out;
-  while (in >> token) {
-    bool vertex_term = false;
-    for (const char* term : {"-DSNH_INERTIA=", "-DSNH_OBSTACLES=", "-DSNH_SELF_CONTACT=", "-DSNH_FRICTION="})
-      vertex_term = vertex_term || token.rfind(term, 0) == 0;
-    if (!vertex_term) out += (out.empty() ? "" : " ") + token;
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -66,7 +50,10 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   if (model.terms().self_contact)
     throw Error("multigrid: its coarse levels do not carry the self-contact springs (use block-jacobi)");
   hierarchy_ = build_lattice_hierarchy(mesh, mask, options.coarsest_dofs, options.max_levels);
-  const std::string defines = model.specialization(), coarse = without_vertex_terms(defines);
+  // The coarse levels carry the per-vertex terms inside their cell matrices
+  // (snh_galerkin_vertex_terms): their products, gathers and smoothers are
+  // the elastic-only builds.
+  const std::string defines = model.specialization(), coarse = model.elastic_specialization();
   galerkin_cache_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_cache");
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
   prolong_k_ = cl_.kernel("multigrid.cl", coarse, "snh_prolong_add");
