@@ -24,21 +24,8 @@
  * element; gradients: [element][q][a][3]; weights: [element][q]. */
 #include "contact/obstacle.h"
 #include "fem/element_data.h"
+#include "fem/vertex_terms.h"
 #include "materials/kernel_args.h"
-
-#ifndef SNH_INERTIA
-#define SNH_INERTIA 0
-#endif
-#ifndef SNH_OBSTACLES
-#define SNH_OBSTACLES 0
-#endif
-#ifndef SNH_SELF_CONTACT
-#define SNH_SELF_CONTACT 0
-#endif
-#ifndef SNH_FRICTION
-#define SNH_FRICTION 0
-#endif
-#define SNH_VERTEX_TERMS (SNH_INERTIA || SNH_OBSTACLES || SNH_SELF_CONTACT)
 /* Self-contact arguments of the per-vertex kernels: per vertex v the entries
  * self_offsets[v] .. self_offsets[v + 1] of (contact c = self_entries[k],
  * coefficient k a_i = self_coefficients[k]), in contact order, and the

@@ -19,6 +19,7 @@
  * Galerkin kernels also write each cell's 3x3 diagonal blocks,
  * [cell][9 b + 3 d + i] (the smoother's block-Jacobi blocks). */
 #include "fem/element_data.h"
+#include "fem/vertex_terms.h"
 
 #if !SNH_HEX8
 #error "multigrid.cl is for hex8 lattices"
@@ -128,13 +129,6 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
   for (int i = 0; i < MG_DOFS; ++i) dst[i] = column[i];
   for (int i = 0; i < 3; ++i) blocks[(size_t)72 * c + 9 * corner_b + 3 * d + i] = column[3 * corner_b + i];
 }
-
-#ifndef SNH_INERTIA
-#define SNH_INERTIA 0
-#endif
-#ifndef SNH_OBSTACLES
-#define SNH_OBSTACLES 0
-#endif
 
 #if SNH_INERTIA || SNH_OBSTACLES
 /* The fine operator's per-vertex terms on the first coarse level. The fine
