@@ -74,18 +74,24 @@ Scene crush(const std::string& shape, int res, Precision precision) {
 }
 
 // A unit cube (E = 1, density 1) in a box of six planes under implicit
-// Euler: the floor and the four walls touch its faces at the edge of their
-// contact layers, the lid closes from just above to 5% of the height and
-// opens again, then the body is left to recover (README "Stability"). The
-// walls keep it from spreading sideways, so the squash takes its volume to
-// about 5% whatever nu is (a laterally free body at nu -> 1/2 would keep its
-// volume and only get thinner). squash_nu*: frictionless planes; at
-// nu = 0.499 the squashed state is then a saddle whose shear mode the body
-// takes (README "Stability"). squash_rough_nu*: the floor and the lid grip
-// the body with Coulomb friction (walls frictionless, a lubricated die).
-constexpr double kSquashThickness = 0.01, kSquashStiffness = 1.0e4, kSquashHeight = 0.05, kSquashFriction = 0.5;
+// Euler: the floor and the four walls stand just clear of its faces (the
+// edges of their contact layers a tenth of the thickness away), the lid
+// closes from just above to `height` (a fraction of the body's height,
+// kDefaultSquashHeight = 0.1) and opens again, then the body is left to
+// recover (README "Stability"). The walls keep it from
+// spreading sideways, so the squash takes its volume to about `height`
+// whatever nu is (a laterally free body at nu -> 1/2 would keep its volume
+// and only get thinner). squash_nu*: frictionless planes; squash_rough_nu*:
+// the floor and the lid grip the body with Coulomb friction (walls
+// frictionless, a lubricated die). At height 0.05 each meets a limit (README
+// "Stability"): between frictionless planes the squashed state at nu = 0.499
+// is a saddle whose shear mode the body takes, and the rough body at
+// nu = 0.46 folds through itself (no self-contact here).
+constexpr double kSquashThickness = 0.01, kSquashGap = 0.001, kSquashStiffness = 1.0e4, kSquashFriction = 0.5;
 
-Scene squash(double nu, int res, Precision precision, double friction) {
+Scene squash(double nu, int res, Precision precision, double friction, double height) {
+  if (!(height > 0.0 && height < 1.0))
+    throw Error("stability: squash height must be in (0, 1) of the body's height, got " + std::to_string(height));
   Scene s;
   const double h = 1.0 / res, d = kSquashThickness;
   s.mesh = make_box_lattice(res, res, res, h);
@@ -104,19 +110,25 @@ Scene squash(double nu, int res, Precision precision, double friction) {
     o.direction = normal;
     return o;
   };
-  s.options.obstacles = {plane({0, 0, -d}, {0, 0, 1}),     plane({-d, 0, 0}, {1, 0, 0}),
-                         plane({1 + d, 0, 0}, {-1, 0, 0}), plane({0, -d, 0}, {0, 1, 0}),
-                         plane({0, 1 + d, 0}, {0, -1, 0}), plane({0, 0, 1 + 2 * d}, {0, 0, -1})};
-  // The lid: its layer's edge from d above the body down to kSquashHeight
-  // by t = 0.3, held to 0.4, back up by 0.5; the second half is the
-  // recovery. It moves geometrically (the same compression ratio every step,
-  // 22% at 40 steps) rather than at constant speed, which would close the
-  // last 60% of the remaining height in one step.
+  // The floor and the walls stand kSquashGap clear of the body's faces: a
+  // vertex resting exactly at a layer's edge sits on the penalty's kink (its
+  // Hessian jumps from 0 to k there), where Newton stagnated at residuals of
+  // 2e-6 to 5e-5 once the body was back at rest (README "Stability").
+  const double g = d + kSquashGap;
+  s.options.obstacles = {plane({0, 0, -g}, {0, 0, 1}),     plane({-g, 0, 0}, {1, 0, 0}),
+                         plane({1 + g, 0, 0}, {-1, 0, 0}), plane({0, -g, 0}, {0, 1, 0}),
+                         plane({0, 1 + g, 0}, {0, -1, 0}), plane({0, 0, 1 + 2 * d}, {0, 0, -1})};
+  // The lid: its layer's edge from d above the body down to `height` by
+  // t = 0.3, held to 0.4, back up by 0.5; the second half is the recovery.
+  // It moves geometrically (the same compression ratio every step: 9% of the
+  // remaining height per step to 0.1 in 24 steps, 12% to 0.05) rather than
+  // at constant speed, which would close the last 60% of the remaining
+  // height in one step.
   const double start = 1 + d;
-  s.options.obstacles.back().motion = [start, d](double t) {
+  s.options.obstacles.back().motion = [start, height](double t) {
     const double w = t < 0.3 ? t / 0.3 : t < 0.4 ? 1.0 : t < 0.5 ? (0.5 - t) / 0.1 : 0.0;
-    const double height = start * std::pow(kSquashHeight / start, w);
-    return RigidTransform::translation_by({0.0, 0.0, height - start});
+    const double lid = start * std::pow(height / start, w);
+    return RigidTransform::translation_by({0.0, 0.0, lid - start});
   };
   // Rough platens (friction > 0): the floor and the lid grip the body
   // (Coulomb friction, Obstacle::friction); the walls stay frictionless.
@@ -128,14 +140,14 @@ Scene squash(double nu, int res, Precision precision, double friction) {
   s.options.contact.thickness = d;
   set_tolerance(s, precision, h);
   std::ostringstream text;
-  text << "cube in a box of planes, lid closed to " << kSquashHeight << " of its height and opened, nu = " << nu
+  text << "cube in a box of planes, lid closed to " << height << " of its height and opened, nu = " << nu
        << (friction > 0.0 ? ", floor and lid friction " : ", frictionless");
   if (friction > 0.0) text << friction;
   s.description = text.str();
   return s;
 }
 
-Scene make_case(const std::string& name, Precision precision, int resolution) {
+Scene make_case(const std::string& name, Precision precision, int resolution, double squash_height) {
   auto res_or = [&](int fallback) { return resolution > 0 ? resolution : fallback; };
   SceneParameters p;
   p.strain_tolerance = strain_tolerance(precision);
@@ -153,9 +165,10 @@ Scene make_case(const std::string& name, Precision precision, int resolution) {
     s.description = "scramble, seed " + name.substr(13);
     return s;
   }
-  if (name.rfind("squash_nu", 0) == 0) return squash(std::stod(name.substr(9)), res_or(4), precision, 0.0);
+  if (name.rfind("squash_nu", 0) == 0)
+    return squash(std::stod(name.substr(9)), res_or(4), precision, 0.0, squash_height);
   if (name.rfind("squash_rough_nu", 0) == 0)
-    return squash(std::stod(name.substr(15)), res_or(4), precision, kSquashFriction);
+    return squash(std::stod(name.substr(15)), res_or(4), precision, kSquashFriction, squash_height);
   if (name == "crush_plane") return crush("plane", res_or(4), precision);
   if (name == "crush_line") return crush("line", res_or(4), precision);
   if (name == "crush_point") return crush("point", res_or(4), precision);
@@ -285,6 +298,7 @@ struct StabilityOptions {
   std::string out_dir = "bench-results";
   std::string device;
   std::string cases;
+  double squash_height = kDefaultSquashHeight;
 };
 
 int run_stability(const StabilityOptions& o) {
@@ -301,7 +315,7 @@ int run_stability(const StabilityOptions& o) {
           names.push_back(n);
           any = true;
         }
-      if (!any) make_case(item, Precision::double_, 0);  // throws naming the known cases
+      if (!any) make_case(item, Precision::double_, 0, o.squash_height);  // throws naming the known cases
     }
   }
   std::vector<Precision> precisions;
@@ -313,7 +327,7 @@ int run_stability(const StabilityOptions& o) {
   for (const std::string& name : names) {
     std::map<std::string, StabilityRun> by_precision;
     for (Precision p : precisions) {
-      StabilityRun r = run_stability_case(name, p, o.resolution, false, o.device);
+      StabilityRun r = run_stability_case(name, p, o.resolution, false, o.device, o.squash_height);
       std::cerr << "  " << std::left << std::setw(22) << name << std::setw(8) << r.precision << r.status << ", "
                 << r.newton_iterations << " Newton, " << r.cg_iterations << " CG, " << fixed(r.seconds, 2) << " s\n";
       by_precision[r.precision] = r;
@@ -323,7 +337,7 @@ int run_stability(const StabilityOptions& o) {
     if (f != by_precision.end() && d != by_precision.end() && !f->second.converged && d->second.converged) {
       for (auto& row : rows)
         if (row.first.name == name && row.first.precision == "float") row.second = "float fails, double converges";
-      StabilityRun fb = run_stability_case(name, Precision::single, o.resolution, true, o.device);
+      StabilityRun fb = run_stability_case(name, Precision::single, o.resolution, true, o.device, o.squash_height);
       std::cerr << "  " << std::left << std::setw(16) << name << std::setw(8) << "float+fallback " << fb.status << '\n';
       rows.push_back({fb, "float with fallback_to_double"});
     }
@@ -333,6 +347,7 @@ int run_stability(const StabilityOptions& o) {
   json all;
   all["suite"] = "stability";
   all["resolution"] = o.resolution;
+  all["squash_height"] = o.squash_height;
   all["runs"] = json::array();
   std::ofstream csv(o.out_dir + "/stability.csv");
   csv << "case,precision,converged,status,newton,cg,seconds,min_j,max_j,inverted_at_start,inverted,volume_ratio,"
@@ -402,8 +417,8 @@ std::vector<std::string> stability_case_names() {
           "squash_rough_nu0.499"};
 }
 
-Scene make_stability_case(const std::string& name, Precision precision, int resolution) {
-  Scene s = make_case(name, precision, resolution);
+Scene make_stability_case(const std::string& name, Precision precision, int resolution, double squash_height) {
+  Scene s = make_case(name, precision, resolution, squash_height);
   s.name = name;
   s.options.precision = precision;
   return s;
@@ -417,8 +432,8 @@ std::string recovery_summary(const std::map<std::string, int>& recoveries) {
 }
 
 StabilityRun run_stability_case(const std::string& name, Precision precision, int resolution, bool fallback_to_double,
-                                const std::string& device) {
-  const Scene scene = make_stability_case(name, precision, resolution);
+                                const std::string& device, double squash_height) {
+  const Scene scene = make_stability_case(name, precision, resolution, squash_height);
   StabilityRun r;
   r.name = name;
   r.precision = std::string(to_string(precision)) + (fallback_to_double ? "+fallback" : "");
@@ -475,8 +490,8 @@ void add_stability_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "stability",
       "Stiff and extreme cases in float and double: nu to 0.4999, scramble, crush to a plane/line/point, twist to "
-      "2 pi, stretch to 3.4x and 5x, elements inverted mid-solve, squash to near-zero volume in a box of planes "
-      "and release, frictionless and with a rough floor and lid (nu 0.46, 0.49, 0.499)");
+      "2 pi, stretch to 3.4x and 5x, elements inverted mid-solve, squash to a tenth of the volume in a box of "
+      "planes and release, frictionless and with a rough floor and lid (nu 0.46, 0.49, 0.499)");
   cmd->add_option("--res", o->resolution, "cells across each case (0: the cases' small defaults)")
       ->capture_default_str();
   cmd->add_option("--precision", o->precision, "float, double or both")
@@ -484,6 +499,10 @@ void add_stability_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "folder for stability.{json,csv,md}")->capture_default_str();
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
+  cmd->add_option("--squash-height", o->squash_height,
+                  "the squash cases' lid height, a fraction of the body's (0.05: README's limits)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--cases", o->cases,
                   "comma list of cases or groups (nu, scramble, crush, twist, stretch, ...); default: all");
   cmd->callback([o, &exit_code] { exit_code = run_stability(*o); });

@@ -335,7 +335,8 @@ struct StepResult {
   bool converged = false;
   double residual_norm = 0.0;
   // "converged", "max_newton_iterations", "line_search_failed", "stagnated"
-  // (no 1% residual decrease in 8 iterations: the precision floor),
+  // (no 1% residual decrease in 8 iterations: the precision floor, or a
+  // vertex resting exactly at a contact layer's edge, README "Stability"),
   // "non_finite_state", "cancelled" (the progress callback returned false)
   std::string status;
   double seconds = 0.0;
