@@ -6,19 +6,13 @@
 
 #include <cmath>
 
+#include "plane_selection.h"
 #include "snh/error.h"
 #include "snh/loads.h"
 #include "snh/simulation.h"
 
 namespace snh::test {
 namespace {
-
-std::vector<int32_t> on_plane(const Mesh& mesh, int axis, double value) {
-  std::vector<int32_t> out;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v + axis] - value) < 1e-9) out.push_back(static_cast<int32_t>(v));
-  return out;
-}
 
 std::array<double, 3> momentum(const std::vector<double>& mass, const std::vector<double>& velocity) {
   std::array<double, 3> p{0, 0, 0};

@@ -14,6 +14,7 @@
 #include "device/viennacl_binding.h"
 #include "device_test_support.h"
 #include "fem/rest_state.h"
+#include "plane_selection.h"
 #include "reference/element_reference.h"
 #include "snh/error.h"
 #include "snh/loads.h"
@@ -25,13 +26,6 @@ namespace snh::test {
 namespace {
 
 using Vec3 = std::array<double, 3>;
-
-std::vector<int32_t> on_plane(const Mesh& mesh, int axis, double value) {
-  std::vector<int32_t> out;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v + axis] - value) < 1e-9) out.push_back(static_cast<int32_t>(v));
-  return out;
-}
 
 Obstacle plane(Vec3 point, Vec3 normal) { return {ObstacleType::plane, point, normal, 0.0, {}}; }
 Obstacle sphere(Vec3 center, double radius) { return {ObstacleType::sphere, center, {0, 0, 1}, radius, {}}; }

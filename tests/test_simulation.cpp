@@ -8,6 +8,7 @@
 #include <cmath>
 #include <thread>
 
+#include "plane_selection.h"
 #include "reference/element_reference.h"
 #include "snh/error.h"
 #include "snh/fields.h"
@@ -16,13 +17,6 @@
 
 namespace snh::test {
 namespace {
-
-std::vector<int32_t> on_plane(const Mesh& mesh, int axis, double value) {
-  std::vector<int32_t> out;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v + axis] - value) < 1e-9) out.push_back(static_cast<int32_t>(v));
-  return out;
-}
 
 double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
   double worst = 0.0;
