@@ -22,6 +22,7 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
+#include "solver/device_problem.h"
 #include "solver/elastic_model.h"
 #include "solver/lattice_hierarchy.h"
 #include "solver/multigrid.h"
@@ -352,6 +353,64 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
     model.setup_preconditioner();
     mg.setup();
     expect_galerkin_coarse_operators(model, mg, c.mesh);
+  }
+}
+
+// With obstacles a hierarchy is not reused across a change of the set of
+// vertices in contact (whose contact blocks it lacks: a squash then crawled,
+// README "Multigrid"), nor, with friction, into a new step (its normal forces
+// are re-lagged); with the set unchanged it is.
+TEST(Multigrid, ContactSetChangeRebuildsTheHierarchy) {
+  DeviceCase c;
+  double top = 0.0;
+  for (size_t v = 0; v < c.mesh.vertex_count(); ++v) top = std::max(top, c.x[3 * v + 2]);
+  const double thickness = 0.1 * kH;
+  auto lid_at = [&](double z) {
+    Obstacle lid;
+    lid.type = ObstacleType::plane;
+    lid.point = {0.0, 0.0, z};
+    lid.direction = {0.0, 0.0, -1.0};
+    lid.friction = 0.5;
+    return lid;
+  };
+  for (bool friction : {false, true}) {
+    SCOPED_TRACE(friction ? "friction" : "frictionless");
+    solver::ModelTerms terms;
+    terms.obstacles = 1;
+    terms.friction = friction;
+    solver::ElasticModel<double> model(device_for(Precision::double_), c.mesh, c.rest,
+                                       uniform_material(c.mesh, c.material), ProductVariant::cached,
+                                       device::MaterialKernel::specialized, terms);
+    model.set_mask(std::vector<double>(c.mask.begin(), c.mask.end()));
+    auto place = [&](double z) {
+      const std::vector<double> records = solver::obstacle_records({lid_at(z)}, 0.0);
+      model.set_obstacles(records, 10.0, thickness);
+      if (friction)
+        model.set_friction(c.x, c.x, records, solver::friction_records({lid_at(z)}, ContactOptions{}, 0.0, 0.0),
+                           0.01 * kH);
+    };
+    MultigridOptions options;
+    options.coarsest_dofs = 1;
+    options.rebuild_every = 8;
+    options.rebuild_each_load_step = false;
+    solver::DeviceProblem<double> problem(
+        model, Preconditioner::multigrid,
+        std::make_unique<solver::MultigridPreconditioner<double>>(model, c.mesh, c.mask, options));
+    const viennacl::vector<double> x = upload(c.x);
+    place(top + 2.0 * thickness);  // clear of the body
+    ASSERT_EQ(model.contact_state(x).contacts, 0);
+    problem.linearize(x, true);
+    problem.linearize(x, true);
+    EXPECT_EQ(problem.preconditioner_builds(), 1);  // reused: nothing changed
+    place(top - 0.5 * kH);                          // the top layer in contact
+    ASSERT_GT(model.contact_state(x).contacts, 4);
+    problem.linearize(x, true);
+    EXPECT_EQ(problem.preconditioner_builds(), 2);  // the set changed
+    problem.linearize(x, true);
+    EXPECT_EQ(problem.preconditioner_builds(), 2);  // the same set
+    problem.refresh(x, true);                       // a new step
+    problem.linearize(x, true);
+    EXPECT_EQ(problem.preconditioner_builds(), friction ? 3 : 2);
   }
 }
 

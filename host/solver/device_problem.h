@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -58,6 +59,9 @@ class DeviceProblem {
   // load step also asks for a new multigrid hierarchy.
   bool refresh(const Vector& x, bool new_step) {
     if (new_step) rebuild_.new_step();
+    // Friction's normal forces are re-lagged at each step: its Hessian
+    // blocks change with them.
+    if (new_step && model_.terms().friction) rebuild_.invalidate();
     return model_.refresh_self_contact(x, new_step);
   }
   bool has_true_hessian() const { return true; }
@@ -69,6 +73,16 @@ class DeviceProblem {
     model_.linearize(x, projected);
     if (preconditioner_ == Preconditioner::none) return;
     PhaseScope timed(&model_.profiler(), Phase::preconditioner_setup);
+    // Obstacle contact: a vertex entering or leaving a layer gains or loses a
+    // contact block (k n n^T, 10^4 times the elastic diagonal in a squash)
+    // that a reused hierarchy and its fine smoother's blocks lack, and CG
+    // with that V-cycle crawled (measured: a squash that block-Jacobi solves
+    // in 6 s did not finish in 300 s).
+    uint64_t contacts = 0;
+    if (multigrid_ && model_.terms().obstacles > 0) {
+      contacts = model_.contact_set_signature();
+      if (contacts != built_contacts_) rebuild_.invalidate();
+    }
     if (multigrid_ && !rebuild_.due(projected)) {  // the last hierarchy, its fine bound for this operator
       multigrid_->update_fine_bound();
       rebuild_.reused();
@@ -78,6 +92,7 @@ class DeviceProblem {
     if (multigrid_) {
       multigrid_->setup();
       rebuild_.built(projected);
+      built_contacts_ = contacts;
     }
   }
   // Multigrid hierarchies built so far (0 without multigrid).
@@ -136,6 +151,7 @@ class DeviceProblem {
   CgPreconditioner<Real> precond_;
   Preconditioner preconditioner_;
   MultigridRebuild rebuild_;
+  uint64_t built_contacts_ = 0;  // contact_set_signature() at the last multigrid build
 };
 
 }  // namespace snh::solver

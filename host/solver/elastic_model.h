@@ -4,6 +4,7 @@
 // Internal to the library.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -88,6 +89,11 @@ class ElasticModel {
   // (kernels/contact/obstacle.h, obstacle_friction_anchor), same layout.
   std::vector<double> next_friction_anchors(const VectorBase& x);
   ContactState contact_state(const VectorBase& x);
+  // The vertices in an obstacle's contact layer at the last linearize(), as
+  // a hash of their indices (0: none, or no obstacles): where it changes, so
+  // do the per-vertex contact blocks of the Hessian (the multigrid's reuse
+  // rule, solver/device_problem.h). Reads the depths back from the device.
+  uint64_t contact_set_signature();
   // Self-contact (ModelTerms::self_contact): the springs' stiffness, and the
   // active set detected at x, frozen until the next refresh (energy,
   // residual, products and preconditioner all use it). Within a step

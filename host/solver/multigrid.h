@@ -42,7 +42,9 @@ namespace snh::solver {
 // it and are not compared. Builds come from projected linearizations: a true
 // Hessian (adaptive mode) reuses the last build, which is positive definite,
 // unless there is none. rebuild_every 1 builds at every linearization,
-// projected or not. Host bookkeeping only.
+// projected or not. With obstacles the caller also invalidates the build when
+// the set of vertices in contact changed since it, and with friction at each
+// new step (solver/device_problem.h). Host bookkeeping only.
 class MultigridRebuild {
  public:
   explicit MultigridRebuild(const MultigridOptions& options)
@@ -81,6 +83,10 @@ class MultigridRebuild {
   void new_step() {
     if (each_step_) stale_ = true;
   }
+  // The operator's per-vertex terms changed under the build (obstacle
+  // contacts entering or leaving, friction re-lagged): rebuild at the next
+  // projected linearization.
+  void invalidate() { stale_ = true; }
   int builds() const { return builds_; }
 
  private:
