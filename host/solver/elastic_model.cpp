@@ -395,6 +395,13 @@ void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const 
 }
 
 template <typename Real>
+std::vector<Real> ElasticModel<Real>::contact_depths() const {
+  std::vector<Real> depth(vertex_count_);
+  cl_.read(contact_depth_.get(), depth.size() * sizeof(Real), depth.data());
+  return depth;
+}
+
+template <typename Real>
 ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
   ContactState state;
   if (terms_.self_contact) {
@@ -411,9 +418,7 @@ ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
   }
   if (terms_.obstacles == 0) return state;
   contact(x);
-  std::vector<Real> depth(vertex_count_);
-  cl_.read(contact_depth_.get(), depth.size() * sizeof(Real), depth.data());
-  for (Real g : depth)
+  for (Real g : contact_depths())
     if (g > Real(0)) {
       ++state.contacts;
       state.max_penetration = std::max(state.max_penetration, static_cast<double>(g));
@@ -424,10 +429,10 @@ ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
 template <typename Real>
 uint64_t ElasticModel<Real>::contact_set_signature() {
   if (terms_.obstacles == 0) return 0;
-  std::vector<Real> depth(vertex_count_);
+  std::vector<Real> depth;
   {
     PhaseScope transfer(&profiler_, Phase::transfers);
-    cl_.read(contact_depth_.get(), depth.size() * sizeof(Real), depth.data());
+    depth = contact_depths();
   }
   // FNV-1a over the indices of the vertices in a layer, in vertex order.
   uint64_t hash = 0;

@@ -231,6 +231,8 @@ class ElasticModel {
   device::Kernel contact_k_;
   // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
   void contact(const VectorBase& x, bool linearization = false) const;
+  // Each vertex's contact depth g at the last contact() (> 0: in a layer), read back from the device.
+  std::vector<Real> contact_depths() const;
   bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0 || terms_.self_contact; }
   // Self-contact: detector, frozen set and its device arrays (pairs s, j0..j2
   // and weights per contact; per-vertex CSR of (contact, k a_i); per-vertex
