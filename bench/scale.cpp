@@ -61,6 +61,7 @@ SolveOptions solve_options(const Scene& scene, const ScaleOptions& o, Preconditi
   options.device.match = o.device;
   options.preconditioner = preconditioner;
   if (o.multigrid_rebuild_every > 0) options.multigrid.rebuild_every = o.multigrid_rebuild_every;
+  options.multigrid.fine_level = parse_multigrid_fine_level(o.multigrid_fine_level);
   return options;
 }
 
@@ -398,6 +399,12 @@ void add_scale_command(CLI::App& app, int& exit_code) {
                   "multigrid: rebuild the hierarchy at least every N Newton linearizations (1: every one; default: "
                   "MultigridOptions::rebuild_every)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--multigrid-fine-level", o->multigrid_fine_level,
+                  "multigrid: the V-cycle's fine level, built (the build's element matrices, frozen with the coarse "
+                  "levels), current (the product of each linearization) or automatic (built unless the scene has "
+                  "inertia or obstacles)")
+      ->check(CLI::IsMember({"automatic", "built", "current"}))
+      ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "folder for scale.csv, scale.json, scale.md and scale.png")
       ->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "do not draw scale.png");

@@ -345,7 +345,16 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
                        solver::friction_records({lid}, ContactOptions{}, 0.0, 0.0), 0.01 * kH);
     MultigridOptions options;
     options.coarsest_dofs = 1;
+    options.fine_level = MultigridFineLevel::built;  // carries no per-vertex blocks: refused by name
+    try {
+      solver::MultigridPreconditioner<double> refused(model, c.mesh, c.mask, options);
+      ADD_FAILURE() << "a built fine level with inertia and contact was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("fine_level"), std::string::npos) << e.what();
+    }
+    options.fine_level = MultigridFineLevel::automatic;
     solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
+    EXPECT_FALSE(mg.fine_level_built());  // automatic: the model's operator, which has them
     ASSERT_GE(mg.levels(), 3);
     const viennacl::vector<double> x = upload(c.x);
     ASSERT_GT(model.contact_state(x).contacts, 4);
@@ -455,6 +464,82 @@ TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
   }
 }
 
+// MultigridOptions::fine_level: right after a build, the V-cycle over the
+// build's element matrices (built) is the V-cycle over the model's product
+// (current) up to rounding. After a new projected linearization without a
+// build the built one is bitwise the V-cycle of the build, still symmetric,
+// while the current one follows the new operator.
+TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
+  DeviceCase c;
+  device::OpenClContext& cl = device_for(Precision::double_);
+  solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), ProductVariant::cached);
+  std::vector<double> mask(c.mask.begin(), c.mask.end());
+  model.set_mask(mask);
+  MultigridOptions options;
+  options.coarsest_dofs = 50;
+  options.fine_level = MultigridFineLevel::built;
+  solver::MultigridPreconditioner<double> built(model, c.mesh, c.mask, options);
+  options.fine_level = MultigridFineLevel::current;
+  solver::MultigridPreconditioner<double> current(model, c.mesh, c.mask, options);
+  ASSERT_TRUE(built.fine_level_built());
+  ASSERT_FALSE(current.fine_level_built());
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> a(mask.size()), b(mask.size());
+  for (size_t i = 0; i < mask.size(); ++i) {
+    a[i] = mask[i] * u(rng);
+    b[i] = mask[i] * u(rng);
+  }
+  auto apply = [&](const solver::MultigridPreconditioner<double>& mg, const std::vector<double>& v) {
+    viennacl::vector<double> z = upload(v);
+    mg.apply(z);
+    return download(z);
+  };
+  auto relative_difference = [](const std::vector<double>& p, const std::vector<double>& q) {
+    double d = 0.0, n = 0.0;
+    for (size_t i = 0; i < p.size(); ++i) {
+      d += (p[i] - q[i]) * (p[i] - q[i]);
+      n += q[i] * q[i];
+    }
+    return std::sqrt(d / n);
+  };
+  model.linearize(upload(c.x), true);
+  model.setup_preconditioner();
+  built.setup();
+  current.setup();
+  const std::vector<double> built_a = apply(built, a), current_a = apply(current, a);
+  EXPECT_LT(relative_difference(built_a, current_a), 1e-10);
+
+  // A different deformation, linearized without a build (a reused hierarchy).
+  std::vector<double> moved = c.x;
+  for (size_t v = 0; v < c.mesh.vertex_count(); ++v) moved[3 * v + 2] += 0.2 * c.mesh.positions[3 * v + 2];
+  model.linearize(upload(moved), true);
+  built.update_fine_bound(true);
+  current.update_fine_bound(true);
+  EXPECT_EQ(apply(built, a), built_a);
+  EXPECT_GT(relative_difference(apply(current, a), current_a), 1e-3);
+  const std::vector<double> za = apply(built, a), zb = apply(built, b);
+  double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    ab += a[i] * zb[i];
+    ba += b[i] * za[i];
+    aa += a[i] * za[i];
+    scale += std::abs(a[i] * zb[i]);
+    if (mask[i] == 0.0) EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
+  }
+  EXPECT_LT(std::abs(ab - ba), 1e-12 * scale);
+  EXPECT_GT(aa, 0.0);
+
+  // A true-Hessian linearization (adaptive mode) is followed; the next
+  // projected one is back on the build's operator and bound, bitwise.
+  model.linearize(upload(moved), false);
+  built.update_fine_bound(false);
+  EXPECT_GT(relative_difference(apply(built, a), built_a), 1e-3);
+  model.linearize(upload(c.x), true);
+  built.update_fine_bound(true);
+  EXPECT_EQ(apply(built, a), built_a);
+}
+
 // Boundary vertices follow x = A X + b; the equilibrium of any homogeneous
 // material is then that affine map everywhere.
 TEST(Multigrid, PatchTestSolvesToTheAffineField) {
@@ -511,7 +596,8 @@ void expect_refused(const Mesh& mesh, const SolveOptions& options, const std::st
 }
 
 SolveResult twist(Preconditioner preconditioner, int res, double nu,
-                  int rebuild_every = MultigridOptions{}.rebuild_every, int steps = 1) {
+                  int rebuild_every = MultigridOptions{}.rebuild_every, int steps = 1,
+                  MultigridFineLevel fine_level = MultigridFineLevel::automatic) {
   const Mesh mesh = make_box_lattice(res, res, res, 1.0 / res);
   std::vector<int32_t> bottom, top;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -529,6 +615,7 @@ SolveResult twist(Preconditioner preconditioner, int res, double nu,
   options.preconditioner = preconditioner;
   options.multigrid.coarsest_dofs = 100;
   options.multigrid.rebuild_every = rebuild_every;
+  options.multigrid.fine_level = fine_level;
   options.load_steps = steps;
   QuasistaticSolver solver(mesh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, nu),
                            {fixed, turned}, options);
@@ -584,8 +671,48 @@ TEST(Multigrid, ReusedHierarchyGivesTheSameAnswerWithFewerBuilds) {
       reused.steps[0].cg_iterations + reused.steps[1].cg_iterations, worst);
   SolveOptions bad;
   bad.preconditioner = Preconditioner::multigrid;
-  bad.multigrid.rebuild_every = 0;
+  bad.multigrid.rebuild_every = -1;
   expect_refused(make_box_lattice(2, 2, 2, 0.5), bad, "rebuild_every");
+}
+
+// The fine level frozen with the build or following each linearization: the
+// same Newton solve either way, to the Newton tolerance.
+TEST(Multigrid, BuiltAndCurrentFineLevelsGiveTheSameAnswer) {
+  const SolveResult built = twist(Preconditioner::multigrid, 6, 0.49, 4, 2, MultigridFineLevel::built);
+  const SolveResult current = twist(Preconditioner::multigrid, 6, 0.49, 4, 2, MultigridFineLevel::current);
+  ASSERT_TRUE(built.converged);
+  ASSERT_TRUE(current.converged);
+  double worst = 0.0;
+  for (size_t i = 0; i < built.positions.size(); ++i)
+    worst = std::max(worst, std::abs(built.positions[i] - current.positions[i]));
+  EXPECT_LT(worst, 1e-6);
+  auto totals = [](const SolveResult& r) {
+    int newton = 0, cg = 0;
+    for (const StepResult& s : r.steps) {
+      newton += s.newton_iterations;
+      cg += s.cg_iterations;
+    }
+    return std::pair<int, int>(newton, cg);
+  };
+  std::printf("twist 6^3, 2 steps: fine level built %d Newton / %d CG, current %d / %d; max difference %.2e\n",
+              totals(built).first, totals(built).second, totals(current).first, totals(current).second, worst);
+}
+
+// rebuild_every 0 (the default): 2 linearizations per build when each load
+// step rebuilds (quasistatic), 4 when the hierarchy is carried (dynamics).
+TEST(MultigridRebuild, DefaultCountFollowsThePerStepRebuild) {
+  MultigridOptions o;
+  EXPECT_EQ(o.rebuild_every, 0);
+  EXPECT_EQ(solver::resolved_rebuild_every(o), 2);
+  o.rebuild_each_load_step = false;
+  EXPECT_EQ(solver::resolved_rebuild_every(o), 4);
+  o.rebuild_every = 3;
+  EXPECT_EQ(solver::resolved_rebuild_every(o), 3);
+  MultigridOptions quasistatic;
+  solver::MultigridRebuild r(quasistatic);
+  r.built(true);
+  r.reused();  // the second linearization on this build
+  EXPECT_TRUE(r.due(true));
 }
 
 TEST(MultigridRebuild, BuildsAtStepsAfterEveryAndWhenCgSlowsDown) {

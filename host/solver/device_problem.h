@@ -84,11 +84,13 @@ class DeviceProblem {
       if (contacts != built_contacts_) rebuild_.invalidate();
     }
     if (multigrid_ && !rebuild_.due(projected)) {  // the last hierarchy, its fine bound for this operator
-      multigrid_->update_fine_bound();
+      multigrid_->update_fine_bound(projected);
       rebuild_.reused();
       return;
     }
-    model_.setup_preconditioner();  // the multigrid's fine smoother too
+    // Block-Jacobi, or the multigrid's fine smoother when that follows the
+    // model's operator.
+    if (!multigrid_ || !multigrid_->fine_level_built()) model_.setup_preconditioner();
     if (multigrid_) {
       multigrid_->setup();
       rebuild_.built(projected);

@@ -202,6 +202,20 @@ void ElasticModel<Real>::compute_element_matrices() {
 }
 
 template <typename Real>
+void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks) const {
+  cl_kernel k = matrices_k_.get();
+  const int count = static_cast<int>(element_count_);
+  set_arg(k, 0, elements_.get());
+  set_arg(k, 1, gradients_.get());
+  set_arg(k, 2, weights_.get());
+  set_arg(k, 3, count);
+  set_arg(k, 4, cache_.get());
+  set_arg(k, 5, matrices);
+  set_arg(k, 6, diagonal_blocks);
+  run_element_kernel(k);
+}
+
+template <typename Real>
 void ElasticModel<Real>::assemble() {
   const auto start = std::chrono::steady_clock::now();
   const int n = 3 * nodes_;

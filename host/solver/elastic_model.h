@@ -151,6 +151,11 @@ class ElasticModel {
                : nullptr;
   }
   size_t element_count() const { return element_count_; }
+  // The element matrices of the last linearize() (projected or true, as
+  // linearized) and their 3x3 diagonal blocks into caller-owned buffers
+  // (element_count() * (3N)^2 and * 9N reals; column-major, as
+  // snh_element_matrices writes them), whatever the product variant.
+  void element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks) const;
   // The per-vertex terms a multigrid's coarse levels take in (solver/multigrid.h):
   // the terms built in, the elastic energy's scale (implicit Euler's), the
   // inertia coefficients c_v (null without inertia) and the obstacle

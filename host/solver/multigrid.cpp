@@ -42,9 +42,11 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   if (options.smoother_degree < 1 || options.smoother_degree > 16)
     throw Error("multigrid: smoother_degree must be in 1..16, got " + std::to_string(options.smoother_degree));
   if (options.max_levels < 2) throw Error("multigrid: max_levels must be at least 2");
-  if (options.rebuild_every < 1)
-    throw Error("multigrid: rebuild_every must be at least 1 (1: rebuild at every linearization), got " +
-                std::to_string(options.rebuild_every));
+  if (options.rebuild_every < 0)
+    throw Error(
+        "multigrid: rebuild_every must be 0 (automatic) or at least 1 (1: rebuild at every linearization), "
+        "got " +
+        std::to_string(options.rebuild_every));
   if (!(options.rebuild_growth >= 1.0))
     throw Error("multigrid: rebuild_growth must be at least 1, got " + std::to_string(options.rebuild_growth));
   if (model.terms().self_contact)
@@ -63,6 +65,12 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
   jacobi_apply_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_apply");
   vertex_terms_ = model.terms().inertia || model.terms().obstacles > 0;
+  if (options.fine_level == MultigridFineLevel::built && vertex_terms_)
+    throw Error(
+        "multigrid: fine_level built does not carry the inertia or obstacle contact blocks (use automatic or "
+        "current)");
+  fine_built_ = options.fine_level == MultigridFineLevel::built ||
+                (options.fine_level == MultigridFineLevel::automatic && !vertex_terms_);
   if (vertex_terms_) {
     galerkin_vertex_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_vertex_terms");
     // Each vertex's terms shared out equally to the cells around it.
@@ -95,6 +103,16 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     L.mask = upload_real(h.mask, L.bytes);
     if (l == 0) {
       L.element_handle = model.elements_buffer();
+      if (fine_built_) {
+        const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
+        L.offsets = upload_int(slots.offsets, L.bytes);
+        L.adjacency = upload_int(slots.adjacency, L.bytes);
+        L.matrices = cl_.buffer(CL_MEM_READ_WRITE, L.cells * kCellMatrix * sizeof(Real));
+        L.scratch = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 24 * sizeof(Real));
+        L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
+        L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(Real));
+        L.bytes += L.cells * (kCellMatrix + 24 + 72) * sizeof(Real) + L.vertices * 9 * sizeof(Real);
+      }
     } else {
       L.elements = upload_int(h.elements, L.bytes);
       L.element_handle = L.elements.get();
@@ -141,7 +159,7 @@ MultigridPreconditioner<Real>::~MultigridPreconditioner() = default;
 
 template <typename Real>
 void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, VectorBase& y) const {
-  if (level == 0) {
+  if (level == 0 && (!fine_built_ || fine_follows_)) {
     model_.product(p, y);
     return;
   }
@@ -171,7 +189,7 @@ void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, Vect
 
 template <typename Real>
 void MultigridPreconditioner<Real>::inverse_diagonal(int level, VectorBase& z) const {
-  if (level == 0) {
+  if (level == 0 && !fine_built_) {
     model_.apply_preconditioner(z);
     return;
   }
@@ -187,11 +205,16 @@ void MultigridPreconditioner<Real>::inverse_diagonal(int level, VectorBase& z) c
 
 template <typename Real>
 void MultigridPreconditioner<Real>::setup() {
+  if (fine_built_) {
+    Level& L = *levels_[0];
+    model_.element_matrices_into(L.matrices.get(), L.blocks.get());
+    block_jacobi(L);
+  }
   for (size_t l = 1; l < levels_.size(); ++l) {
     Level& L = *levels_[l];
     const Level& F = *levels_[l - 1];
     const int cells = static_cast<int>(L.cells);
-    const cl_mem fine_matrices = l == 1 ? model_.element_matrices_buffer() : F.matrices.get();
+    const cl_mem fine_matrices = l == 1 && !fine_built_ ? model_.element_matrices_buffer() : F.matrices.get();
     if (!fine_matrices) {
       cl_kernel k = galerkin_cache_k_.get();
       set_arg(k, 0, octant_weights_.get());
@@ -233,15 +256,7 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, next++, L.blocks.get());
       cl_.run(k, L.cells);
     }
-    cl_kernel s = jacobi_setup_k_.get();
-    const int vertices = static_cast<int>(L.vertices);
-    set_arg(s, 0, L.blocks.get());
-    set_arg(s, 1, L.offsets.get());
-    set_arg(s, 2, L.adjacency.get());
-    set_arg(s, 3, L.mask.get());
-    set_arg(s, 4, vertices);
-    set_arg(s, 5, L.inverse.get());
-    cl_.run(s, L.vertices);
+    block_jacobi(L);
   }
   factor_coarsest();
   // lambda_max(D^-1 A) per smoothed level by power iteration: the first
@@ -249,11 +264,32 @@ void MultigridPreconditioner<Real>::setup() {
   // the last eigenvector estimate, whose operator changed by one Newton step
   // only. Norms are reduced on the device in a fixed order.
   const size_t smoothed = levels_.size() == 1 || !coarsest_ok_ ? levels_.size() : levels_.size() - 1;
+  fine_follows_ = false;
   for (size_t l = 0; l < smoothed; ++l) estimate_bound(l);
+  built_lambda_ = levels_[0]->lambda;
 }
 
 template <typename Real>
-void MultigridPreconditioner<Real>::update_fine_bound() {
+void MultigridPreconditioner<Real>::block_jacobi(Level& L) {
+  cl_kernel s = jacobi_setup_k_.get();
+  const int vertices = static_cast<int>(L.vertices);
+  set_arg(s, 0, L.blocks.get());
+  set_arg(s, 1, L.offsets.get());
+  set_arg(s, 2, L.adjacency.get());
+  set_arg(s, 3, L.mask.get());
+  set_arg(s, 4, vertices);
+  set_arg(s, 5, L.inverse.get());
+  cl_.run(s, L.vertices);
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::update_fine_bound(bool projected) {
+  Level& L = *levels_[0];
+  fine_follows_ = fine_built_ && !projected;
+  if (fine_built_ && projected) {
+    L.lambda = built_lambda_;
+    return;
+  }
   estimate_bound(0);
 }
 

@@ -26,6 +26,24 @@ Preconditioner parse_preconditioner(const std::string& text) {
   throw Error("preconditioner: expected automatic, none, block-jacobi or multigrid, got '" + text + "'");
 }
 
+const char* to_string(MultigridFineLevel f) {
+  switch (f) {
+    case MultigridFineLevel::automatic:
+      return "automatic";
+    case MultigridFineLevel::built:
+      return "built";
+    case MultigridFineLevel::current:
+      return "current";
+  }
+  return "?";
+}
+
+MultigridFineLevel parse_multigrid_fine_level(const std::string& text) {
+  for (MultigridFineLevel f : {MultigridFineLevel::automatic, MultigridFineLevel::built, MultigridFineLevel::current})
+    if (text == to_string(f)) return f;
+  throw Error("multigrid fine level: expected automatic, built or current, got '" + text + "'");
+}
+
 // Measured with `snh-gpu-bench scale` (pocl, 2 CPU cores, double, nu = 0.49;
 // README "Multigrid on hex8 lattices"), with the hierarchy reused between
 // linearizations (MultigridOptions::rebuild_every), seconds per load step

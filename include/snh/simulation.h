@@ -97,6 +97,27 @@ ProductVariant default_product_variant(ElementType type, Precision precision, bo
 // the current Newton linearization, Chebyshev smoothing over block-Jacobi
 // (the same before and after the coarse correction, so CG sees a symmetric
 // preconditioner) and a direct solve of the coarsest level on the host.
+// The fine level inside the multigrid V-cycle (its smoothing and the residual
+// restricted to the coarse levels).
+enum class MultigridFineLevel {
+  automatic,  // built, except with inertia or obstacles (then current)
+  // The element matrices of the build's linearization (24x24 per element,
+  // kept on the device) and their block-Jacobi blocks, reused with the
+  // coarse operators until the next build: between builds the V-cycle of a
+  // projected linearization is one fixed SPD operator, its Chebyshev bound
+  // estimated once per build. A true-Hessian linearization (adaptive mode)
+  // is followed as by `current`. Not with inertia or obstacles, whose
+  // per-vertex blocks it does not carry.
+  built,
+  // The engine's product of each linearization, with the block-Jacobi
+  // blocks of the build and its Chebyshev bound re-estimated (4 power
+  // iterations) at each linearization.
+  current,
+};
+
+const char* to_string(MultigridFineLevel f);                             // "automatic", "built", "current"
+MultigridFineLevel parse_multigrid_fine_level(const std::string& text);  // the names above
+
 struct MultigridOptions {
   int smoother_degree = 2;      // Chebyshev degree of each pre- and post-smoothing (operator products each)
   size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
@@ -108,10 +129,12 @@ struct MultigridOptions {
   // rebuilt sooner when a CG solve converged at less than 1 / rebuild_growth
   // of the rate (decades of residual per iteration) of the first solve after
   // the build, or when the build came from a true (not projected) Hessian.
-  // A reused V-cycle stays symmetric positive definite; only the fine
-  // smoother's eigenvalue bound follows each linearization. 1: rebuild at
-  // every linearization.
-  int rebuild_every = 4;
+  // A reused V-cycle stays symmetric positive definite (fine_level below
+  // says what of the fine level follows each linearization). 1: rebuild at
+  // every linearization; 0 (default): 2 when each load step rebuilds
+  // (quasistatic), 4 when the hierarchy is carried across time steps
+  // (dynamics), as measured (README, "Multigrid on hex8 lattices").
+  int rebuild_every = 0;
   double rebuild_growth = 2.0;
   // Whether each load step's first linearization rebuilds; unset: yes for
   // quasistatic load steps, no under dynamics (SolveOptions::dynamics),
@@ -119,6 +142,7 @@ struct MultigridOptions {
   // iterations each, so the hierarchy is carried across them and rebuilt
   // by the rules above only (README, "Multigrid on hex8 lattices").
   std::optional<bool> rebuild_each_load_step;
+  MultigridFineLevel fine_level = MultigridFineLevel::automatic;
 };
 
 struct NewtonIteration {
