@@ -850,7 +850,8 @@ namespace {
 
 TEST(Multigrid, AutomaticChoosesMultigridOnLargeLattices) {
   EXPECT_EQ(default_preconditioner(make_box_lattice(15, 15, 15, 0.1)), Preconditioner::multigrid);     // 12,288 DOFs
-  EXPECT_EQ(default_preconditioner(make_box_lattice(12, 12, 12, 0.1)), Preconditioner::block_jacobi);  // 6,591
+  EXPECT_EQ(default_preconditioner(make_box_lattice(11, 11, 11, 0.1)), Preconditioner::multigrid);     // 5,184
+  EXPECT_EQ(default_preconditioner(make_box_lattice(10, 10, 10, 0.1)), Preconditioner::block_jacobi);  // 3,993
   EXPECT_EQ(default_preconditioner(make_tet_box(15, 15, 15, 0.1)), Preconditioner::block_jacobi);
   Mesh jittered = make_box_lattice(15, 15, 15, 0.1);
   jittered.positions[3 * 100] += 0.01;

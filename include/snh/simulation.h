@@ -73,7 +73,7 @@ ProductVariant default_product_variant(ElementType type, Precision precision, bo
 
 // The preconditioner of the conjugate gradient solves.
 enum class Preconditioner {
-  automatic,     // the measured choice: multigrid on hex8 lattices from 10,000 DOFs, else block-Jacobi
+  automatic,     // the measured choice: multigrid on hex8 lattices from 5,000 DOFs, else block-Jacobi
   none,          // plain CG
   block_jacobi,  // the inverted 3x3 diagonal blocks of the projected Hessian
   multigrid,     // a geometric V-cycle on the hex8 lattice (solver/multigrid.h); hex8 lattices only
