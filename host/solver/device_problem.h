@@ -84,7 +84,7 @@ class DeviceProblem {
       if (contacts != built_contacts_) rebuild_.invalidate();
     }
     if (multigrid_ && !rebuild_.due(projected)) {  // the last hierarchy, its fine bound for this operator
-      multigrid_->update_fine_bound(projected);
+      multigrid_->update_fine_bound();
       rebuild_.reused();
       return;
     }

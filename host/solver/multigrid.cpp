@@ -159,7 +159,7 @@ MultigridPreconditioner<Real>::~MultigridPreconditioner() = default;
 
 template <typename Real>
 void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, VectorBase& y) const {
-  if (level == 0 && (!fine_built_ || fine_follows_)) {
+  if (level == 0 && !fine_built_) {
     model_.product(p, y);
     return;
   }
@@ -264,9 +264,7 @@ void MultigridPreconditioner<Real>::setup() {
   // the last eigenvector estimate, whose operator changed by one Newton step
   // only. Norms are reduced on the device in a fixed order.
   const size_t smoothed = levels_.size() == 1 || !coarsest_ok_ ? levels_.size() : levels_.size() - 1;
-  fine_follows_ = false;
   for (size_t l = 0; l < smoothed; ++l) estimate_bound(l);
-  built_lambda_ = levels_[0]->lambda;
 }
 
 template <typename Real>
@@ -283,14 +281,8 @@ void MultigridPreconditioner<Real>::block_jacobi(Level& L) {
 }
 
 template <typename Real>
-void MultigridPreconditioner<Real>::update_fine_bound(bool projected) {
-  Level& L = *levels_[0];
-  fine_follows_ = fine_built_ && !projected;
-  if (fine_built_ && projected) {
-    L.lambda = built_lambda_;
-    return;
-  }
-  estimate_bound(0);
+void MultigridPreconditioner<Real>::update_fine_bound() {
+  if (!fine_built_) estimate_bound(0);
 }
 
 template <typename Real>

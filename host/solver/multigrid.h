@@ -20,8 +20,7 @@
 //     positive definite there) the coarsest level is smoothed instead.
 //   - Reuse (MultigridRebuild below): the operators built at one Newton
 //     linearization serve the next few; in between a current fine level
-//     (and a built one at true-Hessian linearizations) follows the new fine
-//     operator, its Chebyshev bound re-estimated.
+//     follows the new fine operator, its Chebyshev bound re-estimated.
 // Constrained DOFs stay exactly zero on every level (masked transfers).
 #pragma once
 
@@ -129,11 +128,10 @@ class MultigridPreconditioner {
   // model.setup_preconditioner(): coarse operators, smoother bounds, the
   // coarsest factorization.
   void setup();
-  // After model.linearize(x, projected) alone, keeping the hierarchy of the
-  // last setup(): a current fine level, and a built one at a true-Hessian
-  // linearization, follows the new fine operator (its Chebyshev bound
-  // re-estimated); a built one at a projected linearization keeps the build's.
-  void update_fine_bound(bool projected);
+  // After model.linearize() alone, keeping the hierarchy of the last
+  // setup(): a current fine level follows the new fine operator (its
+  // Chebyshev bound re-estimated); a built one keeps the build's.
+  void update_fine_bound();
   // Whether the fine level is the build's element matrices (then the
   // model's block-Jacobi blocks are not used: setup() needs only
   // model.linearize()).
@@ -175,10 +173,6 @@ class MultigridPreconditioner {
   // vertex's share 1 / (cells around it).
   bool vertex_terms_ = false;
   bool fine_built_ = false;
-  // The built fine level follows a true-Hessian linearization (its products,
-  // the build's blocks, a bound of its own); built_lambda_: the build's bound.
-  bool fine_follows_ = false;
-  double built_lambda_ = 1.0;
   device::Kernel galerkin_vertex_k_;
   device::Buffer vertex_share_;
   device::Buffer octant_weights_;  // lattice_hierarchy.h's octant_weights()

@@ -103,11 +103,10 @@ enum class MultigridFineLevel {
   automatic,  // built, except with inertia or obstacles (then current)
   // The element matrices of the build's linearization (24x24 per element,
   // kept on the device) and their block-Jacobi blocks, reused with the
-  // coarse operators until the next build: between builds the V-cycle of a
-  // projected linearization is one fixed SPD operator, its Chebyshev bound
-  // estimated once per build. A true-Hessian linearization (adaptive mode)
-  // is followed as by `current`. Not with inertia or obstacles, whose
-  // per-vertex blocks it does not carry.
+  // coarse operators until the next build (also at true-Hessian
+  // linearizations): between builds the V-cycle is one fixed SPD operator,
+  // its Chebyshev bound estimated once per build. Not with inertia or
+  // obstacles, whose per-vertex blocks it does not carry.
   built,
   // The engine's product of each linearization, with the block-Jacobi
   // blocks of the build and its Chebyshev bound re-estimated (4 power
