@@ -48,13 +48,14 @@ MultigridFineLevel parse_multigrid_fine_level(const std::string& text) {
 // 8,10,12,16 --preconditioner block-jacobi,multigrid` (pocl, 2 CPU cores,
 // double, nu = 0.49; README "Multigrid on hex8 lattices"), session 10, with
 // the built fine level and a build per 2 linearizations (MultigridOptions),
-// seconds per load step block-Jacobi / multigrid: stretch 3,519 DOFs 0.175 /
-// 0.214, 6,363 0.356 / 0.327, 10,275 0.563 / 0.487, 23,859 1.43 / 1.34;
-// twist 2,187 0.189 / 0.137, 3,993 0.369 / 0.259, 6,591 0.594 / 0.347,
-// 14,739 1.25 / 0.747; twist 107,811 16.3 / 8.2. Multigrid's CG count per
-// Newton stays flat while block-Jacobi's grows with the mesh; below about
-// 5,000 DOFs its set-up and V-cycle cost what block-Jacobi's extra CG
-// iterations do (stretch loses 20% at 3,519, twist still gains). So:
+// seconds per load step block-Jacobi / multigrid: stretch 3,519 DOFs 0.158 /
+// 0.147, 6,363 0.268 / 0.265, 10,275 0.502 / 0.415, 23,859 1.24 / 1.04;
+// twist 2,187 0.177 / 0.142, 3,993 0.322 / 0.195, 6,591 0.497 / 0.280,
+// 14,739 1.11 / 0.603; twist 107,811 14.5 / 6.58. Multigrid's CG count per
+// Newton stays flat while block-Jacobi's grows with the mesh; at about
+// 3,500-6,500 DOFs stretch is within 10% either way in this run (an earlier
+// one: 3,519 DOFs 0.175 / 0.214, multigrid 22% slower), twist gains 20-45%
+// throughout. So:
 // multigrid on hex8 lattices from 5,000 DOFs (10,000 in sessions 6-9, 50,000
 // before), block-Jacobi otherwise.
 Preconditioner default_preconditioner(const Mesh& mesh) {
