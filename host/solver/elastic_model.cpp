@@ -189,16 +189,7 @@ size_t ElasticModel<Real>::memory_bytes() const {
 
 template <typename Real>
 void ElasticModel<Real>::compute_element_matrices() {
-  cl_kernel k = matrices_k_.get();
-  const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, elements_.get());
-  set_arg(k, 1, gradients_.get());
-  set_arg(k, 2, weights_.get());
-  set_arg(k, 3, count);
-  set_arg(k, 4, cache_.get());
-  set_arg(k, 5, element_matrices_.get());
-  set_arg(k, 6, element_blocks_.get());
-  run_element_kernel(k);
+  element_matrices_into(element_matrices_.get(), element_blocks_.get());
 }
 
 template <typename Real>

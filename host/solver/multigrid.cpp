@@ -103,23 +103,15 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     L.mask = upload_real(h.mask, L.bytes);
     if (l == 0) {
       L.element_handle = model.elements_buffer();
-      if (fine_built_) {
-        const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
-        L.offsets = upload_int(slots.offsets, L.bytes);
-        L.adjacency = upload_int(slots.adjacency, L.bytes);
-        L.matrices = cl_.buffer(CL_MEM_READ_WRITE, L.cells * kCellMatrix * sizeof(Real));
-        L.scratch = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 24 * sizeof(Real));
-        L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
-        L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(Real));
-        L.bytes += L.cells * (kCellMatrix + 24 + 72) * sizeof(Real) + L.vertices * 9 * sizeof(Real);
-      }
     } else {
       L.elements = upload_int(h.elements, L.bytes);
       L.element_handle = L.elements.get();
+      L.children = upload_int(h.children, L.bytes);
+    }
+    if (l > 0 || fine_built_) {  // cell matrices, their blocks and a gather of its own
       const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
       L.offsets = upload_int(slots.offsets, L.bytes);
       L.adjacency = upload_int(slots.adjacency, L.bytes);
-      L.children = upload_int(h.children, L.bytes);
       L.matrices = cl_.buffer(CL_MEM_READ_WRITE, L.cells * kCellMatrix * sizeof(Real));
       L.scratch = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 24 * sizeof(Real));
       L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
