@@ -212,6 +212,10 @@ void OpenClContext::read(cl_mem buffer, size_t bytes, void* data) {
   check(clEnqueueReadBuffer(queue_, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr), "clEnqueueReadBuffer");
 }
 
+void OpenClContext::copy(cl_mem from, cl_mem to, size_t bytes) {
+  check(clEnqueueCopyBuffer(queue_, from, to, 0, 0, bytes, 0, nullptr, nullptr), "clEnqueueCopyBuffer");
+}
+
 size_t OpenClContext::bytes(cl_mem buffer) {
   if (!buffer) return 0;
   size_t size = 0;

@@ -66,6 +66,8 @@ class OpenClContext {
   static size_t bytes(cl_mem buffer);
   void write(cl_mem buffer, size_t bytes, const void* data);
   void read(cl_mem buffer, size_t bytes, void* data);
+  // The first `bytes` of `from` into `to`, on the device (in queue order).
+  void copy(cl_mem from, cl_mem to, size_t bytes);
   // Runs `kernel` over global_size work-items (rounded up to whole groups)
   // and waits for it; its wall time is added to kernel_seconds().
   void run(cl_kernel kernel, size_t global_size);

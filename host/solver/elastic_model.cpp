@@ -194,6 +194,14 @@ void ElasticModel<Real>::compute_element_matrices() {
 
 template <typename Real>
 void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks) const {
+  if (matrices != element_matrices_.get() && element_matrices_buffer() && projected_) {
+    // This linearization's matrices and their blocks exist already
+    // (linearize(); setup_preconditioner() keeps those blocks when projected).
+    const size_t nodes = static_cast<size_t>(nodes_);
+    cl_.copy(element_matrices_.get(), matrices, element_count_ * 9 * nodes * nodes * sizeof(Real));
+    cl_.copy(element_blocks_.get(), diagonal_blocks, element_count_ * 9 * nodes * sizeof(Real));
+    return;
+  }
   cl_kernel k = matrices_k_.get();
   const int count = static_cast<int>(element_count_);
   set_arg(k, 0, elements_.get());
