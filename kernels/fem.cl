@@ -93,12 +93,6 @@ __kernel void snh_element_linearize(__global const real* x, __global const int* 
   }
 }
 
-/* y_a = sum_q w_q (H_q : dF_q) dN_a/dX with dF_q = sum_b p_b (dN_b/dX)^T. */
-SNH_FN void element_product(const principal_hessian* h, const real* ps, const real* g, real w, real* y) {
-  const mat3 dp = principal_hessian_action(h, element_deformation_gradient(ps, g));
-  element_scatter(dp, g, w, y);
-}
-
 /* Projected Hessian times p, per element, reusing the linearization. */
 __kernel void snh_element_product_cached(__global const real* p, __global const int* elements,
                                          __global const real* gradients, __global const real* weights, const int count,

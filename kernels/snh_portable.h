@@ -59,15 +59,47 @@
 #pragma OPENCL FP_CONTRACT OFF
 #endif
 
+/* Lanes (SNH_LANES = 8, OpenCL only; kernels/fem_lanes.cl): `real` is a
+ * vector of 8 values, one per lane (a hex8 element's 8 quadrature points),
+ * so the per-point math below runs as 8-wide SIMD on CPU devices, where
+ * pocl's work-item vectorizer does not widen it (README, throughput).
+ * scalar_real is the element type (buffers, material parameters) and
+ * snh_mask what a comparison of two reals gives: int per point, or one
+ * all-ones / zero integer per lane that ?: blends lane by lane. So the math
+ * is written once: comparisons go into snh_mask, data-dependent choices are
+ * ?: selects of reals (never of structs, never an if), and branches only
+ * test ints or parameters. The host and every other kernel: SNH_LANES = 1,
+ * real = scalar_real, snh_mask = int. */
+#ifndef SNH_LANES
+#define SNH_LANES 1
+#endif
+#if SNH_LANES != 1 && (SNH_LANES != 8 || !SNH_IS_OPENCL)
+#error "SNH_LANES is 1, or 8 in OpenCL kernels"
+#endif
+
 #if SNH_DOUBLE
 #if SNH_IS_OPENCL
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #endif
+typedef double scalar_real;
+#if SNH_LANES == 8
+typedef double8 real;
+typedef long8 snh_mask;
+#else
 typedef double real;
+typedef int snh_mask;
+#endif
 #define SNH_EPS DBL_EPSILON
 #define SNH_REAL_MIN DBL_MIN
 #else
+typedef float scalar_real;
+#if SNH_LANES == 8
+typedef float8 real;
+typedef int8 snh_mask;
+#else
 typedef float real;
+typedef int snh_mask;
+#endif
 #define SNH_EPS FLT_EPSILON
 #define SNH_REAL_MIN FLT_MIN
 #endif

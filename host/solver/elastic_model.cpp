@@ -94,9 +94,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
 
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
   forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
-  linearize_k_ = cl_.kernel("fem.cl", defines_, "snh_element_linearize");
   product_cached_k_ = cl_.kernel("fem.cl", defines_, "snh_element_product_cached");
-  product_recompute_k_ = cl_.kernel("fem.cl", defines_, "snh_element_product_recompute");
+  set_point_lanes(point_lanes_available() && !cl_.info().is_gpu);
   diagonal_k_ = cl_.kernel("fem.cl", defines_, "snh_element_diagonal");
   gather_k_ = cl_.kernel("fem.cl", defines_, "snh_gather_vectors");
   setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
@@ -133,6 +132,24 @@ void ElasticModel<Real>::set_variant(ProductVariant v) {
   const size_t m = static_cast<size_t>(3 * nodes_) * (3 * nodes_);
   if ((v == ProductVariant::element_matrices || v == ProductVariant::assembled) && !element_matrices_)
     element_matrices_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * m * sizeof(Real));
+}
+
+template <typename Real>
+bool ElasticModel<Real>::point_lanes_available() const {
+  // tet4 lanes hold 8 elements, so they share one material.
+  return nodes_ == 8 || !material_.per_element();
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_point_lanes(bool on) {
+  if (on && !point_lanes_available())
+    throw Error("solver: per-point lanes of tet4 meshes need one material for the mesh (this map has regions)");
+  point_lanes_ = on;
+  // The lanes program needs only the element's own specialization.
+  const char* file = on ? "fem_lanes.cl" : "fem.cl";
+  const std::string defines = on ? elastic_defines_ + " -DSNH_LANES=8" : defines_;
+  linearize_k_ = cl_.kernel(file, defines, "snh_element_linearize");
+  product_recompute_k_ = cl_.kernel(file, defines, "snh_element_product_recompute");
 }
 
 template <typename Real>
@@ -575,6 +592,12 @@ void ElasticModel<Real>::run_element_kernel(cl_kernel k) const {
 }
 
 template <typename Real>
+void ElasticModel<Real>::run_point_kernel(cl_kernel k) const {
+  // tet4 lanes: a work-item per 8 elements.
+  cl_.run(k, point_lanes_ && nodes_ == 4 ? (element_count_ + 7) / 8 : element_count_);
+}
+
+template <typename Real>
 double ElasticModel<Real>::energy(const VectorBase& x) {
   PhaseScope timed(&profiler_, Phase::line_search_energies);
   cl_kernel k = energy_k_.get();
@@ -678,7 +701,7 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   const cl_uint next = set_material_args(k, 4);
   set_arg(k, next, projected_);
   set_arg(k, next + 1, cache_.get());
-  run_element_kernel(k);
+  run_point_kernel(k);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
   last_assembly_seconds_ = 0.0;
   if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled) compute_element_matrices();
@@ -736,8 +759,9 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     const cl_uint next = set_material_args(k, 6);
     set_arg(k, next, projected_);
     set_arg(k, next + 1, element_scratch_.get());
+    run_point_kernel(k);
   }
-  run_element_kernel(k);
+  if (variant_ != ProductVariant::recompute) run_element_kernel(k);
   self_differences(p);
   gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }

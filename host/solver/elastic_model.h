@@ -168,6 +168,16 @@ class ElasticModel {
   ProductVariant variant() const { return variant_; }
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);
+  // Per-point lanes (kernels/fem_lanes.cl): the linearization and the
+  // recompute product over 8-wide vectors, a lane per quadrature point of a
+  // hex8 element or per tet4 element, the scalar kernels' results bit for
+  // bit (but for exp's rounding). On by default on CPU devices (where pocl
+  // leaves the scalar kernels' per-point math unvectorized), off on GPUs.
+  // Not available for tet4 meshes with materials per region (throws
+  // snh::Error).
+  void set_point_lanes(bool on);
+  bool point_lanes() const { return point_lanes_; }
+  bool point_lanes_available() const;
   // Device memory the current variant holds beyond the mesh and vectors:
   // the linearization cache, element matrices or assembled matrix.
   size_t variant_memory_bytes() const;
@@ -188,6 +198,8 @@ class ElasticModel {
 
  private:
   void run_element_kernel(cl_kernel k) const;
+  // The same for the kernels fem_lanes.cl also has (linearize, recompute).
+  void run_point_kernel(cl_kernel k) const;
   // Per-element elastic forces at x into element_scratch_ (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
   void compute_element_matrices();
@@ -207,6 +219,7 @@ class ElasticModel {
   device::MaterialArgs<Real> material_;
   ProductVariant variant_;
   std::string defines_, elastic_defines_;
+  bool point_lanes_ = false;
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
       element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
   bool has_external_ = false;

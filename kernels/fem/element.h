@@ -74,6 +74,14 @@ SNH_FN void element_column_scatter(mat3 m, const real* vg, real w, real* column)
       column[3 * a + i] += w * (M3(m, i, 0) * vg[3 * a] + M3(m, i, 1) * vg[3 * a + 1] + M3(m, i, 2) * vg[3 * a + 2]);
 }
 
+/* y_a += w (H : dF) dN_a/dX with dF = sum_b p_b (dN_b/dX)^T: one point's
+ * share of the Hessian product. */
+SNH_FN void element_product(const principal_hessian* h, const real* ps, const real* g, real w, real* y) {
+  const mat3 dp = principal_hessian_action(h, element_deformation_gradient(ps, g));
+  element_scatter(dp, g, w, y);
+}
+
+#if SNH_LANES == 1
 SNH_FN void linearization_store(const principal_hessian* h, SNH_GLOBAL real* out) {
   SNH_UNROLL
   for (int i = 0; i < 9; ++i) out[i] = h->u.a[i];
@@ -103,5 +111,6 @@ SNH_FN principal_hessian linearization_load(SNH_GLOBAL const real* in) {
   for (int i = 0; i < 3; ++i) h.sigma.a[i] = SNH_R(0);
   return h;
 }
+#endif
 
 #endif /* SNH_FEM_ELEMENT_H */

@@ -17,14 +17,13 @@
 
 /* exp(x) capped as above, with its first and second derivatives. */
 SNH_FN void fung_exp(real x, real* e, real* de, real* dde) {
-  if (x <= SNH_FUNG_MAX_EXPONENT) {
-    *e = *de = *dde = exp(x);
-    return;
-  }
-  const real top = exp(SNH_FUNG_MAX_EXPONENT), d = x - SNH_FUNG_MAX_EXPONENT;
-  *e = top * (SNH_R(1) + d + SNH_R(0.5) * d * d);
-  *de = top * (SNH_R(1) + d);
-  *dde = top;
+  /* Both sides computed and selected (lanes, snh_portable.h); exp of the
+   * capped exponent is exp(x) below the cap and the cap's value above. */
+  const snh_mask below = x <= SNH_FUNG_MAX_EXPONENT;
+  const real ex = exp(below ? x : SNH_FUNG_MAX_EXPONENT), d = x - SNH_FUNG_MAX_EXPONENT;
+  *e = below ? ex : ex * (SNH_R(1) + d + SNH_R(0.5) * d * d);
+  *de = below ? ex : ex * (SNH_R(1) + d);
+  *dde = ex;
 }
 
 SNH_FN real fung_alpha(real mu0, real lambda, real gamma, real mu1) { return SNH_R(1) + (mu0 + gamma * mu1) / lambda; }

@@ -45,7 +45,7 @@
  * MATERIAL: the kernels of a uniform material are exactly those of before
  * regions existed. */
 #if SNH_REGIONS
-#define MATERIAL_ARGS __global const real *material_table, __global const int *element_material
+#define MATERIAL_ARGS __global const scalar_real *material_table, __global const int *element_material
 #define ELEMENT_RECORD(e) (material_table + SNH_MATERIAL_RECORD * element_material[e])
 #if SNH_GENERAL_KERNEL
 #define ELEMENT_MODEL(e) ((int)ELEMENT_RECORD(e)[SNH_MATERIAL_MODEL])
@@ -58,15 +58,16 @@
 #endif
 #define ELEMENT_MATERIAL(e) material_of_record(ELEMENT_RECORD(e), ELEMENT_LAMBDA_MODEL(e))
 
-SNH_FN material_params material_of_record(__global const real *r, int lambda_model) {
+SNH_FN material_params material_of_record(__global const scalar_real *r, int lambda_model) {
   return material_make_general(r[SNH_MATERIAL_MU], r[SNH_MATERIAL_LAMBDA], r[SNH_MATERIAL_C0], r[SNH_MATERIAL_C1],
                                lambda_model, r[SNH_MATERIAL_C2], r[SNH_MATERIAL_ALPHA_LAMBDA],
                                r[SNH_MATERIAL_ALPHA_MU]);
 }
 #else
-#define MATERIAL_ARGS                                                                                     \
-  const real mu, const real lambda, const real c0, const real c1, const real c2, const real alpha_lambda, \
-      const real alpha_mu, const int model_arg, const int barrier_arg, const int lambda_model_arg
+#define MATERIAL_ARGS                                                                                               \
+  const scalar_real mu, const scalar_real lambda, const scalar_real c0, const scalar_real c1, const scalar_real c2, \
+      const scalar_real alpha_lambda, const scalar_real alpha_mu, const int model_arg, const int barrier_arg,       \
+      const int lambda_model_arg
 #define MATERIAL material_make_general(mu, lambda, c0, c1, LAMBDA_MODEL, c2, alpha_lambda, alpha_mu)
 #define ELEMENT_MODEL(e) MODEL
 #define ELEMENT_BARRIER(e) BARRIER

@@ -35,14 +35,15 @@
 #define SNH_MODEL_NEOHOOKEAN 6
 
 typedef struct {
-  real mu, lambda, c0, c1;
-  real c2;                     /* parameter of the lambda part's model (Neo-Hookean J0) */
-  real alpha_lambda, alpha_mu; /* nonlinearity of each part (Eq. 20); 1: none */
-  int lambda_model;            /* model of the lambda part; -1: the material's own */
+  scalar_real mu, lambda, c0, c1;
+  scalar_real c2;                     /* parameter of the lambda part's model (Neo-Hookean J0) */
+  scalar_real alpha_lambda, alpha_mu; /* nonlinearity of each part (Eq. 20); 1: none */
+  int lambda_model;                   /* model of the lambda part; -1: the material's own */
 } material_params;
 
-SNH_FN material_params material_make_general(real mu, real lambda, real c0, real c1, int lambda_model, real c2,
-                                             real alpha_lambda, real alpha_mu) {
+SNH_FN material_params material_make_general(scalar_real mu, scalar_real lambda, scalar_real c0, scalar_real c1,
+                                             int lambda_model, scalar_real c2, scalar_real alpha_lambda,
+                                             scalar_real alpha_mu) {
   material_params m;
   m.mu = mu;
   m.lambda = lambda;
@@ -55,8 +56,8 @@ SNH_FN material_params material_make_general(real mu, real lambda, real c0, real
   return m;
 }
 
-SNH_FN material_params material_make(real mu, real lambda, real c0, real c1) {
-  return material_make_general(mu, lambda, c0, c1, -1, c0, SNH_R(1), SNH_R(1));
+SNH_FN material_params material_make(scalar_real mu, scalar_real lambda, scalar_real c0, scalar_real c1) {
+  return material_make_general(mu, lambda, c0, c1, -1, c0, 1, 1);
 }
 
 SNH_FN int material_lambda_model(int model, material_params m) { return m.lambda_model < 0 ? model : m.lambda_model; }
@@ -69,7 +70,7 @@ SNH_FN int material_general(int model, material_params m) {
   (void)m;
   return SNH_NONLINEAR;
 #else
-  return material_lambda_model(model, m) != model || m.alpha_lambda != SNH_R(1) || m.alpha_mu != SNH_R(1);
+  return material_lambda_model(model, m) != model || m.alpha_lambda != 1 || m.alpha_mu != 1;
 #endif
 }
 

@@ -14,16 +14,12 @@
 
 /* l(J) and its first two derivatives. */
 SNH_FN void neohookean_log(real j, real j0, real* l, real* dl, real* ddl) {
-  if (j0 > SNH_R(0) && j < j0) {
-    const real d = j - j0;
-    *l = log(j0) + d / j0 - d * d / (SNH_R(2) * j0 * j0);
-    *dl = SNH_R(1) / j0 - d / (j0 * j0);
-    *ddl = SNH_R(-1) / (j0 * j0);
-  } else {
-    *l = log(j);
-    *dl = SNH_R(1) / j;
-    *ddl = SNH_R(-1) / (j * j);
-  }
+  /* Both sides computed and selected (lanes, snh_portable.h). */
+  const snh_mask extend = j0 > SNH_R(0) && j < j0;
+  const real d = j - j0;
+  *l = extend ? log(j0) + d / j0 - d * d / (SNH_R(2) * j0 * j0) : log(j);
+  *dl = extend ? SNH_R(1) / j0 - d / (j0 * j0) : SNH_R(1) / j;
+  *ddl = extend ? SNH_R(-1) / (j0 * j0) : SNH_R(-1) / (j * j);
 }
 
 SNH_FN invariant_terms neohookean_terms(real j, real mu, real lambda, real j0) {

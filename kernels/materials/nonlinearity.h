@@ -23,100 +23,93 @@
 
 #define SNH_NONLINEAR_TAU SNH_R(0.1)
 
-SNH_FN int nonlinear_in_cubic(real x, real alpha) { return alpha < SNH_R(2) && fabs(x) < SNH_NONLINEAR_TAU; }
+SNH_FN snh_mask nonlinear_in_cubic(real x, scalar_real alpha) {
+  return alpha < SNH_R(2) && fabs(x) < SNH_NONLINEAR_TAU;
+}
 
-SNH_FN void nonlinear_cubic(real alpha, real* a, real* b) {
-  *a = pow(SNH_NONLINEAR_TAU, alpha - SNH_R(1)) * (SNH_R(3) - alpha) * SNH_R(0.5);
-  *b = (alpha - SNH_R(1)) * pow(SNH_NONLINEAR_TAU, alpha - SNH_R(3)) * SNH_R(0.5);
+SNH_FN void nonlinear_cubic(scalar_real alpha, real* a, real* b) {
+  const real tau = SNH_NONLINEAR_TAU, al = SNH_R(alpha);
+  *a = pow(tau, al - SNH_R(1)) * (SNH_R(3) - al) * SNH_R(0.5);
+  *b = (al - SNH_R(1)) * pow(tau, al - SNH_R(3)) * SNH_R(0.5);
 }
 
 /* m(x), m'(x), m''(x): one pow per stretch (m' = alpha m / x, m'' =
- * (alpha - 1) m' / x away from 0). */
-SNH_FN void nonlinear_map(real x, real alpha, real* m, real* dm, real* ddm) {
-  if (alpha == SNH_R(1)) {
+ * (alpha - 1) m' / x away from 0). The cases are computed and selected, not
+ * branched on (lanes, snh_portable.h); alpha is a parameter, so alpha = 1
+ * may branch. */
+SNH_FN void nonlinear_map(real x, scalar_real alpha, real* m, real* dm, real* ddm) {
+  if (alpha == 1) {
     *m = x;
     *dm = SNH_R(1);
     *ddm = SNH_R(0);
     return;
   }
-  if (nonlinear_in_cubic(x, alpha)) {
-    real a, b;
-    nonlinear_cubic(alpha, &a, &b);
-    *m = x * (a + b * x * x);
-    *dm = a + SNH_R(3) * b * x * x;
-    *ddm = SNH_R(6) * b * x;
-    return;
-  }
+  const snh_mask cubic = nonlinear_in_cubic(x, alpha);
+  real a, b;
+  nonlinear_cubic(alpha, &a, &b);
   const real ax = fabs(x), sign = x < SNH_R(0) ? SNH_R(-1) : SNH_R(1);
-  if (ax == SNH_R(0)) { /* alpha >= 2 here */
-    *m = *dm = SNH_R(0);
-    *ddm = alpha == SNH_R(2) ? SNH_R(2) * sign : SNH_R(0);
-    return;
-  }
-  const real p = pow(ax, alpha);
-  *m = sign * p;
-  *dm = alpha * p / ax;
-  *ddm = sign * (alpha - SNH_R(1)) * *dm / ax;
+  /* x = 0 outside the cubic: alpha >= 2 there */
+  const snh_mask zero = ax == SNH_R(0);
+  const real safe = zero ? SNH_R(1) : ax, al = SNH_R(alpha);
+  const real p = pow(safe, al);
+  const real pdm = al * p / safe;
+  const real zero_ddm = alpha == 2 ? SNH_R(2) * sign : SNH_R(0);
+  *m = cubic ? x * (a + b * x * x) : (zero ? SNH_R(0) : sign * p);
+  *dm = cubic ? a + SNH_R(3) * b * x * x : (zero ? SNH_R(0) : pdm);
+  *ddm = cubic ? SNH_R(6) * b * x : (zero ? zero_ddm : sign * (al - SNH_R(1)) * pdm / safe);
 }
 
 /* The map at the three stretches, and per pair k = (i, j) the divided
  * differences of m and m' at (sigma_i, sigma_j) (flip) and (sigma_i,
  * -sigma_j) (twist). */
 typedef struct {
-  real alpha;
+  scalar_real alpha;
   vec3 m, dm, ddm;
   vec3 flip_m, flip_dm, twist_m, twist_dm;
 } nonlinear_stretches;
 
-/* Divided differences of m (*d0) and m' (*d1) at x, y with their map values. */
-SNH_FN void nonlinear_divided(real x, real mx, real dmx, real ddmx, real y, real my, real dmy, real ddmy, real alpha,
-                              real* d0, real* d1) {
-  if (x == y) {
-    *d0 = dmx;
-    *d1 = ddmx;
-    return;
-  }
-  const int cx = nonlinear_in_cubic(x, alpha), cy = nonlinear_in_cubic(y, alpha);
-  if (cx && cy) {
-    real a, b;
-    nonlinear_cubic(alpha, &a, &b);
-    *d0 = a + b * (x * x + x * y + y * y);
-    *d1 = SNH_R(3) * b * (x + y);
-    return;
-  }
-  if (!cx && !cy && x * y > SNH_R(0)) {
-    /* Both powers, one sign: with big >= small > 0, r = small / big,
-     * (big^p - small^p) / (big - small) = big^(p-1) expm1(p log r) / expm1(log r),
-     * p = alpha for m and alpha - 1 for m' / alpha; big^(alpha-1) = m'(big) / alpha. */
-    const int x_big = fabs(x) >= fabs(y);
-    const real big = x_big ? fabs(x) : fabs(y), small = x_big ? fabs(y) : fabs(x);
-    const real big_dm = x_big ? dmx : dmy;
-    const real log_r = log1p((small - big) / big), e = expm1(log_r);
-    *d0 = big_dm / alpha * expm1(alpha * log_r) / e;
-    /* m is odd (same value for x, y < 0); m' is even (sign flips). */
-    const real sign = x < SNH_R(0) ? SNH_R(-1) : SNH_R(1);
-    *d1 = sign * big_dm / big * expm1((alpha - SNH_R(1)) * log_r) / e;
-    return;
-  }
+/* Divided differences of m (*d0) and m' (*d1) at x, y with their map values.
+ * Every case is computed and the first that applies selected, in this order
+ * (lanes, snh_portable.h): */
+SNH_FN void nonlinear_divided(real x, real mx, real dmx, real ddmx, real y, real my, real dmy, real ddmy,
+                              scalar_real alpha, real* d0, real* d1) {
+  /* x = y: the derivatives. */
+  const snh_mask same = x == y;
+  /* Both in the cubic: exact. */
+  const snh_mask cx = nonlinear_in_cubic(x, alpha), cy = nonlinear_in_cubic(y, alpha);
+  const snh_mask cubics = cx && cy;
+  real a, b;
+  nonlinear_cubic(alpha, &a, &b);
+  const real cubic_d0 = a + b * (x * x + x * y + y * y), cubic_d1 = SNH_R(3) * b * (x + y);
+  /* Both powers, one sign: with big >= small > 0, r = small / big,
+   * (big^p - small^p) / (big - small) = big^(p-1) expm1(p log r) / expm1(log r),
+   * p = alpha for m and alpha - 1 for m' / alpha; big^(alpha-1) = m'(big) / alpha. */
+  const snh_mask powers = !cx && !cy && x * y > SNH_R(0);
+  const snh_mask x_big = fabs(x) >= fabs(y);
+  const real big = x_big ? fabs(x) : fabs(y), small = x_big ? fabs(y) : fabs(x);
+  const real big_dm = x_big ? dmx : dmy, al = SNH_R(alpha);
+  const real log_r = log1p((small - big) / big), e = expm1(log_r);
+  const real power_d0 = big_dm / al * expm1(al * log_r) / e;
+  /* m is odd (same value for x, y < 0); m' is even (sign flips). */
+  const real sign = x < SNH_R(0) ? SNH_R(-1) : SNH_R(1);
+  const real power_d1 = sign * big_dm / big * expm1((al - SNH_R(1)) * log_r) / e;
   /* Opposite signs (|x - y| = |x| + |y|: m(x) - m(y) adds two terms of one
    * sign) or the two sides of tau, where x and y closer than sqrt(eps) tau
    * take the mean derivative (error below sqrt(eps) relative). */
-  if (x * y > SNH_R(0) && fabs(x - y) <= sqrt(SNH_EPS) * SNH_NONLINEAR_TAU) {
-    *d0 = SNH_R(0.5) * (dmx + dmy);
-    *d1 = SNH_R(0.5) * (ddmx + ddmy);
-    return;
-  }
-  *d0 = (mx - my) / (x - y);
-  *d1 = (dmx - dmy) / (x - y);
+  const snh_mask close = x * y > SNH_R(0) && fabs(x - y) <= sqrt(SNH_EPS) * SNH_NONLINEAR_TAU;
+  const real plain_d0 = close ? SNH_R(0.5) * (dmx + dmy) : (mx - my) / (x - y);
+  const real plain_d1 = close ? SNH_R(0.5) * (ddmx + ddmy) : (dmx - dmy) / (x - y);
+  *d0 = same ? dmx : (cubics ? cubic_d0 : (powers ? power_d0 : plain_d0));
+  *d1 = same ? ddmx : (cubics ? cubic_d1 : (powers ? power_d1 : plain_d1));
 }
 
-SNH_FN nonlinear_stretches nonlinear_stretches_of(vec3 sigma, real alpha) {
+SNH_FN nonlinear_stretches nonlinear_stretches_of(vec3 sigma, scalar_real alpha) {
   nonlinear_stretches n;
   n.alpha = alpha;
   for (int i = 0; i < 3; ++i) nonlinear_map(sigma.a[i], alpha, &n.m.a[i], &n.dm.a[i], &n.ddm.a[i]);
   for (int k = 0; k < 3; ++k) {
     const int i = k == 0 ? 1 : 0, j = k == 2 ? 1 : 2; /* principal_pair_i, _j */
-    if (alpha == SNH_R(1)) {
+    if (alpha == 1) {
       n.flip_m.a[k] = n.twist_m.a[k] = SNH_R(1);
       n.flip_dm.a[k] = n.twist_dm.a[k] = SNH_R(0);
       continue;

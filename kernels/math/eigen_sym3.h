@@ -61,9 +61,9 @@ SNH_FN vec3 eigen_sym3_vector_isolated(sym3 m, real e) {
   const vec3 r2 = vec3_make(m.a[2], m.a[4], m.a[5] - e);
   const vec3 c01 = vec3_cross(r0, r1), c02 = vec3_cross(r0, r2), c12 = vec3_cross(r1, r2);
   const real d01 = vec3_dot(c01, c01), d02 = vec3_dot(c02, c02), d12 = vec3_dot(c12, c12);
-  const int use01 = d01 >= d02 && d01 >= d12 && d01 > SNH_R(0);
-  const int use02 = !use01 && d02 >= d12 && d02 > SNH_R(0);
-  const int use12 = !use01 && !use02 && d12 > SNH_R(0);
+  const snh_mask use01 = d01 >= d02 && d01 >= d12 && d01 > SNH_R(0);
+  const snh_mask use02 = !use01 && d02 >= d12 && d02 > SNH_R(0);
+  const snh_mask use12 = !use01 && !use02 && d12 > SNH_R(0);
   const real d = use01 ? d01 : (use02 ? d02 : (use12 ? d12 : SNH_R(1)));
   const real inv = SNH_R(1) / sqrt(d);
   vec3 out;
@@ -80,15 +80,15 @@ SNH_FN vec3 eigen_sym3_vector_isolated(sym3 m, real e) {
  * the cubic, whose trigonometric roots lose half the digits when two roots
  * nearly coincide. */
 SNH_FN void eigen_sym3_complement(sym3 m, vec3 w, vec3* x, real* ex, vec3* y, real* ey) {
-  const int big0 = fabs(w.a[0]) > fabs(w.a[1]);
+  const snh_mask big0 = fabs(w.a[0]) > fabs(w.a[1]);
   const real inv = SNH_R(1) / sqrt(big0 ? w.a[0] * w.a[0] + w.a[2] * w.a[2] : w.a[1] * w.a[1] + w.a[2] * w.a[2]);
   const vec3 u =
-      big0 ? vec3_make(-w.a[2] * inv, SNH_R(0), w.a[0] * inv) : vec3_make(SNH_R(0), w.a[2] * inv, -w.a[1] * inv);
+      vec3_make(big0 ? -w.a[2] * inv : SNH_R(0), big0 ? SNH_R(0) : w.a[2] * inv, big0 ? w.a[0] * inv : -w.a[1] * inv);
   const vec3 v = vec3_cross(w, u);
   const vec3 au = sym3_apply(m, u), av = sym3_apply(m, v);
   const real b00 = vec3_dot(u, au), b01 = SNH_R(0.5) * (vec3_dot(u, av) + vec3_dot(v, au)), b11 = vec3_dot(v, av);
   /* The exact Jacobi rotation, or the identity when b01 = 0 (a select). */
-  const int rotate = b01 != SNH_R(0);
+  const snh_mask rotate = b01 != SNH_R(0);
   const real tau = (b11 - b00) / (SNH_R(2) * (rotate ? b01 : SNH_R(1)));
   const real tr = (tau >= SNH_R(0) ? SNH_R(1) : SNH_R(-1)) / (fabs(tau) + sqrt(SNH_R(1) + tau * tau));
   const real cr = SNH_R(1) / sqrt(SNH_R(1) + tr * tr);
@@ -114,7 +114,7 @@ SNH_FN_LARGE void eigen_sym3(sym3 a, vec3* values, mat3* vectors) {
   SNH_UNROLL
   for (int i = 0; i < 6; ++i) scale = fmax(scale, fabs(a.a[i]));
   /* Zero matrix, or NaN entries: reported as they are, identity vectors. */
-  const int nonzero = scale > SNH_R(0);
+  const snh_mask nonzero = scale > SNH_R(0);
   const real divisor = nonzero ? scale : SNH_R(1);
   sym3 m;
   SNH_UNROLL
@@ -122,7 +122,7 @@ SNH_FN_LARGE void eigen_sym3(sym3 a, vec3* values, mat3* vectors) {
 
   /* General case. */
   const real off = m.a[1] * m.a[1] + m.a[2] * m.a[2] + m.a[4] * m.a[4];
-  const int general = off > SNH_R(0);
+  const snh_mask general = off > SNH_R(0);
   const real q = (m.a[0] + m.a[3] + m.a[5]) / SNH_R(3);
   const real b00 = m.a[0] - q, b11 = m.a[3] - q, b22 = m.a[5] - q;
   const real p = sqrt((b00 * b00 + b11 * b11 + b22 * b22 + SNH_R(2) * off) / SNH_R(6));
@@ -143,7 +143,7 @@ SNH_FN_LARGE void eigen_sym3(sym3 a, vec3* values, mat3* vectors) {
    * the smallest root of the original is its negative when
    * half_det < 0. No acos / cos: those have no vector version on pocl and
    * would keep the kernels from vectorizing across work-items. */
-  const int top = half_det >= SNH_R(0);
+  const snh_mask top = half_det >= SNH_R(0);
   const real target = SNH_R(2) * fabs(half_det);
   real beta = SNH_R(2);
   SNH_UNROLL
@@ -154,8 +154,9 @@ SNH_FN_LARGE void eigen_sym3(sym3 a, vec3* values, mat3* vectors) {
   vec3 x0, y0;
   real ex0, ey0;
   eigen_sym3_complement(m, w, &x0, &ex0, &y0, &ey0);
-  const int order = ex0 > ey0;
-  const vec3 x = order ? y0 : x0, y = order ? x0 : y0;
+  const snh_mask order = ex0 > ey0;
+  const vec3 x = vec3_make(order ? y0.a[0] : x0.a[0], order ? y0.a[1] : x0.a[1], order ? y0.a[2] : x0.a[2]);
+  const vec3 y = vec3_make(order ? x0.a[0] : y0.a[0], order ? x0.a[1] : y0.a[1], order ? x0.a[2] : y0.a[2]);
   const real ex = order ? ey0 : ex0, ey = order ? ex0 : ey0;
   const real ew = vec3_dot(w, sym3_apply(m, w)); /* Rayleigh quotient */
   vec3 gv;
@@ -177,7 +178,7 @@ SNH_FN_LARGE void eigen_sym3(sym3 a, vec3* values, mat3* vectors) {
   SNH_UNROLL
   for (int k = 0; k < 3; ++k) {
     const int i = k == 1 ? 1 : 0, j = i + 1;
-    const int swap = dv.a[i] > dv.a[j];
+    const snh_mask swap = dv.a[i] > dv.a[j];
     const real vi = dv.a[i], vj = dv.a[j];
     dv.a[i] = swap ? vj : vi;
     dv.a[j] = swap ? vi : vj;

@@ -53,7 +53,7 @@ SNH_FN real svd3_column_norm2(mat3 m, int c) {
 
 /* When `swap`: swap columns p and q and negate the new column q (keeps det
  * unchanged); else leave them. A blend, not a branch. */
-SNH_FN void svd3_swap_columns_if(mat3* m, int p, int q, int swap) {
+SNH_FN void svd3_swap_columns_if(mat3* m, int p, int q, snh_mask swap) {
   SNH_UNROLL
   for (int r = 0; r < 3; ++r) {
     const real mp = M3(*m, r, p), mq = M3(*m, r, q);
@@ -66,7 +66,7 @@ SNH_FN void svd3_swap_columns_if(mat3* m, int p, int q, int swap) {
  * a = B(p, col); returns c, s with r = c a + s b >= 0 (identity when a = b = 0). */
 SNH_FN void svd3_givens(real a, real b, real* c, real* s) {
   const real r = sqrt(a * a + b * b);
-  const int nonzero = r > SNH_R(0);
+  const snh_mask nonzero = r > SNH_R(0);
   const real d = nonzero ? r : SNH_R(1);
   *c = nonzero ? a / d : SNH_R(1);
   *s = nonzero ? b / d : SNH_R(0);
@@ -92,7 +92,7 @@ SNH_FN void svd3_jacobi_pair(mat3* b, mat3* v, int p, int q) {
   const real alpha = svd3_column_norm2(*b, p);
   const real beta = svd3_column_norm2(*b, q);
   const real gamma = M3(*b, 0, p) * M3(*b, 0, q) + M3(*b, 1, p) * M3(*b, 1, q) + M3(*b, 2, p) * M3(*b, 2, q);
-  const int rotate = fabs(gamma) > SNH_EPS * sqrt(alpha * beta) && fabs(gamma) > SNH_REAL_MIN;
+  const snh_mask rotate = fabs(gamma) > SNH_EPS * sqrt(alpha * beta) && fabs(gamma) > SNH_REAL_MIN;
   const real zeta = (beta - alpha) / (SNH_R(2) * (rotate ? gamma : SNH_R(1)));
   const real t = (zeta >= SNH_R(0) ? SNH_R(1) : SNH_R(-1)) / (fabs(zeta) + sqrt(SNH_R(1) + zeta * zeta));
   const real c = SNH_R(1) / sqrt(SNH_R(1) + t * t);
@@ -116,7 +116,7 @@ SNH_FN_LARGE void svd3_rv(mat3 f, mat3* u, vec3* sigma, mat3* v) {
   /* Sort columns by decreasing length; each swap negates one column of both
    * B and V, so V stays a rotation and B = F V still holds. */
   real n0 = svd3_column_norm2(b, 0), n1 = svd3_column_norm2(b, 1), n2 = svd3_column_norm2(b, 2);
-  const int swap01 = n0 < n1;
+  const snh_mask swap01 = n0 < n1;
   svd3_swap_columns_if(&b, 0, 1, swap01);
   svd3_swap_columns_if(v, 0, 1, swap01);
   {
@@ -124,11 +124,11 @@ SNH_FN_LARGE void svd3_rv(mat3 f, mat3* u, vec3* sigma, mat3* v) {
     n0 = swap01 ? n1 : n0;
     n1 = swap01 ? t : n1;
   }
-  const int swap02 = n0 < n2;
+  const snh_mask swap02 = n0 < n2;
   svd3_swap_columns_if(&b, 0, 2, swap02);
   svd3_swap_columns_if(v, 0, 2, swap02);
   n2 = swap02 ? n0 : n2;
-  const int swap12 = n1 < n2;
+  const snh_mask swap12 = n1 < n2;
   svd3_swap_columns_if(&b, 1, 2, swap12);
   svd3_swap_columns_if(v, 1, 2, swap12);
 

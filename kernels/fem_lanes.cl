@@ -1,0 +1,183 @@
+/* The per-point kernels of fem.cl for CPU devices, written over lanes:
+ * built with SNH_LANES = 8 (snh_portable.h), so `real` holds 8 points, the
+ * 8 quadrature points of one hex8 element (one work-item per element) or
+ * the one point of 8 consecutive tet4 elements (one work-item per 8
+ * elements; lanes past the last element repeat it and store nothing), and
+ * the SVD, the material and the eigen-projection run as 8-wide SIMD. pocl's
+ * work-item vectorizer leaves the scalar kernels' per-point math scalar (its
+ * program build SLP-vectorizes the straight-line SVD into 2-wide pieces the
+ * loop vectorizer cannot widen; README, throughput), so on a CPU these
+ * kernels vectorize the math by construction instead. The math is the same
+ * source as the scalar kernels and the host reference; with FP_CONTRACT off
+ * and correctly rounded division and sqrt, each lane computes bit for bit
+ * what the scalar kernel computes at that point, apart from exp, whose
+ * vector and scalar versions may round differently
+ * (tests/test_point_lanes.cpp).
+ *
+ * Same names, arguments and outputs as fem.cl's kernels: the host picks the
+ * program and the launch (ElasticModel::set_point_lanes). Built with the
+ * same specialization defines as fem.cl (SNH_MODEL, SNH_BARRIER,
+ * SNH_NONLINEAR, SNH_REGIONS, ...); tet4 lanes hold different elements, so
+ * they need one material for the mesh (no SNH_REGIONS). */
+#include "fem/element.h"
+#include "materials/kernel_args.h"
+
+#if SNH_LANES != 8 || (!SNH_HEX8 && SNH_REGIONS)
+#error "fem_lanes.cl: SNH_LANES = 8, and tet4 only without SNH_REGIONS (a material per work-item)"
+#endif
+
+#if SNH_UNIFORM_REST
+#define REST_ELEMENT(e) 0
+#else
+#define REST_ELEMENT(e) (e)
+#endif
+
+/* Lane l of v (a private real). */
+#define LANE(v, l) (((scalar_real*)&(v))[l])
+
+#if SNH_HEX8
+/* Node values, the same in every lane. */
+SNH_FN void lanes_load_nodes(__global const scalar_real* x, __global const int* elements, size_t w, int count,
+                             real* xs) {
+  (void)count;
+  __global const int* nodes = elements + SNH_NODES * w;
+  SNH_UNROLL
+  for (int a = 0; a < SNH_NODES; ++a) {
+    SNH_UNROLL
+    for (int i = 0; i < 3; ++i) xs[3 * a + i] = (real)(x[3 * nodes[a] + i]);
+  }
+}
+
+/* Rest gradients: lane q holds point q's (layout [element][q][a][3]). */
+SNH_FN void lanes_load_gradients(__global const scalar_real* gradients, size_t w, int count, real* g) {
+  (void)count;
+  __global const scalar_real* src = gradients + (size_t)3 * SNH_NODES * SNH_QUADRATURE * REST_ELEMENT(w);
+  SNH_UNROLL
+  for (int i = 0; i < 3 * SNH_NODES; ++i) {
+    SNH_UNROLL
+    for (int q = 0; q < SNH_QUADRATURE; ++q) LANE(g[i], q) = src[3 * SNH_NODES * q + i];
+  }
+}
+
+SNH_FN real lanes_load_weights(__global const scalar_real* weights, size_t w, int count) {
+  (void)count;
+  return vload8(0, weights + SNH_QUADRATURE * REST_ELEMENT(w));
+}
+
+/* Work-item w's first point and how many lanes it stores. */
+#define LANES_FIRST_POINT(w) (SNH_QUADRATURE * (w))
+#define LANES_STORED(w, count) SNH_QUADRATURE
+#define LANES_ELEMENT(w) (w)
+#define LANES_ACTIVE(w, count) ((w) < (size_t)(count))
+#else
+/* The element of lane l of work-item w (the last one past the end). */
+SNH_FN size_t lanes_element(size_t w, int l, int count) { return min(8 * w + l, (size_t)count - 1); }
+
+SNH_FN void lanes_load_nodes(__global const scalar_real* x, __global const int* elements, size_t w, int count,
+                             real* xs) {
+  SNH_UNROLL
+  for (int l = 0; l < 8; ++l) {
+    __global const int* nodes = elements + SNH_NODES * lanes_element(w, l, count);
+    SNH_UNROLL
+    for (int a = 0; a < SNH_NODES; ++a) {
+      SNH_UNROLL
+      for (int i = 0; i < 3; ++i) LANE(xs[3 * a + i], l) = x[3 * nodes[a] + i];
+    }
+  }
+}
+
+SNH_FN void lanes_load_gradients(__global const scalar_real* gradients, size_t w, int count, real* g) {
+  SNH_UNROLL
+  for (int l = 0; l < 8; ++l) {
+    __global const scalar_real* src = gradients + (size_t)3 * SNH_NODES * REST_ELEMENT(lanes_element(w, l, count));
+    SNH_UNROLL
+    for (int i = 0; i < 3 * SNH_NODES; ++i) LANE(g[i], l) = src[i];
+  }
+}
+
+SNH_FN real lanes_load_weights(__global const scalar_real* weights, size_t w, int count) {
+  real out;
+  SNH_UNROLL
+  for (int l = 0; l < 8; ++l) LANE(out, l) = weights[REST_ELEMENT(lanes_element(w, l, count))];
+  return out;
+}
+
+#define LANES_FIRST_POINT(w) (8 * (w))
+#define LANES_STORED(w, count) ((int)min((size_t)8, (size_t)(count)-8 * (w)))
+#define LANES_ELEMENT(w) (8 * (w))
+#define LANES_ACTIVE(w, count) (8 * (w) < (size_t)(count))
+#endif
+
+/* Lanes 0 .. lanes - 1 at out + 30 l (fem.cl's layout: point q of element e
+ * at cache + 30 (SNH_QUADRATURE e + q)). */
+SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __global scalar_real* out) {
+  SNH_UNROLL
+  for (int l = 0; l < 8; ++l) {
+    if (l >= lanes) break;
+    __global scalar_real* o = out + SNH_LINEARIZATION_SIZE * l;
+    SNH_UNROLL
+    for (int i = 0; i < 9; ++i) o[i] = LANE(h->u.a[i], l);
+    SNH_UNROLL
+    for (int i = 0; i < 9; ++i) o[9 + i] = LANE(h->v.a[i], l);
+    SNH_UNROLL
+    for (int i = 0; i < 6; ++i) o[18 + i] = LANE(h->block.a[i], l);
+    SNH_UNROLL
+    for (int i = 0; i < 3; ++i) o[24 + i] = LANE(h->twist.a[i], l);
+    SNH_UNROLL
+    for (int i = 0; i < 3; ++i) o[27 + i] = LANE(h->flip.a[i], l);
+  }
+}
+
+/* fem.cl's snh_element_linearize. */
+__kernel void snh_element_linearize(__global const scalar_real* x, __global const int* elements,
+                                    __global const scalar_real* gradients, const int count, MATERIAL_ARGS,
+                                    const int project, __global scalar_real* cache) {
+  const size_t w = get_global_id(0);
+  if (!LANES_ACTIVE(w, count)) return;
+  const size_t e = LANES_ELEMENT(w);
+  real xs[3 * SNH_NODES], g[3 * SNH_NODES];
+  lanes_load_nodes(x, elements, w, count, xs);
+  lanes_load_gradients(gradients, w, count, g);
+  principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
+                                                   element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
+  if (project) h = principal_hessian_project(h);
+  lanes_linearization_store(&h, LANES_STORED(w, count), cache + (size_t)SNH_LINEARIZATION_SIZE * LANES_FIRST_POINT(w));
+}
+
+/* fem.cl's snh_element_product_recompute. A hex8 element's points are
+ * summed in the scalar kernel's order (point 0 first). */
+__kernel void snh_element_product_recompute(__global const scalar_real* p, __global const int* elements,
+                                            __global const scalar_real* gradients, __global const scalar_real* weights,
+                                            const int count, __global const scalar_real* x, MATERIAL_ARGS,
+                                            const int project, __global scalar_real* out) {
+  const size_t w = get_global_id(0);
+  if (!LANES_ACTIVE(w, count)) return;
+  const size_t e = LANES_ELEMENT(w);
+  real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
+  lanes_load_nodes(x, elements, w, count, xs);
+  lanes_load_nodes(p, elements, w, count, ps);
+  lanes_load_gradients(gradients, w, count, g);
+  SNH_UNROLL
+  for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
+  principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
+                                                   element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
+  if (project) h = principal_hessian_project(h);
+  element_product(&h, ps, g, lanes_load_weights(weights, w, count), y);
+#if SNH_HEX8
+  SNH_UNROLL
+  for (int i = 0; i < 3 * SNH_NODES; ++i) {
+    scalar_real sum = LANE(y[i], 0);
+    SNH_UNROLL
+    for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(y[i], q);
+    out[3 * SNH_NODES * w + i] = sum;
+  }
+#else
+  const int lanes = LANES_STORED(w, count);
+  SNH_UNROLL
+  for (int l = 0; l < 8; ++l) {
+    if (l >= lanes) break;
+    SNH_UNROLL
+    for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * (8 * w + l) + i] = LANE(y[i], l);
+  }
+#endif
+}

@@ -1,0 +1,273 @@
+// Per-point lanes (kernels/fem_lanes.cl, ElasticModel::set_point_lanes): the
+// linearization and recompute product over 8-wide vectors, a lane per
+// quadrature point of a hex8 element or per tet4 element, against fem.cl's
+// scalar kernels on the same device.
+// Every lane runs the scalar kernel's operations on the same values (no
+// contraction, correctly rounded division and square root), so the
+// linearization cache and the products must be equal value for value, not
+// merely close, except where a material calls exp (Fung): OpenCL's exp is
+// not correctly rounded, and pocl's vector and scalar versions differ in the
+// last place at some arguments (seen: 1 to 2 ulp of the entry), so there
+// the bound is 1e-14 of the largest entry (the eigensystem and the product
+// carry such a difference to every entry of a point). For every model, the seed 004 path, materials per region and
+// the run-time material kernel, at projected and true-Hessian
+// linearizations, on a lattice with jittered rest shapes (no shared rest
+// data) and a uniform one and on tet4 boxes whose element count is not a
+// multiple of 8, with large rotations and stretches, an inverted element and
+// a collapsed one.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "device_test_support.h"
+#include "fem/rest_state.h"
+#include "snh/error.h"
+#include "snh/material.h"
+#include "snh/mesh.h"
+#include "snh/regions.h"
+#include "solver/elastic_model.h"
+
+namespace snh::test {
+namespace {
+
+template <typename Real>
+constexpr Precision precision_of = std::is_same_v<Real, double> ? Precision::double_ : Precision::single;
+
+constexpr double kH = 0.5;
+
+Mesh jittered_lattice() {
+  Mesh mesh = make_box_lattice(3, 2, 2, kH);
+  std::mt19937_64 rng(4711);
+  std::uniform_real_distribution<double> u(-0.1 * kH, 0.1 * kH);
+  for (double& c : mesh.positions) c += u(rng);
+  return mesh;
+}
+
+// Positions that reach every branch of the per-point math: a rotation by
+// 2.5 rad about a skew axis with a stretch of 1.8 / 0.6, random noise of
+// 0.2 h, element 0 inverted (a node pushed through its centroid) and the
+// last element flattened (a node moved onto another: J near 0).
+std::vector<double> hard_positions(const Mesh& mesh) {
+  std::vector<double> x(mesh.positions.size());
+  const double c = std::cos(2.5), s = std::sin(2.5);
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> u(-0.2 * kH, 0.2 * kH);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const double px = 1.8 * mesh.positions[3 * v], py = 0.6 * mesh.positions[3 * v + 1], pz = mesh.positions[3 * v + 2];
+    x[3 * v] = c * px - s * pz + u(rng);
+    x[3 * v + 1] = py + u(rng);
+    x[3 * v + 2] = s * px + c * pz + u(rng);
+  }
+  const int n = nodes_per_element(mesh.type);
+  const int32_t* e0 = &mesh.elements[0];
+  for (int i = 0; i < 3; ++i) {
+    double centroid = 0.0;
+    for (int a = 0; a < n; ++a) centroid += x[3 * e0[a] + i] / n;
+    x[3 * e0[0] + i] += 1.7 * (centroid - x[3 * e0[0] + i]);
+  }
+  // The last element flattened: its last node moved onto its first.
+  const int32_t* last = &mesh.elements[n * (mesh.element_count() - 1)];
+  for (int i = 0; i < 3; ++i) x[3 * last[n - 1] + i] = x[3 * last[0] + i] + 1e-7 * (i + 1);
+  return x;
+}
+
+template <typename Real>
+viennacl::vector<Real> upload(const std::vector<double>& v) {
+  const std::vector<Real> r(v.begin(), v.end());
+  viennacl::vector<Real> d(r.size());
+  viennacl::copy(r.begin(), r.end(), d.begin());
+  return d;
+}
+
+template <typename Real>
+std::vector<Real> download(const viennacl::vector<Real>& d) {
+  std::vector<Real> r(d.size());
+  viennacl::copy(d.begin(), d.end(), r.begin());
+  return r;
+}
+
+template <typename Real>
+struct Outputs {
+  std::vector<Real> cache[2];    // projected, true Hessian
+  std::vector<Real> product[2];  // recompute product at each
+};
+
+template <typename Real>
+Outputs<Real> run(solver::ElasticModel<Real>& model, int quadrature, const std::vector<double>& x,
+                  const std::vector<double>& p) {
+  Outputs<Real> out;
+  device::OpenClContext& cl = device_for(precision_of<Real>);
+  const viennacl::vector<Real> xd = upload<Real>(x), pd = upload<Real>(p);
+  model.set_variant(ProductVariant::recompute);
+  for (int projected = 0; projected < 2; ++projected) {
+    model.linearize(xd, projected == 0);
+    std::vector<Real>& cache = out.cache[projected];
+    cache.resize(model.element_count() * quadrature * 30);
+    cl.read(model.cache_buffer(), cache.size() * sizeof(Real), cache.data());
+    viennacl::vector<Real> y(model.dofs());
+    model.product(pd, y);
+    out.product[projected] = download(y);
+  }
+  return out;
+}
+
+// relative: 0 (equal values) or the bound on the largest difference
+// relative to the largest entry.
+template <typename Real>
+void expect_equal_values(const std::vector<Real>& lanes, const std::vector<Real>& scalar, double relative,
+                         const std::string& what) {
+  ASSERT_EQ(lanes.size(), scalar.size()) << what;
+  size_t differ = 0, first = lanes.size();
+  double largest = 0.0, worst = 0.0;
+  for (size_t i = 0; i < lanes.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(scalar[i])) << what << " entry " << i;
+    largest = std::max(largest, std::abs(static_cast<double>(scalar[i])));
+    worst = std::max(worst, std::abs(static_cast<double>(lanes[i]) - static_cast<double>(scalar[i])));
+    if (lanes[i] != scalar[i]) {
+      ++differ;
+      first = std::min(first, i);
+    }
+  }
+  if (relative == 0.0) {
+    EXPECT_EQ(differ, 0u) << what << ": first at " << first << ", lanes " << lanes[first] << " scalar "
+                          << scalar[first];
+  } else {
+    EXPECT_LE(worst, relative * largest) << what << " (" << differ << " entries differ)";
+  }
+}
+
+bool calls_exp(const MaterialMap& map) {
+  for (const Material& m : map.materials)
+    if (m.model == MaterialModel::fung || m.lambda_model == MaterialModel::fung) return true;
+  return false;
+}
+
+Material with(MaterialModel model, double alpha = 1.0, std::optional<MaterialModel> lambda_model = std::nullopt,
+              double alpha_lambda = 1.0) {
+  MaterialOptions o;
+  o.alpha = alpha;
+  o.lambda_model = lambda_model;
+  o.alpha_lambda = alpha_lambda;
+  return Material::from_youngs_modulus(model, 1.0, 0.45, o);
+}
+
+using Maps = std::vector<std::pair<std::string, MaterialMap>>;
+
+// maps: materials over `meshes[0]`'s elements (the meshes have one element count).
+template <typename Real>
+void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::MaterialKernel build) {
+  for (const Mesh& mesh : meshes) {
+    const fem::RestState rest = fem::compute_rest_state(mesh);
+    const std::vector<double> x = hard_positions(mesh);
+    std::vector<double> p(x.size());
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (double& c : p) c = u(rng);
+    for (const auto& [name, map] : maps) {
+      SCOPED_TRACE(name + " / " + to_string(mesh.type) + (rest.uniform ? " uniform rest" : " own rest shapes"));
+      solver::ElasticModel<Real> model(device_for(precision_of<Real>), mesh, rest, map, ProductVariant::recompute,
+                                       build);
+      EXPECT_TRUE(model.point_lanes()) << "the default on a CPU device";
+      model.set_point_lanes(true);
+      const Outputs<Real> lanes = run(model, rest.quadrature, x, p);
+      model.set_point_lanes(false);
+      const Outputs<Real> scalar = run(model, rest.quadrature, x, p);
+      const double relative = calls_exp(map) ? 1e-14 : 0.0;
+      for (int k = 0; k < 2; ++k) {
+        const std::string at = k == 0 ? "projected" : "true Hessian";
+        expect_equal_values(lanes.cache[k], scalar.cache[k], relative, "linearization, " + at);
+        expect_equal_values(lanes.product[k], scalar.product[k], relative, "recompute product, " + at);
+      }
+    }
+  }
+}
+
+MaterialMap two_regions(const Mesh& mesh, const Material& base, const Material& other) {
+  MaterialMap map = uniform_material(mesh, base);
+  map.materials.push_back(other);
+  map.names.push_back("other");
+  for (size_t e = 0; e < mesh.element_count(); e += 2) map.element_material[e] = 1;
+  return map;
+}
+
+std::vector<Mesh> hex_meshes() { return {jittered_lattice(), make_box_lattice(3, 2, 2, kH)}; }
+
+// 3 x 2 x 1 cubes of 6 tetrahedra: 36 elements, the last work-item's lanes
+// half full.
+std::vector<Mesh> tet_meshes() {
+  Mesh jittered = make_tet_box(3, 2, 1, kH);
+  std::mt19937_64 rng(4711);
+  std::uniform_real_distribution<double> u(-0.1 * kH, 0.1 * kH);
+  for (double& c : jittered.positions) c += u(rng);
+  return {jittered, make_tet_box(3, 2, 1, kH)};
+}
+
+Maps every_model(const Mesh& mesh) {
+  Maps maps;
+  for (MaterialModel m : {MaterialModel::stable_neo_hookean, MaterialModel::fung, MaterialModel::arruda_boyce,
+                          MaterialModel::corotational, MaterialModel::fixed_corotational, MaterialModel::stvk_kikuuwe,
+                          MaterialModel::neohookean})
+    maps.push_back({to_string(m), uniform_material(mesh, with(m))});
+  // Seed 004: alpha below and above 1, and mixed parts with two alphas.
+  maps.push_back({"snh alpha 0.5", uniform_material(mesh, with(MaterialModel::stable_neo_hookean, 0.5))});
+  maps.push_back({"fung alpha 2.5", uniform_material(mesh, with(MaterialModel::fung, 2.5))});
+  maps.push_back({"neohookean 1.2 + fung lambda 3.0",
+                  uniform_material(mesh, with(MaterialModel::neohookean, 1.2, MaterialModel::fung, 3.0))});
+  return maps;
+}
+
+TEST(PointLanes, EveryModelMatchesTheScalarKernelsDouble) {
+  const std::vector<Mesh> hexes = hex_meshes();
+  Maps maps = every_model(hexes[0]);
+  // Materials per region (per-element parameters).
+  maps.push_back({"regions", two_regions(hexes[0], with(MaterialModel::stable_neo_hookean),
+                                         Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 3.0, 0.49))});
+  check_cases<double>(hexes, maps, device::MaterialKernel::specialized);
+  const std::vector<Mesh> tets = tet_meshes();
+  check_cases<double>(tets, every_model(tets[0]), device::MaterialKernel::specialized);
+}
+
+TEST(PointLanes, RunTimeMaterialKernelMatchesDouble) {
+  // One kernel for every material: model, barrier and path read per element
+  // (hex8) or from the arguments (tet4).
+  const std::vector<Mesh> hexes = hex_meshes();
+  check_cases<double>(hexes,
+                      {{"runtime regions of two models",
+                        two_regions(hexes[0], with(MaterialModel::fung), with(MaterialModel::corotational, 0.7))}},
+                      device::MaterialKernel::runtime);
+  const std::vector<Mesh> tets = tet_meshes();
+  check_cases<double>(tets, {{"runtime fung", uniform_material(tets[0], with(MaterialModel::fung, 0.7))}},
+                      device::MaterialKernel::runtime);
+}
+
+TEST(PointLanes, FloatMatchesTheScalarKernels) {
+  for (const std::vector<Mesh>& meshes : {hex_meshes(), tet_meshes()}) {
+    check_cases<float>(
+        meshes,
+        {{"snh", uniform_material(meshes[0], with(MaterialModel::stable_neo_hookean))},
+         {"stvk alpha 0.5 + snh lambda 1.5",
+          uniform_material(meshes[0], with(MaterialModel::stvk_kikuuwe, 0.5, MaterialModel::stable_neo_hookean, 1.5))}},
+        device::MaterialKernel::specialized);
+  }
+}
+
+TEST(PointLanes, Tet4RegionsKeepTheScalarKernels) {
+  // tet4 lanes are 8 elements: one material per work-item.
+  const Mesh mesh = make_tet_box(2, 2, 2, kH);
+  solver::ElasticModel<double> model(
+      device_for(Precision::double_), mesh, fem::compute_rest_state(mesh),
+      two_regions(mesh, with(MaterialModel::stable_neo_hookean), with(MaterialModel::stable_neo_hookean, 1.0)),
+      ProductVariant::recompute);
+  EXPECT_FALSE(model.point_lanes());
+  EXPECT_THROW(model.set_point_lanes(true), Error);
+  model.set_point_lanes(false);
+}
+
+}  // namespace
+}  // namespace snh::test
