@@ -1,4 +1,5 @@
-/* The per-point kernels of fem.cl for CPU devices, written over lanes:
+/* The per-point kernels of fem.cl for CPU devices (the linearization, the
+ * recompute product and the element matrices), written over lanes:
  * built with SNH_LANES = 8 (snh_portable.h), so `real` holds 8 points, the
  * 8 quadrature points of one hex8 element (one work-item per element) or
  * the one point of 8 consecutive tet4 elements (one work-item per 8
@@ -180,4 +181,76 @@ __kernel void snh_element_product_recompute(__global const scalar_real* p, __glo
     for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * (8 * w + l) + i] = LANE(y[i], l);
   }
 #endif
+}
+
+/* Lanes 0 .. lanes - 1 from in + 30 l; the lanes past them repeat the last. */
+SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in, int lanes) {
+  principal_hessian h;
+  SNH_UNROLL
+  for (int l = 0; l < 8; ++l) {
+    __global const scalar_real* s = in + SNH_LINEARIZATION_SIZE * min(l, lanes - 1);
+    SNH_UNROLL
+    for (int i = 0; i < 9; ++i) LANE(h.u.a[i], l) = s[i];
+    SNH_UNROLL
+    for (int i = 0; i < 9; ++i) LANE(h.v.a[i], l) = s[9 + i];
+    SNH_UNROLL
+    for (int i = 0; i < 6; ++i) LANE(h.block.a[i], l) = s[18 + i];
+    SNH_UNROLL
+    for (int i = 0; i < 3; ++i) LANE(h.twist.a[i], l) = s[24 + i];
+    SNH_UNROLL
+    for (int i = 0; i < 3; ++i) LANE(h.flip.a[i], l) = s[27 + i];
+  }
+  SNH_UNROLL
+  for (int i = 0; i < 3; ++i) h.sigma.a[i] = SNH_R(0);
+  return h;
+}
+
+/* fem.cl's snh_element_matrices: the stiffness from the cached
+ * linearization, column by column (element.h's rank-one columns), the
+ * points in lanes; a hex8 column's points summed in the scalar kernel's
+ * order. */
+#define SNH_DOFS (3 * SNH_NODES)
+__kernel void snh_element_matrices(__global const int* elements, __global const scalar_real* gradients,
+                                   __global const scalar_real* weights, const int count,
+                                   __global const scalar_real* cache, __global scalar_real* out,
+                                   __global scalar_real* diagonal_blocks) {
+  (void)elements;
+  const size_t w = get_global_id(0);
+  if (!LANES_ACTIVE(w, count)) return;
+  const int lanes = LANES_STORED(w, count);
+  real g[SNH_DOFS], vg[SNH_DOFS];
+  lanes_load_gradients(gradients, w, count, g);
+  const real qw = lanes_load_weights(weights, w, count);
+  const principal_hessian h =
+      lanes_linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * LANES_FIRST_POINT(w), lanes);
+  element_rotated_gradients(&h, g, vg);
+  for (int b = 0; b < SNH_NODES; ++b)
+    for (int d = 0; d < 3; ++d) {
+      real column[SNH_DOFS];
+      SNH_UNROLL
+      for (int i = 0; i < SNH_DOFS; ++i) column[i] = SNH_R(0);
+      element_column_scatter(element_column_frame(&h, vg, b, d), vg, qw, column);
+#if SNH_HEX8
+      __global scalar_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * w + SNH_DOFS * (3 * b + d);
+      __global scalar_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * w + 9 * b + 3 * d;
+      SNH_UNROLL
+      for (int i = 0; i < SNH_DOFS; ++i) {
+        scalar_real sum = LANE(column[i], 0);
+        SNH_UNROLL
+        for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(column[i], q);
+        k[i] = sum;
+        if (i / 3 == b) block[i % 3] = sum;
+      }
+#else
+      for (int l = 0; l < lanes; ++l) {
+        const size_t e = 8 * w + l;
+        __global scalar_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e + SNH_DOFS * (3 * b + d);
+        SNH_UNROLL
+        for (int i = 0; i < SNH_DOFS; ++i) k[i] = LANE(column[i], l);
+        SNH_UNROLL
+        for (int i = 0; i < 3; ++i)
+          diagonal_blocks[(size_t)9 * SNH_NODES * e + 9 * b + 3 * d + i] = LANE(column[3 * b + i], l);
+      }
+#endif
+    }
 }

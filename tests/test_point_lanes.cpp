@@ -1,5 +1,5 @@
 // Per-point lanes (kernels/fem_lanes.cl, ElasticModel::set_point_lanes): the
-// linearization and recompute product over 8-wide vectors, a lane per
+// linearization, recompute product and element matrices over 8-wide vectors, a lane per
 // quadrature point of a hex8 element or per tet4 element, against fem.cl's
 // scalar kernels on the same device.
 // Every lane runs the scalar kernel's operations on the same values (no
@@ -94,12 +94,14 @@ std::vector<Real> download(const viennacl::vector<Real>& d) {
 
 template <typename Real>
 struct Outputs {
-  std::vector<Real> cache[2];    // projected, true Hessian
-  std::vector<Real> product[2];  // recompute product at each
+  std::vector<Real> cache[2];     // projected, true Hessian
+  std::vector<Real> product[2];   // recompute product at each
+  std::vector<Real> matrices[2];  // element matrices at each
+  std::vector<Real> blocks[2];    // and their diagonal blocks
 };
 
 template <typename Real>
-Outputs<Real> run(solver::ElasticModel<Real>& model, int quadrature, const std::vector<double>& x,
+Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, int quadrature, const std::vector<double>& x,
                   const std::vector<double>& p) {
   Outputs<Real> out;
   device::OpenClContext& cl = device_for(precision_of<Real>);
@@ -113,6 +115,16 @@ Outputs<Real> run(solver::ElasticModel<Real>& model, int quadrature, const std::
     viennacl::vector<Real> y(model.dofs());
     model.product(pd, y);
     out.product[projected] = download(y);
+    const size_t n = 3 * static_cast<size_t>(nodes);
+    std::vector<Real>& k = out.matrices[projected];
+    std::vector<Real>& b = out.blocks[projected];
+    k.resize(model.element_count() * n * n);
+    b.resize(model.element_count() * 3 * n);
+    device::Buffer kd = cl.buffer(CL_MEM_READ_WRITE, k.size() * sizeof(Real));
+    device::Buffer bd = cl.buffer(CL_MEM_READ_WRITE, b.size() * sizeof(Real));
+    model.element_matrices_into(kd.get(), bd.get());
+    cl.read(kd.get(), k.size() * sizeof(Real), k.data());
+    cl.read(bd.get(), b.size() * sizeof(Real), b.data());
   }
   return out;
 }
@@ -175,14 +187,17 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
                                        build);
       EXPECT_TRUE(model.point_lanes()) << "the default on a CPU device";
       model.set_point_lanes(true);
-      const Outputs<Real> lanes = run(model, rest.quadrature, x, p);
+      const int nodes = nodes_per_element(mesh.type);
+      const Outputs<Real> lanes = run(model, nodes, rest.quadrature, x, p);
       model.set_point_lanes(false);
-      const Outputs<Real> scalar = run(model, rest.quadrature, x, p);
+      const Outputs<Real> scalar = run(model, nodes, rest.quadrature, x, p);
       const double relative = calls_exp(map) ? 1e-14 : 0.0;
       for (int k = 0; k < 2; ++k) {
         const std::string at = k == 0 ? "projected" : "true Hessian";
         expect_equal_values(lanes.cache[k], scalar.cache[k], relative, "linearization, " + at);
         expect_equal_values(lanes.product[k], scalar.product[k], relative, "recompute product, " + at);
+        expect_equal_values(lanes.matrices[k], scalar.matrices[k], relative, "element matrices, " + at);
+        expect_equal_values(lanes.blocks[k], scalar.blocks[k], relative, "diagonal blocks, " + at);
       }
     }
   }

@@ -100,7 +100,6 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   gather_k_ = cl_.kernel("fem.cl", defines_, "snh_gather_vectors");
   setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
   apply_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_apply");
-  matrices_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrices");
   matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
   if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
@@ -150,6 +149,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   const std::string defines = on ? elastic_defines_ + " -DSNH_LANES=8" : defines_;
   linearize_k_ = cl_.kernel(file, defines, "snh_element_linearize");
   product_recompute_k_ = cl_.kernel(file, defines, "snh_element_product_recompute");
+  matrices_k_ = cl_.kernel(file, defines, "snh_element_matrices");
 }
 
 template <typename Real>
@@ -228,7 +228,7 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
   set_arg(k, 4, cache_.get());
   set_arg(k, 5, matrices);
   set_arg(k, 6, diagonal_blocks);
-  run_element_kernel(k);
+  run_point_kernel(k);
 }
 
 template <typename Real>

@@ -168,8 +168,8 @@ class ElasticModel {
   ProductVariant variant() const { return variant_; }
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);
-  // Per-point lanes (kernels/fem_lanes.cl): the linearization and the
-  // recompute product over 8-wide vectors, a lane per quadrature point of a
+  // Per-point lanes (kernels/fem_lanes.cl): the linearization, the
+  // recompute product and the element matrices over 8-wide vectors, a lane per quadrature point of a
   // hex8 element or per tet4 element, the scalar kernels' results bit for
   // bit (but for exp's rounding). On by default on CPU devices (where pocl
   // leaves the scalar kernels' per-point math unvectorized), off on GPUs.
@@ -198,7 +198,8 @@ class ElasticModel {
 
  private:
   void run_element_kernel(cl_kernel k) const;
-  // The same for the kernels fem_lanes.cl also has (linearize, recompute).
+  // The same for the kernels fem_lanes.cl also has (linearize, recompute,
+  // element matrices).
   void run_point_kernel(cl_kernel k) const;
   // Per-element elastic forces at x into element_scratch_ (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
