@@ -6,10 +6,11 @@
 // contraction, correctly rounded division and square root), so the
 // linearization cache and the products must be equal value for value, not
 // merely close, except where a material calls exp (Fung): OpenCL's exp is
-// not correctly rounded, and pocl's vector and scalar versions differ in the
-// last place at some arguments (seen: 1 to 2 ulp of the entry), so there
-// the bound is 1e-14 of the largest entry (the eigensystem and the product
-// carry such a difference to every entry of a point). For every model, the seed 004 path, materials per region and
+// not correctly rounded, and pocl's vector and scalar versions round
+// differently at some arguments; the point's SVD frame, eigensystem and
+// product carry that to its other entries (largest difference seen: 5.6e-17
+// with entries of order 1), so there the bound is 1e-14 of the largest
+// entry. For every model, the seed 004 path, materials per region and
 // the run-time material kernel, at projected and true-Hessian
 // linearizations, on a lattice with jittered rest shapes (no shared rest
 // data) and a uniform one and on tet4 boxes whose element count is not a
