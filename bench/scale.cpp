@@ -60,8 +60,7 @@ SolveOptions solve_options(const Scene& scene, const ScaleOptions& o, Preconditi
   options.precision = parse_precision(o.precision);
   options.device.match = o.device;
   options.preconditioner = preconditioner;
-  if (o.multigrid_rebuild_every > 0) options.multigrid.rebuild_every = o.multigrid_rebuild_every;
-  options.multigrid.fine_level = parse_multigrid_fine_level(o.multigrid_fine_level);
+  o.multigrid.apply(options.multigrid);
   return options;
 }
 
@@ -395,16 +394,7 @@ void add_scale_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");
-  cmd->add_option("--multigrid-rebuild-every", o->multigrid_rebuild_every,
-                  "multigrid: rebuild the hierarchy at least every N Newton linearizations (1: every one; default: "
-                  "MultigridOptions::rebuild_every)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--multigrid-fine-level", o->multigrid_fine_level,
-                  "multigrid: the V-cycle's fine level, built (the build's element matrices, frozen with the coarse "
-                  "levels), current (the product of each linearization) or automatic (built unless the scene has "
-                  "inertia or obstacles)")
-      ->check(CLI::IsMember({"automatic", "built", "current"}))
-      ->capture_default_str();
+  o->multigrid.add_to(cmd);
   cmd->add_option("--out", o->out_dir, "folder for scale.csv, scale.json, scale.md and scale.png")
       ->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "do not draw scale.png");

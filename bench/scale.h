@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "multigrid_flags.h"
 #include "snh/simulation.h"
 
 namespace snh::bench {
@@ -24,12 +25,11 @@ struct ScaleOptions {
   long long max_dofs = 0;
   double youngs_modulus = 1.0;
   double poisson_ratio = 0.49;
-  std::string precision = "double";                // float or double
-  std::string device;                              // substring of "<platform> / <device>"
-  int multigrid_rebuild_every = 0;                 // > 0: MultigridOptions::rebuild_every
-  std::string multigrid_fine_level = "automatic";  // MultigridOptions::fine_level
-  std::string out_dir = "bench-results";           // scale.* written here
-  bool plots = true;                               // run bench/plot_scale.py
+  std::string precision = "double";       // float or double
+  std::string device;                     // substring of "<platform> / <device>"
+  MultigridFlags multigrid;               // --multigrid-* (multigrid_flags.h)
+  std::string out_dir = "bench-results";  // scale.* written here
+  bool plots = true;                      // run bench/plot_scale.py
 };
 
 // One scene at one resolution with one preconditioner.

@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "material_options.h"
+#include "multigrid_flags.h"
 #include "obstacle_surface.h"
 #include "profile_json.h"
 #include "rig_frames.h"
@@ -58,8 +59,7 @@ struct SceneOptions {
   std::string device;
   std::string variant = "automatic";
   std::string preconditioner = "automatic";
-  int multigrid_rebuild_every = 0;  // 0: MultigridOptions' default
-  std::string multigrid_fine_level = "automatic";
+  MultigridFlags multigrid;  // --multigrid-* (multigrid_flags.h)
   double strain_tolerance = 0.0;
   double relative_tolerance = -1.0;
   double absolute_tolerance = -1.0;
@@ -106,8 +106,10 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["barrier"] = scene.material.barrier;
   j["product"] = to_string(r.product);
   j["preconditioner"] = to_string(r.preconditioner);
-  if (r.preconditioner == Preconditioner::multigrid)
+  if (r.preconditioner == Preconditioner::multigrid) {
     j["multigrid_fine_level"] = to_string(options.multigrid.fine_level);  // as requested (automatic: README)
+    j["multigrid_fine_float"] = options.multigrid.fine_level_float;
+  }
   j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
   if (options.dynamics) {
     const DynamicsOptions& d = *options.dynamics;
@@ -226,8 +228,7 @@ int run_scene(const SceneOptions& given) {
     if (o.surface_prefix.empty()) o.surface_prefix = f.surface_prefix;
     if (!o.surface_prefix.empty() && !f.embedded) throw Error("scene: --surface needs a scene with \"embed\"");
     options.device.match = o.device;
-    if (o.multigrid_rebuild_every > 0) options.multigrid.rebuild_every = o.multigrid_rebuild_every;
-    options.multigrid.fine_level = parse_multigrid_fine_level(o.multigrid_fine_level);
+    o.multigrid.apply(options.multigrid);
     if (f.rig) return run_rig_scene(f, options, {o.vtu_dir, o.json_path, o.surface_prefix, o.frames});
   } else {
     if (!o.surface_prefix.empty()) throw Error("scene: --surface needs a scene file with \"embed\"");
@@ -251,8 +252,7 @@ int run_scene(const SceneOptions& given) {
     options.device.match = o.device;
     options.product = parse_product_variant(o.variant);
     options.preconditioner = parse_preconditioner(o.preconditioner);
-    if (o.multigrid_rebuild_every > 0) options.multigrid.rebuild_every = o.multigrid_rebuild_every;
-    options.multigrid.fine_level = parse_multigrid_fine_level(o.multigrid_fine_level);
+    o.multigrid.apply(options.multigrid);
     if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
     if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
     if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
@@ -475,16 +475,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
                   "automatic (measured default), block-jacobi, multigrid (hex8 lattices) or none")
       ->check(CLI::IsMember({"automatic", "block-jacobi", "multigrid", "none"}))
       ->capture_default_str();
-  cmd->add_option("--multigrid-rebuild-every", o->multigrid_rebuild_every,
-                  "multigrid: rebuild the hierarchy at least every N Newton linearizations (1: every one; default: "
-                  "MultigridOptions::rebuild_every)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--multigrid-fine-level", o->multigrid_fine_level,
-                  "multigrid: the V-cycle's fine level, built (the build's element matrices, frozen with the coarse "
-                  "levels), current (the product of each linearization) or automatic (built unless the scene has "
-                  "inertia or obstacles)")
-      ->check(CLI::IsMember({"automatic", "built", "current"}))
-      ->capture_default_str();
+  o->multigrid.add_to(cmd);
   cmd->add_option(
       "--strain-tol", o->strain_tolerance,
       "stop at the residual of this strain error, |r| <= tol E h^2 sqrt(vertices) (default 1e-6; float 1e-4)");

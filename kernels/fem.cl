@@ -331,7 +331,7 @@ __kernel void snh_block_jacobi_apply(__global const real* inverse, __global cons
 #define SNH_DOFS (3 * SNH_NODES)
 __kernel void snh_element_matrices(__global const int* elements, __global const real* gradients,
                                    __global const real* weights, const int count, __global const real* cache,
-                                   __global real* out, __global real* diagonal_blocks) {
+                                   __global matrix_real* out, __global real* diagonal_blocks) {
   const int e = get_global_id(0);
   if (e >= count) return;
   element_linearization l;
@@ -339,28 +339,28 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
   /* Column by column, summed over the points in private memory and written
    * once; its diagonal block's entries (rows of node b) go to the
    * block-Jacobi blocks as well. */
-  __global real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
+  __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
   for (int b = 0; b < SNH_NODES; ++b)
     for (int d = 0; d < 3; ++d) {
       real column[SNH_DOFS];
       element_stiffness_column(&l, b, d, column);
-      for (int i = 0; i < SNH_DOFS; ++i) k[SNH_DOFS * (3 * b + d) + i] = column[i];
+      for (int i = 0; i < SNH_DOFS; ++i) element_matrix_store(k, SNH_DOFS, 3 * b + d, i, column[i]);
       for (int i = 0; i < 3; ++i) diagonal_blocks[(size_t)9 * SNH_NODES * e + 9 * b + 3 * d + i] = column[3 * b + i];
     }
 }
 
 /* y_e = K_e p_e from the stored element matrices. */
 __kernel void snh_element_matrix_product(__global const real* p, __global const int* elements,
-                                         __global const real* matrices, const int count, __global real* out) {
+                                         __global const matrix_real* matrices, const int count, __global real* out) {
   const int e = get_global_id(0);
   if (e >= count) return;
   real ps[SNH_DOFS], y[SNH_DOFS];
   load_nodes(p, elements + SNH_NODES * e, ps);
   for (int i = 0; i < SNH_DOFS; ++i) y[i] = SNH_R(0);
-  __global const real* k = matrices + (size_t)SNH_DOFS * SNH_DOFS * e;
+  __global const matrix_real* k = matrices + (size_t)SNH_DOFS * SNH_DOFS * e;
   for (int c = 0; c < SNH_DOFS; ++c) {
     const real pc = ps[c];
-    for (int r = 0; r < SNH_DOFS; ++r) y[r] += k[SNH_DOFS * c + r] * pc;
+    for (int r = 0; r < SNH_DOFS; ++r) y[r] += (real)k[SNH_DOFS * c + r] * pc;
   }
   for (int i = 0; i < SNH_DOFS; ++i) out[SNH_DOFS * e + i] = y[i];
 }

@@ -212,7 +212,7 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
 #define SNH_DOFS (3 * SNH_NODES)
 __kernel void snh_element_matrices(__global const int* elements, __global const scalar_real* gradients,
                                    __global const scalar_real* weights, const int count,
-                                   __global const scalar_real* cache, __global scalar_real* out,
+                                   __global const scalar_real* cache, __global matrix_real* out,
                                    __global scalar_real* diagonal_blocks) {
   (void)elements;
   const size_t w = get_global_id(0);
@@ -231,22 +231,22 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
       for (int i = 0; i < SNH_DOFS; ++i) column[i] = SNH_R(0);
       element_column_scatter(element_column_frame(&h, vg, b, d), vg, qw, column);
 #if SNH_HEX8
-      __global scalar_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * w + SNH_DOFS * (3 * b + d);
+      __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * w;
       __global scalar_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * w + 9 * b + 3 * d;
       SNH_UNROLL
       for (int i = 0; i < SNH_DOFS; ++i) {
         scalar_real sum = LANE(column[i], 0);
         SNH_UNROLL
         for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(column[i], q);
-        k[i] = sum;
+        element_matrix_store(k, SNH_DOFS, 3 * b + d, i, sum);
         if (i / 3 == b) block[i % 3] = sum;
       }
 #else
       for (int l = 0; l < lanes; ++l) {
         const size_t e = 8 * w + l;
-        __global scalar_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e + SNH_DOFS * (3 * b + d);
+        __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
         SNH_UNROLL
-        for (int i = 0; i < SNH_DOFS; ++i) k[i] = LANE(column[i], l);
+        for (int i = 0; i < SNH_DOFS; ++i) element_matrix_store(k, SNH_DOFS, 3 * b + d, i, LANE(column[i], l));
         SNH_UNROLL
         for (int i = 0; i < 3; ++i)
           diagonal_blocks[(size_t)9 * SNH_NODES * e + 9 * b + 3 * d + i] = LANE(column[3 * b + i], l);

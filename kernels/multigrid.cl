@@ -94,7 +94,7 @@ __kernel void snh_galerkin_from_cache(__global const real* octant_weights, __glo
  * sum_children W_o^T D K_child D W_o e_(B,d). Branch-free (zero weights
  * multiply), weights from the table. */
 __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __global const int* children,
-                                         __global const int* fine_elements, __global const real* fine_matrices,
+                                         __global const int* fine_elements, __global const matrix_real* fine_matrices,
                                          __global const real* fine_mask, const int count, __global real* out,
                                          __global real* blocks) {
   const int item = get_global_id(0);
@@ -106,7 +106,7 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
     const int e = children[8 * c + o];
     if (e < 0) continue;
     SNH_GLOBAL const int* nodes = fine_elements + 8 * e;
-    __global const real* ke = fine_matrices + (size_t)MG_DOFS * MG_DOFS * e;
+    __global const matrix_real* ke = fine_matrices + (size_t)MG_DOFS * MG_DOFS * e;
     __global const real* w = octant_weights + 64 * o;
     real m[MG_DOFS], right[MG_DOFS];
     for (int a = 0; a < 8; ++a)
@@ -115,8 +115,8 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
     for (int i = 0; i < MG_DOFS; ++i) right[i] = SNH_R(0);
     for (int b = 0; b < 8; ++b) {
       const real wb = w[8 * b + corner_b] * m[3 * b + d];
-      __global const real* kb = ke + MG_DOFS * (3 * b + d);
-      for (int i = 0; i < MG_DOFS; ++i) right[i] += wb * kb[i];
+      __global const matrix_real* kb = ke + MG_DOFS * (3 * b + d);
+      for (int i = 0; i < MG_DOFS; ++i) right[i] += wb * (real)kb[i];
     }
     /* column += W_o^T D right */
     for (int a = 0; a < 8; ++a)

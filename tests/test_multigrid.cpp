@@ -300,6 +300,7 @@ TEST_P(CoarseOperator, IsTheAssembledGalerkinProduct) {
   solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), variant);
   MultigridOptions options;
   options.coarsest_dofs = 1;
+  options.fine_level_float = false;  // the exact Galerkin product (float: FloatFineLevel... below)
   solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
   ASSERT_GE(mg.levels(), 3);
   const viennacl::vector<double> x = upload(c.x);
@@ -478,6 +479,7 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
   MultigridOptions options;
   options.coarsest_dofs = 50;
   options.fine_level = MultigridFineLevel::built;
+  options.fine_level_float = false;  // the same matrices as the model's, to rounding
   solver::MultigridPreconditioner<double> built(model, c.mesh, c.mask, options);
   options.fine_level = MultigridFineLevel::current;
   solver::MultigridPreconditioner<double> current(model, c.mesh, c.mask, options);
@@ -534,6 +536,52 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
   model.linearize(upload(moved), false);
   built.update_fine_bound();
   EXPECT_EQ(apply(built, a), built_a);
+}
+
+// MultigridOptions::fine_level_float (the default in double): the built fine
+// level's matrices in float are half the bytes, exactly symmetric (so the
+// V-cycle stays symmetric: VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero
+// runs with it), and change the V-cycle and the first coarse operator only
+// at float's rounding of the matrices: within 1e-5 of the double fine
+// level's (1e-6 for the coarse cells, relative to their norm).
+TEST(Multigrid, FloatFineLevelHalvesItsMatricesAndStaysClose) {
+  DeviceCase c;
+  device::OpenClContext& cl = device_for(Precision::double_);
+  solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), ProductVariant::cached);
+  std::vector<double> mask(c.mask.begin(), c.mask.end());
+  model.set_mask(mask);
+  MultigridOptions options;
+  options.coarsest_dofs = 50;
+  options.fine_level = MultigridFineLevel::built;
+  solver::MultigridPreconditioner<double> single(model, c.mesh, c.mask, options);
+  options.fine_level_float = false;
+  solver::MultigridPreconditioner<double> full(model, c.mesh, c.mask, options);
+  EXPECT_EQ(full.memory_bytes() - single.memory_bytes(), c.mesh.element_count() * 576 * sizeof(float));
+  model.linearize(upload(c.x), true);
+  model.setup_preconditioner();
+  single.setup();
+  full.setup();
+  auto relative_difference = [](const std::vector<double>& p, const std::vector<double>& q) {
+    double d = 0.0, n = 0.0;
+    for (size_t i = 0; i < p.size(); ++i) {
+      d += (p[i] - q[i]) * (p[i] - q[i]);
+      n += q[i] * q[i];
+    }
+    return std::sqrt(d / n);
+  };
+  const double coarse = relative_difference(single.level_matrices(1), full.level_matrices(1));
+  EXPECT_LT(coarse, 1e-6);
+  EXPECT_GT(coarse, 0.0) << "the float matrices reached the coarse level";
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> a(mask.size());
+  for (size_t i = 0; i < mask.size(); ++i) a[i] = mask[i] * u(rng);
+  viennacl::vector<double> zs = upload(a), zf = upload(a);
+  single.apply(zs);
+  full.apply(zf);
+  const double vcycle = relative_difference(download(zs), download(zf));
+  EXPECT_LT(vcycle, 1e-5);
+  std::printf("float fine level: coarse cells %.2e, V-cycle %.2e relative to double\n", coarse, vcycle);
 }
 
 // Boundary vertices follow x = A X + b; the equilibrium of any homogeneous
@@ -593,7 +641,7 @@ void expect_refused(const Mesh& mesh, const SolveOptions& options, const std::st
 
 SolveResult twist(Preconditioner preconditioner, int res, double nu,
                   int rebuild_every = MultigridOptions{}.rebuild_every, int steps = 1,
-                  MultigridFineLevel fine_level = MultigridFineLevel::automatic) {
+                  MultigridFineLevel fine_level = MultigridFineLevel::automatic, bool fine_level_float = true) {
   const Mesh mesh = make_box_lattice(res, res, res, 1.0 / res);
   std::vector<int32_t> bottom, top;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -612,6 +660,7 @@ SolveResult twist(Preconditioner preconditioner, int res, double nu,
   options.multigrid.coarsest_dofs = 100;
   options.multigrid.rebuild_every = rebuild_every;
   options.multigrid.fine_level = fine_level;
+  options.multigrid.fine_level_float = fine_level_float;
   options.load_steps = steps;
   QuasistaticSolver solver(mesh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, nu),
                            {fixed, turned}, options);
@@ -676,12 +725,18 @@ TEST(Multigrid, ReusedHierarchyGivesTheSameAnswerWithFewerBuilds) {
 TEST(Multigrid, BuiltAndCurrentFineLevelsGiveTheSameAnswer) {
   const SolveResult built = twist(Preconditioner::multigrid, 6, 0.49, 4, 2, MultigridFineLevel::built);
   const SolveResult current = twist(Preconditioner::multigrid, 6, 0.49, 4, 2, MultigridFineLevel::current);
+  const SolveResult built_double =
+      twist(Preconditioner::multigrid, 6, 0.49, 4, 2, MultigridFineLevel::built, /*fine_level_float=*/false);
   ASSERT_TRUE(built.converged);
   ASSERT_TRUE(current.converged);
-  double worst = 0.0;
-  for (size_t i = 0; i < built.positions.size(); ++i)
+  ASSERT_TRUE(built_double.converged);
+  double worst = 0.0, worst_double = 0.0;
+  for (size_t i = 0; i < built.positions.size(); ++i) {
     worst = std::max(worst, std::abs(built.positions[i] - current.positions[i]));
+    worst_double = std::max(worst_double, std::abs(built.positions[i] - built_double.positions[i]));
+  }
   EXPECT_LT(worst, 1e-6);
+  EXPECT_LT(worst_double, 1e-6) << "float against double fine-level matrices";
   auto totals = [](const SolveResult& r) {
     int newton = 0, cg = 0;
     for (const StepResult& s : r.steps) {

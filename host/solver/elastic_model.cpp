@@ -150,6 +150,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   linearize_k_ = cl_.kernel(file, defines, "snh_element_linearize");
   product_recompute_k_ = cl_.kernel(file, defines, "snh_element_product_recompute");
   matrices_k_ = cl_.kernel(file, defines, "snh_element_matrices");
+  matrices_float_k_ = device::Kernel();
 }
 
 template <typename Real>
@@ -210,8 +211,9 @@ void ElasticModel<Real>::compute_element_matrices() {
 }
 
 template <typename Real>
-void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks) const {
-  if (matrices != element_matrices_.get() && element_matrices_buffer() && projected_) {
+void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks, bool single_precision) const {
+  single_precision = single_precision && sizeof(Real) > sizeof(float);
+  if (!single_precision && matrices != element_matrices_.get() && element_matrices_buffer() && projected_) {
     // This linearization's matrices and their blocks exist already
     // (linearize(); setup_preconditioner() keeps those blocks when projected).
     const size_t nodes = static_cast<size_t>(nodes_);
@@ -219,7 +221,12 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
     cl_.copy(element_blocks_.get(), diagonal_blocks, element_count_ * 9 * nodes * sizeof(Real));
     return;
   }
-  cl_kernel k = matrices_k_.get();
+  if (single_precision && !matrices_float_k_)
+    matrices_float_k_ =
+        cl_.kernel(point_lanes_ ? "fem_lanes.cl" : "fem.cl",
+                   (point_lanes_ ? elastic_defines_ + " -DSNH_LANES=8" : defines_) + " -DSNH_MATRIX_FLOAT=1",
+                   "snh_element_matrices");
+  cl_kernel k = single_precision ? matrices_float_k_.get() : matrices_k_.get();
   const int count = static_cast<int>(element_count_);
   set_arg(k, 0, elements_.get());
   set_arg(k, 1, gradients_.get());

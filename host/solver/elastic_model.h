@@ -154,8 +154,11 @@ class ElasticModel {
   // The element matrices of the last linearize() (projected or true, as
   // linearized) and their 3x3 diagonal blocks into caller-owned buffers
   // (element_count() * (3N)^2 and * 9N reals; column-major, as
-  // snh_element_matrices writes them), whatever the product variant.
-  void element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks) const;
+  // snh_element_matrices writes them), whatever the product variant. With
+  // single_precision (double builds), the matrices in float, exactly
+  // symmetric (kernels/fem/element.h, SNH_MATRIX_FLOAT); the blocks stay in
+  // the working precision.
+  void element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks, bool single_precision = false) const;
   // The per-vertex terms a multigrid's coarse levels take in (solver/multigrid.h):
   // the terms built in, the elastic energy's scale (implicit Euler's), the
   // inertia coefficients c_v (null without inertia) and the obstacle
@@ -221,6 +224,7 @@ class ElasticModel {
   ProductVariant variant_;
   std::string defines_, elastic_defines_;
   bool point_lanes_ = false;
+  mutable device::Kernel matrices_float_k_;  // built at its first use
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
       element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
   bool has_external_ = false;

@@ -71,6 +71,12 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
         "current)");
   fine_built_ = options.fine_level == MultigridFineLevel::built ||
                 (options.fine_level == MultigridFineLevel::automatic && !vertex_terms_);
+  fine_float_ = fine_built_ && options.fine_level_float && sizeof(Real) > sizeof(float);
+  if (fine_float_) {
+    const std::string narrow = coarse + " -DSNH_MATRIX_FLOAT=1";
+    fine_float_product_k_ = cl_.kernel("fem.cl", narrow, "snh_element_matrix_product");
+    fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", narrow, "snh_galerkin_from_matrices");
+  }
   if (vertex_terms_) {
     galerkin_vertex_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_vertex_terms");
     // Each vertex's terms shared out equally to the cells around it.
@@ -112,11 +118,12 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
       L.offsets = upload_int(slots.offsets, L.bytes);
       L.adjacency = upload_int(slots.adjacency, L.bytes);
-      L.matrices = cl_.buffer(CL_MEM_READ_WRITE, L.cells * kCellMatrix * sizeof(Real));
+      const size_t matrix_bytes = L.cells * kCellMatrix * (l == 0 && fine_float_ ? sizeof(float) : sizeof(Real));
+      L.matrices = cl_.buffer(CL_MEM_READ_WRITE, matrix_bytes);
       L.scratch = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 24 * sizeof(Real));
       L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
       L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(Real));
-      L.bytes += L.cells * (kCellMatrix + 24 + 72) * sizeof(Real) + L.vertices * 9 * sizeof(Real);
+      L.bytes += matrix_bytes + L.cells * (24 + 72) * sizeof(Real) + L.vertices * 9 * sizeof(Real);
     }
     if (l + 1 < hierarchy_.levels.size()) {
       L.prolong_vertices = upload_int(h.prolongation_vertices, L.bytes);
@@ -157,7 +164,7 @@ void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, Vect
   }
   const Level& L = *levels_[level];
   const int cells = static_cast<int>(L.cells), vertices = static_cast<int>(L.vertices);
-  cl_kernel k = matrix_product_k_.get();
+  cl_kernel k = level == 0 && fine_float_ ? fine_float_product_k_.get() : matrix_product_k_.get();
   set_arg(k, 0, mem(p));
   set_arg(k, 1, L.element_handle);
   set_arg(k, 2, L.matrices.get());
@@ -199,7 +206,7 @@ template <typename Real>
 void MultigridPreconditioner<Real>::setup() {
   if (fine_built_) {
     Level& L = *levels_[0];
-    model_.element_matrices_into(L.matrices.get(), L.blocks.get());
+    model_.element_matrices_into(L.matrices.get(), L.blocks.get(), fine_float_);
     block_jacobi(L);
   }
   for (size_t l = 1; l < levels_.size(); ++l) {
@@ -221,7 +228,7 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, 9, L.blocks.get());
       cl_.run(k, L.cells);
     } else {
-      cl_kernel k = galerkin_matrices_k_.get();
+      cl_kernel k = l == 1 && fine_float_ ? fine_float_galerkin_k_.get() : galerkin_matrices_k_.get();
       set_arg(k, 0, octant_weights_.get());
       set_arg(k, 1, L.children.get());
       set_arg(k, 2, F.element_handle);

@@ -173,6 +173,9 @@ class MultigridPreconditioner {
   // vertex's share 1 / (cells around it).
   bool vertex_terms_ = false;
   bool fine_built_ = false;
+  // The built fine level's matrices in float (double builds).
+  bool fine_float_ = false;
+  device::Kernel fine_float_product_k_, fine_float_galerkin_k_;
   device::Kernel galerkin_vertex_k_;
   device::Buffer vertex_share_;
   device::Buffer octant_weights_;  // lattice_hierarchy.h's octant_weights()

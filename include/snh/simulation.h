@@ -142,6 +142,13 @@ struct MultigridOptions {
   // by the rules above only (README, "Multigrid on hex8 lattices").
   std::optional<bool> rebuild_each_load_step;
   MultigridFineLevel fine_level = MultigridFineLevel::automatic;
+  // Double precision with a built fine level: its element matrices stored in
+  // float (exactly symmetric), which halves what the smoother reads at every
+  // V-cycle; the fine blocks, the vectors and the coarse levels stay double
+  // and CG's own operator is untouched. false: the working precision. No
+  // effect in float or with fine_level current (README, "Multigrid on hex8
+  // lattices").
+  bool fine_level_float = true;
 };
 
 struct NewtonIteration {

@@ -24,6 +24,30 @@
  * 3x3 block and the clamped twist and flip eigenvalues. */
 #define SNH_LINEARIZATION_SIZE 30
 
+/* Element matrices' storage: the working precision, or float with
+ * SNH_MATRIX_FLOAT = 1 (a double build's multigrid fine level, whose
+ * smoother reads them at every V-cycle: half the memory traffic). A float
+ * matrix is stored exactly symmetric: column c writes its rows r >= c, each
+ * at (r, c) and (c, r). Products read either type in the working
+ * precision. */
+#if SNH_MATRIX_FLOAT
+typedef float matrix_real;
+#else
+typedef scalar_real matrix_real;
+#endif
+
+/* Entry (r, c) of column c of an n x n column-major element matrix. */
+SNH_FN void element_matrix_store(SNH_GLOBAL matrix_real* k, int n, int c, int r, scalar_real value) {
+#if SNH_MATRIX_FLOAT
+  if (r >= c) {
+    k[n * c + r] = (float)value;
+    k[n * r + c] = (float)value;
+  }
+#else
+  k[n * c + r] = value;
+#endif
+}
+
 /* F = sum_a x_a (dN_a/dX)^T for node values xs[a][3]. */
 SNH_FN mat3 element_deformation_gradient(const real* xs, const real* g) {
   mat3 f = mat3_zero();

@@ -1,0 +1,42 @@
+// The multigrid options that `scale` and `scene` share on the command line
+// (MultigridOptions in snh/simulation.h): registered and applied once here.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "snh/simulation.h"
+
+namespace snh::bench {
+
+struct MultigridFlags {
+  int rebuild_every = 0;                 // > 0: MultigridOptions::rebuild_every
+  std::string fine_level = "automatic";  // MultigridOptions::fine_level
+  std::string fine_float = "on";         // MultigridOptions::fine_level_float
+
+  void add_to(CLI::App* cmd) {
+    cmd->add_option("--multigrid-rebuild-every", rebuild_every,
+                    "multigrid: rebuild the hierarchy at least every N Newton linearizations (1: every one; "
+                    "default: MultigridOptions::rebuild_every)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--multigrid-fine-level", fine_level,
+                    "multigrid: the V-cycle's fine level, built (the build's element matrices, frozen with the "
+                    "coarse levels), current (the product of each linearization) or automatic (built unless the "
+                    "scene has inertia or obstacles)")
+        ->check(CLI::IsMember({"automatic", "built", "current"}))
+        ->capture_default_str();
+    cmd->add_option("--multigrid-fine-float", fine_float,
+                    "multigrid, double with a built fine level: its element matrices in float (on) or in double "
+                    "(off)")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->capture_default_str();
+  }
+
+  void apply(MultigridOptions& options) const {
+    if (rebuild_every > 0) options.rebuild_every = rebuild_every;
+    options.fine_level = parse_multigrid_fine_level(fine_level);
+    options.fine_level_float = fine_float == "on";
+  }
+};
+
+}  // namespace snh::bench
