@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <random>
 #include <vector>
 
 #include "device/opencl_context.h"
@@ -25,6 +26,44 @@ inline device::OpenClContext& device_for(Precision precision) {
   }
   device::use_viennacl(ids[k]);
   return *contexts[k];
+}
+
+// `mesh` with every vertex moved by up to 0.1 h (a fixed seed): no two
+// elements share a rest shape.
+inline Mesh jittered(Mesh mesh, double h) {
+  std::mt19937_64 rng(4711);
+  std::uniform_real_distribution<double> u(-0.1 * h, 0.1 * h);
+  for (double& c : mesh.positions) c += u(rng);
+  return mesh;
+}
+
+// Values as the device of precision Real sees them, back in double.
+template <typename Real>
+std::vector<double> rounded(const std::vector<double>& v) {
+  std::vector<double> out(v.size());
+  for (size_t i = 0; i < v.size(); ++i) out[i] = static_cast<double>(static_cast<Real>(v[i]));
+  return out;
+}
+
+template <typename Real>
+viennacl::vector<Real> upload(const std::vector<double>& v) {
+  const std::vector<Real> r(v.begin(), v.end());
+  viennacl::vector<Real> d(r.size());
+  viennacl::copy(r.begin(), r.end(), d.begin());
+  return d;
+}
+
+template <typename Real>
+std::vector<Real> download_raw(const viennacl::vector<Real>& d) {
+  std::vector<Real> r(d.size());
+  viennacl::copy(d.begin(), d.end(), r.begin());
+  return r;
+}
+
+template <typename Real>
+std::vector<double> download(const viennacl::vector<Real>& d) {
+  const std::vector<Real> r = download_raw(d);
+  return {r.begin(), r.end()};
 }
 
 // What run(model, out) writes for a model with some term less what it writes

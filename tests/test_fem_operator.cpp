@@ -60,13 +60,7 @@ struct Scene {
 
 // A 3x2x2 lattice with every vertex moved by up to 0.1 h: no two elements
 // share a rest shape.
-Mesh jittered_lattice() {
-  Mesh mesh = make_box_lattice(3, 2, 2, kH);
-  std::mt19937_64 rng(4711);
-  std::uniform_real_distribution<double> u(-0.1 * kH, 0.1 * kH);
-  for (double& c : mesh.positions) c += u(rng);
-  return mesh;
-}
+Mesh jittered_lattice() { return jittered(make_box_lattice(3, 2, 2, kH), kH); }
 
 const std::vector<Scene>& scenes() {
   static const std::vector<Scene> all = [] {
@@ -145,35 +139,6 @@ double min_hessian_eigenvalue(const Scene& s, const std::vector<double>& x) {
       for (double v : reference::snh_hessian_eigensystem<double>(f, s.params()).values) lowest = std::min(lowest, v);
     }
   return lowest;
-}
-
-// Values as the device of precision Real sees them, back in double.
-template <typename Real>
-std::vector<double> rounded(const std::vector<double>& v) {
-  std::vector<double> out(v.size());
-  for (size_t i = 0; i < v.size(); ++i) out[i] = static_cast<double>(static_cast<Real>(v[i]));
-  return out;
-}
-
-template <typename Real>
-viennacl::vector<Real> upload(const std::vector<double>& v) {
-  const std::vector<Real> r(v.begin(), v.end());
-  viennacl::vector<Real> d(r.size());
-  viennacl::copy(r.begin(), r.end(), d.begin());
-  return d;
-}
-
-template <typename Real>
-std::vector<Real> download_raw(const viennacl::vector<Real>& d) {
-  std::vector<Real> r(d.size());
-  viennacl::copy(d.begin(), d.end(), r.begin());
-  return r;
-}
-
-template <typename Real>
-std::vector<double> download(const viennacl::vector<Real>& d) {
-  const std::vector<Real> r = download_raw(d);
-  return {r.begin(), r.end()};
 }
 
 std::vector<double> multiply(const Eigen::SparseMatrix<double>& k, const std::vector<double>& p) {

@@ -244,6 +244,33 @@ struct DeviceCase {
   }
 };
 
+// |p - q| / |q|
+double relative_difference(const std::vector<double>& p, const std::vector<double>& q) {
+  double d = 0.0, n = 0.0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    d += (p[i] - q[i]) * (p[i] - q[i]);
+    n += q[i] * q[i];
+  }
+  return std::sqrt(d / n);
+}
+
+// DeviceCase's built-fine-level multigrid options (coarsest level at 50 DOFs).
+MultigridOptions built_fine_level(bool fine_level_float) {
+  MultigridOptions options;
+  options.coarsest_dofs = 50;
+  options.fine_level = MultigridFineLevel::built;
+  options.fine_level_float = fine_level_float;
+  return options;
+}
+
+// DeviceCase's model (cached product) with its constraint mask set.
+std::unique_ptr<solver::ElasticModel<double>> masked_model(const DeviceCase& c) {
+  auto model = std::make_unique<solver::ElasticModel<double>>(
+      device_for(Precision::double_), c.mesh, c.rest, uniform_material(c.mesh, c.material), ProductVariant::cached);
+  model->set_mask(std::vector<double>(c.mask.begin(), c.mask.end()));
+  return model;
+}
+
 // The device's coarse cell matrices, assembled, against P^T D A D P with A
 // the fine operator column by column through the (unmasked) matrix-free
 // product, two levels deep.
@@ -426,10 +453,9 @@ TEST(Multigrid, ContactSetChangeRebuildsTheHierarchy) {
 
 TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
   DeviceCase c;
-  device::OpenClContext& cl = device_for(Precision::double_);
-  solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), ProductVariant::cached);
-  std::vector<double> mask(c.mask.begin(), c.mask.end());
-  model.set_mask(mask);
+  const std::unique_ptr<solver::ElasticModel<double>> owned = masked_model(c);
+  solver::ElasticModel<double>& model = *owned;
+  const std::vector<double> mask(c.mask.begin(), c.mask.end());
   for (int degree : {1, 3}) {
     MultigridOptions options;
     options.coarsest_dofs = 50;
@@ -472,14 +498,10 @@ TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
 // build, still symmetric, while the current one follows the new operator.
 TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
   DeviceCase c;
-  device::OpenClContext& cl = device_for(Precision::double_);
-  solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), ProductVariant::cached);
-  std::vector<double> mask(c.mask.begin(), c.mask.end());
-  model.set_mask(mask);
-  MultigridOptions options;
-  options.coarsest_dofs = 50;
-  options.fine_level = MultigridFineLevel::built;
-  options.fine_level_float = false;  // the same matrices as the model's, to rounding
+  const std::unique_ptr<solver::ElasticModel<double>> owned = masked_model(c);
+  solver::ElasticModel<double>& model = *owned;
+  const std::vector<double> mask(c.mask.begin(), c.mask.end());
+  MultigridOptions options = built_fine_level(false);  // the same matrices as the model's, to rounding
   solver::MultigridPreconditioner<double> built(model, c.mesh, c.mask, options);
   options.fine_level = MultigridFineLevel::current;
   solver::MultigridPreconditioner<double> current(model, c.mesh, c.mask, options);
@@ -496,14 +518,6 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
     viennacl::vector<double> z = upload(v);
     mg.apply(z);
     return download(z);
-  };
-  auto relative_difference = [](const std::vector<double>& p, const std::vector<double>& q) {
-    double d = 0.0, n = 0.0;
-    for (size_t i = 0; i < p.size(); ++i) {
-      d += (p[i] - q[i]) * (p[i] - q[i]);
-      n += q[i] * q[i];
-    }
-    return std::sqrt(d / n);
   };
   model.linearize(upload(c.x), true);
   model.setup_preconditioner();
@@ -546,29 +560,16 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
 // level's (1e-6 for the coarse cells, relative to their norm).
 TEST(Multigrid, FloatFineLevelHalvesItsMatricesAndStaysClose) {
   DeviceCase c;
-  device::OpenClContext& cl = device_for(Precision::double_);
-  solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), ProductVariant::cached);
-  std::vector<double> mask(c.mask.begin(), c.mask.end());
-  model.set_mask(mask);
-  MultigridOptions options;
-  options.coarsest_dofs = 50;
-  options.fine_level = MultigridFineLevel::built;
-  solver::MultigridPreconditioner<double> single(model, c.mesh, c.mask, options);
-  options.fine_level_float = false;
-  solver::MultigridPreconditioner<double> full(model, c.mesh, c.mask, options);
+  const std::unique_ptr<solver::ElasticModel<double>> owned = masked_model(c);
+  solver::ElasticModel<double>& model = *owned;
+  const std::vector<double> mask(c.mask.begin(), c.mask.end());
+  solver::MultigridPreconditioner<double> single(model, c.mesh, c.mask, built_fine_level(true));
+  solver::MultigridPreconditioner<double> full(model, c.mesh, c.mask, built_fine_level(false));
   EXPECT_EQ(full.memory_bytes() - single.memory_bytes(), c.mesh.element_count() * 576 * sizeof(float));
   model.linearize(upload(c.x), true);
   model.setup_preconditioner();
   single.setup();
   full.setup();
-  auto relative_difference = [](const std::vector<double>& p, const std::vector<double>& q) {
-    double d = 0.0, n = 0.0;
-    for (size_t i = 0; i < p.size(); ++i) {
-      d += (p[i] - q[i]) * (p[i] - q[i]);
-      n += q[i] * q[i];
-    }
-    return std::sqrt(d / n);
-  };
   const double coarse = relative_difference(single.level_matrices(1), full.level_matrices(1));
   EXPECT_LT(coarse, 1e-6);
   EXPECT_GT(coarse, 0.0) << "the float matrices reached the coarse level";

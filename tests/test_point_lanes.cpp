@@ -42,14 +42,6 @@ constexpr Precision precision_of = std::is_same_v<Real, double> ? Precision::dou
 
 constexpr double kH = 0.5;
 
-Mesh jittered_lattice() {
-  Mesh mesh = make_box_lattice(3, 2, 2, kH);
-  std::mt19937_64 rng(4711);
-  std::uniform_real_distribution<double> u(-0.1 * kH, 0.1 * kH);
-  for (double& c : mesh.positions) c += u(rng);
-  return mesh;
-}
-
 // Positions that reach every branch of the per-point math: a rotation by
 // 2.5 rad about a skew axis with a stretch of 1.8 / 0.6, random noise of
 // 0.2 h, element 0 inverted (a node pushed through its centroid) and the
@@ -79,21 +71,6 @@ std::vector<double> hard_positions(const Mesh& mesh) {
 }
 
 template <typename Real>
-viennacl::vector<Real> upload(const std::vector<double>& v) {
-  const std::vector<Real> r(v.begin(), v.end());
-  viennacl::vector<Real> d(r.size());
-  viennacl::copy(r.begin(), r.end(), d.begin());
-  return d;
-}
-
-template <typename Real>
-std::vector<Real> download(const viennacl::vector<Real>& d) {
-  std::vector<Real> r(d.size());
-  viennacl::copy(d.begin(), d.end(), r.begin());
-  return r;
-}
-
-template <typename Real>
 struct Outputs {
   std::vector<Real> cache[2];     // projected, true Hessian
   std::vector<Real> product[2];   // recompute product at each
@@ -115,7 +92,7 @@ Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, int quadrature, 
     cl.read(model.cache_buffer(), cache.size() * sizeof(Real), cache.data());
     viennacl::vector<Real> y(model.dofs());
     model.product(pd, y);
-    out.product[projected] = download(y);
+    out.product[projected] = download_raw(y);
     const size_t n = 3 * static_cast<size_t>(nodes);
     std::vector<Real>& k = out.matrices[projected];
     std::vector<Real>& b = out.blocks[projected];
@@ -212,17 +189,11 @@ MaterialMap two_regions(const Mesh& mesh, const Material& base, const Material& 
   return map;
 }
 
-std::vector<Mesh> hex_meshes() { return {jittered_lattice(), make_box_lattice(3, 2, 2, kH)}; }
+std::vector<Mesh> hex_meshes() { return {jittered(make_box_lattice(3, 2, 2, kH), kH), make_box_lattice(3, 2, 2, kH)}; }
 
 // 3 x 2 x 1 cubes of 6 tetrahedra: 36 elements, the last work-item's lanes
 // half full.
-std::vector<Mesh> tet_meshes() {
-  Mesh jittered = make_tet_box(3, 2, 1, kH);
-  std::mt19937_64 rng(4711);
-  std::uniform_real_distribution<double> u(-0.1 * kH, 0.1 * kH);
-  for (double& c : jittered.positions) c += u(rng);
-  return {jittered, make_tet_box(3, 2, 1, kH)};
-}
+std::vector<Mesh> tet_meshes() { return {jittered(make_tet_box(3, 2, 1, kH), kH), make_tet_box(3, 2, 1, kH)}; }
 
 Maps every_model(const Mesh& mesh) {
   Maps maps;

@@ -101,13 +101,7 @@ MaterialMap split(const Mesh& mesh, const std::vector<Material>& materials) {
   return make_material_map(mesh, materials[0], regions);
 }
 
-Mesh jittered_lattice() {
-  Mesh mesh = make_box_lattice(4, 2, 2, kH);
-  std::mt19937_64 rng(4711);
-  std::uniform_real_distribution<double> u(-0.1 * kH, 0.1 * kH);
-  for (double& c : mesh.positions) c += u(rng);
-  return mesh;
-}
+Mesh jittered_lattice() { return jittered(make_box_lattice(4, 2, 2, kH), kH); }
 
 struct MapCase {
   std::string name;
@@ -180,34 +174,6 @@ std::vector<double> perturbed(const Mesh& mesh, double amplitude, unsigned seed)
   const std::vector<double> d = random_vector(x.size(), amplitude, seed);
   for (size_t i = 0; i < x.size(); ++i) x[i] += d[i];
   return x;
-}
-
-template <typename Real>
-std::vector<double> rounded(const std::vector<double>& v) {
-  std::vector<double> out(v.size());
-  for (size_t i = 0; i < v.size(); ++i) out[i] = static_cast<double>(static_cast<Real>(v[i]));
-  return out;
-}
-
-template <typename Real>
-viennacl::vector<Real> upload(const std::vector<double>& v) {
-  const std::vector<Real> r(v.begin(), v.end());
-  viennacl::vector<Real> d(r.size());
-  viennacl::copy(r.begin(), r.end(), d.begin());
-  return d;
-}
-
-template <typename Real>
-std::vector<Real> download_raw(const viennacl::vector<Real>& d) {
-  std::vector<Real> r(d.size());
-  viennacl::copy(d.begin(), d.end(), r.begin());
-  return r;
-}
-
-template <typename Real>
-std::vector<double> download(const viennacl::vector<Real>& d) {
-  const std::vector<Real> r = download_raw(d);
-  return {r.begin(), r.end()};
 }
 
 double norm(const std::vector<double>& v) {
