@@ -1,5 +1,5 @@
 /* The per-point kernels of fem.cl for CPU devices (the linearization, the
- * recompute product and the element matrices), written over lanes:
+ * cached and recompute products, the element matrices), written over lanes:
  * built with SNH_LANES = 8 (snh_portable.h), so `real` holds 8 points, the
  * 8 quadrature points of one hex8 element (one work-item per element) or
  * the one point of 8 consecutive tet4 elements (one work-item per 8
@@ -129,42 +129,11 @@ SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __g
   }
 }
 
-/* fem.cl's snh_element_linearize. */
-__kernel void snh_element_linearize(__global const scalar_real* x, __global const int* elements,
-                                    __global const scalar_real* gradients, const int count, MATERIAL_ARGS,
-                                    const int project, __global scalar_real* cache) {
-  const size_t w = get_global_id(0);
-  if (!LANES_ACTIVE(w, count)) return;
-  const size_t e = LANES_ELEMENT(w);
-  real xs[3 * SNH_NODES], g[3 * SNH_NODES];
-  lanes_load_nodes(x, elements, w, count, xs);
-  lanes_load_gradients(gradients, w, count, g);
-  principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
-                                                   element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
-  if (project) h = principal_hessian_project(h);
-  lanes_linearization_store(&h, LANES_STORED(w, count), cache + (size_t)SNH_LINEARIZATION_SIZE * LANES_FIRST_POINT(w));
-}
-
-/* fem.cl's snh_element_product_recompute. A hex8 element's points are
- * summed in the scalar kernel's order (point 0 first). */
-__kernel void snh_element_product_recompute(__global const scalar_real* p, __global const int* elements,
-                                            __global const scalar_real* gradients, __global const scalar_real* weights,
-                                            const int count, __global const scalar_real* x, MATERIAL_ARGS,
-                                            const int project, __global scalar_real* out) {
-  const size_t w = get_global_id(0);
-  if (!LANES_ACTIVE(w, count)) return;
-  const size_t e = LANES_ELEMENT(w);
-  real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
-  lanes_load_nodes(x, elements, w, count, xs);
-  lanes_load_nodes(p, elements, w, count, ps);
-  lanes_load_gradients(gradients, w, count, g);
-  SNH_UNROLL
-  for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
-  principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
-                                                   element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
-  if (project) h = principal_hessian_project(h);
-  element_product(&h, ps, g, lanes_load_weights(weights, w, count), y);
+/* A product's nodal values: a hex8 element's points summed in the scalar
+ * kernel's order (point 0 first), tet4 lanes per element. */
+SNH_FN void lanes_store_product(const real* y, size_t w, int count, __global scalar_real* out) {
 #if SNH_HEX8
+  (void)count;
   SNH_UNROLL
   for (int i = 0; i < 3 * SNH_NODES; ++i) {
     scalar_real sum = LANE(y[i], 0);
@@ -203,6 +172,43 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
   SNH_UNROLL
   for (int i = 0; i < 3; ++i) h.sigma.a[i] = SNH_R(0);
   return h;
+}
+
+/* fem.cl's snh_element_linearize. */
+__kernel void snh_element_linearize(__global const scalar_real* x, __global const int* elements,
+                                    __global const scalar_real* gradients, const int count, MATERIAL_ARGS,
+                                    const int project, __global scalar_real* cache) {
+  const size_t w = get_global_id(0);
+  if (!LANES_ACTIVE(w, count)) return;
+  const size_t e = LANES_ELEMENT(w);
+  real xs[3 * SNH_NODES], g[3 * SNH_NODES];
+  lanes_load_nodes(x, elements, w, count, xs);
+  lanes_load_gradients(gradients, w, count, g);
+  principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
+                                                   element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
+  if (project) h = principal_hessian_project(h);
+  lanes_linearization_store(&h, LANES_STORED(w, count), cache + (size_t)SNH_LINEARIZATION_SIZE * LANES_FIRST_POINT(w));
+}
+
+/* fem.cl's snh_element_product_recompute. */
+__kernel void snh_element_product_recompute(__global const scalar_real* p, __global const int* elements,
+                                            __global const scalar_real* gradients, __global const scalar_real* weights,
+                                            const int count, __global const scalar_real* x, MATERIAL_ARGS,
+                                            const int project, __global scalar_real* out) {
+  const size_t w = get_global_id(0);
+  if (!LANES_ACTIVE(w, count)) return;
+  const size_t e = LANES_ELEMENT(w);
+  real xs[3 * SNH_NODES], ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
+  lanes_load_nodes(x, elements, w, count, xs);
+  lanes_load_nodes(p, elements, w, count, ps);
+  lanes_load_gradients(gradients, w, count, g);
+  SNH_UNROLL
+  for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
+  principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
+                                                   element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
+  if (project) h = principal_hessian_project(h);
+  element_product(&h, ps, g, lanes_load_weights(weights, w, count), y);
+  lanes_store_product(y, w, count, out);
 }
 
 /* fem.cl's snh_element_matrices: the stiffness from the cached
@@ -253,4 +259,24 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
       }
 #endif
     }
+}
+
+/* fem.cl's snh_element_product_cached: the linearization read back into
+ * lanes. */
+__kernel void snh_element_product_cached(__global const scalar_real* p, __global const int* elements,
+                                         __global const scalar_real* gradients, __global const scalar_real* weights,
+                                         const int count, __global const scalar_real* cache,
+                                         __global scalar_real* out) {
+  const size_t w = get_global_id(0);
+  if (!LANES_ACTIVE(w, count)) return;
+  const int lanes = LANES_STORED(w, count);
+  real ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
+  lanes_load_nodes(p, elements, w, count, ps);
+  lanes_load_gradients(gradients, w, count, g);
+  SNH_UNROLL
+  for (int i = 0; i < 3 * SNH_NODES; ++i) y[i] = SNH_R(0);
+  const principal_hessian h =
+      lanes_linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * LANES_FIRST_POINT(w), lanes);
+  element_product(&h, ps, g, lanes_load_weights(weights, w, count), y);
+  lanes_store_product(y, w, count, out);
 }

@@ -1,7 +1,8 @@
 // Per-point lanes (kernels/fem_lanes.cl, ElasticModel::set_point_lanes): the
-// linearization, recompute product and element matrices over 8-wide vectors, a lane per
-// quadrature point of a hex8 element or per tet4 element, against fem.cl's
-// scalar kernels on the same device.
+// linearization, the cached and recompute products and the element matrices
+// over 8-wide vectors, a lane per quadrature point of a hex8 element or per
+// tet4 element, against fem.cl's scalar kernels on the same device (the
+// cached product runs over lanes in float only: ElasticModel::set_point_lanes).
 // Every lane runs the scalar kernel's operations on the same values (no
 // contraction, correctly rounded division and square root), so the
 // linearization cache and the products must be equal value for value, not
@@ -74,6 +75,7 @@ template <typename Real>
 struct Outputs {
   std::vector<Real> cache[2];     // projected, true Hessian
   std::vector<Real> product[2];   // recompute product at each
+  std::vector<Real> cached[2];    // cached product at each
   std::vector<Real> matrices[2];  // element matrices at each
   std::vector<Real> blocks[2];    // and their diagonal blocks
 };
@@ -93,6 +95,10 @@ Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, int quadrature, 
     viennacl::vector<Real> y(model.dofs());
     model.product(pd, y);
     out.product[projected] = download_raw(y);
+    model.set_variant(ProductVariant::cached);
+    model.product(pd, y);
+    out.cached[projected] = download_raw(y);
+    model.set_variant(ProductVariant::recompute);
     const size_t n = 3 * static_cast<size_t>(nodes);
     std::vector<Real>& k = out.matrices[projected];
     std::vector<Real>& b = out.blocks[projected];
@@ -174,6 +180,7 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
         const std::string at = k == 0 ? "projected" : "true Hessian";
         expect_equal_values(lanes.cache[k], scalar.cache[k], relative, "linearization, " + at);
         expect_equal_values(lanes.product[k], scalar.product[k], relative, "recompute product, " + at);
+        expect_equal_values(lanes.cached[k], scalar.cached[k], relative, "cached product, " + at);
         expect_equal_values(lanes.matrices[k], scalar.matrices[k], relative, "element matrices, " + at);
         expect_equal_values(lanes.blocks[k], scalar.blocks[k], relative, "diagonal blocks, " + at);
       }

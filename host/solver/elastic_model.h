@@ -172,7 +172,8 @@ class ElasticModel {
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);
   // Per-point lanes (kernels/fem_lanes.cl): the linearization, the
-  // recompute product and the element matrices over 8-wide vectors, a lane per quadrature point of a
+  // recompute product, the element matrices and (float) the cached product
+  // over 8-wide vectors, a lane per quadrature point of a
   // hex8 element or per tet4 element, the scalar kernels' results bit for
   // bit (but for exp's rounding). On by default on CPU devices (where pocl
   // leaves the scalar kernels' per-point math unvectorized), off on GPUs.
@@ -201,9 +202,10 @@ class ElasticModel {
 
  private:
   void run_element_kernel(cl_kernel k) const;
-  // The same for the kernels fem_lanes.cl also has (linearize, recompute,
-  // element matrices).
-  void run_point_kernel(cl_kernel k) const;
+  // The same for the kernels fem_lanes.cl also has (linearize, cached and
+  // recompute products, element matrices).
+  // lanes: the kernel is fem_lanes.cl's (tet4: a work-item per 8 elements).
+  void run_point_kernel(cl_kernel k, bool lanes) const;
   // Per-element elastic forces at x into element_scratch_ (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
   void compute_element_matrices();
@@ -224,6 +226,7 @@ class ElasticModel {
   ProductVariant variant_;
   std::string defines_, elastic_defines_;
   bool point_lanes_ = false;
+  bool cached_lanes_ = false;                // the cached product's kernel is fem_lanes.cl's
   mutable device::Kernel matrices_float_k_;  // built at its first use
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
       element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
