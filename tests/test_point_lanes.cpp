@@ -217,14 +217,21 @@ Maps every_model(const Mesh& mesh) {
 }
 
 TEST(PointLanes, EveryModelMatchesTheScalarKernelsDouble) {
-  const std::vector<Mesh> hexes = hex_meshes();
-  Maps maps = every_model(hexes[0]);
+  // Every model on the uniform-rest lattice (the lattices' build) and the
+  // jittered tet4 box; SNH and regions on every mesh (a kernel build per
+  // mesh kind and material, so not every pair).
+  const std::vector<Mesh> hexes = hex_meshes(), tets = tet_meshes();
+  check_cases<double>({hexes[1]}, every_model(hexes[1]), device::MaterialKernel::specialized);
+  check_cases<double>({tets[0]}, every_model(tets[0]), device::MaterialKernel::specialized);
+  const Material snh = with(MaterialModel::stable_neo_hookean);
   // Materials per region (per-element parameters).
-  maps.push_back({"regions", two_regions(hexes[0], with(MaterialModel::stable_neo_hookean),
-                                         Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 3.0, 0.49))});
-  check_cases<double>(hexes, maps, device::MaterialKernel::specialized);
-  const std::vector<Mesh> tets = tet_meshes();
-  check_cases<double>(tets, every_model(tets[0]), device::MaterialKernel::specialized);
+  check_cases<double>(
+      hexes,
+      {{"snh", uniform_material(hexes[0], snh)},
+       {"regions",
+        two_regions(hexes[0], snh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 3.0, 0.49))}},
+      device::MaterialKernel::specialized);
+  check_cases<double>({tets[1]}, {{"snh", uniform_material(tets[1], snh)}}, device::MaterialKernel::specialized);
 }
 
 TEST(PointLanes, RunTimeMaterialKernelMatchesDouble) {
