@@ -1,6 +1,7 @@
 // The per-phase profile (snh::SolveProfile) as the reports write it: a JSON
 // object with one key per phase, and the phases in a fixed order for tables,
-// then `kernels`: seconds per OpenCL kernel by name.
+// then `kernels`: seconds per OpenCL kernel by name. And the Newton history
+// (snh::NewtonIteration) as the scene reports write it.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -33,6 +34,21 @@ inline nlohmann::ordered_json profile_json(const SolveProfile& p) {
   for (const auto& [name, seconds] : p.kernels) kernels[name] = seconds;
   j["kernels"] = kernels;
   return j;
+}
+
+// One object per Newton iteration; `recovery` only where the solver did
+// something to get past trouble.
+inline nlohmann::ordered_json history_json(const std::vector<NewtonIteration>& history) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const NewtonIteration& h : history) {
+    nlohmann::ordered_json j = {
+        {"step", h.step},       {"iteration", h.iteration},     {"residual", h.residual_norm},
+        {"energy", h.energy},   {"step_length", h.step_length}, {"cg_iterations", h.cg_iterations},
+        {"cg_stop", h.cg_stop}, {"projected", h.projected},     {"seconds", h.seconds}};
+    if (!h.recovery.empty()) j["recovery"] = h.recovery;
+    out.push_back(j);
+  }
+  return out;
 }
 
 }  // namespace snh::bench

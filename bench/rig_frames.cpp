@@ -116,7 +116,8 @@ int run_rig_scene(const SceneFile& file, const SolveOptions& options, const RigR
                              {"profile", profile_json(r.profile)},
                              {"volume_ratio", r.volume_ratio},
                              {"min_j", r.min_j},
-                             {"inverted_elements", r.inverted_elements}});
+                             {"inverted_elements", r.inverted_elements},
+                             {"history", history_json(r.history)}});
     out << j.dump(2) << '\n';
   }
   return all ? 0 : 3;

@@ -162,17 +162,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["min_j"] = r.min_j;
   j["max_j"] = r.max_j;
   j["inverted_elements"] = r.inverted_elements;
-  j["history"] = json::array();
-  for (const NewtonIteration& h : r.history)
-    j["history"].push_back({{"step", h.step},
-                            {"iteration", h.iteration},
-                            {"residual", h.residual_norm},
-                            {"energy", h.energy},
-                            {"step_length", h.step_length},
-                            {"cg_iterations", h.cg_iterations},
-                            {"cg_stop", h.cg_stop},
-                            {"projected", h.projected},
-                            {"seconds", h.seconds}});
+  j["history"] = history_json(r.history);
   return j;
 }
 

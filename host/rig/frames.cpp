@@ -57,6 +57,7 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     record.volume_ratio = r.volume_ratio;
     record.min_j = r.min_j;
     record.inverted_elements = r.inverted_elements;
+    record.history = r.history;
     records.push_back(record);
     const std::vector<double>& x = simulation.positions();
     const std::vector<double> surface = embedding ? embedded_positions(*embedding, mesh, x) : std::vector<double>{};

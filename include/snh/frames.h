@@ -28,6 +28,7 @@ struct FrameRecord {
   double volume_ratio = 0.0;
   double min_j = 0.0;
   int inverted_elements = 0;
+  std::vector<NewtonIteration> history;  // the frame's Newton iterations (SolveResult::history)
 };
 
 struct FrameOptions {
