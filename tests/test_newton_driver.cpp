@@ -153,5 +153,61 @@ TEST(NewtonDriver, ProgressIsJudgedWithinOneActiveSet) {
   EXPECT_EQ(r.newton_iterations, 13);
 }
 
+// An equilibrium with an inverted element, as at a squeezed elbow: E =
+// k (x - 1)^2 / 2, positive definite, but the projection (clamping the
+// inverted element's negative eigenvalues) overestimates the curvature ten
+// times, so projected Newton converges linearly, at 0.9 per iteration:
+// about 260 iterations from a residual of 1 to 1e-12. Once it crawls, the
+// adaptive mode must try the true Hessian even though an element is
+// inverted, and converge at once.
+class InvertedEquilibriumProblem {
+ public:
+  using Vector = std::vector<double>;
+  size_t dofs() const { return 1; }
+  double epsilon() const { return 2.220446049250313e-16; }
+  Vector vector() const { return Vector(1, 0.0); }
+  double energy(const Vector& v) { return 0.5 * (v[0] - 1.0) * (v[0] - 1.0); }
+  double last_min_j() const { return -0.01; }
+  void residual(const Vector& v, Vector& r) { r = {1.0 - v[0]}; }
+  double norm(const Vector& v) const { return std::abs(v[0]); }
+  double dot(const Vector& a, const Vector& b) const { return a[0] * b[0]; }
+  void linearize(const Vector&, bool projected) { curvature_ = projected ? 10.0 : 1.0; }
+  solver::LinearSolve solve(const Vector& r, Vector& p, double, int) {
+    p = {r[0] / curvature_};
+    solver::LinearSolve s;
+    s.iterations = 1;
+    return s;
+  }
+  void precondition(const Vector& r, Vector& p) { p = r; }
+  void step(const Vector& x, double alpha, const Vector& p, Vector& out) { out = {x[0] + alpha * p[0]}; }
+  void swap(Vector& a, Vector& b) { a.swap(b); }
+  bool has_true_hessian() const { return true; }
+
+ private:
+  double curvature_ = 10.0;
+};
+
+TEST(NewtonDriver, CrawlingProjectionTriesTheTrueHessianDespiteInversion) {
+  InvertedEquilibriumProblem problem;
+  SolveOptions options;
+  options.max_newton_iterations = 100;
+  solver::NewtonDriver<InvertedEquilibriumProblem> newton(problem, options);
+  std::vector<NewtonIteration> history;
+  std::vector<double> x = {0.0};
+  const StepResult result = newton.solve_step(1, x, 1e-12, history, std::chrono::steady_clock::now());
+  EXPECT_TRUE(result.converged) << result.status << " after " << result.newton_iterations;
+  EXPECT_NEAR(x[0], 1.0, 1e-12);
+  EXPECT_LT(result.newton_iterations, 10);
+  int first_true = -1;
+  for (const NewtonIteration& h : history)
+    if (!h.projected && h.cg_stop != "") {
+      first_true = h.iteration;
+      break;
+    }
+  EXPECT_GE(first_true, 4) << "only after the projection crawled";
+  std::printf("inverted equilibrium: %d Newton iterations, first true Hessian at iteration %d\n",
+              result.newton_iterations, first_true);
+}
+
 }  // namespace
 }  // namespace snh::test
