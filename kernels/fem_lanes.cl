@@ -1,5 +1,6 @@
 /* The per-point kernels of fem.cl for CPU devices (the linearization, the
- * cached and recompute products, the element matrices), written over lanes:
+ * cached and recompute products, the element matrices, the block-Jacobi
+ * blocks), written over lanes:
  * built with SNH_LANES = 8 (snh_portable.h), so `real` holds 8 points, the
  * 8 quadrature points of one hex8 element (one work-item per element) or
  * the one point of 8 consecutive tet4 elements (one work-item per 8
@@ -279,4 +280,45 @@ __kernel void snh_element_product_cached(__global const scalar_real* p, __global
       lanes_linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * LANES_FIRST_POINT(w), lanes);
   element_product(&h, ps, g, lanes_load_weights(weights, w, count), y);
   lanes_store_product(y, w, count, out);
+}
+
+/* fem.cl's snh_element_diagonal: the 3x3 diagonal blocks K_aa of the
+ * projected stiffness (projected even when the cache holds the true
+ * Hessian), the points in lanes. */
+__kernel void snh_element_diagonal(__global const int* elements, __global const scalar_real* gradients,
+                                   __global const scalar_real* weights, const int count,
+                                   __global const scalar_real* cache, __global scalar_real* out) {
+  (void)elements;
+  const size_t w = get_global_id(0);
+  if (!LANES_ACTIVE(w, count)) return;
+  const int lanes = LANES_STORED(w, count);
+  real g[3 * SNH_NODES], vg[3 * SNH_NODES], k[9 * SNH_NODES];
+  lanes_load_gradients(gradients, w, count, g);
+  const real qw = lanes_load_weights(weights, w, count);
+  const principal_hessian h = principal_hessian_project(
+      lanes_linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * LANES_FIRST_POINT(w), lanes));
+  element_rotated_gradients(&h, g, vg);
+  for (int a = 0; a < SNH_NODES; ++a)
+    for (int d = 0; d < 3; ++d) {
+      /* Column d of K_aa: node a's rows of the rank-one column (a, d). */
+      const mat3 m = element_column_frame(&h, vg, a, d);
+      SNH_UNROLL
+      for (int i = 0; i < 3; ++i)
+        k[9 * a + 3 * d + i] =
+            SNH_R(0) + qw * (M3(m, i, 0) * vg[3 * a] + M3(m, i, 1) * vg[3 * a + 1] + M3(m, i, 2) * vg[3 * a + 2]);
+    }
+#if SNH_HEX8
+  SNH_UNROLL
+  for (int i = 0; i < 9 * SNH_NODES; ++i) {
+    scalar_real sum = LANE(k[i], 0);
+    SNH_UNROLL
+    for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(k[i], q);
+    out[9 * SNH_NODES * w + i] = sum;
+  }
+#else
+  for (int l = 0; l < lanes; ++l) {
+    SNH_UNROLL
+    for (int i = 0; i < 9 * SNH_NODES; ++i) out[9 * SNH_NODES * (8 * w + l) + i] = LANE(k[i], l);
+  }
+#endif
 }

@@ -1,6 +1,6 @@
 // Per-point lanes (kernels/fem_lanes.cl, ElasticModel::set_point_lanes): the
-// linearization, the cached and recompute products and the element matrices
-// over 8-wide vectors, a lane per quadrature point of a hex8 element or per
+// linearization, the cached and recompute products, the element matrices and
+// the block-Jacobi blocks over 8-wide vectors, a lane per quadrature point of a hex8 element or per
 // tet4 element, against fem.cl's scalar kernels on the same device (the
 // cached product runs over lanes in float only: ElasticModel::set_point_lanes).
 // Every lane runs the scalar kernel's operations on the same values (no
@@ -76,6 +76,7 @@ struct Outputs {
   std::vector<Real> cache[2];     // projected, true Hessian
   std::vector<Real> product[2];   // recompute product at each
   std::vector<Real> cached[2];    // cached product at each
+  std::vector<Real> jacobi[2];    // block-Jacobi's inverted blocks at each
   std::vector<Real> matrices[2];  // element matrices at each
   std::vector<Real> blocks[2];    // and their diagonal blocks
 };
@@ -99,6 +100,8 @@ Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, int quadrature, 
     model.product(pd, y);
     out.cached[projected] = download_raw(y);
     model.set_variant(ProductVariant::recompute);
+    model.setup_preconditioner();
+    out.jacobi[projected] = model.preconditioner_blocks();
     const size_t n = 3 * static_cast<size_t>(nodes);
     std::vector<Real>& k = out.matrices[projected];
     std::vector<Real>& b = out.blocks[projected];
@@ -181,6 +184,7 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
         expect_equal_values(lanes.cache[k], scalar.cache[k], relative, "linearization, " + at);
         expect_equal_values(lanes.product[k], scalar.product[k], relative, "recompute product, " + at);
         expect_equal_values(lanes.cached[k], scalar.cached[k], relative, "cached product, " + at);
+        expect_equal_values(lanes.jacobi[k], scalar.jacobi[k], relative, "block-Jacobi blocks, " + at);
         expect_equal_values(lanes.matrices[k], scalar.matrices[k], relative, "element matrices, " + at);
         expect_equal_values(lanes.blocks[k], scalar.blocks[k], relative, "diagonal blocks, " + at);
       }

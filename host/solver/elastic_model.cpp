@@ -95,7 +95,6 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
   forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
   set_point_lanes(point_lanes_available() && !cl_.info().is_gpu);
-  diagonal_k_ = cl_.kernel("fem.cl", defines_, "snh_element_diagonal");
   gather_k_ = cl_.kernel("fem.cl", defines_, "snh_gather_vectors");
   setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
   apply_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_apply");
@@ -158,6 +157,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
       cl_.kernel(cached_lanes_ ? file : "fem.cl", cached_lanes_ ? defines : defines_, "snh_element_product_cached");
   matrices_k_ = cl_.kernel(file, defines, "snh_element_matrices");
   matrices_float_k_ = device::Kernel();
+  diagonal_k_ = cl_.kernel(file, defines, "snh_element_diagonal");
 }
 
 template <typename Real>
@@ -796,7 +796,7 @@ void ElasticModel<Real>::setup_preconditioner() {
     set_arg(k, 3, count);
     set_arg(k, 4, cache_.get());
     set_arg(k, 5, element_blocks_.get());
-    run_element_kernel(k);
+    run_point_kernel(k, point_lanes_);
   }
   cl_kernel s = setup_k_.get();
   const int vertices = static_cast<int>(vertex_count_);

@@ -172,8 +172,8 @@ class ElasticModel {
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);
   // Per-point lanes (kernels/fem_lanes.cl): the linearization, the
-  // recompute product, the element matrices and (float) the cached product
-  // over 8-wide vectors, a lane per quadrature point of a
+  // recompute product, the element matrices, block-Jacobi's element blocks
+  // and (float) the cached product over 8-wide vectors, a lane per quadrature point of a
   // hex8 element or per tet4 element, the scalar kernels' results bit for
   // bit (but for exp's rounding). On by default on CPU devices (where pocl
   // leaves the scalar kernels' per-point math unvectorized), off on GPUs.
@@ -203,7 +203,7 @@ class ElasticModel {
  private:
   void run_element_kernel(cl_kernel k) const;
   // The same for the kernels fem_lanes.cl also has (linearize, cached and
-  // recompute products, element matrices).
+  // recompute products, element matrices, element blocks).
   // lanes: the kernel is fem_lanes.cl's (tet4: a work-item per 8 elements).
   void run_point_kernel(cl_kernel k, bool lanes) const;
   // Per-element elastic forces at x into element_scratch_ (before the gather).
