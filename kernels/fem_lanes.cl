@@ -130,17 +130,17 @@ SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __g
   }
 }
 
-/* A product's nodal values: a hex8 element's points summed in the scalar
- * kernel's order (point 0 first), tet4 lanes per element. */
-SNH_FN void lanes_store_product(const real* y, size_t w, int count, __global scalar_real* out) {
+/* n values per element from v[n]: a hex8 element's points summed in the
+ * scalar kernel's order (point 0 first), tet4 lanes per element. */
+SNH_FN void lanes_store_per_element(const real* v, int n, size_t w, int count, __global scalar_real* out) {
 #if SNH_HEX8
   (void)count;
   SNH_UNROLL
-  for (int i = 0; i < 3 * SNH_NODES; ++i) {
-    scalar_real sum = LANE(y[i], 0);
+  for (int i = 0; i < n; ++i) {
+    scalar_real sum = LANE(v[i], 0);
     SNH_UNROLL
-    for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(y[i], q);
-    out[3 * SNH_NODES * w + i] = sum;
+    for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(v[i], q);
+    out[n * w + i] = sum;
   }
 #else
   const int lanes = LANES_STORED(w, count);
@@ -148,7 +148,7 @@ SNH_FN void lanes_store_product(const real* y, size_t w, int count, __global sca
   for (int l = 0; l < 8; ++l) {
     if (l >= lanes) break;
     SNH_UNROLL
-    for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * (8 * w + l) + i] = LANE(y[i], l);
+    for (int i = 0; i < n; ++i) out[n * (8 * w + l) + i] = LANE(v[i], l);
   }
 #endif
 }
@@ -209,7 +209,7 @@ __kernel void snh_element_product_recompute(__global const scalar_real* p, __glo
                                                    element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
   if (project) h = principal_hessian_project(h);
   element_product(&h, ps, g, lanes_load_weights(weights, w, count), y);
-  lanes_store_product(y, w, count, out);
+  lanes_store_per_element(y, 3 * SNH_NODES, w, count, out);
 }
 
 /* fem.cl's snh_element_matrices: the stiffness from the cached
@@ -279,7 +279,7 @@ __kernel void snh_element_product_cached(__global const scalar_real* p, __global
   const principal_hessian h =
       lanes_linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * LANES_FIRST_POINT(w), lanes);
   element_product(&h, ps, g, lanes_load_weights(weights, w, count), y);
-  lanes_store_product(y, w, count, out);
+  lanes_store_per_element(y, 3 * SNH_NODES, w, count, out);
 }
 
 /* fem.cl's snh_element_diagonal: the 3x3 diagonal blocks K_aa of the
@@ -307,18 +307,5 @@ __kernel void snh_element_diagonal(__global const int* elements, __global const 
         k[9 * a + 3 * d + i] =
             SNH_R(0) + qw * (M3(m, i, 0) * vg[3 * a] + M3(m, i, 1) * vg[3 * a + 1] + M3(m, i, 2) * vg[3 * a + 2]);
     }
-#if SNH_HEX8
-  SNH_UNROLL
-  for (int i = 0; i < 9 * SNH_NODES; ++i) {
-    scalar_real sum = LANE(k[i], 0);
-    SNH_UNROLL
-    for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(k[i], q);
-    out[9 * SNH_NODES * w + i] = sum;
-  }
-#else
-  for (int l = 0; l < lanes; ++l) {
-    SNH_UNROLL
-    for (int i = 0; i < 9 * SNH_NODES; ++i) out[9 * SNH_NODES * (8 * w + l) + i] = LANE(k[i], l);
-  }
-#endif
+  lanes_store_per_element(k, 9 * SNH_NODES, w, count, out);
 }

@@ -142,22 +142,26 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   if (on && !point_lanes_available())
     throw Error("solver: per-point lanes of tet4 meshes need one material for the mesh (this map has regions)");
   point_lanes_ = on;
-  // The lanes program needs only the element's own specialization.
-  const char* file = on ? "fem_lanes.cl" : "fem.cl";
-  const std::string defines = on ? elastic_defines_ + " -DSNH_LANES=8" : defines_;
-  linearize_k_ = cl_.kernel(file, defines, "snh_element_linearize");
-  product_recompute_k_ = cl_.kernel(file, defines, "snh_element_product_recompute");
+  linearize_k_ = point_kernel("snh_element_linearize");
+  product_recompute_k_ = point_kernel("snh_element_product_recompute");
   // The cached product over lanes only in float: in double, pocl already
   // vectorizes the scalar kernel across work-items (no SVD in it) and the
   // lanes version, which gathers each point's 30 cached values into 8-wide
   // vectors, measured 1.4x (hex8) and 2.4x (tet4) slower; in float it
   // measured 1.8x and 1.6x faster (README, "Per-point lanes").
   cached_lanes_ = on && sizeof(Real) == sizeof(float);
-  product_cached_k_ =
-      cl_.kernel(cached_lanes_ ? file : "fem.cl", cached_lanes_ ? defines : defines_, "snh_element_product_cached");
-  matrices_k_ = cl_.kernel(file, defines, "snh_element_matrices");
+  product_cached_k_ = cached_lanes_ ? point_kernel("snh_element_product_cached")
+                                    : cl_.kernel("fem.cl", defines_, "snh_element_product_cached");
+  matrices_k_ = point_kernel("snh_element_matrices");
   matrices_float_k_ = device::Kernel();
-  diagonal_k_ = cl_.kernel(file, defines, "snh_element_diagonal");
+  diagonal_k_ = point_kernel("snh_element_diagonal");
+}
+
+template <typename Real>
+device::Kernel ElasticModel<Real>::point_kernel(const char* name, const std::string& extra) const {
+  // The lanes program needs only the element's own specialization.
+  if (point_lanes_) return cl_.kernel("fem_lanes.cl", elastic_defines_ + " -DSNH_LANES=8" + extra, name);
+  return cl_.kernel("fem.cl", defines_ + extra, name);
 }
 
 template <typename Real>
@@ -229,10 +233,7 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
     return;
   }
   if (single_precision && !matrices_float_k_)
-    matrices_float_k_ =
-        cl_.kernel(point_lanes_ ? "fem_lanes.cl" : "fem.cl",
-                   (point_lanes_ ? elastic_defines_ + " -DSNH_LANES=8" : defines_) + " -DSNH_MATRIX_FLOAT=1",
-                   "snh_element_matrices");
+    matrices_float_k_ = point_kernel("snh_element_matrices", " -DSNH_MATRIX_FLOAT=1");
   cl_kernel k = single_precision ? matrices_float_k_.get() : matrices_k_.get();
   const int count = static_cast<int>(element_count_);
   set_arg(k, 0, elements_.get());

@@ -206,6 +206,9 @@ class ElasticModel {
   // recompute products, element matrices, element blocks).
   // lanes: the kernel is fem_lanes.cl's (tet4: a work-item per 8 elements).
   void run_point_kernel(cl_kernel k, bool lanes) const;
+  // Kernel `name` of the program set_point_lanes chose (fem_lanes.cl or
+  // fem.cl), its defines followed by `extra`.
+  device::Kernel point_kernel(const char* name, const std::string& extra = "") const;
   // Per-element elastic forces at x into element_scratch_ (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
   void compute_element_matrices();
