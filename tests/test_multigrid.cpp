@@ -17,6 +17,7 @@
 #include "device/viennacl_binding.h"
 #include "device_test_support.h"
 #include "fem/rest_state.h"
+#include "fem/vertex_slots.h"
 #include "snh/error.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
@@ -139,9 +140,10 @@ TEST(LatticeHierarchy, PartlyFilledAndNonBoxLatticesKeepTheirCells) {
   }
 }
 
-TEST(LatticeHierarchy, SlitIsNotGluedOnCoarseLevels) {
-  // Two 4x2x4 slabs stacked in y; for x >= 2 the vertices between them are
-  // duplicated (a slit, as the voxelizer leaves across a thin gap).
+// Two 4x2x4 slabs stacked in y; for x >= 2 the vertices between them are
+// duplicated (a slit, as the voxelizer leaves across a thin gap). duplicate:
+// per original vertex its copy, or -1.
+Mesh slit_lattice(std::vector<int>* duplicate_out = nullptr) {
   Mesh mesh = make_box_lattice(4, 2, 4, kH);
   std::vector<int> duplicate(mesh.vertex_count(), -1);
   for (size_t e = 0; e < mesh.element_count(); ++e) {
@@ -158,6 +160,13 @@ TEST(LatticeHierarchy, SlitIsNotGluedOnCoarseLevels) {
       mesh.elements[8 * e + a] = duplicate[v];
     }
   }
+  if (duplicate_out) *duplicate_out = duplicate;
+  return mesh;
+}
+
+TEST(LatticeHierarchy, SlitIsNotGluedOnCoarseLevels) {
+  std::vector<int> duplicate;
+  const Mesh mesh = slit_lattice(&duplicate);
   const solver::LatticeHierarchy h = solver::build_lattice_hierarchy(mesh, all_free(mesh), 1, 2);
   ASSERT_EQ(h.levels.size(), 2u);
   // The parents at x = 1 (fine x 2..3) hold two unconnected groups each.
@@ -552,6 +561,77 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
   EXPECT_EQ(apply(built, a), built_a);
 }
 
+// Every smoothed level applies its operator from blocks assembled per vertex
+// (snh_stencil_assemble): the product must be D (sum of the level's cell
+// matrices) p, also across a slit, where a vertex has two neighbours at one
+// lattice offset (more than 27 blocks a vertex), and exactly symmetric blocks
+// in float.
+TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
+  std::vector<int> duplicate;
+  const Mesh slit = slit_lattice(&duplicate);
+  ASSERT_GT(fem::vertex_neighbours(slit.elements, slit.vertex_count(), 8).width, 27);
+  DeviceCase c;
+  for (const Mesh* mesh : {static_cast<const Mesh*>(&c.mesh), &slit}) {
+    const fem::RestState rest = fem::compute_rest_state(*mesh);
+    std::vector<char> mask(3 * mesh->vertex_count(), 1);
+    for (size_t v = 0; v < mesh->vertex_count(); ++v)
+      if (mesh->positions[3 * v + 2] < 1e-9) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = 0;
+    std::vector<double> x = mesh->positions;
+    for (size_t v = 0; v < mesh->vertex_count(); ++v) x[3 * v] += 0.2 * mesh->positions[3 * v + 2] * x[3 * v + 1];
+    solver::ElasticModel<double> model(device_for(Precision::double_), *mesh, rest, uniform_material(*mesh, c.material),
+                                       ProductVariant::cached);
+    model.set_mask(std::vector<double>(mask.begin(), mask.end()));
+    for (bool narrow : {false, true}) {
+      MultigridOptions options = built_fine_level(narrow);
+      options.coarsest_dofs = 1;
+      solver::MultigridPreconditioner<double> mg(model, *mesh, mask, options);
+      ASSERT_GE(mg.levels(), 3);
+      model.linearize(upload(x), true);
+      mg.setup();
+      std::mt19937_64 rng(3);
+      std::uniform_real_distribution<double> u(-1.0, 1.0);
+      for (int l = 0; l + 1 < mg.levels(); ++l) {
+        const solver::LatticeLevel& level = mg.hierarchy().levels[l];
+        const size_t n = 3 * level.vertex_count;
+        const std::vector<double> cells = mg.level_matrices(l);
+        std::vector<double> p(n), expected(n, 0.0);
+        for (double& value : p) value = u(rng);
+        for (size_t cell = 0; cell < level.cells.size(); ++cell)
+          for (int col = 0; col < 24; ++col)
+            for (int row = 0; row < 24; ++row)
+              expected[3 * level.elements[8 * cell + row / 3] + row % 3] +=
+                  cells[576 * cell + 24 * col + row] * p[3 * level.elements[8 * cell + col / 3] + col % 3];
+        for (size_t i = 0; i < n; ++i) expected[i] *= level.mask[i];
+        viennacl::vector<double> y(n);
+        mg.level_product(l, upload(p), y);
+        // Double: rounding only. Float fine level: the float rounding of the
+        // assembled blocks (the cells' are float already).
+        const double bound = l == 0 && narrow ? 1e-6 : 1e-14;
+        EXPECT_LT(relative_difference(download(y), expected), bound) << "level " << l << " float " << narrow;
+        if (l > 0 || !narrow) continue;
+        // Exact symmetry: a.(A b) and b.(A a) on the free DOFs agree to the
+        // products' rounding in double.
+        std::vector<double> a(n), b(n);
+        for (size_t i = 0; i < n; ++i) {
+          a[i] = level.mask[i] * u(rng);
+          b[i] = level.mask[i] * u(rng);
+        }
+        viennacl::vector<double> ya(n), yb(n);
+        mg.level_product(0, upload(a), ya);
+        mg.level_product(0, upload(b), yb);
+        const std::vector<double> aa = download(ya), bb = download(yb);
+        double ab = 0.0, ba = 0.0, scale = 0.0;
+        for (size_t i = 0; i < n; ++i) {
+          ab += a[i] * bb[i];
+          ba += b[i] * aa[i];
+          scale += std::abs(a[i] * bb[i]);
+        }
+        EXPECT_LT(std::abs(ab - ba), 1e-14 * scale);
+      }
+    }
+  }
+}
+
 // MultigridOptions::fine_level_float (the default in double): the built fine
 // level's matrices in float are half the bytes, exactly symmetric (so the
 // V-cycle stays symmetric: VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero
@@ -565,7 +645,10 @@ TEST(Multigrid, FloatFineLevelHalvesItsMatricesAndStaysClose) {
   const std::vector<double> mask(c.mask.begin(), c.mask.end());
   solver::MultigridPreconditioner<double> single(model, c.mesh, c.mask, built_fine_level(true));
   solver::MultigridPreconditioner<double> full(model, c.mesh, c.mask, built_fine_level(false));
-  EXPECT_EQ(full.memory_bytes() - single.memory_bytes(), c.mesh.element_count() * 576 * sizeof(float));
+  // Half of the cell matrices' and of the assembled blocks' bytes.
+  const fem::VertexNeighbours around = fem::vertex_neighbours(c.mesh.elements, c.mesh.vertex_count(), 8);
+  EXPECT_EQ(full.memory_bytes() - single.memory_bytes(),
+            (c.mesh.element_count() * 576 + around.table.size() * 9) * sizeof(float));
   model.linearize(upload(c.x), true);
   model.setup_preconditioner();
   single.setup();

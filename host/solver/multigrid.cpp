@@ -21,13 +21,57 @@ constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
 // (PETSc's defaults for a Chebyshev smoother; Adams et al. 2003).
 constexpr double kLower = 0.1, kUpper = 1.1;
 
+// snh_stencil_assemble's tables for a level: the neighbours ([width v + s])
+// and, per block (v, s) in that order, the cell blocks that add up to it
+// (64 e + 8 b + a), in increasing cell order.
+struct StencilTables {
+  int width = 1;
+  std::vector<int> neighbours, part_offsets, parts;
+};
+
+StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_count) {
+  const fem::VertexNeighbours around = fem::vertex_neighbours(elements, vertex_count, 8);
+  const fem::VertexSlots slots = fem::vertex_slots(elements, vertex_count);
+  StencilTables t;
+  t.width = around.width;
+  const size_t count = vertex_count, width = static_cast<size_t>(around.width);
+  t.neighbours = around.table;
+  // Each (v, a, b) of a cell once: its block index, where it goes.
+  auto for_each_part = [&](auto&& visit) {
+    for (size_t v = 0; v < count; ++v) {
+      const int* row = around.table.data() + v * width;
+      const int size = around.sizes[v];
+      for (int k = slots.offsets[v]; k < slots.offsets[v + 1]; ++k) {
+        const int slot = slots.adjacency[k], e = slot / 8, a = slot % 8;
+        for (int b = 0; b < 8; ++b) {
+          const int n = elements[8 * static_cast<size_t>(e) + b];
+          const size_t s =
+              n == static_cast<int>(v) ? 0 : static_cast<size_t>(std::lower_bound(row + 1, row + size, n) - row);
+          visit(v * width + s, 64 * e + 8 * b + a);
+        }
+      }
+    }
+  };
+  t.part_offsets.assign(width * count + 1, 0);
+  for_each_part([&](size_t item, int) { ++t.part_offsets[item + 1]; });
+  for (size_t i = 0; i < width * count; ++i) t.part_offsets[i + 1] += t.part_offsets[i];
+  t.parts.resize(static_cast<size_t>(t.part_offsets.back()));
+  std::vector<int> fill(t.part_offsets.begin(), t.part_offsets.end() - 1);
+  for_each_part([&](size_t item, int part) { t.parts[static_cast<size_t>(fill[item]++)] = part; });
+  return t;
+}
+
 }  // namespace
 
 template <typename Real>
 struct MultigridPreconditioner<Real>::Level {
   size_t cells = 0, vertices = 0;
   cl_mem element_handle = nullptr;  // the level's elements (the model's at level 0)
-  device::Buffer elements, offsets, adjacency, mask, matrices, scratch, blocks, inverse, children;
+  device::Buffer elements, offsets, adjacency, mask, matrices, blocks, inverse, children;
+  // The operator's blocks per vertex (snh_stencil_assemble), whose they are
+  // and what they add up.
+  device::Buffer neighbours, part_offsets, parts, stencil;
+  int width = 0;
   device::Buffer prolong_vertices, prolong_weights, restrict_offsets, restrict_vertices, restrict_weights;
   viennacl::vector<Real> b, x, r, d, t;
   viennacl::vector<Real> eigenvector;  // of D^-1 A, the last power iteration's
@@ -60,8 +104,8 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
   prolong_k_ = cl_.kernel("multigrid.cl", coarse, "snh_prolong_add");
   restrict_k_ = cl_.kernel("multigrid.cl", coarse, "snh_restrict");
-  matrix_product_k_ = cl_.kernel("fem.cl", coarse, "snh_element_matrix_product");
-  gather_k_ = cl_.kernel("fem.cl", coarse, "snh_gather_vectors");
+  stencil_assemble_k_ = cl_.kernel("multigrid.cl", coarse, "snh_stencil_assemble");
+  stencil_product_k_ = cl_.kernel("multigrid.cl", coarse, "snh_stencil_product");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
   jacobi_apply_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_apply");
   vertex_terms_ = model.terms().inertia || model.terms().obstacles > 0;
@@ -74,7 +118,8 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   fine_float_ = fine_built_ && options.fine_level_float && sizeof(Real) > sizeof(float);
   if (fine_float_) {
     const std::string narrow = coarse + " -DSNH_MATRIX_FLOAT=1";
-    fine_float_product_k_ = cl_.kernel("fem.cl", narrow, "snh_element_matrix_product");
+    fine_float_assemble_k_ = cl_.kernel("multigrid.cl", narrow, "snh_stencil_assemble");
+    fine_float_product_k_ = cl_.kernel("multigrid.cl", narrow, "snh_stencil_product");
     fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", narrow, "snh_galerkin_from_matrices");
   }
   if (vertex_terms_) {
@@ -114,16 +159,22 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       L.element_handle = L.elements.get();
       L.children = upload_int(h.children, L.bytes);
     }
-    if (l > 0 || fine_built_) {  // cell matrices, their blocks and a gather of its own
+    if (l > 0 || fine_built_) {  // cell matrices, their blocks and the assembled operator
       const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
       L.offsets = upload_int(slots.offsets, L.bytes);
       L.adjacency = upload_int(slots.adjacency, L.bytes);
-      const size_t matrix_bytes = L.cells * kCellMatrix * (l == 0 && fine_float_ ? sizeof(float) : sizeof(Real));
+      const StencilTables stencil = stencil_tables(h.elements, L.vertices);
+      L.width = stencil.width;
+      L.neighbours = upload_int(stencil.neighbours, L.bytes);
+      L.part_offsets = upload_int(stencil.part_offsets, L.bytes);
+      L.parts = upload_int(stencil.parts, L.bytes);
+      const size_t entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(Real);
+      const size_t matrix_bytes = L.cells * kCellMatrix * entry, stencil_bytes = stencil.neighbours.size() * 9 * entry;
       L.matrices = cl_.buffer(CL_MEM_READ_WRITE, matrix_bytes);
-      L.scratch = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 24 * sizeof(Real));
+      L.stencil = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_bytes, 1));
       L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
       L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(Real));
-      L.bytes += matrix_bytes + L.cells * (24 + 72) * sizeof(Real) + L.vertices * 9 * sizeof(Real);
+      L.bytes += matrix_bytes + stencil_bytes + L.cells * 72 * sizeof(Real) + L.vertices * 9 * sizeof(Real);
     }
     if (l + 1 < hierarchy_.levels.size()) {
       L.prolong_vertices = upload_int(h.prolongation_vertices, L.bytes);
@@ -163,27 +214,30 @@ void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, Vect
     return;
   }
   const Level& L = *levels_[level];
-  const int cells = static_cast<int>(L.cells), vertices = static_cast<int>(L.vertices);
-  cl_kernel k = level == 0 && fine_float_ ? fine_float_product_k_.get() : matrix_product_k_.get();
+  const int vertices = static_cast<int>(L.vertices);
+  cl_kernel k = level == 0 && fine_float_ ? fine_float_product_k_.get() : stencil_product_k_.get();
   set_arg(k, 0, mem(p));
-  set_arg(k, 1, L.element_handle);
-  set_arg(k, 2, L.matrices.get());
-  set_arg(k, 3, cells);
-  set_arg(k, 4, L.scratch.get());
-  cl_.run(k, L.cells);
-  cl_kernel g = gather_k_.get();
-  const int no_external = 0;
-  const Real sign = Real(1);
-  set_arg(g, 0, L.scratch.get());
-  set_arg(g, 1, L.offsets.get());
-  set_arg(g, 2, L.adjacency.get());
-  set_arg(g, 3, L.mask.get());
-  set_arg(g, 4, L.mask.get());  // no external force: any buffer
-  set_arg(g, 5, no_external);
-  set_arg(g, 6, sign);
-  set_arg(g, 7, vertices);
-  set_arg(g, 8, mem(y));
-  cl_.run(g, L.vertices);
+  set_arg(k, 1, L.neighbours.get());
+  set_arg(k, 2, L.stencil.get());
+  set_arg(k, 3, L.mask.get());
+  set_arg(k, 4, vertices);
+  set_arg(k, 5, L.width);
+  set_arg(k, 6, mem(y));
+  cl_.run(k, L.vertices);
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::assemble_stencil(Level& L) {
+  const bool fine = &L == levels_[0].get();
+  cl_kernel k = fine && fine_float_ ? fine_float_assemble_k_.get() : stencil_assemble_k_.get();
+  const int vertices = static_cast<int>(L.vertices);
+  const int blocks = vertices * L.width;
+  set_arg(k, 0, L.matrices.get());
+  set_arg(k, 1, L.part_offsets.get());
+  set_arg(k, 2, L.parts.get());
+  set_arg(k, 3, blocks);
+  set_arg(k, 4, L.stencil.get());
+  cl_.run(k, static_cast<size_t>(blocks));
 }
 
 template <typename Real>
@@ -207,6 +261,7 @@ void MultigridPreconditioner<Real>::setup() {
   if (fine_built_) {
     Level& L = *levels_[0];
     model_.element_matrices_into(L.matrices.get(), L.blocks.get(), fine_float_);
+    assemble_stencil(L);
     block_jacobi(L);
   }
   for (size_t l = 1; l < levels_.size(); ++l) {
@@ -255,6 +310,7 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, next++, L.blocks.get());
       cl_.run(k, L.cells);
     }
+    assemble_stencil(L);
     block_jacobi(L);
   }
   factor_coarsest();
@@ -441,8 +497,14 @@ void MultigridPreconditioner<Real>::apply(VectorBase& z) const {
 
 template <typename Real>
 std::vector<Real> MultigridPreconditioner<Real>::level_matrices(int level) const {
-  if (level < 1 || level >= levels()) throw Error("multigrid: no matrices at level " + std::to_string(level));
+  if (level < (fine_built_ ? 0 : 1) || level >= levels())
+    throw Error("multigrid: no matrices at level " + std::to_string(level));
   const Level& L = *levels_[level];
+  if (level == 0 && fine_float_) {
+    std::vector<float> narrow(L.cells * kCellMatrix);
+    cl_.read(L.matrices.get(), narrow.size() * sizeof(float), narrow.data());
+    return std::vector<Real>(narrow.begin(), narrow.end());
+  }
   std::vector<Real> out(L.cells * kCellMatrix);
   cl_.read(L.matrices.get(), out.size() * sizeof(Real), out.data());
   return out;
