@@ -219,12 +219,9 @@ __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __globa
   for (int i = 0; i < 9; ++i) stencil[(size_t)9 * item + i] = (matrix_real)block[i];
 }
 
-/* y = mask * (A p) from the blocks above. */
-__kernel void snh_stencil_product(__global const real* p, __global const int* neighbours,
-                                  __global const matrix_real* stencil, __global const real* mask, const int count,
-                                  const int width, __global real* y) {
-  const int v = get_global_id(0);
-  if (v >= count) return;
+/* (A p) at vertex v from the blocks above. */
+SNH_FN void stencil_row(__global const real* p, __global const int* neighbours, __global const matrix_real* stencil,
+                        const int width, const int v, real* out) {
   real s0 = SNH_R(0), s1 = SNH_R(0), s2 = SNH_R(0);
   __global const int* around = neighbours + (size_t)width * v;
   __global const matrix_real* a = stencil + (size_t)9 * width * v;
@@ -235,9 +232,75 @@ __kernel void snh_stencil_product(__global const real* p, __global const int* ne
     s1 += (real)a[9 * s + 1] * p0 + (real)a[9 * s + 4] * p1 + (real)a[9 * s + 7] * p2;
     s2 += (real)a[9 * s + 2] * p0 + (real)a[9 * s + 5] * p1 + (real)a[9 * s + 8] * p2;
   }
-  y[3 * v] = mask[3 * v] * s0;
-  y[3 * v + 1] = mask[3 * v + 1] * s1;
-  y[3 * v + 2] = mask[3 * v + 2] * s2;
+  out[0] = s0;
+  out[1] = s1;
+  out[2] = s2;
+}
+
+/* y = mask * (A p). */
+__kernel void snh_stencil_product(__global const real* p, __global const int* neighbours,
+                                  __global const matrix_real* stencil, __global const real* mask, const int count,
+                                  const int width, __global real* y) {
+  const int v = get_global_id(0);
+  if (v >= count) return;
+  real ap[3];
+  stencil_row(p, neighbours, stencil, width, v, ap);
+  for (int i = 0; i < 3; ++i) y[3 * v + i] = mask[3 * v + i] * ap[i];
+}
+
+/* r = base - mask * (A p) (base may be r: r -= A p). */
+__kernel void snh_stencil_residual(__global const real* p, __global const int* neighbours,
+                                   __global const matrix_real* stencil, __global const real* mask, const int count,
+                                   const int width, __global const real* base, __global real* r) {
+  const int v = get_global_id(0);
+  if (v >= count) return;
+  real ap[3];
+  stencil_row(p, neighbours, stencil, width, v, ap);
+  for (int i = 0; i < 3; ++i) r[3 * v + i] = base[3 * v + i] - mask[3 * v + i] * ap[i];
+}
+
+/* Chebyshev smoothing over block-Jacobi (MultigridPreconditioner::chebyshev)
+ * in one pass per degree on the assembled levels. Start: d = c Dinv r,
+ * x += d. Step: r -= A d, d_next = c_d d + c_z Dinv r, x += d_next (d_next
+ * a separate buffer: the neighbours read d). Dinv: 3x3 column-major blocks
+ * per vertex (snh_block_jacobi_setup's). */
+SNH_FN void block_inverse_apply(__global const real* inverse, const int v, const real* r, real* z) {
+  for (int i = 0; i < 3; ++i)
+    z[i] = inverse[9 * v + i] * r[0] + inverse[9 * v + 3 + i] * r[1] + inverse[9 * v + 6 + i] * r[2];
+}
+
+__kernel void snh_chebyshev_start(__global const real* inverse, __global const real* r, const real c, const int count,
+                                  __global real* d, __global real* x) {
+  const int v = get_global_id(0);
+  if (v >= count) return;
+  real rv[3], z[3];
+  for (int i = 0; i < 3; ++i) rv[i] = r[3 * v + i];
+  block_inverse_apply(inverse, v, rv, z);
+  for (int i = 0; i < 3; ++i) {
+    const real dv = c * z[i];
+    d[3 * v + i] = dv;
+    x[3 * v + i] += dv;
+  }
+}
+
+__kernel void snh_chebyshev_step(__global const real* d, __global const int* neighbours,
+                                 __global const matrix_real* stencil, __global const real* mask,
+                                 __global const real* inverse, const int count, const int width, const real c_d,
+                                 const real c_z, __global real* r, __global real* x, __global real* d_next) {
+  const int v = get_global_id(0);
+  if (v >= count) return;
+  real ap[3], rv[3], z[3];
+  stencil_row(d, neighbours, stencil, width, v, ap);
+  for (int i = 0; i < 3; ++i) {
+    rv[i] = r[3 * v + i] - mask[3 * v + i] * ap[i];
+    r[3 * v + i] = rv[i];
+  }
+  block_inverse_apply(inverse, v, rv, z);
+  for (int i = 0; i < 3; ++i) {
+    const real dv = c_d * d[3 * v + i] + c_z * z[i];
+    d_next[3 * v + i] = dv;
+    x[3 * v + i] += dv;
+  }
 }
 
 /* fine += mask * P coarse: 8 (coarse vertex, weight) pairs per fine vertex. */

@@ -73,7 +73,7 @@ struct MultigridPreconditioner<Real>::Level {
   device::Buffer neighbours, part_offsets, parts, stencil;
   int width = 0;
   device::Buffer prolong_vertices, prolong_weights, restrict_offsets, restrict_vertices, restrict_weights;
-  viennacl::vector<Real> b, x, r, d, t;
+  viennacl::vector<Real> b, x, r, d, t, d_next;
   viennacl::vector<Real> eigenvector;  // of D^-1 A, the last power iteration's
   double lambda = 1.0;
   size_t bytes = 0;
@@ -106,6 +106,9 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   restrict_k_ = cl_.kernel("multigrid.cl", coarse, "snh_restrict");
   stencil_assemble_k_ = cl_.kernel("multigrid.cl", coarse, "snh_stencil_assemble");
   stencil_product_k_ = cl_.kernel("multigrid.cl", coarse, "snh_stencil_product");
+  stencil_residual_k_ = cl_.kernel("multigrid.cl", coarse, "snh_stencil_residual");
+  chebyshev_start_k_ = cl_.kernel("multigrid.cl", coarse, "snh_chebyshev_start");
+  chebyshev_step_k_ = cl_.kernel("multigrid.cl", coarse, "snh_chebyshev_step");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
   jacobi_apply_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_apply");
   vertex_terms_ = model.terms().inertia || model.terms().obstacles > 0;
@@ -120,6 +123,8 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     const std::string narrow = coarse + " -DSNH_MATRIX_FLOAT=1";
     fine_float_assemble_k_ = cl_.kernel("multigrid.cl", narrow, "snh_stencil_assemble");
     fine_float_product_k_ = cl_.kernel("multigrid.cl", narrow, "snh_stencil_product");
+    fine_float_residual_k_ = cl_.kernel("multigrid.cl", narrow, "snh_stencil_residual");
+    fine_float_step_k_ = cl_.kernel("multigrid.cl", narrow, "snh_chebyshev_step");
     fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", narrow, "snh_galerkin_from_matrices");
   }
   if (vertex_terms_) {
@@ -183,9 +188,9 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       L.restrict_vertices = upload_int(h.restriction_vertices, L.bytes);
       L.restrict_weights = upload_real(h.restriction_weights, L.bytes);
     }
-    for (auto* v : {&L.b, &L.x, &L.r, &L.d, &L.t})
+    for (auto* v : {&L.b, &L.x, &L.r, &L.d, &L.t, &L.d_next})
       *v = viennacl::vector<Real>(viennacl::scalar_vector<Real>(n, Real(0)));
-    L.bytes += 5 * n * sizeof(Real);
+    L.bytes += 6 * n * sizeof(Real);
     levels_.push_back(std::move(level));
   }
   if (hierarchy_.levels.size() > 1) {
@@ -223,6 +228,22 @@ void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, Vect
   set_arg(k, 4, vertices);
   set_arg(k, 5, L.width);
   set_arg(k, 6, mem(y));
+  cl_.run(k, L.vertices);
+}
+
+template <typename Real>
+void MultigridPreconditioner<Real>::residual(int level, const VectorBase& p, const VectorBase& base,
+                                             VectorBase& r) const {
+  const Level& L = *levels_[level];
+  cl_kernel k = level == 0 && fine_float_ ? fine_float_residual_k_.get() : stencil_residual_k_.get();
+  set_arg(k, 0, mem(p));
+  set_arg(k, 1, L.neighbours.get());
+  set_arg(k, 2, L.stencil.get());
+  set_arg(k, 3, L.mask.get());
+  set_arg(k, 4, static_cast<int>(L.vertices));
+  set_arg(k, 5, L.width);
+  set_arg(k, 6, mem(base));
+  set_arg(k, 7, mem(r));
   cl_.run(k, L.vertices);
 }
 
@@ -422,6 +443,41 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
   const double upper = kUpper * L.lambda, lower = kLower * L.lambda;
   const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;
   double rho = 1.0 / sigma;
+  if (level > 0 || fine_built_) {  // one pass per degree (snh_chebyshev_step)
+    const int count = static_cast<int>(L.vertices);
+    const bool narrow = level == 0 && fine_float_;
+    {
+      cl_kernel k = chebyshev_start_k_.get();
+      set_arg(k, 0, L.inverse.get());
+      set_arg(k, 1, mem(r));
+      set_arg(k, 2, static_cast<Real>(1.0 / theta));
+      set_arg(k, 3, count);
+      set_arg(k, 4, mem(L.d));
+      set_arg(k, 5, mem(x));
+      cl_.run(k, L.vertices);
+    }
+    for (int k = 1; k < options_.smoother_degree; ++k) {
+      const double rho_next = 1.0 / (2.0 * sigma - rho);
+      cl_kernel s = narrow ? fine_float_step_k_.get() : chebyshev_step_k_.get();
+      set_arg(s, 0, mem(L.d));
+      set_arg(s, 1, L.neighbours.get());
+      set_arg(s, 2, L.stencil.get());
+      set_arg(s, 3, L.mask.get());
+      set_arg(s, 4, L.inverse.get());
+      set_arg(s, 5, count);
+      set_arg(s, 6, L.width);
+      set_arg(s, 7, static_cast<Real>(rho_next * rho));
+      set_arg(s, 8, static_cast<Real>(2.0 * rho_next / delta));
+      set_arg(s, 9, mem(r));
+      set_arg(s, 10, mem(x));
+      set_arg(s, 11, mem(L.d_next));
+      cl_.run(s, L.vertices);
+      L.d.fast_swap(L.d_next);
+      rho = rho_next;
+    }
+    if (want_residual) residual(level, L.d, r, r);
+    return;
+  }
   L.d = r;
   inverse_diagonal(level, L.d);
   L.d *= Real(1.0 / theta);
@@ -482,8 +538,12 @@ void MultigridPreconditioner<Real>::vcycle(int level) const {
     set_arg(k, 5, mem(L.x));
     cl_.run(k, L.vertices);
   }
-  product(level, L.x, L.t);
-  L.r = L.b - L.t;
+  if (level > 0 || fine_built_) {
+    residual(level, L.x, L.b, L.r);
+  } else {
+    product(level, L.x, L.t);
+    L.r = L.b - L.t;
+  }
   chebyshev(level, L.x, L.r, false);
 }
 
