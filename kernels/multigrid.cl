@@ -35,11 +35,13 @@ SNH_FN void galerkin_add_column(const real* w, const real* m, int b, int d, cons
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i) {
       const real v = m[3 * a + i] * column[3 * a + i];
-      for (int corner = 0; corner < 8; ++corner) t[3 * corner + i] += w[8 * a + corner] * v;
+      for (int corner = 0; corner < 8; ++corner)
+        if (w[8 * a + corner] != SNH_R(0)) t[3 * corner + i] += w[8 * a + corner] * v;
     }
   const real scale = m[3 * b + d];
   for (int corner = 0; corner < 8; ++corner) {
     const real wb = scale * w[8 * b + corner];
+    if (wb == SNH_R(0)) continue;
     real* out = k + MG_DOFS * (3 * corner + d);
     for (int i = 0; i < MG_DOFS; ++i) out[i] += wb * t[i];
   }
@@ -91,8 +93,10 @@ __kernel void snh_galerkin_from_cache(__global const real* octant_weights, __glo
 /* Next coarser level from a level's element matrices (also the first, from
  * the fine element matrices when the product variant keeps them). One
  * work-item per coarse cell and coarse column (B, d): column (B, d) of K_C is
- * sum_children W_o^T D K_child D W_o e_(B,d). Branch-free (zero weights
- * multiply), weights from the table. */
+ * sum_children W_o^T D K_child D W_o e_(B,d), weights from the table.
+ * Zero weights (37 of each child's 64 node-corner pairs) and constrained
+ * columns are skipped: the same sums without their exact zero terms, in half
+ * the time on pocl (twist res 32: 1.32 -> 0.65 s over 17 builds). */
 __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __global const int* children,
                                          __global const int* fine_elements, __global const matrix_real* fine_matrices,
                                          __global const real* fine_mask, const int count, __global real* out,
@@ -115,15 +119,22 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
     for (int i = 0; i < MG_DOFS; ++i) right[i] = SNH_R(0);
     for (int b = 0; b < 8; ++b) {
       const real wb = w[8 * b + corner_b] * m[3 * b + d];
+      if (wb == SNH_R(0)) continue;
       __global const matrix_real* kb = ke + MG_DOFS * (3 * b + d);
       for (int i = 0; i < MG_DOFS; ++i) right[i] += wb * (real)kb[i];
     }
     /* column += W_o^T D right */
-    for (int a = 0; a < 8; ++a)
-      for (int i = 0; i < 3; ++i) {
-        const real v = m[3 * a + i] * right[3 * a + i];
-        for (int corner = 0; corner < 8; ++corner) column[3 * corner + i] += w[8 * a + corner] * v;
+    for (int a = 0; a < 8; ++a) {
+      const real v0 = m[3 * a] * right[3 * a], v1 = m[3 * a + 1] * right[3 * a + 1],
+                 v2 = m[3 * a + 2] * right[3 * a + 2];
+      for (int corner = 0; corner < 8; ++corner) {
+        const real wa = w[8 * a + corner];
+        if (wa == SNH_R(0)) continue;
+        column[3 * corner] += wa * v0;
+        column[3 * corner + 1] += wa * v1;
+        column[3 * corner + 2] += wa * v2;
       }
+    }
   }
   __global real* dst = out + (size_t)MG_DOFS * MG_DOFS * c + MG_DOFS * column_index;
   for (int i = 0; i < MG_DOFS; ++i) dst[i] = column[i];
