@@ -11,6 +11,7 @@ namespace snh::bench {
 
 struct MultigridFlags {
   int rebuild_every = 0;                 // > 0: MultigridOptions::rebuild_every
+  int smoother_degree = 0;               // > 0: MultigridOptions::smoother_degree
   std::string fine_level = "automatic";  // MultigridOptions::fine_level
   std::string fine_float = "on";         // MultigridOptions::fine_level_float
 
@@ -19,6 +20,10 @@ struct MultigridFlags {
                     "multigrid: rebuild the hierarchy at least every N Newton linearizations (1: every one; "
                     "default: MultigridOptions::rebuild_every)")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--multigrid-smoother-degree", smoother_degree,
+                    "multigrid: Chebyshev degree of each pre- and post-smoothing (default: "
+                    "MultigridOptions::smoother_degree)")
+        ->check(CLI::Range(1, 16));
     cmd->add_option("--multigrid-fine-level", fine_level,
                     "multigrid: the V-cycle's fine level, built (the build's element matrices, frozen with the "
                     "coarse levels), current (the product of each linearization) or automatic (built unless the "
@@ -34,6 +39,7 @@ struct MultigridFlags {
 
   void apply(MultigridOptions& options) const {
     if (rebuild_every > 0) options.rebuild_every = rebuild_every;
+    if (smoother_degree > 0) options.smoother_degree = smoother_degree;
     options.fine_level = parse_multigrid_fine_level(fine_level);
     options.fine_level_float = fine_float == "on";
   }

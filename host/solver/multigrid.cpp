@@ -422,9 +422,7 @@ template <typename Real>
 void MultigridPreconditioner<Real>::coarse_solve() const {
   Level& L = *levels_.back();
   if (!coarsest_ok_) {  // a singular coarsest operator: smooth instead
-    L.x.clear();
-    L.r = L.b;
-    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false);
+    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b);
     return;
   }
   host_rhs_.resize(3 * L.vertices);
@@ -438,7 +436,8 @@ void MultigridPreconditioner<Real>::coarse_solve() const {
 }
 
 template <typename Real>
-void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual) const {
+void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual,
+                                              const VectorBase* from) const {
   Level& L = *levels_[level];
   const double upper = kUpper * L.lambda, lower = kLower * L.lambda;
   const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;
@@ -446,14 +445,17 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
   if (level > 0 || fine_built_) {  // one pass per degree (snh_chebyshev_step)
     const int count = static_cast<int>(L.vertices);
     const bool narrow = level == 0 && fine_float_;
+    const VectorBase& start = from ? *from : r;  // r's value on entry
     {
       cl_kernel k = chebyshev_start_k_.get();
+      const int accumulate = from ? 0 : 1;
       set_arg(k, 0, L.inverse.get());
-      set_arg(k, 1, mem(r));
+      set_arg(k, 1, mem(start));
       set_arg(k, 2, static_cast<Real>(1.0 / theta));
       set_arg(k, 3, count);
-      set_arg(k, 4, mem(L.d));
-      set_arg(k, 5, mem(x));
+      set_arg(k, 4, accumulate);
+      set_arg(k, 5, mem(L.d));
+      set_arg(k, 6, mem(x));
       cl_.run(k, L.vertices);
     }
     for (int k = 1; k < options_.smoother_degree; ++k) {
@@ -468,15 +470,20 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
       set_arg(s, 6, L.width);
       set_arg(s, 7, static_cast<Real>(rho_next * rho));
       set_arg(s, 8, static_cast<Real>(2.0 * rho_next / delta));
-      set_arg(s, 9, mem(r));
-      set_arg(s, 10, mem(x));
-      set_arg(s, 11, mem(L.d_next));
+      set_arg(s, 9, mem(k == 1 ? start : r));
+      set_arg(s, 10, mem(r));
+      set_arg(s, 11, mem(x));
+      set_arg(s, 12, mem(L.d_next));
       cl_.run(s, L.vertices);
       L.d.fast_swap(L.d_next);
       rho = rho_next;
     }
-    if (want_residual) residual(level, L.d, r, r);
+    if (want_residual) residual(level, L.d, options_.smoother_degree == 1 ? start : r, r);
     return;
+  }
+  if (from) {
+    x.clear();
+    r = *from;
   }
   L.d = r;
   inverse_diagonal(level, L.d);
@@ -501,18 +508,14 @@ void MultigridPreconditioner<Real>::vcycle(int level) const {
   Level& L = *levels_[level];
   if (level + 1 == static_cast<int>(levels_.size())) {
     if (level == 0) {  // a single level: one symmetric Chebyshev smoothing
-      L.x.clear();
-      L.r = L.b;
-      chebyshev(0, L.x, L.r, false);
+      chebyshev(0, L.x, L.r, false, &L.b);
     } else {
       coarse_solve();
     }
     return;
   }
   Level& C = *levels_[level + 1];
-  L.x.clear();
-  L.r = L.b;
-  chebyshev(level, L.x, L.r, true);
+  chebyshev(level, L.x, L.r, true, &L.b);
   {
     cl_kernel k = restrict_k_.get();
     const int count = static_cast<int>(C.vertices);

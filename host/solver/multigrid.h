@@ -161,9 +161,10 @@ class MultigridPreconditioner {
   struct Level;
   void product(int level, const VectorBase& p, VectorBase& y) const;
   void inverse_diagonal(int level, VectorBase& z) const;  // z <- D^-1 z
-  // Chebyshev smoothing of A x = b at `level`; r holds b - A x on entry
-  // (x = 0, r = b when from_zero) and, if want_residual, on return.
-  void chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual) const;
+  // Chebyshev smoothing of A x = b at `level`; r holds b - A x on entry, or
+  // with `from` x = 0 and r = *from are taken as the entry values (neither
+  // read); r holds the residual on return if want_residual.
+  void chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual, const VectorBase* from = nullptr) const;
   void vcycle(int level) const;
   void coarse_solve() const;
   void factor_coarsest();
