@@ -12,6 +12,7 @@ namespace snh::bench {
 struct MultigridFlags {
   int rebuild_every = 0;                 // > 0: MultigridOptions::rebuild_every
   int smoother_degree = 0;               // > 0: MultigridOptions::smoother_degree
+  int coarsest_dofs = 0;                 // > 0: MultigridOptions::coarsest_dofs
   std::string fine_level = "automatic";  // MultigridOptions::fine_level
   std::string fine_float = "on";         // MultigridOptions::fine_level_float
 
@@ -24,6 +25,10 @@ struct MultigridFlags {
                     "multigrid: Chebyshev degree of each pre- and post-smoothing (default: "
                     "MultigridOptions::smoother_degree)")
         ->check(CLI::Range(1, 16));
+    cmd->add_option("--multigrid-coarsest-dofs", coarsest_dofs,
+                    "multigrid: coarsen until a level has at most this many DOFs, solved directly (default: "
+                    "MultigridOptions::coarsest_dofs)")
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--multigrid-fine-level", fine_level,
                     "multigrid: the V-cycle's fine level, built (the build's element matrices, frozen with the "
                     "coarse levels), current (the product of each linearization) or automatic (built unless the "
@@ -40,6 +45,7 @@ struct MultigridFlags {
   void apply(MultigridOptions& options) const {
     if (rebuild_every > 0) options.rebuild_every = rebuild_every;
     if (smoother_degree > 0) options.smoother_degree = smoother_degree;
+    if (coarsest_dofs > 0) options.coarsest_dofs = static_cast<size_t>(coarsest_dofs);
     options.fine_level = parse_multigrid_fine_level(fine_level);
     options.fine_level_float = fine_float == "on";
   }
