@@ -118,7 +118,11 @@ const char* to_string(MultigridFineLevel f);                             // "aut
 MultigridFineLevel parse_multigrid_fine_level(const std::string& text);  // the names above
 
 struct MultigridOptions {
-  int smoother_degree = 2;      // Chebyshev degree of each pre- and post-smoothing (operator products each)
+  // Chebyshev degree of each pre- and post-smoothing (operator products
+  // each); 0 (default): 1, or 2 where a material is nearly incompressible
+  // (lambda >= 200 mu, nu above about 0.4975), as measured (README,
+  // "Multigrid on hex8 lattices").
+  int smoother_degree = 0;
   size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
   int max_levels = 12;
   // Reuse between Newton linearizations (PETSc's SNESSetLagPreconditioner,
