@@ -89,7 +89,7 @@ __kernel void snh_element_linearize(__global const real* x, __global const int* 
     principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
                                                      element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
     if (project) h = principal_hessian_project(h);
-    linearization_store(&h, cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    linearization_store(&h, SNH_CACHE_AT(cache, e, q));
   }
 }
 
@@ -105,7 +105,7 @@ __kernel void snh_element_product_cached(__global const real* p, __global const 
   SNH_UNROLL
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    const principal_hessian h = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    const principal_hessian h = linearization_load(SNH_CACHE_AT(cache, e, q));
     element_product(&h, ps, g, load_weight(weights, e, q), y);
   }
   for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = y[i];
@@ -144,8 +144,7 @@ __kernel void snh_element_diagonal(__global const int* elements, __global const 
   for (int i = 0; i < 9 * SNH_NODES; ++i) k[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q) {
     load_gradients(gradients, e, q, g);
-    const principal_hessian h = principal_hessian_project(
-        linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q)));
+    const principal_hessian h = principal_hessian_project(linearization_load(SNH_CACHE_AT(cache, e, q)));
     const real w = load_weight(weights, e, q);
     element_rotated_gradients(&h, g, vg);
     for (int a = 0; a < SNH_NODES; ++a)

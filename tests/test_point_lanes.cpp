@@ -91,7 +91,7 @@ Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, int quadrature, 
   for (int projected = 0; projected < 2; ++projected) {
     model.linearize(xd, projected == 0);
     std::vector<Real>& cache = out.cache[projected];
-    cache.resize(model.element_count() * quadrature * 30);
+    cache.resize(model.cache_values());
     cl.read(model.cache_buffer(), cache.size() * sizeof(Real), cache.data());
     viennacl::vector<Real> y(model.dofs());
     model.product(pd, y);

@@ -64,7 +64,12 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   external_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real));
   element_scratch_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * nodes_ * 3 * sizeof(Real));
   element_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * nodes_ * 9 * sizeof(Real));
-  cache_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * quadrature_ * 30 * sizeof(Real));
+  {
+    // Whole groups of 8 points (kernels/fem/element.h's layout), zero-filled:
+    // a partly filled last group's other lanes stay 0.
+    const std::vector<Real> zeros(cache_values(), Real(0));
+    cache_ = cl_.buffer(CL_MEM_READ_WRITE, zeros.size() * sizeof(Real), zeros.data());
+  }
   energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   min_j_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
@@ -146,12 +151,13 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   point_lanes_ = on;
   linearize_k_ = point_kernel("snh_element_linearize");
   product_recompute_k_ = point_kernel("snh_element_product_recompute");
-  // The cached product over lanes only in float: in double, pocl already
-  // vectorizes the scalar kernel across work-items (no SVD in it) and the
-  // lanes version, which gathers each point's 30 cached values into 8-wide
-  // vectors, measured 1.4x (hex8) and 2.4x (tet4) slower; in float it
-  // measured 1.8x and 1.6x faster (README, "Per-point lanes").
-  cached_lanes_ = on && sizeof(Real) == sizeof(float);
+  // The cached product over lanes in float, and for hex8 in double too (its
+  // cache value-major per element: one vector load per value); tet4 in
+  // double keeps the scalar kernel, which pocl vectorizes across
+  // work-items: the lanes version, gathering each element's 30 cached
+  // values into 8-wide vectors, measured 1.8x slower (README, "Per-point
+  // lanes").
+  cached_lanes_ = on && (sizeof(Real) == sizeof(float) || nodes_ == 8);
   product_cached_k_ = cached_lanes_ ? point_kernel("snh_element_product_cached")
                                     : cl_.kernel("fem.cl", defines_, "snh_element_product_cached");
   matrices_k_ = point_kernel("snh_element_matrices");
@@ -168,7 +174,7 @@ device::Kernel ElasticModel<Real>::point_kernel(const char* name, const std::str
 
 template <typename Real>
 size_t ElasticModel<Real>::variant_memory_bytes() const {
-  const size_t cache = element_count_ * quadrature_ * 30 * sizeof(Real);
+  const size_t cache = cache_values() * sizeof(Real);
   const size_t m = static_cast<size_t>(3 * nodes_) * (3 * nodes_);
   switch (variant_) {
     case ProductVariant::recompute:

@@ -21,8 +21,26 @@
 #endif
 
 /* Per quadrature point, the cached linearization: U, V, the PSD-projected
- * 3x3 block and the clamped twist and flip eigenvalues. */
+ * 3x3 block and the clamped twist and flip eigenvalues. hex8: stored per
+ * element, value-major: value k of point q of element e at 240 e + 8 k + q,
+ * so that the lanes kernels (fem_lanes.cl, a lane per point) move each value
+ * of the element's 8 points as one vector. tet4: point-major, value k of
+ * element e at 30 e + k (grouping 8 tet4 elements the same way measured
+ * slower in double, README "Per-point lanes"). In general value k of point
+ * P = SNH_QUADRATURE e + q at 30 G (P / G) + G k + P % G, G =
+ * SNH_CACHE_GROUP. The host's buffer holds whole groups of 8 points,
+ * zero-filled (ElasticModel). */
 #define SNH_LINEARIZATION_SIZE 30
+#if SNH_HEX8
+#define SNH_CACHE_GROUP 8
+#else
+#define SNH_CACHE_GROUP 1
+#endif
+#define SNH_CACHE_STRIDE SNH_CACHE_GROUP
+#define SNH_CACHE_POINT(point) \
+  ((size_t)SNH_LINEARIZATION_SIZE * SNH_CACHE_GROUP * ((point) / SNH_CACHE_GROUP) + (point) % SNH_CACHE_GROUP)
+/* Point q of element e in the cache. */
+#define SNH_CACHE_AT(cache, e, q) ((cache) + SNH_CACHE_POINT((size_t)SNH_QUADRATURE * (e) + (q)))
 
 /* Element matrices' storage: the working precision, or float with
  * SNH_MATRIX_FLOAT = 1 (a double build's multigrid fine level, whose
@@ -106,31 +124,32 @@ SNH_FN void element_product(const principal_hessian* h, const real* ps, const re
 }
 
 #if SNH_LANES == 1
+/* out: SNH_CACHE_AT(cache, e, q); its values SNH_CACHE_STRIDE apart. */
 SNH_FN void linearization_store(const principal_hessian* h, SNH_GLOBAL real* out) {
   SNH_UNROLL
-  for (int i = 0; i < 9; ++i) out[i] = h->u.a[i];
+  for (int i = 0; i < 9; ++i) out[SNH_CACHE_STRIDE * i] = h->u.a[i];
   SNH_UNROLL
-  for (int i = 0; i < 9; ++i) out[9 + i] = h->v.a[i];
+  for (int i = 0; i < 9; ++i) out[SNH_CACHE_STRIDE * (9 + i)] = h->v.a[i];
   SNH_UNROLL
-  for (int i = 0; i < 6; ++i) out[18 + i] = h->block.a[i];
+  for (int i = 0; i < 6; ++i) out[SNH_CACHE_STRIDE * (18 + i)] = h->block.a[i];
   SNH_UNROLL
-  for (int i = 0; i < 3; ++i) out[24 + i] = h->twist.a[i];
+  for (int i = 0; i < 3; ++i) out[SNH_CACHE_STRIDE * (24 + i)] = h->twist.a[i];
   SNH_UNROLL
-  for (int i = 0; i < 3; ++i) out[27 + i] = h->flip.a[i];
+  for (int i = 0; i < 3; ++i) out[SNH_CACHE_STRIDE * (27 + i)] = h->flip.a[i];
 }
 
 SNH_FN principal_hessian linearization_load(SNH_GLOBAL const real* in) {
   principal_hessian h;
   SNH_UNROLL
-  for (int i = 0; i < 9; ++i) h.u.a[i] = in[i];
+  for (int i = 0; i < 9; ++i) h.u.a[i] = in[SNH_CACHE_STRIDE * i];
   SNH_UNROLL
-  for (int i = 0; i < 9; ++i) h.v.a[i] = in[9 + i];
+  for (int i = 0; i < 9; ++i) h.v.a[i] = in[SNH_CACHE_STRIDE * (9 + i)];
   SNH_UNROLL
-  for (int i = 0; i < 6; ++i) h.block.a[i] = in[18 + i];
+  for (int i = 0; i < 6; ++i) h.block.a[i] = in[SNH_CACHE_STRIDE * (18 + i)];
   SNH_UNROLL
-  for (int i = 0; i < 3; ++i) h.twist.a[i] = in[24 + i];
+  for (int i = 0; i < 3; ++i) h.twist.a[i] = in[SNH_CACHE_STRIDE * (24 + i)];
   SNH_UNROLL
-  for (int i = 0; i < 3; ++i) h.flip.a[i] = in[27 + i];
+  for (int i = 0; i < 3; ++i) h.flip.a[i] = in[SNH_CACHE_STRIDE * (27 + i)];
   SNH_UNROLL
   for (int i = 0; i < 3; ++i) h.sigma.a[i] = SNH_R(0);
   return h;

@@ -45,7 +45,7 @@ SNH_FN void element_linearization_load(SNH_GLOBAL const real* gradients, SNH_GLO
     real g[3 * SNH_NODES];
     load_gradients(gradients, e, q, g);
     out->qw[q] = load_weight(weights, e, q);
-    out->h[q] = linearization_load(cache + (size_t)SNH_LINEARIZATION_SIZE * (SNH_QUADRATURE * e + q));
+    out->h[q] = linearization_load(SNH_CACHE_AT(cache, e, q));
     element_rotated_gradients(&out->h[q], g, out->vg[q]);
   }
 }
