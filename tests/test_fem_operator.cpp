@@ -37,6 +37,7 @@
 #include "snh/regions.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
+#include "vector_compare.h"
 #include "viennacl/ocl/backend.hpp"
 #include "viennacl/vector.hpp"
 
@@ -157,12 +158,6 @@ double norm(const std::vector<double>& v) {
   return std::sqrt(s);
 }
 
-double relative_error(const std::vector<double>& device, const std::vector<double>& reference) {
-  std::vector<double> d(device.size());
-  for (size_t i = 0; i < d.size(); ++i) d[i] = device[i] - reference[i];
-  return norm(d) / norm(reference);
-}
-
 // Constrains vertices 0, n/2 and n-1 fully and vertex 1 in z only.
 std::vector<double> constraint_mask(const Mesh& mesh) {
   const size_t n = mesh.vertex_count();
@@ -268,7 +263,8 @@ void check_residual() {
     const std::vector<double> x = rounded<Real>(c.x);
     viennacl::vector<Real> r(model.dofs());
     model.residual(upload<Real>(x), r);
-    tolerance.check(relative_error(download(r), reference::assembled_forces(s.mesh, s.rest, s.material, x)), s, c.name);
+    tolerance.check(relative_difference(download(r), reference::assembled_forces(s.mesh, s.rest, s.material, x)), s,
+                    c.name);
   }
 }
 
@@ -293,7 +289,7 @@ void check_product() {
       model.linearize(upload<Real>(x));
       viennacl::vector<Real> y(model.dofs());
       model.product(pd, y);
-      tolerance.check(relative_error(download(y), expected), s, c.name + "/" + to_string(variant));
+      tolerance.check(relative_difference(download(y), expected), s, c.name + "/" + to_string(variant));
     }
   }
 }
@@ -321,8 +317,8 @@ void check_mask() {
     viennacl::vector<Real> r(model.dofs());
     model.residual(xd, r);
     const std::vector<double> rh = download(r);
-    tolerance.check(relative_error(rh, masked(mask, reference::assembled_forces(s.mesh, s.rest, s.material, x))), s,
-                    c.name + "/residual");
+    tolerance.check(relative_difference(rh, masked(mask, reference::assembled_forces(s.mesh, s.rest, s.material, x))),
+                    s, c.name + "/residual");
     for (size_t i = 0; i < mask.size(); ++i)
       if (mask[i] == 0.0) {
         EXPECT_EQ(rh[i], 0.0) << c.name << " residual DOF " << i;
@@ -339,13 +335,13 @@ void check_mask() {
       const std::vector<double> free_p = masked(mask, p);
       model.product(upload<Real>(free_p), y);
       const std::vector<double> yh = download(y);
-      tolerance.check(relative_error(yh, masked(mask, multiply(k, free_p))), s, name + "/free_p");
+      tolerance.check(relative_difference(yh, masked(mask, multiply(k, free_p))), s, name + "/free_p");
       for (size_t i = 0; i < mask.size(); ++i)
         if (mask[i] == 0.0) {
           EXPECT_EQ(yh[i], 0.0) << name << " product DOF " << i;
         }
       model.product(upload<Real>(p), y);
-      tolerance.check(relative_error(download(y), masked(mask, multiply(k, p))), s, name + "/any_p");
+      tolerance.check(relative_difference(download(y), masked(mask, multiply(k, p))), s, name + "/any_p");
     }
   }
 }
@@ -373,7 +369,7 @@ void check_external_force() {
     model.residual(xd, r);
     std::vector<double> expected(x.size());
     for (size_t i = 0; i < x.size(); ++i) expected[i] = mask[i] * (forces[i] + f[i]);
-    tolerance.check(relative_error(download(r), expected), s, c.name + "/residual");
+    tolerance.check(relative_difference(download(r), expected), s, c.name + "/residual");
 
     const double elastic = reference::assembled_energy(s.mesh, s.rest, s.material, x);
     double work = 0.0;
@@ -470,7 +466,7 @@ TEST(FemOperator, ProductMatchesFiniteDifferencesNearRest) {
       const std::vector<double> a = download(rp), b = download(rm);
       std::vector<double> fd(x.size());
       for (size_t i = 0; i < x.size(); ++i) fd[i] = -(a[i] - b[i]) / (2 * t);
-      best = std::min(best, relative_error(fd, yh));
+      best = std::min(best, relative_difference(fd, yh));
     }
     EXPECT_LT(best, 1e-6);
     worst = std::max(worst, best);

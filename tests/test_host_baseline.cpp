@@ -10,18 +10,12 @@
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
+#include "vector_compare.h"
 
 namespace snh {
 namespace {
 
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0.0, s = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    d += (a[i] - b[i]) * (a[i] - b[i]);
-    s += b[i] * b[i];
-  }
-  return std::sqrt(d / s);
-}
+using test::relative_difference;
 
 void expect_host_matches_device(const std::string& name, const SceneParameters& parameters) {
   const Scene scene = make_scene(name, parameters);

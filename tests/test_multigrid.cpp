@@ -28,6 +28,7 @@
 #include "solver/lattice_hierarchy.h"
 #include "solver/multigrid.h"
 #include "solver/obstacles.h"
+#include "vector_compare.h"
 #include "viennacl/vector.hpp"
 
 namespace snh::test {
@@ -252,16 +253,6 @@ struct DeviceCase {
     }
   }
 };
-
-// |p - q| / |q|
-double relative_difference(const std::vector<double>& p, const std::vector<double>& q) {
-  double d = 0.0, n = 0.0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    d += (p[i] - q[i]) * (p[i] - q[i]);
-    n += q[i] * q[i];
-  }
-  return std::sqrt(d / n);
-}
 
 // DeviceCase's built-fine-level multigrid options (coarsest level at 50 DOFs).
 MultigridOptions built_fine_level(bool fine_level_float) {

@@ -82,7 +82,7 @@ struct Outputs {
 };
 
 template <typename Real>
-Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, int quadrature, const std::vector<double>& x,
+Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, const std::vector<double>& x,
                   const std::vector<double>& p) {
   Outputs<Real> out;
   device::OpenClContext& cl = device_for(precision_of<Real>);
@@ -175,9 +175,9 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
       EXPECT_TRUE(model.point_lanes()) << "the default on a CPU device";
       model.set_point_lanes(true);
       const int nodes = nodes_per_element(mesh.type);
-      const Outputs<Real> lanes = run(model, nodes, rest.quadrature, x, p);
+      const Outputs<Real> lanes = run(model, nodes, x, p);
       model.set_point_lanes(false);
-      const Outputs<Real> scalar = run(model, nodes, rest.quadrature, x, p);
+      const Outputs<Real> scalar = run(model, nodes, x, p);
       const double relative = calls_exp(map) ? 1e-14 : 0.0;
       for (int k = 0; k < 2; ++k) {
         const std::string at = k == 0 ? "projected" : "true Hessian";

@@ -40,6 +40,7 @@
 #include "snh/regions.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
+#include "vector_compare.h"
 #include "viennacl/vector.hpp"
 
 namespace snh::test {
@@ -180,12 +181,6 @@ double norm(const std::vector<double>& v) {
   double s = 0.0;
   for (double c : v) s += c * c;
   return std::sqrt(s);
-}
-
-double relative_error(const std::vector<double>& device, const std::vector<double>& reference) {
-  std::vector<double> d(device.size());
-  for (size_t i = 0; i < d.size(); ++i) d[i] = device[i] - reference[i];
-  return norm(d) / norm(reference);
 }
 
 std::vector<double> multiply(const Eigen::SparseMatrix<double>& k, const std::vector<double>& p) {
@@ -358,7 +353,7 @@ void check_device_against_reference() {
 
     viennacl::vector<Real> y(model.dofs());
     model.residual(xd, y);
-    tolerance.check(relative_error(download(y), reference::assembled_forces(c.mesh, c.rest, c.map, x)), c.map,
+    tolerance.check(relative_difference(download(y), reference::assembled_forces(c.mesh, c.rest, c.map, x)), c.map,
                     c.name + "/forces");
 
     const std::vector<double> expected =
@@ -367,7 +362,7 @@ void check_device_against_reference() {
       model.set_variant(variant);
       model.linearize(xd);
       model.product(pd, y);
-      tolerance.check(relative_error(download(y), expected), c.map, c.name + "/" + to_string(variant));
+      tolerance.check(relative_difference(download(y), expected), c.map, c.name + "/" + to_string(variant));
     }
   }
 }
