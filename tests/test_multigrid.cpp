@@ -826,45 +826,6 @@ TEST(Multigrid, BuiltAndCurrentFineLevelsGiveTheSameAnswer) {
 
 // rebuild_every 0 (the default): 2 linearizations per build when each load
 // step rebuilds (quasistatic), 4 when the hierarchy is carried (dynamics).
-// MultigridOptions::smoother_degree 0: 1, or 2 for a material with
-// lambda >= 200 mu, taken from the model's stiffest material; explicit
-// degrees kept, out-of-range ones refused by name.
-TEST(Multigrid, DefaultSmootherDegreeFollowsStiffness) {
-  MultigridOptions o;
-  EXPECT_EQ(o.smoother_degree, 0);
-  EXPECT_EQ(solver::resolved_smoother_degree(o, 49.0), 1);
-  EXPECT_EQ(solver::resolved_smoother_degree(o, 499.0), 2);
-  o.smoother_degree = 3;
-  EXPECT_EQ(solver::resolved_smoother_degree(o, 49.0), 3);
-  DeviceCase c;
-  for (double nu : {0.45, 0.499}) {
-    const Material soft = Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, 0.45);
-    const Material stiff = Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, nu);
-    // Two regions: the stiffest decides.
-    std::vector<MaterialRegion> regions(1);
-    regions[0].name = "core";
-    regions[0].material = stiff;
-    regions[0].elements = {0, 1};
-    const MaterialMap map = make_material_map(c.mesh, soft, regions);
-    solver::ElasticModel<double> model(device_for(Precision::double_), c.mesh, c.rest, map, ProductVariant::cached);
-    MultigridOptions options;
-    options.coarsest_dofs = 50;
-    solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
-    EXPECT_EQ(mg.options().smoother_degree, nu > 0.49 ? 2 : 1) << "nu " << nu;
-  }
-  MultigridOptions bad;
-  bad.smoother_degree = -1;
-  DeviceCase d;
-  solver::ElasticModel<double> model(device_for(Precision::double_), d.mesh, d.rest,
-                                     uniform_material(d.mesh, d.material), ProductVariant::cached);
-  try {
-    solver::MultigridPreconditioner<double> mg(model, d.mesh, d.mask, bad);
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("smoother_degree"), std::string::npos) << e.what();
-  }
-}
-
 TEST(MultigridRebuild, DefaultCountFollowsThePerStepRebuild) {
   MultigridOptions o;
   EXPECT_EQ(o.rebuild_every, 0);

@@ -41,8 +41,6 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
              " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
   elastic_defines_ = defines_;
   terms_ = terms;
-  for (const Material& m : materials.materials)
-    if (m.mu > 0.0) stiffness_ratio_ = std::max(stiffness_ratio_, m.lambda / m.mu);
   if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
   if (terms.obstacles > 0) defines_ += " -DSNH_OBSTACLES=" + std::to_string(terms.obstacles);
   if (terms.self_contact) defines_ += " -DSNH_SELF_CONTACT=1";

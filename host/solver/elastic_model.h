@@ -114,9 +114,6 @@ class ElasticModel {
   // energy sums terms of that size, e.g. mu/2 (I_C - 3) with I_C ~ 3, even
   // where the total is small) times the elastic scale, plus sum |f_i x_i|.
   double last_energy_magnitude() const { return last_energy_magnitude_; }
-  // The largest lambda / mu over the materials (those with mu > 0): how
-  // nearly incompressible the stiffest one is.
-  double stiffness_ratio() const { return stiffness_ratio_; }
   // r = mask * (elastic forces + external force) = -mask * dE/dx.
   void residual(const VectorBase& x, VectorBase& r);
   // The per-Newton linearization at x (SVD and eigensystem per point),
@@ -250,7 +247,6 @@ class ElasticModel {
   bool assembled_ready_ = false;
   std::vector<int> elements_host_;
   double last_min_j_ = 0.0;
-  double stiffness_ratio_ = 0.0;
   std::vector<double> external_host_;
   ModelTerms terms_;
   device::Buffer inertia_mass_, inertia_target_;

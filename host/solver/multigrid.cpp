@@ -83,10 +83,8 @@ template <typename Real>
 MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model, const Mesh& mesh,
                                                        const std::vector<char>& mask, const MultigridOptions& options)
     : model_(model), cl_(model.context()), options_(options) {
-  if (options.smoother_degree < 0 || options.smoother_degree > 16)
-    throw Error("multigrid: smoother_degree must be 0 (automatic) or in 1..16, got " +
-                std::to_string(options.smoother_degree));
-  options_.smoother_degree = resolved_smoother_degree(options, model.stiffness_ratio());
+  if (options.smoother_degree < 1 || options.smoother_degree > 16)
+    throw Error("multigrid: smoother_degree must be in 1..16, got " + std::to_string(options.smoother_degree));
   if (options.max_levels < 2) throw Error("multigrid: max_levels must be at least 2");
   if (options.rebuild_every < 0)
     throw Error(

@@ -118,16 +118,6 @@ class MultigridRebuild {
   double baseline_ = 0.0;  // the rate of the first compared solve after the build (0: none yet)
 };
 
-// MultigridOptions::smoother_degree with 0 resolved from the stiffest
-// material's lambda / mu: 2 from 200 on (nu above about 0.4975), else 1.
-// Measured, twist res 32 (s, degree 1 against 2): nu 0.49 4.8 against 5.7,
-// nu 0.495 5.9 against 6.6-7.0, nu 0.499 10.3 against 9.2; the arm at
-// 60,849 DOFs (13 frames) 6.0 against 8.3; stretch res 32 28.9 against 30.4.
-inline int resolved_smoother_degree(const MultigridOptions& options, double stiffness_ratio) {
-  if (options.smoother_degree > 0) return options.smoother_degree;
-  return stiffness_ratio >= 200.0 ? 2 : 1;
-}
-
 template <typename Real>
 class MultigridPreconditioner {
  public:

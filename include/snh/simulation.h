@@ -119,10 +119,11 @@ MultigridFineLevel parse_multigrid_fine_level(const std::string& text);  // the 
 
 struct MultigridOptions {
   // Chebyshev degree of each pre- and post-smoothing (operator products
-  // each); 0 (default): 1, or 2 where a material is nearly incompressible
-  // (lambda >= 200 mu, nu above about 0.4975), as measured (README,
-  // "Multigrid on hex8 lattices").
-  int smoother_degree = 0;
+  // each). 1 measured faster up to about 10^5 DOFs at nu <= 0.495 (twist
+  // res 32, the arm) but slower from 3.5 * 10^5 DOFs on (twist res 48,
+  // the stretch cylinder at 969,111 DOFs): README, "Multigrid on hex8
+  // lattices", session 12.
+  int smoother_degree = 2;
   size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
   int max_levels = 12;
   // Reuse between Newton linearizations (PETSc's SNESSetLagPreconditioner,
