@@ -62,12 +62,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   external_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real));
   element_scratch_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * nodes_ * 3 * sizeof(Real));
   element_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * nodes_ * 9 * sizeof(Real));
-  {
-    // Whole groups of 8 points (kernels/fem/element.h's layout), zero-filled:
-    // a partly filled last group's other lanes stay 0.
-    const std::vector<Real> zeros(cache_values(), Real(0));
-    cache_ = cl_.buffer(CL_MEM_READ_WRITE, zeros.size() * sizeof(Real), zeros.data());
-  }
+  cache_ = cl_.buffer(CL_MEM_READ_WRITE, cache_values() * sizeof(Real));
   energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   min_j_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));

@@ -143,9 +143,8 @@ class ElasticModel {
   cl_mem gradients_buffer() const { return gradients_.get(); }
   cl_mem weights_buffer() const { return weights_.get(); }
   cl_mem cache_buffer() const { return cache_.get(); }
-  // Its size in values: 30 per quadrature point, in whole groups of 8 points
-  // (kernels/fem/element.h).
-  size_t cache_values() const { return (element_count_ * quadrature_ + 7) / 8 * 8 * 30; }
+  // Its size in values: 30 per quadrature point (kernels/fem/element.h).
+  size_t cache_values() const { return element_count_ * quadrature_ * 30; }
   // The per-element matrices of the last linearize() (element_matrices and
   // assembled variants), else null.
   cl_mem element_matrices_buffer() const {

@@ -21,17 +21,17 @@ constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
 // (PETSc's defaults for a Chebyshev smoother; Adams et al. 2003).
 constexpr double kLower = 0.1, kUpper = 1.1;
 
-// snh_stencil_assemble's tables for a level: the neighbours ([width v + s])
-// and, per block (v, s) in that order, the cell blocks that add up to it
-// (64 e + 8 b + a), in increasing cell order.
+// snh_stencil_assemble's tables for a level (slots: vertex_slots of its
+// elements): the neighbours ([width v + s]) and, per block (v, s) in that
+// order, the cell blocks that add up to it (64 e + 8 b + a), in increasing
+// cell order.
 struct StencilTables {
   int width = 1;
   std::vector<int> neighbours, part_offsets, parts;
 };
 
-StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_count) {
+StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_count, const fem::VertexSlots& slots) {
   const fem::VertexNeighbours around = fem::vertex_neighbours(elements, vertex_count, 8);
-  const fem::VertexSlots slots = fem::vertex_slots(elements, vertex_count);
   StencilTables t;
   t.width = around.width;
   const size_t count = vertex_count, width = static_cast<size_t>(around.width);
@@ -104,11 +104,14 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
   prolong_k_ = cl_.kernel("multigrid.cl", coarse, "snh_prolong_add");
   restrict_k_ = cl_.kernel("multigrid.cl", coarse, "snh_restrict");
-  stencil_assemble_k_ = cl_.kernel("multigrid.cl", coarse, "snh_stencil_assemble");
-  stencil_product_k_ = cl_.kernel("multigrid.cl", coarse, "snh_stencil_product");
-  stencil_residual_k_ = cl_.kernel("multigrid.cl", coarse, "snh_stencil_residual");
+  auto stencil_kernels_of = [&](const std::string& defines) {
+    return StencilKernels{cl_.kernel("multigrid.cl", defines, "snh_stencil_assemble"),
+                          cl_.kernel("multigrid.cl", defines, "snh_stencil_product"),
+                          cl_.kernel("multigrid.cl", defines, "snh_stencil_residual"),
+                          cl_.kernel("multigrid.cl", defines, "snh_chebyshev_step")};
+  };
+  stencil_k_ = stencil_kernels_of(coarse);
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", coarse, "snh_chebyshev_start");
-  chebyshev_step_k_ = cl_.kernel("multigrid.cl", coarse, "snh_chebyshev_step");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
   jacobi_apply_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_apply");
   vertex_terms_ = model.terms().inertia || model.terms().obstacles > 0;
@@ -121,10 +124,7 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   fine_float_ = fine_built_ && options.fine_level_float && sizeof(Real) > sizeof(float);
   if (fine_float_) {
     const std::string narrow = coarse + " -DSNH_MATRIX_FLOAT=1";
-    fine_float_assemble_k_ = cl_.kernel("multigrid.cl", narrow, "snh_stencil_assemble");
-    fine_float_product_k_ = cl_.kernel("multigrid.cl", narrow, "snh_stencil_product");
-    fine_float_residual_k_ = cl_.kernel("multigrid.cl", narrow, "snh_stencil_residual");
-    fine_float_step_k_ = cl_.kernel("multigrid.cl", narrow, "snh_chebyshev_step");
+    fine_float_stencil_k_ = stencil_kernels_of(narrow);
     fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", narrow, "snh_galerkin_from_matrices");
   }
   if (vertex_terms_) {
@@ -168,7 +168,7 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
       L.offsets = upload_int(slots.offsets, L.bytes);
       L.adjacency = upload_int(slots.adjacency, L.bytes);
-      const StencilTables stencil = stencil_tables(h.elements, L.vertices);
+      const StencilTables stencil = stencil_tables(h.elements, L.vertices, slots);
       L.width = stencil.width;
       L.neighbours = upload_int(stencil.neighbours, L.bytes);
       L.part_offsets = upload_int(stencil.part_offsets, L.bytes);
@@ -220,7 +220,7 @@ void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, Vect
   }
   const Level& L = *levels_[level];
   const int vertices = static_cast<int>(L.vertices);
-  cl_kernel k = level == 0 && fine_float_ ? fine_float_product_k_.get() : stencil_product_k_.get();
+  cl_kernel k = stencil_kernels(level).product.get();
   set_arg(k, 0, mem(p));
   set_arg(k, 1, L.neighbours.get());
   set_arg(k, 2, L.stencil.get());
@@ -235,7 +235,7 @@ template <typename Real>
 void MultigridPreconditioner<Real>::residual(int level, const VectorBase& p, const VectorBase& base,
                                              VectorBase& r) const {
   const Level& L = *levels_[level];
-  cl_kernel k = level == 0 && fine_float_ ? fine_float_residual_k_.get() : stencil_residual_k_.get();
+  cl_kernel k = stencil_kernels(level).residual.get();
   set_arg(k, 0, mem(p));
   set_arg(k, 1, L.neighbours.get());
   set_arg(k, 2, L.stencil.get());
@@ -248,9 +248,9 @@ void MultigridPreconditioner<Real>::residual(int level, const VectorBase& p, con
 }
 
 template <typename Real>
-void MultigridPreconditioner<Real>::assemble_stencil(Level& L) {
-  const bool fine = &L == levels_[0].get();
-  cl_kernel k = fine && fine_float_ ? fine_float_assemble_k_.get() : stencil_assemble_k_.get();
+void MultigridPreconditioner<Real>::assemble_stencil(int level) {
+  const Level& L = *levels_[level];
+  cl_kernel k = stencil_kernels(level).assemble.get();
   const int vertices = static_cast<int>(L.vertices);
   const int blocks = vertices * L.width;
   set_arg(k, 0, L.matrices.get());
@@ -282,7 +282,7 @@ void MultigridPreconditioner<Real>::setup() {
   if (fine_built_) {
     Level& L = *levels_[0];
     model_.element_matrices_into(L.matrices.get(), L.blocks.get(), fine_float_);
-    assemble_stencil(L);
+    assemble_stencil(0);
     block_jacobi(L);
   }
   for (size_t l = 1; l < levels_.size(); ++l) {
@@ -331,7 +331,7 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, next++, L.blocks.get());
       cl_.run(k, L.cells);
     }
-    assemble_stencil(L);
+    assemble_stencil(static_cast<int>(l));
     block_jacobi(L);
   }
   factor_coarsest();
@@ -444,7 +444,6 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
   double rho = 1.0 / sigma;
   if (level > 0 || fine_built_) {  // one pass per degree (snh_chebyshev_step)
     const int count = static_cast<int>(L.vertices);
-    const bool narrow = level == 0 && fine_float_;
     const VectorBase& start = from ? *from : r;  // r's value on entry
     {
       cl_kernel k = chebyshev_start_k_.get();
@@ -460,7 +459,7 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
     }
     for (int k = 1; k < options_.smoother_degree; ++k) {
       const double rho_next = 1.0 / (2.0 * sigma - rho);
-      cl_kernel s = narrow ? fine_float_step_k_.get() : chebyshev_step_k_.get();
+      cl_kernel s = stencil_kernels(level).step.get();
       set_arg(s, 0, mem(L.d));
       set_arg(s, 1, L.neighbours.get());
       set_arg(s, 2, L.stencil.get());

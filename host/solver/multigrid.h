@@ -176,12 +176,21 @@ class MultigridPreconditioner {
   MultigridOptions options_;
   LatticeHierarchy hierarchy_;
   std::vector<std::unique_ptr<Level>> levels_;
-  void assemble_stencil(Level& level);  // level.stencil from level.matrices
+  void assemble_stencil(int level);  // the level's stencil from its matrices
   // r <- base - A p at an assembled level (base may be r).
   void residual(int level, const VectorBase& p, const VectorBase& base, VectorBase& r) const;
 
-  device::Kernel galerkin_cache_k_, galerkin_matrices_k_, prolong_k_, restrict_k_, stencil_assemble_k_,
-      stencil_product_k_, stencil_residual_k_, chebyshev_start_k_, chebyshev_step_k_, jacobi_setup_k_, jacobi_apply_k_;
+  device::Kernel galerkin_cache_k_, galerkin_matrices_k_, prolong_k_, restrict_k_, chebyshev_start_k_, jacobi_setup_k_,
+      jacobi_apply_k_;
+  // The assembled levels' kernels (they read the level's stencil): in the
+  // working precision, and for a float fine level (fine_float_).
+  struct StencilKernels {
+    device::Kernel assemble, product, residual, step;
+  };
+  StencilKernels stencil_k_, fine_float_stencil_k_;
+  const StencilKernels& stencil_kernels(int level) const {
+    return level == 0 && fine_float_ ? fine_float_stencil_k_ : stencil_k_;
+  }
   // Inertia or obstacle contact in the fine operator: added to the first
   // coarse level's cell matrices (snh_galerkin_vertex_terms) with each
   // vertex's share 1 / (cells around it).
@@ -189,8 +198,7 @@ class MultigridPreconditioner {
   bool fine_built_ = false;
   // The built fine level's matrices in float (double builds).
   bool fine_float_ = false;
-  device::Kernel fine_float_assemble_k_, fine_float_product_k_, fine_float_residual_k_, fine_float_step_k_,
-      fine_float_galerkin_k_;
+  device::Kernel fine_float_galerkin_k_;
   device::Kernel galerkin_vertex_k_;
   device::Buffer vertex_share_;
   device::Buffer octant_weights_;  // lattice_hierarchy.h's octant_weights()

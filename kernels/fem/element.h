@@ -28,8 +28,8 @@
  * element e at 30 e + k (grouping 8 tet4 elements the same way measured
  * slower in double, README "Per-point lanes"). In general value k of point
  * P = SNH_QUADRATURE e + q at 30 G (P / G) + G k + P % G, G =
- * SNH_CACHE_GROUP. The host's buffer holds whole groups of 8 points,
- * zero-filled (ElasticModel). */
+ * SNH_CACHE_GROUP (whole groups only: a hex8 element's 8 points, or a
+ * single tet4 point). */
 #define SNH_LINEARIZATION_SIZE 30
 #if SNH_HEX8
 #define SNH_CACHE_GROUP 8
