@@ -13,6 +13,7 @@ struct MultigridFlags {
   int rebuild_every = 0;                 // > 0: MultigridOptions::rebuild_every
   int smoother_degree = 0;               // > 0: MultigridOptions::smoother_degree
   int coarsest_dofs = 0;                 // > 0: MultigridOptions::coarsest_dofs
+  std::string chebyshev;                 // non-empty: MultigridOptions::chebyshev_kind
   std::string fine_level = "automatic";  // MultigridOptions::fine_level
   std::string fine_float = "on";         // MultigridOptions::fine_level_float
 
@@ -25,6 +26,11 @@ struct MultigridFlags {
                     "multigrid: Chebyshev degree of each pre- and post-smoothing (default: "
                     "MultigridOptions::smoother_degree)")
         ->check(CLI::Range(1, 16));
+    cmd->add_option("--multigrid-chebyshev", chebyshev,
+                    "multigrid: the smoothing polynomial, first (first-kind Chebyshev on [0.1, 1.1] x the estimated "
+                    "lambda_max), fourth or optimized-fourth (Lottes 2023, on [0, 1.1] x lambda_max; optimized: "
+                    "degrees 1-4) (default: MultigridOptions::chebyshev_kind)")
+        ->check(CLI::IsMember({"first", "fourth", "optimized-fourth"}));
     cmd->add_option("--multigrid-coarsest-dofs", coarsest_dofs,
                     "multigrid: coarsen until a level has at most this many DOFs, solved directly (default: "
                     "MultigridOptions::coarsest_dofs)")
@@ -45,6 +51,7 @@ struct MultigridFlags {
   void apply(MultigridOptions& options) const {
     if (rebuild_every > 0) options.rebuild_every = rebuild_every;
     if (smoother_degree > 0) options.smoother_degree = smoother_degree;
+    if (!chebyshev.empty()) options.chebyshev_kind = parse_chebyshev_kind(chebyshev);
     if (coarsest_dofs > 0) options.coarsest_dofs = static_cast<size_t>(coarsest_dofs);
     options.fine_level = parse_multigrid_fine_level(fine_level);
     options.fine_level_float = fine_float == "on";

@@ -6,6 +6,7 @@
 
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
+#include "solver/chebyshev.h"
 #include "viennacl/linalg/norm_2.hpp"
 
 namespace snh::solver {
@@ -16,10 +17,6 @@ using device::set_arg;
 
 constexpr int kCellMatrix = 24 * 24;
 constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
-// Chebyshev's interval as fractions of the estimated lambda_max(D^-1 A):
-// the upper part of the spectrum, which the coarse levels do not resolve
-// (PETSc's defaults for a Chebyshev smoother; Adams et al. 2003).
-constexpr double kLower = 0.1, kUpper = 1.1;
 
 // snh_stencil_assemble's tables for a level (slots: vertex_slots of its
 // elements): the neighbours ([width v + s]) and, per block (v, s) in that
@@ -85,6 +82,7 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     : model_(model), cl_(model.context()), options_(options) {
   if (options.smoother_degree < 1 || options.smoother_degree > 16)
     throw Error("multigrid: smoother_degree must be in 1..16, got " + std::to_string(options.smoother_degree));
+  chebyshev_steps(options.chebyshev_kind, options.smoother_degree, 1.0);  // throws for a degree without coefficients
   if (options.max_levels < 2) throw Error("multigrid: max_levels must be at least 2");
   if (options.rebuild_every < 0)
     throw Error(
@@ -439,9 +437,12 @@ template <typename Real>
 void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual,
                                               const VectorBase* from) const {
   Level& L = *levels_[level];
-  const double upper = kUpper * L.lambda, lower = kLower * L.lambda;
-  const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;
-  double rho = 1.0 / sigma;
+  const int degree = options_.smoother_degree;
+  const ChebyshevSteps steps = chebyshev_steps(options_.chebyshev_kind, degree, L.lambda);
+  // With weights beta != 1 on the updates of x the recurrence's r is not
+  // b - A x: the residual asked for is then computed from x and b (`from`).
+  const bool weighted = std::any_of(steps.beta.begin(), steps.beta.end(), [](double b) { return b != 1.0; });
+  if (weighted && want_residual && !from) throw Error("multigrid: a weighted smoothing's residual needs its b");
   if (level > 0 || fine_built_) {  // one pass per degree (snh_chebyshev_step)
     const int count = static_cast<int>(L.vertices);
     const VectorBase& start = from ? *from : r;  // r's value on entry
@@ -450,15 +451,15 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
       const int accumulate = from ? 0 : 1;
       set_arg(k, 0, L.inverse.get());
       set_arg(k, 1, mem(start));
-      set_arg(k, 2, static_cast<Real>(1.0 / theta));
-      set_arg(k, 3, count);
-      set_arg(k, 4, accumulate);
-      set_arg(k, 5, mem(L.d));
-      set_arg(k, 6, mem(x));
+      set_arg(k, 2, static_cast<Real>(steps.c_z[0]));
+      set_arg(k, 3, static_cast<Real>(steps.beta[0]));
+      set_arg(k, 4, count);
+      set_arg(k, 5, accumulate);
+      set_arg(k, 6, mem(L.d));
+      set_arg(k, 7, mem(x));
       cl_.run(k, L.vertices);
     }
-    for (int k = 1; k < options_.smoother_degree; ++k) {
-      const double rho_next = 1.0 / (2.0 * sigma - rho);
+    for (int i = 1; i < degree; ++i) {
       cl_kernel s = stencil_kernels(level).step.get();
       set_arg(s, 0, mem(L.d));
       set_arg(s, 1, L.neighbours.get());
@@ -467,17 +468,22 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
       set_arg(s, 4, L.inverse.get());
       set_arg(s, 5, count);
       set_arg(s, 6, L.width);
-      set_arg(s, 7, static_cast<Real>(rho_next * rho));
-      set_arg(s, 8, static_cast<Real>(2.0 * rho_next / delta));
-      set_arg(s, 9, mem(k == 1 ? start : r));
-      set_arg(s, 10, mem(r));
-      set_arg(s, 11, mem(x));
-      set_arg(s, 12, mem(L.d_next));
+      set_arg(s, 7, static_cast<Real>(steps.c_d[i]));
+      set_arg(s, 8, static_cast<Real>(steps.c_z[i]));
+      set_arg(s, 9, static_cast<Real>(steps.beta[i]));
+      set_arg(s, 10, mem(i == 1 ? start : r));
+      set_arg(s, 11, mem(r));
+      set_arg(s, 12, mem(x));
+      set_arg(s, 13, mem(L.d_next));
       cl_.run(s, L.vertices);
       L.d.fast_swap(L.d_next);
-      rho = rho_next;
     }
-    if (want_residual) residual(level, L.d, options_.smoother_degree == 1 ? start : r, r);
+    if (want_residual) {
+      if (weighted)
+        residual(level, x, start, r);
+      else
+        residual(level, L.d, degree == 1 ? start : r, r);
+    }
     return;
   }
   if (from) {
@@ -486,19 +492,21 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
   }
   L.d = r;
   inverse_diagonal(level, L.d);
-  L.d *= Real(1.0 / theta);
-  const int degree = options_.smoother_degree;
-  for (int k = 1; k <= degree; ++k) {
-    x += L.d;
-    if (k == degree && !want_residual) break;
+  L.d *= Real(steps.c_z[0]);
+  for (int i = 1; i <= degree; ++i) {
+    x += Real(steps.beta[i - 1]) * L.d;
+    if (i == degree && !want_residual) break;
+    if (i == degree && weighted) {
+      product(level, x, L.t);
+      r = *from - L.t;
+      break;
+    }
     product(level, L.d, L.t);
     r -= L.t;
-    if (k == degree) break;
-    const double rho_next = 1.0 / (2.0 * sigma - rho);
+    if (i == degree) break;
     L.t = r;
     inverse_diagonal(level, L.t);
-    L.d = Real(rho_next * rho) * L.d + Real(2.0 * rho_next / delta) * L.t;
-    rho = rho_next;
+    L.d = Real(steps.c_d[i]) * L.d + Real(steps.c_z[i]) * L.t;
   }
 }
 

@@ -44,6 +44,24 @@ MultigridFineLevel parse_multigrid_fine_level(const std::string& text) {
   throw Error("multigrid fine level: expected automatic, built or current, got '" + text + "'");
 }
 
+const char* to_string(ChebyshevKind k) {
+  switch (k) {
+    case ChebyshevKind::first:
+      return "first";
+    case ChebyshevKind::fourth:
+      return "fourth";
+    case ChebyshevKind::optimized_fourth:
+      return "optimized-fourth";
+  }
+  return "?";
+}
+
+ChebyshevKind parse_chebyshev_kind(const std::string& text) {
+  for (ChebyshevKind k : {ChebyshevKind::first, ChebyshevKind::fourth, ChebyshevKind::optimized_fourth})
+    if (text == to_string(k)) return k;
+  throw Error("chebyshev kind: expected first, fourth or optimized-fourth, got '" + text + "'");
+}
+
 // Measured with `snh-gpu-bench scale --scenes stretch,twist --res
 // 8,10,12,16 --preconditioner block-jacobi,multigrid` (pocl, 2 CPU cores,
 // double, nu = 0.49; README "Multigrid on hex8 lattices"), session 10, with

@@ -117,6 +117,25 @@ enum class MultigridFineLevel {
 const char* to_string(MultigridFineLevel f);                             // "automatic", "built", "current"
 MultigridFineLevel parse_multigrid_fine_level(const std::string& text);  // the names above
 
+// The polynomial of the multigrid's Chebyshev smoothing over block-Jacobi
+// (solver/chebyshev.h); lambda below is each level's power-iteration
+// estimate of lambda_max(D^-1 A).
+enum class ChebyshevKind {
+  // First kind on [0.1, 1.1] lambda: the smallest largest residual factor
+  // there (PETSc's default interval; Adams et al. 2003).
+  first,
+  // Fourth kind on [0, 1.1 lambda] (Lottes 2023, "Optimal polynomial
+  // smoothers for multigrid V-cycles", Numer. Linear Algebra Appl. 30(6)):
+  // the smallest largest sqrt(t) times residual factor, no lower bound.
+  fourth,
+  // Fourth kind with Lottes' optimized weights beta_i on the updates of x
+  // (degrees 1 to 4).
+  optimized_fourth,
+};
+
+const char* to_string(ChebyshevKind k);                       // "first", "fourth", "optimized-fourth"
+ChebyshevKind parse_chebyshev_kind(const std::string& text);  // the names above
+
 struct MultigridOptions {
   // Chebyshev degree of each pre- and post-smoothing (operator products
   // each). 1 measured faster up to about 10^5 DOFs at nu <= 0.495 (twist
@@ -124,6 +143,7 @@ struct MultigridOptions {
   // the stretch cylinder at 969,111 DOFs): README, "Multigrid on hex8
   // lattices", session 12.
   int smoother_degree = 2;
+  ChebyshevKind chebyshev_kind = ChebyshevKind::first;
   size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
   int max_levels = 12;
   // Reuse between Newton linearizations (PETSc's SNESSetLagPreconditioner,
