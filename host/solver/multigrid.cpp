@@ -311,7 +311,7 @@ void MultigridPreconditioner<Real>::setup() {
       set_arg(k, 5, cells);
       set_arg(k, 6, L.matrices.get());
       set_arg(k, 7, L.blocks.get());
-      cl_.run(k, 24 * L.cells);
+      cl_.run(k, L.cells);
     }
     if (l == 1 && vertex_terms_) {
       cl_kernel k = galerkin_vertex_k_.get();
