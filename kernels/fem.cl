@@ -335,16 +335,17 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
   if (e >= count) return;
   element_linearization l;
   element_linearization_load(gradients, weights, cache, e, &l);
-  /* Column by column, summed over the points in private memory and written
-   * once; its diagonal block's entries (rows of node b) go to the
-   * block-Jacobi blocks as well. */
+  /* Column by column, its lower triangle (rows of nodes a >= b) summed over
+   * the points in private memory and written at both places; its diagonal
+   * block's entries go to the block-Jacobi blocks as well. */
   __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
+  __global real* blocks = diagonal_blocks + (size_t)9 * SNH_NODES * e;
   for (int b = 0; b < SNH_NODES; ++b)
     for (int d = 0; d < 3; ++d) {
       real column[SNH_DOFS];
-      element_stiffness_column(&l, b, d, column);
-      for (int i = 0; i < SNH_DOFS; ++i) element_matrix_store(k, SNH_DOFS, 3 * b + d, i, column[i]);
-      for (int i = 0; i < 3; ++i) diagonal_blocks[(size_t)9 * SNH_NODES * e + 9 * b + 3 * d + i] = column[3 * b + i];
+      element_stiffness_column_from(&l, b, d, b, column);
+      for (int i = 3 * b + d; i < SNH_DOFS; ++i) element_matrix_store(k, SNH_DOFS, 3 * b + d, i, column[i]);
+      for (int i = d; i < 3; ++i) blocks[9 * b + 3 * d + i] = blocks[9 * b + 3 * i + d] = column[3 * b + i];
     }
 }
 

@@ -54,16 +54,15 @@ typedef float matrix_real;
 typedef scalar_real matrix_real;
 #endif
 
-/* Entry (r, c) of column c of an n x n column-major element matrix. */
+/* Entry (r, c) of column c of an n x n column-major element matrix, for
+ * r >= c, stored at (r, c) and (c, r): the matrix is symmetric by
+ * construction and only its lower triangle is computed (calls with r < c
+ * store nothing). */
 SNH_FN void element_matrix_store(SNH_GLOBAL matrix_real* k, int n, int c, int r, scalar_real value) {
-#if SNH_MATRIX_FLOAT
   if (r >= c) {
-    k[n * c + r] = (float)value;
-    k[n * r + c] = (float)value;
+    k[n * c + r] = (matrix_real)value;
+    k[n * r + c] = (matrix_real)value;
   }
-#else
-  k[n * c + r] = value;
-#endif
 }
 
 /* F = sum_a x_a (dN_a/dX)^T for node values xs[a][3]. */
@@ -109,11 +108,18 @@ SNH_FN mat3 element_column_frame(const principal_hessian* h, const real* vg, int
   return mat3_mul(h->u, principal_hessian_rotated_action(h, r));
 }
 
-/* column[3 a + i] += w (m vg_a)_i for every node a. */
-SNH_FN void element_column_scatter(mat3 m, const real* vg, real w, real* column) {
-  for (int a = 0; a < SNH_NODES; ++a)
+/* column[3 a + i] += w (m vg_a)_i for the nodes a >= first (first = b:
+ * the column's rows from its own node's block on, all that its lower
+ * triangle needs). */
+SNH_FN void element_column_scatter_from(mat3 m, const real* vg, real w, int first, real* column) {
+  for (int a = first; a < SNH_NODES; ++a)
     for (int i = 0; i < 3; ++i)
       column[3 * a + i] += w * (M3(m, i, 0) * vg[3 * a] + M3(m, i, 1) * vg[3 * a + 1] + M3(m, i, 2) * vg[3 * a + 2]);
+}
+
+/* column[3 a + i] += w (m vg_a)_i for every node a. */
+SNH_FN void element_column_scatter(mat3 m, const real* vg, real w, real* column) {
+  element_column_scatter_from(m, vg, w, 0, column);
 }
 
 /* y_a += w (H : dF) dN_a/dX with dF = sum_b p_b (dN_b/dX)^T: one point's

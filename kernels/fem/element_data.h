@@ -50,12 +50,18 @@ SNH_FN void element_linearization_load(SNH_GLOBAL const real* gradients, SNH_GLO
   }
 }
 
-/* Column (b, d) of the element's stiffness sum_q w_q B_q^T H_q B_q
- * (element.h's rank-one columns), into column[3 N]. */
-SNH_FN void element_stiffness_column(const element_linearization* l, int b, int d, real* column) {
+/* Rows 3 a + i, a >= first, of column (b, d) of the element's stiffness
+ * sum_q w_q B_q^T H_q B_q (element.h's rank-one columns), into column[3 N]
+ * (the rows of nodes a < first are left 0). */
+SNH_FN void element_stiffness_column_from(const element_linearization* l, int b, int d, int first, real* column) {
   for (int i = 0; i < 3 * SNH_NODES; ++i) column[i] = SNH_R(0);
   for (int q = 0; q < SNH_QUADRATURE; ++q)
-    element_column_scatter(element_column_frame(&l->h[q], l->vg[q], b, d), l->vg[q], l->qw[q], column);
+    element_column_scatter_from(element_column_frame(&l->h[q], l->vg[q], b, d), l->vg[q], l->qw[q], first, column);
+}
+
+/* The whole column (b, d). */
+SNH_FN void element_stiffness_column(const element_linearization* l, int b, int d, real* column) {
+  element_stiffness_column_from(l, b, d, 0, column);
 }
 
 #endif /* SNH_FEM_ELEMENT_DATA_H */
