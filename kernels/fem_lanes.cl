@@ -50,15 +50,14 @@ SNH_FN void lanes_load_nodes(__global const scalar_real* x, __global const int* 
   }
 }
 
-/* Rest gradients: lane q holds point q's (layout [element][q][a][3]). */
+/* Rest gradients: lane q holds point q's (layout [element][3 a + j][q]: one
+ * vector per value; point by point, 192 lane inserts per element, the
+ * cached product took 5.74 instead of 4.67 ms at 32^3 in double). */
 SNH_FN void lanes_load_gradients(__global const scalar_real* gradients, size_t w, int count, real* g) {
   (void)count;
   __global const scalar_real* src = gradients + (size_t)3 * SNH_NODES * SNH_QUADRATURE * REST_ELEMENT(w);
   SNH_UNROLL
-  for (int i = 0; i < 3 * SNH_NODES; ++i) {
-    SNH_UNROLL
-    for (int q = 0; q < SNH_QUADRATURE; ++q) LANE(g[i], q) = src[3 * SNH_NODES * q + i];
-  }
+  for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = vload8(i, src);
 }
 
 SNH_FN real lanes_load_weights(__global const scalar_real* weights, size_t w, int count) {

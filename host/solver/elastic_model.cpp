@@ -49,7 +49,17 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
 
   const fem::VertexSlots slots = fem::vertex_slots(mesh.elements, vertex_count_);
 
-  const std::vector<Real> gradients(rest.gradients.begin(), rest.gradients.end());
+  // The device's gradients value-major per element, [element][3 a + j][q]
+  // (kernels/fem/element_data.h): a hex8 element's 8 points of one value
+  // are one vector for the lanes kernels (the host's RestState keeps
+  // [element][q][a][3]).
+  const size_t per_point = 3 * static_cast<size_t>(rest.nodes), points = static_cast<size_t>(rest.quadrature);
+  std::vector<Real> gradients(rest.gradients.size());
+  for (size_t e = 0; e < rest.gradients.size() / (per_point * points); ++e)
+    for (size_t q = 0; q < points; ++q)
+      for (size_t i = 0; i < per_point; ++i)
+        gradients[(e * per_point + i) * points + q] =
+            static_cast<Real>(rest.gradients[(e * points + q) * per_point + i]);
   const std::vector<Real> weights(rest.weights.begin(), rest.weights.end());
   const std::vector<int> elements(mesh.elements.begin(), mesh.elements.end());
   elements_ = cl_.buffer(CL_MEM_READ_ONLY, elements.size() * sizeof(int), elements.data());

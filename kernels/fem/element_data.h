@@ -1,7 +1,8 @@
 /* Loading an element's data in the kernels: node values, rest gradients and
  * quadrature weights, with the lattice case (SNH_UNIFORM_REST: every element
  * shares element 0's rest data). Layouts: x: xyz per vertex; elements:
- * SNH_NODES ints per element; gradients: [element][q][a][3]; weights:
+ * SNH_NODES ints per element; gradients: [element][3 a + j][q] (dN_a/dX_j at
+ * point q: value-major, ElasticModel permutes the host's RestState); weights:
  * [element][q]. OpenCL only (the host reference reads its own arrays). */
 #ifndef SNH_FEM_ELEMENT_DATA_H
 #define SNH_FEM_ELEMENT_DATA_H
@@ -21,9 +22,9 @@ SNH_FN void load_nodes(SNH_GLOBAL const real* x, SNH_GLOBAL const int* nodes, re
 }
 
 SNH_FN void load_gradients(SNH_GLOBAL const real* gradients, size_t e, int q, real* g) {
-  SNH_GLOBAL const real* src = gradients + (size_t)3 * SNH_NODES * (SNH_QUADRATURE * REST_ELEMENT(e) + q);
+  SNH_GLOBAL const real* src = gradients + (size_t)3 * SNH_NODES * SNH_QUADRATURE * REST_ELEMENT(e) + q;
   SNH_UNROLL
-  for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = src[i];
+  for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = src[SNH_QUADRATURE * i];
 }
 
 SNH_FN real load_weight(SNH_GLOBAL const real* weights, size_t e, int q) {
