@@ -201,9 +201,26 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
           for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
               pattern.emplace_back(3 * h.elements[8 * c + a] + i, 3 * h.elements[8 * c + b] + j, 1.0);
-    Eigen::SparseMatrix<double> a(3 * h.vertex_count, 3 * h.vertex_count);
-    a.setFromTriplets(pattern.begin(), pattern.end());
-    coarsest_.analyzePattern(a);
+    coarsest_matrix_ = Eigen::SparseMatrix<double>(3 * h.vertex_count, 3 * h.vertex_count);
+    coarsest_matrix_.setFromTriplets(pattern.begin(), pattern.end());
+    coarsest_matrix_.makeCompressed();
+    coarsest_.analyzePattern(coarsest_matrix_);
+    // Where each cell-matrix entry (c, col, row) and each DOF's diagonal go
+    // among the matrix's values, so that a build adds them up in place.
+    auto slot = [&](int row, int col) {
+      const int* begin = coarsest_matrix_.innerIndexPtr() + coarsest_matrix_.outerIndexPtr()[col];
+      const int* end = coarsest_matrix_.innerIndexPtr() + coarsest_matrix_.outerIndexPtr()[col + 1];
+      return static_cast<int>(std::lower_bound(begin, end, row) - coarsest_matrix_.innerIndexPtr());
+    };
+    coarsest_slots_.resize(h.cells.size() * kCellMatrix);
+    for (size_t c = 0; c < h.cells.size(); ++c)
+      for (int col = 0; col < 24; ++col)
+        for (int row = 0; row < 24; ++row)
+          coarsest_slots_[kCellMatrix * c + 24 * col + row] =
+              slot(3 * h.elements[8 * c + row / 3] + row % 3, 3 * h.elements[8 * c + col / 3] + col % 3);
+    coarsest_diagonal_.resize(3 * h.vertex_count);
+    for (size_t i = 0; i < 3 * h.vertex_count; ++i)
+      coarsest_diagonal_[i] = slot(static_cast<int>(i), static_cast<int>(i));
   }
 }
 
@@ -401,18 +418,12 @@ void MultigridPreconditioner<Real>::factor_coarsest() {
   const LatticeLevel& h = hierarchy_.levels.back();
   std::vector<Real> local(L.cells * kCellMatrix);
   cl_.read(L.matrices.get(), local.size() * sizeof(Real), local.data());
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(local.size() + 3 * L.vertices);
-  for (size_t c = 0; c < L.cells; ++c)
-    for (int col = 0; col < 24; ++col)
-      for (int row = 0; row < 24; ++row)
-        entries.emplace_back(3 * h.elements[8 * c + row / 3] + row % 3, 3 * h.elements[8 * c + col / 3] + col % 3,
-                             static_cast<double>(local[kCellMatrix * c + 24 * col + row]));
+  double* values = coarsest_matrix_.valuePtr();
+  std::fill(values, values + coarsest_matrix_.nonZeros(), 0.0);
+  for (size_t k = 0; k < local.size(); ++k) values[coarsest_slots_[k]] += static_cast<double>(local[k]);
   for (size_t i = 0; i < 3 * L.vertices; ++i)
-    if (!h.mask[i]) entries.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);  // dead DOF: identity
-  Eigen::SparseMatrix<double> a(3 * L.vertices, 3 * L.vertices);
-  a.setFromTriplets(entries.begin(), entries.end());
-  coarsest_.factorize(a);
+    if (!h.mask[i]) values[coarsest_diagonal_[i]] += 1.0;  // dead DOF (its row and column are 0): identity
+  coarsest_.factorize(coarsest_matrix_);
   coarsest_ok_ = coarsest_.info() == Eigen::Success && coarsest_.vectorD().minCoeff() > 0.0;
 }
 

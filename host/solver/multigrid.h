@@ -204,6 +204,11 @@ class MultigridPreconditioner {
   device::Buffer vertex_share_;
   device::Buffer octant_weights_;  // lattice_hierarchy.h's octant_weights()
   size_t table_bytes_ = 0;         // its device memory
+  // The coarsest level's assembled matrix (its pattern fixed at
+  // construction), where each of its cell matrices' entries and each DOF's
+  // diagonal sit among its values, and its factor.
+  Eigen::SparseMatrix<double> coarsest_matrix_;
+  std::vector<int> coarsest_slots_, coarsest_diagonal_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
   bool coarsest_ok_ = false;
   mutable std::vector<Real> host_rhs_;
