@@ -143,6 +143,9 @@ struct MultigridOptions {
   // the stretch cylinder at 969,111 DOFs): README, "Multigrid on hex8
   // lattices", session 12.
   int smoother_degree = 2;
+  // The first kind measured best at degree 2; the optimized fourth kind at
+  // degree 1 was faster up to 3.5 * 10^5 DOFs at nu = 0.49 but slower at
+  // nu = 0.499 and on the 969,111-DOF cylinder (README, session 13).
   ChebyshevKind chebyshev_kind = ChebyshevKind::first;
   size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
   int max_levels = 12;
