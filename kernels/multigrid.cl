@@ -228,7 +228,8 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
  * measured 2.2x slower on pocl: 243 streams at once.) */
 
 /* Block (v, s) is the sum of the cell blocks (a, b) with node a at v and b at
- * n, listed (as 64 e + 8 b + a) between parts[width v + s] and the next
+ * n, listed (as the offset of the block's first entry, 576 e + 72 b + 3 a:
+ * no decoding in the kernel) between parts[width v + s] and the next
  * offset in increasing cell order, so that blocks (v, n) and (n, v) add the
  * same cells' mutually transposed blocks in the same order and, from exactly
  * symmetric cell matrices, come out exactly transposed. */
@@ -239,8 +240,7 @@ __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __globa
   real block[9];
   for (int i = 0; i < 9; ++i) block[i] = SNH_R(0);
   for (int k = part_offsets[item]; k < part_offsets[item + 1]; ++k) {
-    const int part = parts[k], e = part / 64, b = part / 8 % 8, a = part % 8;
-    __global const matrix_real* ke = matrices + (size_t)MG_DOFS * MG_DOFS * e + MG_DOFS * 3 * b + 3 * a;
+    __global const matrix_real* ke = matrices + parts[k];
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) block[3 * j + i] += (real)ke[MG_DOFS * j + i];
   }

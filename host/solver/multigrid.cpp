@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "fem/vertex_slots.h"
@@ -20,7 +21,8 @@ constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
 
 // snh_stencil_assemble's tables for a level (slots: vertex_slots of its
 // elements): the neighbours ([width v + s]) and, per block (v, s) in that
-// order, the cell blocks that add up to it (64 e + 8 b + a), in increasing
+// order, the cell blocks that add up to it (each as the offset of its first
+// entry among the level's cell matrices, 576 e + 72 b + 3 a), in increasing
 // cell order.
 struct StencilTables {
   int width = 1;
@@ -28,6 +30,8 @@ struct StencilTables {
 };
 
 StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_count, const fem::VertexSlots& slots) {
+  if (elements.size() / 8 > static_cast<size_t>(std::numeric_limits<int>::max() / kCellMatrix))
+    throw Error("multigrid: a level has too many cells for int offsets into its cell matrices");
   const fem::VertexNeighbours around = fem::vertex_neighbours(elements, vertex_count, 8);
   StencilTables t;
   t.width = around.width;
@@ -44,7 +48,7 @@ StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_cou
           const int n = elements[8 * static_cast<size_t>(e) + b];
           const size_t s =
               n == static_cast<int>(v) ? 0 : static_cast<size_t>(std::lower_bound(row + 1, row + size, n) - row);
-          visit(v * width + s, 64 * e + 8 * b + a);
+          visit(v * width + s, kCellMatrix * e + 24 * 3 * b + 3 * a);
         }
       }
     }
