@@ -29,6 +29,12 @@ namespace snh::solver {
 
 struct ChebyshevSteps {
   std::vector<double> c_d, c_z, beta;  // degree entries each; c_d[0] unused
+  // Some beta is not 1: the recurrence's r is then not b - A x.
+  bool weighted() const {
+    for (double b : beta)
+      if (b != 1.0) return true;
+    return false;
+  }
 };
 
 // The steps for `degree` (>= 1) over the interval the kind uses, given

@@ -77,6 +77,7 @@ struct MultigridPreconditioner<Real>::Level {
   viennacl::vector<Real> b, x, r, d, t, d_next;
   viennacl::vector<Real> eigenvector;  // of D^-1 A, the last power iteration's
   double lambda = 1.0;
+  ChebyshevSteps steps;  // the smoothing's coefficients for lambda (estimate_bound)
   size_t bytes = 0;
 };
 
@@ -412,6 +413,7 @@ void MultigridPreconditioner<Real>::estimate_bound(size_t l) {
     lambda = 1.0;
   }
   L.lambda = lambda;
+  L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
 }
 
 template <typename Real>
@@ -453,10 +455,10 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
                                               const VectorBase* from) const {
   Level& L = *levels_[level];
   const int degree = options_.smoother_degree;
-  const ChebyshevSteps steps = chebyshev_steps(options_.chebyshev_kind, degree, L.lambda);
+  const ChebyshevSteps& steps = L.steps;
   // With weights beta != 1 on the updates of x the recurrence's r is not
   // b - A x: the residual asked for is then computed from x and b (`from`).
-  const bool weighted = std::any_of(steps.beta.begin(), steps.beta.end(), [](double b) { return b != 1.0; });
+  const bool weighted = steps.weighted();
   if (weighted && want_residual && !from) throw Error("multigrid: a weighted smoothing's residual needs its b");
   if (level > 0 || fine_built_) {  // one pass per degree (snh_chebyshev_step)
     const int count = static_cast<int>(L.vertices);
