@@ -327,7 +327,6 @@ __kernel void snh_block_jacobi_apply(__global const real* inverse, __global cons
  * to dF = e_d (dN_b/dX)^T. Its 3x3 diagonal blocks also go to
  * diagonal_blocks, column-major per node: [e][9 b + 3 d + i] (the
  * block-Jacobi preconditioner's, as snh_element_diagonal writes them). */
-#define SNH_DOFS (3 * SNH_NODES)
 __kernel void snh_element_matrices(__global const int* elements, __global const real* gradients,
                                    __global const real* weights, const int count, __global const real* cache,
                                    __global matrix_real* out, __global real* diagonal_blocks) {

@@ -285,7 +285,6 @@ __kernel void snh_element_product_recompute(__global const scalar_real* p, __glo
  * triangle only (element_matrix_store mirrors it), the points in lanes; a
  * hex8 column's points summed in the scalar kernel's order. (The lower
  * triangle only: twist res 32 multigrid, 14 builds, 0.435 -> 0.375 s.) */
-#define SNH_DOFS (3 * SNH_NODES)
 __kernel void snh_element_matrices(__global const int* elements, __global const scalar_real* gradients,
                                    __global const scalar_real* weights, const int count,
                                    __global const scalar_real* cache, __global matrix_real* out,

@@ -18,6 +18,7 @@
  * Element matrices are column-major, [cell][(3 b + d) * 24 + 3 a + i]; both
  * Galerkin kernels also write each cell's 3x3 diagonal blocks,
  * [cell][9 b + 3 d + i] (the smoother's block-Jacobi blocks). */
+#include "fem/block_stencil.h"
 #include "fem/element_data.h"
 #include "fem/vertex_terms.h"
 
@@ -226,66 +227,6 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
  * vertex against 8 cells' 64 blocks of which each vertex owns 8) and without
  * the per-cell scratch. (Vertex-minor blocks, [(9 s + 3 j + i) count + v],
  * measured 2.2x slower on pocl: 243 streams at once.) */
-
-/* Block (v, s) is the sum of the cell blocks (a, b) with node a at v and b at
- * n, listed (as the offset of the block's first entry, 576 e + 72 b + 3 a:
- * no decoding in the kernel) between parts[width v + s] and the next
- * offset in increasing cell order, so that blocks (v, n) and (n, v) add the
- * same cells' mutually transposed blocks in the same order and, from exactly
- * symmetric cell matrices, come out exactly transposed. */
-__kernel void snh_stencil_assemble(__global const matrix_real* matrices, __global const int* part_offsets,
-                                   __global const int* parts, const int blocks, __global matrix_real* stencil) {
-  const int item = get_global_id(0);
-  if (item >= blocks) return;
-  real block[9];
-  for (int i = 0; i < 9; ++i) block[i] = SNH_R(0);
-  for (int k = part_offsets[item]; k < part_offsets[item + 1]; ++k) {
-    __global const matrix_real* ke = matrices + parts[k];
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) block[3 * j + i] += (real)ke[MG_DOFS * j + i];
-  }
-  for (int i = 0; i < 9; ++i) stencil[(size_t)9 * item + i] = (matrix_real)block[i];
-}
-
-/* (A p) at vertex v from the blocks above. */
-SNH_FN void stencil_row(__global const real* p, __global const int* neighbours, __global const matrix_real* stencil,
-                        const int width, const int v, real* out) {
-  real s0 = SNH_R(0), s1 = SNH_R(0), s2 = SNH_R(0);
-  __global const int* around = neighbours + (size_t)width * v;
-  __global const matrix_real* a = stencil + (size_t)9 * width * v;
-  for (int s = 0; s < width; ++s) {
-    const int n = around[s];
-    const real p0 = p[3 * n], p1 = p[3 * n + 1], p2 = p[3 * n + 2];
-    s0 += (real)a[9 * s] * p0 + (real)a[9 * s + 3] * p1 + (real)a[9 * s + 6] * p2;
-    s1 += (real)a[9 * s + 1] * p0 + (real)a[9 * s + 4] * p1 + (real)a[9 * s + 7] * p2;
-    s2 += (real)a[9 * s + 2] * p0 + (real)a[9 * s + 5] * p1 + (real)a[9 * s + 8] * p2;
-  }
-  out[0] = s0;
-  out[1] = s1;
-  out[2] = s2;
-}
-
-/* y = mask * (A p). */
-__kernel void snh_stencil_product(__global const real* p, __global const int* neighbours,
-                                  __global const matrix_real* stencil, __global const real* mask, const int count,
-                                  const int width, __global real* y) {
-  const int v = get_global_id(0);
-  if (v >= count) return;
-  real ap[3];
-  stencil_row(p, neighbours, stencil, width, v, ap);
-  for (int i = 0; i < 3; ++i) y[3 * v + i] = mask[3 * v + i] * ap[i];
-}
-
-/* r = base - mask * (A p) (base may be r: r -= A p). */
-__kernel void snh_stencil_residual(__global const real* p, __global const int* neighbours,
-                                   __global const matrix_real* stencil, __global const real* mask, const int count,
-                                   const int width, __global const real* base, __global real* r) {
-  const int v = get_global_id(0);
-  if (v >= count) return;
-  real ap[3];
-  stencil_row(p, neighbours, stencil, width, v, ap);
-  for (int i = 0; i < 3; ++i) r[3 * v + i] = base[3 * v + i] - mask[3 * v + i] * ap[i];
-}
 
 /* Chebyshev smoothing over block-Jacobi (MultigridPreconditioner::chebyshev,
  * the recurrence of solver/chebyshev.h) in one pass per degree on the

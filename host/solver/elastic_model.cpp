@@ -184,12 +184,19 @@ size_t ElasticModel<Real>::variant_memory_bytes() const {
       return dofs() * sizeof(Real);  // the linearization point x
     case ProductVariant::element_matrices:
       return cache + element_count_ * m * sizeof(Real);
-    case ProductVariant::assembled:
-      return cache + element_count_ * m * sizeof(Real) + csr_columns_.size() * (sizeof(Real) + sizeof(unsigned)) +
-             csr_rows_.size() * sizeof(unsigned);
+    case ProductVariant::assembled:  // the blocks and their neighbour table (and the assembly's tables)
+      return cache + element_count_ * m * sizeof(Real) + stencil_memory_bytes();
     default:
       return cache;
   }
+}
+
+template <typename Real>
+size_t ElasticModel<Real>::stencil_memory_bytes() const {
+  size_t bytes = 0;
+  for (const device::Buffer* b : {&stencil_, &stencil_neighbours_, &stencil_part_offsets_, &stencil_parts_})
+    if (*b) bytes += device::OpenClContext::bytes(b->get());
+  return bytes;
 }
 
 template <typename Real>
@@ -222,9 +229,7 @@ size_t ElasticModel<Real>::memory_bytes() const {
                                   &friction_start_records_,
                                   &friction_records_})
     bytes += device::OpenClContext::bytes(b->get());
-  if (assembled_ready_)
-    bytes += csr_columns_.size() * (sizeof(Real) + sizeof(unsigned)) + csr_rows_.size() * sizeof(unsigned);
-  return bytes;
+  return bytes + stencil_memory_bytes();
 }
 
 template <typename Real>
@@ -260,51 +265,34 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
 template <typename Real>
 void ElasticModel<Real>::assemble() {
   const auto start = std::chrono::steady_clock::now();
-  const int n = 3 * nodes_;
-  const size_t m = static_cast<size_t>(n) * n;
-  if (csr_slot_.empty()) {
-    // Pattern: 3x3 blocks between vertices that share an element.
-    std::vector<std::vector<int>> neighbours(vertex_count_);
-    for (size_t e = 0; e < element_count_; ++e)
-      for (int a = 0; a < nodes_; ++a)
-        for (int b = 0; b < nodes_; ++b)
-          neighbours[elements_host_[nodes_ * e + a]].push_back(elements_host_[nodes_ * e + b]);
-    csr_rows_.assign(dofs() + 1, 0);
-    for (size_t v = 0; v < vertex_count_; ++v) {
-      auto& list = neighbours[v];
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
-      for (int i = 0; i < 3; ++i) {
-        for (int u : list)
-          for (int j = 0; j < 3; ++j) csr_columns_.push_back(static_cast<unsigned>(3 * u + j));
-        csr_rows_[3 * v + i + 1] = static_cast<unsigned>(csr_columns_.size());
-      }
-    }
-    csr_slot_.resize(element_count_ * m);
-    for (size_t e = 0; e < element_count_; ++e)
-      for (int c = 0; c < n; ++c)
-        for (int r = 0; r < n; ++r) {
-          const unsigned row = static_cast<unsigned>(3 * elements_host_[nodes_ * e + r / 3] + r % 3);
-          const unsigned column = static_cast<unsigned>(3 * elements_host_[nodes_ * e + c / 3] + c % 3);
-          const auto first = csr_columns_.begin() + csr_rows_[row], last = csr_columns_.begin() + csr_rows_[row + 1];
-          csr_slot_[e * m + static_cast<size_t>(n) * c + r] =
-              static_cast<int>(std::lower_bound(first, last, column) - csr_columns_.begin());
-        }
-  }
-  std::vector<Real> local(element_count_ * m);
-  {
+  if (!stencil_) {
+    // The pattern and the element blocks that add up to each of its blocks,
+    // once (solver/block_stencil.h).
+    const StencilTables t =
+        stencil_tables(elements_host_, vertex_count_, nodes_, fem::vertex_slots(elements_host_, vertex_count_));
+    stencil_width_ = t.width;
     PhaseScope transfer(&profiler_, Phase::transfers);
-    cl_.read(element_matrices_.get(), local.size() * sizeof(Real), local.data());
+    auto upload = [&](const std::vector<int>& values) {
+      device::Buffer b = cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(values.size(), 1) * sizeof(int));
+      if (!values.empty()) cl_.write(b.get(), values.size() * sizeof(int), values.data());
+      return b;
+    };
+    stencil_neighbours_ = upload(t.neighbours);
+    stencil_part_offsets_ = upload(t.part_offsets);
+    stencil_parts_ = upload(t.parts);
+    stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(t.neighbours.size(), 1) * 9 * sizeof(Real));
+    stencil_assemble_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_assemble");
+    stencil_product_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_product");
   }
-  std::vector<Real> values(csr_columns_.size(), Real(0));
-  for (size_t k = 0; k < local.size(); ++k) values[csr_slot_[k]] += local[k];
-  PhaseScope transfer(&profiler_, Phase::transfers);
-  if (!assembled_ready_) {
-    assembled_.set(csr_rows_.data(), csr_columns_.data(), values.data(), dofs(), dofs(), values.size());
-    assembled_ready_ = true;
-  } else {
-    viennacl::backend::memory_write(assembled_.handle(), 0, values.size() * sizeof(Real), values.data());
-  }
+  cl_kernel k = stencil_assemble_k_.get();
+  const int blocks = static_cast<int>(vertex_count_) * stencil_width_;
+  set_arg(k, 0, element_matrices_.get());
+  set_arg(k, 1, stencil_part_offsets_.get());
+  set_arg(k, 2, stencil_parts_.get());
+  set_arg(k, 3, blocks);
+  set_arg(k, 4, stencil_.get());
+  cl_.run(k, static_cast<size_t>(blocks));
+  cl_.finish();
   last_assembly_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -740,17 +728,27 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   const int count = static_cast<int>(element_count_);
   cl_kernel k;
   if (variant_ == ProductVariant::assembled) {
-    y = viennacl::linalg::prod(assembled_, p);
+    // y = mask * (K p) from the blocks (kernels/stencil.cl); the per-vertex
+    // terms then as after the element products (mask * mask = mask).
+    cl_kernel sk = stencil_product_k_.get();
+    const int vertices = static_cast<int>(vertex_count_);
+    set_arg(sk, 0, mem(p));
+    set_arg(sk, 1, stencil_neighbours_.get());
+    set_arg(sk, 2, stencil_.get());
+    set_arg(sk, 3, mask_.get());
+    set_arg(sk, 4, vertices);
+    set_arg(sk, 5, stencil_width_);
+    set_arg(sk, 6, mem(y));
+    cl_.run(sk, vertex_count_);
+    if (!vertex_terms()) return;
     cl_kernel mk = mask_k_.get();
     const int size = static_cast<int>(dofs());
     set_arg(mk, 0, mask_.get());
     set_arg(mk, 1, size);
     set_arg(mk, 2, mem(y));
-    cl_uint next = 3;
-    if (vertex_terms()) {
-      set_arg(mk, next++, static_cast<Real>(elastic_scale_));
-      set_arg(mk, next++, mem(p));
-    }
+    set_arg(mk, 3, static_cast<Real>(elastic_scale_));
+    set_arg(mk, 4, mem(p));
+    cl_uint next = 5;
     if (terms_.inertia) set_arg(mk, next++, inertia_mass_.get());
     if (terms_.obstacles > 0) set_arg(mk, next++, contact_blocks_.get());
     self_differences(p);

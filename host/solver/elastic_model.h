@@ -16,10 +16,10 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
+#include "solver/block_stencil.h"
 #include "solver/device_reduction.h"
 #include "solver/phase_profile.h"
 #include "solver/self_contact.h"
-#include "viennacl/compressed_matrix.hpp"
 #include "viennacl/vector.hpp"
 
 namespace snh::solver {
@@ -187,10 +187,13 @@ class ElasticModel {
   // Device memory the current variant holds beyond the mesh and vectors:
   // the linearization cache, element matrices or assembled matrix.
   size_t variant_memory_bytes() const;
-  // Seconds the last linearize() spent assembling the compressed matrix
-  // (download, host scatter, upload); 0 for other variants.
+  // Seconds the last linearize() spent assembling the block stencil (its
+  // tables too, the first time); 0 for other variants.
   double last_assembly_seconds() const { return last_assembly_seconds_; }
-  size_t assembled_nonzeros() const { return csr_columns_.size(); }
+  // The assembled operator's 3x3 blocks stored per vertex (0 before the
+  // first assembly): the most vertices any vertex shares an element with,
+  // plus one (kernels/fem/block_stencil.h).
+  int assembled_width() const { return stencil_width_; }
   // Device memory of every buffer the model holds: mesh, rest state,
   // material, scratch, preconditioner and variant_memory_bytes(); not the
   // solver's vectors.
@@ -238,12 +241,13 @@ class ElasticModel {
   bool has_external_ = false;
   int projected_ = 1;
   double last_assembly_seconds_ = 0.0;
-  // Assembled variant: CSR pattern, and the CSR slot of every element-matrix
-  // entry (summed in element order: deterministic).
-  std::vector<unsigned> csr_rows_, csr_columns_;
-  std::vector<int> csr_slot_;
-  viennacl::compressed_matrix<Real> assembled_;
-  bool assembled_ready_ = false;
+  // Assembled variant: the block stencil (solver/block_stencil.h), assembled
+  // on the device from the element matrices in element order
+  // (deterministic), and its width.
+  device::Buffer stencil_, stencil_neighbours_, stencil_part_offsets_, stencil_parts_;
+  device::Kernel stencil_assemble_k_, stencil_product_k_;
+  int stencil_width_ = 0;
+  size_t stencil_memory_bytes() const;
   std::vector<int> elements_host_;
   double last_min_j_ = 0.0;
   std::vector<double> external_host_;

@@ -7,6 +7,7 @@
 
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
+#include "solver/block_stencil.h"
 #include "solver/chebyshev.h"
 #include "viennacl/linalg/norm_2.hpp"
 
@@ -18,49 +19,6 @@ using device::set_arg;
 
 constexpr int kCellMatrix = 24 * 24;
 constexpr int kPowerIterations = 10, kWarmPowerIterations = 4;
-
-// snh_stencil_assemble's tables for a level (slots: vertex_slots of its
-// elements): the neighbours ([width v + s]) and, per block (v, s) in that
-// order, the cell blocks that add up to it (each as the offset of its first
-// entry among the level's cell matrices, 576 e + 72 b + 3 a), in increasing
-// cell order.
-struct StencilTables {
-  int width = 1;
-  std::vector<int> neighbours, part_offsets, parts;
-};
-
-StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_count, const fem::VertexSlots& slots) {
-  if (elements.size() / 8 > static_cast<size_t>(std::numeric_limits<int>::max() / kCellMatrix))
-    throw Error("multigrid: a level has too many cells for int offsets into its cell matrices");
-  const fem::VertexNeighbours around = fem::vertex_neighbours(elements, vertex_count, 8);
-  StencilTables t;
-  t.width = around.width;
-  const size_t count = vertex_count, width = static_cast<size_t>(around.width);
-  t.neighbours = around.table;
-  // Each (v, a, b) of a cell once: its block index, where it goes.
-  auto for_each_part = [&](auto&& visit) {
-    for (size_t v = 0; v < count; ++v) {
-      const int* row = around.table.data() + v * width;
-      const int size = around.sizes[v];
-      for (int k = slots.offsets[v]; k < slots.offsets[v + 1]; ++k) {
-        const int slot = slots.adjacency[k], e = slot / 8, a = slot % 8;
-        for (int b = 0; b < 8; ++b) {
-          const int n = elements[8 * static_cast<size_t>(e) + b];
-          const size_t s =
-              n == static_cast<int>(v) ? 0 : static_cast<size_t>(std::lower_bound(row + 1, row + size, n) - row);
-          visit(v * width + s, kCellMatrix * e + 24 * 3 * b + 3 * a);
-        }
-      }
-    }
-  };
-  t.part_offsets.assign(width * count + 1, 0);
-  for_each_part([&](size_t item, int) { ++t.part_offsets[item + 1]; });
-  for (size_t i = 0; i < width * count; ++i) t.part_offsets[i + 1] += t.part_offsets[i];
-  t.parts.resize(static_cast<size_t>(t.part_offsets.back()));
-  std::vector<int> fill(t.part_offsets.begin(), t.part_offsets.end() - 1);
-  for_each_part([&](size_t item, int part) { t.parts[static_cast<size_t>(fill[item]++)] = part; });
-  return t;
-}
 
 }  // namespace
 
@@ -108,9 +66,9 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   prolong_k_ = cl_.kernel("multigrid.cl", coarse, "snh_prolong_add");
   restrict_k_ = cl_.kernel("multigrid.cl", coarse, "snh_restrict");
   auto stencil_kernels_of = [&](const std::string& defines) {
-    return StencilKernels{cl_.kernel("multigrid.cl", defines, "snh_stencil_assemble"),
-                          cl_.kernel("multigrid.cl", defines, "snh_stencil_product"),
-                          cl_.kernel("multigrid.cl", defines, "snh_stencil_residual"),
+    return StencilKernels{cl_.kernel("stencil.cl", defines, "snh_stencil_assemble"),
+                          cl_.kernel("stencil.cl", defines, "snh_stencil_product"),
+                          cl_.kernel("stencil.cl", defines, "snh_stencil_residual"),
                           cl_.kernel("multigrid.cl", defines, "snh_chebyshev_step")};
   };
   stencil_k_ = stencil_kernels_of(coarse);
@@ -171,7 +129,7 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
       L.offsets = upload_int(slots.offsets, L.bytes);
       L.adjacency = upload_int(slots.adjacency, L.bytes);
-      const StencilTables stencil = stencil_tables(h.elements, L.vertices, slots);
+      const StencilTables stencil = stencil_tables(h.elements, L.vertices, 8, slots);
       L.width = stencil.width;
       L.neighbours = upload_int(stencil.neighbours, L.bytes);
       L.part_offsets = upload_int(stencil.part_offsets, L.bytes);

@@ -61,7 +61,7 @@ enum class ProductVariant {
   cached,            // SVD and eigensystem once per Newton iteration, reused by every product
   recompute,         // SVD and eigensystem at every product
   element_matrices,  // per-element 24x24 (hex8) / 12x12 (tet4) projected matrices, once per Newton iteration
-  assembled,         // a ViennaCL compressed_matrix assembled from the element matrices
+  assembled,         // 3x3 blocks per vertex pair, assembled on the device from the element matrices
 };
 
 const char* to_string(ProductVariant v);

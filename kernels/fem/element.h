@@ -19,6 +19,7 @@
 #define SNH_NODES 4
 #define SNH_QUADRATURE 1
 #endif
+#define SNH_DOFS (3 * SNH_NODES) /* an element's: the size of its matrices */
 
 /* Per quadrature point, the cached linearization: U, V, the PSD-projected
  * 3x3 block and the clamped twist and flip eigenvalues. hex8: stored per

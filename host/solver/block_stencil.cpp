@@ -1,0 +1,47 @@
+#include "solver/block_stencil.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "snh/error.h"
+
+namespace snh::solver {
+
+StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_count, int nodes,
+                             const fem::VertexSlots& slots) {
+  const int dofs = 3 * nodes, matrix = dofs * dofs;
+  if (elements.size() / nodes > static_cast<size_t>(std::numeric_limits<int>::max() / matrix))
+    throw Error("block stencil: too many elements for int offsets into their matrices");
+  const fem::VertexNeighbours around = fem::vertex_neighbours(elements, vertex_count, nodes);
+  if (vertex_count * static_cast<size_t>(around.width) >= static_cast<size_t>(std::numeric_limits<int>::max()))
+    throw Error("block stencil: too many blocks for int indices");
+  StencilTables t;
+  t.width = around.width;
+  const size_t count = vertex_count, width = static_cast<size_t>(around.width);
+  t.neighbours = around.table;
+  // Each (v, a, b) of an element once: its block index, where it goes.
+  auto for_each_part = [&](auto&& visit) {
+    for (size_t v = 0; v < count; ++v) {
+      const int* row = around.table.data() + v * width;
+      const int size = around.sizes[v];
+      for (int k = slots.offsets[v]; k < slots.offsets[v + 1]; ++k) {
+        const int slot = slots.adjacency[k], e = slot / nodes, a = slot % nodes;
+        for (int b = 0; b < nodes; ++b) {
+          const int n = elements[static_cast<size_t>(nodes) * e + b];
+          const size_t s =
+              n == static_cast<int>(v) ? 0 : static_cast<size_t>(std::lower_bound(row + 1, row + size, n) - row);
+          visit(v * width + s, matrix * e + dofs * 3 * b + 3 * a);
+        }
+      }
+    }
+  };
+  t.part_offsets.assign(width * count + 1, 0);
+  for_each_part([&](size_t item, int) { ++t.part_offsets[item + 1]; });
+  for (size_t i = 0; i < width * count; ++i) t.part_offsets[i + 1] += t.part_offsets[i];
+  t.parts.resize(static_cast<size_t>(t.part_offsets.back()));
+  std::vector<int> fill(t.part_offsets.begin(), t.part_offsets.end() - 1);
+  for_each_part([&](size_t item, int part) { t.parts[static_cast<size_t>(fill[item]++)] = part; });
+  return t;
+}
+
+}  // namespace snh::solver

@@ -1,0 +1,39 @@
+// The tables of a block stencil (kernels/fem/block_stencil.h): an operator
+// stored as the 3x3 blocks of each vertex pair that shares an element,
+// assembled on the device from element matrices (kernels/stencil.cl,
+// snh_stencil_assemble). Used by the assembled product variant
+// (solver/elastic_model.h) and the multigrid's assembled levels
+// (solver/multigrid.h). Internal to the library.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "fem/vertex_slots.h"
+
+namespace snh::solver {
+
+// neighbours: [width v + s] (fem::vertex_neighbours: v first, the others in
+// increasing order, v again as padding). Per block (v, s) in that order, the
+// element blocks that add up to it, each as the offset of its first entry
+// among the (3 nodes)^2 column-major element matrices,
+// (3 nodes)^2 e + 9 nodes b + 3 a (node a of element e at v, node b at
+// neighbour s), between part_offsets[width v + s] and the next, in
+// increasing element order (deterministic sums, exactly transposed blocks
+// (v, n) and (n, v) from symmetric element matrices).
+struct StencilTables {
+  int width = 1;
+  std::vector<int> neighbours, part_offsets, parts;
+};
+
+// slots: fem::vertex_slots(elements, vertex_count). snh::Error when the
+// offsets would not fit an int.
+StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_count, int nodes,
+                             const fem::VertexSlots& slots);
+
+// Bytes of the blocks and neighbour table of a stencil with these tables.
+inline size_t stencil_bytes(const StencilTables& t, size_t entry_bytes) {
+  return t.neighbours.size() * (9 * entry_bytes + sizeof(int));
+}
+
+}  // namespace snh::solver

@@ -1,0 +1,50 @@
+/* Block stencils (kernels/fem/block_stencil.h): assembled on the device from
+ * element matrices, and their products. Built with the same switches as
+ * fem.cl; the element matrices are SNH_DOFS x SNH_DOFS, column-major,
+ * [element][(3 b + d) SNH_DOFS + 3 a + i] (snh_element_matrices, and the
+ * multigrid's Galerkin cell matrices). */
+#include "fem/block_stencil.h"
+#include "fem/element_data.h"
+
+/* Block (v, s) is the sum of the element blocks (a, b) with node a at v and b
+ * at n, listed (as the offset of the block's first entry,
+ * SNH_DOFS^2 e + 3 SNH_DOFS b + 3 a: no decoding in the kernel) between
+ * parts[width v + s] and the next offset in increasing element order, so
+ * that blocks (v, n) and (n, v) add the same elements' mutually transposed
+ * blocks in the same order and, from exactly symmetric element matrices,
+ * come out exactly transposed (host/solver/block_stencil.h). */
+__kernel void snh_stencil_assemble(__global const matrix_real* matrices, __global const int* part_offsets,
+                                   __global const int* parts, const int blocks, __global matrix_real* stencil) {
+  const int item = get_global_id(0);
+  if (item >= blocks) return;
+  real block[9];
+  for (int i = 0; i < 9; ++i) block[i] = SNH_R(0);
+  for (int k = part_offsets[item]; k < part_offsets[item + 1]; ++k) {
+    __global const matrix_real* ke = matrices + parts[k];
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) block[3 * j + i] += (real)ke[SNH_DOFS * j + i];
+  }
+  for (int i = 0; i < 9; ++i) stencil[(size_t)9 * item + i] = (matrix_real)block[i];
+}
+
+/* y = mask * (A p). */
+__kernel void snh_stencil_product(__global const real* p, __global const int* neighbours,
+                                  __global const matrix_real* stencil, __global const real* mask, const int count,
+                                  const int width, __global real* y) {
+  const int v = get_global_id(0);
+  if (v >= count) return;
+  real ap[3];
+  stencil_row(p, neighbours, stencil, width, v, ap);
+  for (int i = 0; i < 3; ++i) y[3 * v + i] = mask[3 * v + i] * ap[i];
+}
+
+/* r = base - mask * (A p) (base may be r: r -= A p). */
+__kernel void snh_stencil_residual(__global const real* p, __global const int* neighbours,
+                                   __global const matrix_real* stencil, __global const real* mask, const int count,
+                                   const int width, __global const real* base, __global real* r) {
+  const int v = get_global_id(0);
+  if (v >= count) return;
+  real ap[3];
+  stencil_row(p, neighbours, stencil, width, v, ap);
+  for (int i = 0; i < 3; ++i) r[3 * v + i] = base[3 * v + i] - mask[3 * v + i] * ap[i];
+}
