@@ -73,13 +73,15 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
   const int items = 1 << 16;
   device::Buffer out = cl.buffer(CL_MEM_READ_WRITE, items * sizeof(Real));
   const Real m = Real(0.999), k = Real(0.001);
-  // {kernel, chains, lanes}; the 8-wide peak is the faster of 8 and 6 chains.
+  // {kernel, its build's defines, chains, lanes}; the 8-wide peak is the
+  // faster of 8 and 6 chains (roofline.cl, SNH_FMA_CHAINS).
   struct Fma {
-    const char* name;
+    const char *name, *defines;
     int chains, lanes;
   };
-  for (const Fma& f : {Fma{"snh_fma_scalar", 8, 1}, Fma{"snh_fma_vector", 8, 8}, Fma{"snh_fma_vector6", 6, 8}}) {
-    device::Kernel fma = cl.kernel("roofline.cl", "", f.name);
+  for (const Fma& f : {Fma{"snh_fma_scalar", "", 8, 1}, Fma{"snh_fma_vector", "", 8, 8},
+                       Fma{"snh_fma_vector", "-DSNH_FMA_CHAINS=6", 6, 8}}) {
+    device::Kernel fma = cl.kernel("roofline.cl", f.defines, f.name);
     arg(fma.get(), 0, out.get());
     arg(fma.get(), 1, m);
     arg(fma.get(), 2, k);
@@ -95,8 +97,8 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     arg(slow.get(), 1, m);
     const double t = best_seconds([&] { cl.run(slow.get(), slow_items); }, min_seconds);
     const double rate = 64.0 * 32 * slow_items / t;  // SNH_SLOW_ITERATIONS = 32
-    const std::string n = name;
-    (n == "snh_sqrt_vector" ? r.sqrt_rate : n == "snh_div_vector" ? r.div_rate : r.sqrt_div_rate) = rate;
+    const std::string kernel = name;
+    (kernel == "snh_sqrt_vector" ? r.sqrt_rate : kernel == "snh_div_vector" ? r.div_rate : r.sqrt_div_rate) = rate;
   }
   return r;
 }

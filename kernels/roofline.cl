@@ -49,11 +49,22 @@ __kernel void snh_fma_scalar(__global real* out, const real m, const real k) {
   out[i] = x0 + x1 + x2 + x3 + x4 + x5 + x6 + x7;
 }
 
-/* The same with 8-wide vectors: 8 chains x 8 lanes x 2 flops per iteration. */
+/* The same with 8-wide vectors: SNH_FMA_CHAINS (8, or 6 where the host
+ * asks) chains x 8 lanes x 2 flops per iteration. 8-wide double is two
+ * registers a chain on AVX2 (16 registers), where 8 chains and the two
+ * constants do not fit: pocl spilled three chains to the stack in every
+ * iteration (49.5 GFLOP/s against 94.4 with 6 chains on a Zen 3); the
+ * roofline takes the faster of the two builds. */
+#ifndef SNH_FMA_CHAINS
+#define SNH_FMA_CHAINS 8
+#endif
 __kernel void snh_fma_vector(__global real* out, const real m, const real k) {
   const int i = get_global_id(0);
   real8 x0 = (real8)((real)i), x1 = x0 + SNH_R(1), x2 = x0 + SNH_R(2), x3 = x0 + SNH_R(3);
-  real8 x4 = x0 + SNH_R(4), x5 = x0 + SNH_R(5), x6 = x0 + SNH_R(6), x7 = x0 + SNH_R(7);
+  real8 x4 = x0 + SNH_R(4), x5 = x0 + SNH_R(5);
+#if SNH_FMA_CHAINS == 8
+  real8 x6 = x0 + SNH_R(6), x7 = x0 + SNH_R(7);
+#endif
   const real8 mv = (real8)(m), kv = (real8)(k);
   for (int it = 0; it < SNH_FMA_ITERATIONS; ++it) {
     x0 = fma(x0, mv, kv);
@@ -62,31 +73,16 @@ __kernel void snh_fma_vector(__global real* out, const real m, const real k) {
     x3 = fma(x3, mv, kv);
     x4 = fma(x4, mv, kv);
     x5 = fma(x5, mv, kv);
+#if SNH_FMA_CHAINS == 8
     x6 = fma(x6, mv, kv);
     x7 = fma(x7, mv, kv);
+#endif
   }
+#if SNH_FMA_CHAINS == 8
   const real8 s = x0 + x1 + x2 + x3 + x4 + x5 + x6 + x7;
-  out[i] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7;
-}
-
-/* The same with 6 chains: 8-wide double is two registers a chain on AVX2
- * (16 registers), where 8 chains and the two constants do not fit and pocl
- * spilled three chains to the stack in every iteration (measured 49.5
- * GFLOP/s against this kernel's); the roofline takes the faster of the two. */
-__kernel void snh_fma_vector6(__global real* out, const real m, const real k) {
-  const int i = get_global_id(0);
-  real8 x0 = (real8)((real)i), x1 = x0 + SNH_R(1), x2 = x0 + SNH_R(2), x3 = x0 + SNH_R(3);
-  real8 x4 = x0 + SNH_R(4), x5 = x0 + SNH_R(5);
-  const real8 mv = (real8)(m), kv = (real8)(k);
-  for (int it = 0; it < SNH_FMA_ITERATIONS; ++it) {
-    x0 = fma(x0, mv, kv);
-    x1 = fma(x1, mv, kv);
-    x2 = fma(x2, mv, kv);
-    x3 = fma(x3, mv, kv);
-    x4 = fma(x4, mv, kv);
-    x5 = fma(x5, mv, kv);
-  }
+#else
   const real8 s = x0 + x1 + x2 + x3 + x4 + x5;
+#endif
   out[i] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7;
 }
 
@@ -100,33 +96,33 @@ __kernel void snh_fma_vector6(__global real* out, const real m, const real k) {
  * and 4 of each side by side (whether the two share a unit). 64 operations
  * per work-item and iteration. */
 #define SNH_SLOW_ITERATIONS 32
-#define SNH_SLOW_CHAINS(step)                                                          \
-  real8 x0 = (real8)(SNH_R(1) + (real)i), x1 = x0 + SNH_R(1), x2 = x0 + SNH_R(2);     \
-  real8 x3 = x0 + SNH_R(3), x4 = x0 + SNH_R(4), x5 = x0 + SNH_R(5);                    \
-  real8 x6 = x0 + SNH_R(6), x7 = x0 + SNH_R(7);                                        \
-  for (int it = 0; it < SNH_SLOW_ITERATIONS; ++it) {                                   \
-    step                                                                               \
-  }                                                                                    \
-  const real8 s = x0 + x1 + x2 + x3 + x4 + x5 + x6 + x7;                               \
+#define SNH_SLOW_CHAINS(step)                                                     \
+  real8 x0 = (real8)(SNH_R(1) + (real)i), x1 = x0 + SNH_R(1), x2 = x0 + SNH_R(2); \
+  real8 x3 = x0 + SNH_R(3), x4 = x0 + SNH_R(4), x5 = x0 + SNH_R(5);               \
+  real8 x6 = x0 + SNH_R(6), x7 = x0 + SNH_R(7);                                   \
+  for (int it = 0; it < SNH_SLOW_ITERATIONS; ++it) {                              \
+    step                                                                          \
+  }                                                                               \
+  const real8 s = x0 + x1 + x2 + x3 + x4 + x5 + x6 + x7;                          \
   out[i] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7;
 
 __kernel void snh_sqrt_vector(__global real* out, const real m) {
   const int i = get_global_id(0);
   const real8 k = (real8)(SNH_R(1) - m);
-  SNH_SLOW_CHAINS(x0 = sqrt(x0 + k); x1 = sqrt(x1 + k); x2 = sqrt(x2 + k); x3 = sqrt(x3 + k);
-                  x4 = sqrt(x4 + k); x5 = sqrt(x5 + k); x6 = sqrt(x6 + k); x7 = sqrt(x7 + k);)
+  SNH_SLOW_CHAINS(x0 = sqrt(x0 + k); x1 = sqrt(x1 + k); x2 = sqrt(x2 + k); x3 = sqrt(x3 + k); x4 = sqrt(x4 + k);
+                  x5 = sqrt(x5 + k); x6 = sqrt(x6 + k); x7 = sqrt(x7 + k);)
 }
 
 __kernel void snh_div_vector(__global real* out, const real m) {
   const int i = get_global_id(0);
   const real8 mv = (real8)(m);
-  SNH_SLOW_CHAINS(x0 = mv / x0; x1 = mv / x1; x2 = mv / x2; x3 = mv / x3;
-                  x4 = mv / x4; x5 = mv / x5; x6 = mv / x6; x7 = mv / x7;)
+  SNH_SLOW_CHAINS(x0 = mv / x0; x1 = mv / x1; x2 = mv / x2; x3 = mv / x3; x4 = mv / x4; x5 = mv / x5; x6 = mv / x6;
+                  x7 = mv / x7;)
 }
 
 __kernel void snh_sqrt_div_vector(__global real* out, const real m) {
   const int i = get_global_id(0);
   const real8 mv = (real8)(m), k = (real8)(SNH_R(1) - m);
-  SNH_SLOW_CHAINS(x0 = sqrt(x0 + k); x1 = mv / x1; x2 = sqrt(x2 + k); x3 = mv / x3;
-                  x4 = sqrt(x4 + k); x5 = mv / x5; x6 = sqrt(x6 + k); x7 = mv / x7;)
+  SNH_SLOW_CHAINS(x0 = sqrt(x0 + k); x1 = mv / x1; x2 = sqrt(x2 + k); x3 = mv / x3; x4 = sqrt(x4 + k); x5 = mv / x5;
+                  x6 = sqrt(x6 + k); x7 = mv / x7;)
 }
