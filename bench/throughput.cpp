@@ -91,14 +91,17 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     peak = std::max(peak, flops / t);
   }
   const int slow_items = 1 << 13;
-  for (const char* name : {"snh_sqrt_vector", "snh_div_vector", "snh_sqrt_div_vector"}) {
-    device::Kernel slow = cl.kernel("roofline.cl", "", name);
+  struct Slow {
+    const char* name;
+    double* rate;
+  };
+  for (const Slow& op : {Slow{"snh_sqrt_vector", &r.sqrt_rate}, Slow{"snh_div_vector", &r.div_rate},
+                         Slow{"snh_sqrt_div_vector", &r.sqrt_div_rate}}) {
+    device::Kernel slow = cl.kernel("roofline.cl", "", op.name);
     arg(slow.get(), 0, out.get());
     arg(slow.get(), 1, m);
     const double t = best_seconds([&] { cl.run(slow.get(), slow_items); }, min_seconds);
-    const double rate = 64.0 * 32 * slow_items / t;  // SNH_SLOW_ITERATIONS = 32
-    const std::string kernel = name;
-    (kernel == "snh_sqrt_vector" ? r.sqrt_rate : kernel == "snh_div_vector" ? r.div_rate : r.sqrt_div_rate) = rate;
+    *op.rate = 64.0 * 32 * slow_items / t;  // SNH_SLOW_ITERATIONS = 32
   }
   return r;
 }
