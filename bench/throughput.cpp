@@ -64,7 +64,12 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     arg(triad.get(), 2, c.get());
     arg(triad.get(), 3, Real(0.5));
     arg(triad.get(), 4, items);
-    return best_seconds([&] { cl.run(triad.get(), static_cast<size_t>(items)); }, min_seconds);
+    return best_seconds(
+        [&] {
+          cl.run(triad.get(), static_cast<size_t>(items));
+          cl.finish();
+        },
+        min_seconds);
   };
   r.bandwidth_scalar = 3.0 * n * sizeof(Real) / triad_seconds("snh_triad", n);
   r.bandwidth_vector = 3.0 * n * sizeof(Real) / triad_seconds("snh_triad4", n / 4);
@@ -85,7 +90,12 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     arg(fma.get(), 0, out.get());
     arg(fma.get(), 1, m);
     arg(fma.get(), 2, k);
-    const double t = best_seconds([&] { cl.run(fma.get(), items); }, min_seconds);
+    const double t = best_seconds(
+        [&] {
+          cl.run(fma.get(), items);
+          cl.finish();
+        },
+        min_seconds);
     const double flops = 2.0 * f.chains * 256 * items * f.lanes;  // SNH_FMA_ITERATIONS = 256
     double& peak = f.lanes == 1 ? r.peak_scalar : r.peak_vector;
     peak = std::max(peak, flops / t);
@@ -100,7 +110,12 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     device::Kernel slow = cl.kernel("roofline.cl", "", op.name);
     arg(slow.get(), 0, out.get());
     arg(slow.get(), 1, m);
-    const double t = best_seconds([&] { cl.run(slow.get(), slow_items); }, min_seconds);
+    const double t = best_seconds(
+        [&] {
+          cl.run(slow.get(), slow_items);
+          cl.finish();
+        },
+        min_seconds);
     *op.rate = 64.0 * 32 * slow_items / t;  // SNH_SLOW_ITERATIONS = 32
   }
   return r;
@@ -241,14 +256,42 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
       solver::ElasticModel<Real> model(cl, mesh, rest, uniform_material(mesh, material), ProductVariant::cached);
       std::cerr << "  " << type << " " << n << "^3 (" << mesh.element_count() << " elements, " << pname << ")\n";
       const size_t ne = mesh.element_count();
-      ops.push_back({type, pname, "residual", n, ne, best_seconds([&] { model.residual(x, r); }, o.min_seconds)});
-      ops.push_back({type, pname, "energy", n, ne, best_seconds([&] { model.energy(x); }, o.min_seconds)});
-      ops.push_back({type, pname, "linearize", n, ne, best_seconds([&] { model.linearize(x); }, o.min_seconds)});
+      ops.push_back({type, pname, "residual", n, ne,
+                     best_seconds(
+                         [&] {
+                           model.residual(x, r);
+                           cl.finish();
+                         },
+                         o.min_seconds)});
+      ops.push_back({type, pname, "energy", n, ne,
+                     best_seconds(
+                         [&] {
+                           model.energy(x);
+                           cl.finish();
+                         },
+                         o.min_seconds)});
+      ops.push_back({type, pname, "linearize", n, ne,
+                     best_seconds(
+                         [&] {
+                           model.linearize(x);
+                           cl.finish();
+                         },
+                         o.min_seconds)});
       for (const std::string& vname : o.variants) {
         const ProductVariant v = parse_product_variant(vname);
         model.set_variant(v);
-        const double setup = best_seconds([&] { model.linearize(x); }, o.min_seconds);
-        const double product = best_seconds([&] { model.product(p, y); }, o.min_seconds);
+        const double setup = best_seconds(
+            [&] {
+              model.linearize(x);
+              cl.finish();
+            },
+            o.min_seconds);
+        const double product = best_seconds(
+            [&] {
+              model.product(p, y);
+              cl.finish();
+            },
+            o.min_seconds);
         const Counts counts = product_counts(v, rest.nodes, rest.quadrature, rest.uniform, sizeof(Real),
                                              static_cast<double>(mesh.vertex_count()) * model.assembled_width(),
                                              static_cast<double>(ne), static_cast<double>(mesh.vertex_count()));

@@ -146,7 +146,8 @@ OpenClContext::OpenClContext(const DeviceOptions& options, Precision precision) 
   cl_int status = CL_SUCCESS;
   context_ = clCreateContext(nullptr, 1, &device_, nullptr, nullptr, &status);
   check(status, "clCreateContext");
-  queue_ = clCreateCommandQueue(context_, device_, 0, &status);
+  // Profiling events time each kernel without waiting for it (run()).
+  queue_ = clCreateCommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE, &status);
   if (status != CL_SUCCESS) {
     clReleaseContext(context_);
     check(status, "clCreateCommandQueue");
@@ -154,6 +155,8 @@ OpenClContext::OpenClContext(const DeviceOptions& options, Precision precision) 
 }
 
 OpenClContext::~OpenClContext() {
+  if (queue_) clFinish(queue_);
+  for (auto& p : pending_) clReleaseEvent(p.second);
   programs_.clear();
   if (queue_) clReleaseCommandQueue(queue_);
   if (context_) clReleaseContext(context_);
@@ -239,11 +242,41 @@ void OpenClContext::run(cl_kernel kernel, size_t global_size) {
   char name[256] = {0};  // asked each time: a released kernel's handle may be reused
   if (clGetKernelInfo(kernel, CL_KERNEL_FUNCTION_NAME, sizeof name - 1, name, nullptr) != CL_SUCCESS)
     std::strcpy(name, "(unnamed)");
-  const auto start = std::chrono::steady_clock::now();
-  check(clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global, &local, 0, nullptr, nullptr),
+  if (pending_.size() >= kMaxPending) collect_pending();
+  cl_event event = nullptr;
+  check(clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global, &local, 0, nullptr, &event),
         "clEnqueueNDRangeKernel");
-  check(clFinish(queue_), "clFinish");
-  kernel_seconds_[name] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  pending_.emplace_back(name, event);
+}
+
+void OpenClContext::collect_pending() const {
+  if (pending_.empty()) return;
+  std::vector<cl_event> events;
+  events.reserve(pending_.size());
+  for (const auto& p : pending_) events.push_back(p.second);
+  const cl_int waited = clWaitForEvents(static_cast<cl_uint>(events.size()), events.data());
+  std::string failed;
+  for (const auto& [name, event] : pending_) {
+    cl_int status = CL_COMPLETE;
+    clGetEventInfo(event, CL_EVENT_COMMAND_EXECUTION_STATUS, sizeof status, &status, nullptr);
+    if (status < 0 && failed.empty()) failed = name + " (" + std::to_string(status) + ")";
+    cl_ulong start = 0, end = 0;
+    if (clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start, nullptr) == CL_SUCCESS &&
+        clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, nullptr) == CL_SUCCESS &&
+        end > start)
+      kernel_seconds_[name] += 1e-9 * static_cast<double>(end - start);
+    else
+      kernel_seconds_[name] += 0.0;
+    clReleaseEvent(event);
+  }
+  pending_.clear();
+  if (!failed.empty()) throw Error("OpenCL: kernel " + failed + " failed on the device");
+  check(waited, "clWaitForEvents");
+}
+
+const std::map<std::string, double>& OpenClContext::kernel_seconds() const {
+  collect_pending();
+  return kernel_seconds_;
 }
 
 }  // namespace device

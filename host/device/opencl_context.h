@@ -68,12 +68,16 @@ class OpenClContext {
   void read(cl_mem buffer, size_t bytes, void* data);
   // The first `bytes` of `from` into `to`, on the device (in queue order).
   void copy(cl_mem from, cl_mem to, size_t bytes);
-  // Runs `kernel` over global_size work-items (rounded up to whole groups)
-  // and waits for it; its wall time is added to kernel_seconds().
+  // Queues `kernel` over global_size work-items (rounded up to whole groups)
+  // without waiting for it: the queue is in order, and reads, phase
+  // boundaries (solver/phase_profile.h) and finish() wait. A wait after each
+  // launch cost pocl about 0.1 ms, 10% of a 10^5-DOF multigrid solve
+  // (README, "Multigrid on hex8 lattices", session 16).
   void run(cl_kernel kernel, size_t global_size);
-  // Seconds from launch to completion of every kernel run() ran, by kernel
-  // name, since this context was made (ViennaCL's own kernels not included).
-  const std::map<std::string, double>& kernel_seconds() const { return kernel_seconds_; }
+  // Seconds each kernel run() queued ran on the device (its profiling
+  // event's start to end), by kernel name, since this context was made
+  // (ViennaCL's own kernels not included); waits for those still queued.
+  const std::map<std::string, double>& kernel_seconds() const;
   // Waits for everything queued (ViennaCL's operations share the queue).
   void finish();
 
@@ -89,7 +93,12 @@ class OpenClContext {
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
   std::map<std::string, Program> programs_;
-  std::map<std::string, double> kernel_seconds_;
+  // Kernels queued by run() whose events are not yet read, by name; read
+  // (and released) by kernel_seconds(), and every kMaxPending launches.
+  static constexpr size_t kMaxPending = 512;
+  mutable std::vector<std::pair<std::string, cl_event>> pending_;
+  mutable std::map<std::string, double> kernel_seconds_;
+  void collect_pending() const;
 };
 
 }  // namespace snh::device
