@@ -47,6 +47,15 @@ struct Roofline {
 
 template <typename Real>
 Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
+  // The best time of one launch and the wait for it (launches are queued).
+  auto kernel_seconds = [&](cl_kernel k, size_t items) {
+    return best_seconds(
+        [&] {
+          cl.run(k, items);
+          cl.finish();
+        },
+        min_seconds);
+  };
   Roofline r;
   // 3 x 256 MiB in either precision: far beyond any cache, and long enough
   // (about 0.25 ms at 3 TB/s) that a GPU's launch latency stays a few percent
@@ -64,12 +73,7 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     arg(triad.get(), 2, c.get());
     arg(triad.get(), 3, Real(0.5));
     arg(triad.get(), 4, items);
-    return best_seconds(
-        [&] {
-          cl.run(triad.get(), static_cast<size_t>(items));
-          cl.finish();
-        },
-        min_seconds);
+    return kernel_seconds(triad.get(), static_cast<size_t>(items));
   };
   r.bandwidth_scalar = 3.0 * n * sizeof(Real) / triad_seconds("snh_triad", n);
   r.bandwidth_vector = 3.0 * n * sizeof(Real) / triad_seconds("snh_triad4", n / 4);
@@ -90,12 +94,7 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     arg(fma.get(), 0, out.get());
     arg(fma.get(), 1, m);
     arg(fma.get(), 2, k);
-    const double t = best_seconds(
-        [&] {
-          cl.run(fma.get(), items);
-          cl.finish();
-        },
-        min_seconds);
+    const double t = kernel_seconds(fma.get(), items);
     const double flops = 2.0 * f.chains * 256 * items * f.lanes;  // SNH_FMA_ITERATIONS = 256
     double& peak = f.lanes == 1 ? r.peak_scalar : r.peak_vector;
     peak = std::max(peak, flops / t);
@@ -110,12 +109,7 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     device::Kernel slow = cl.kernel("roofline.cl", "", op.name);
     arg(slow.get(), 0, out.get());
     arg(slow.get(), 1, m);
-    const double t = best_seconds(
-        [&] {
-          cl.run(slow.get(), slow_items);
-          cl.finish();
-        },
-        min_seconds);
+    const double t = kernel_seconds(slow.get(), slow_items);
     *op.rate = 64.0 * 32 * slow_items / t;  // SNH_SLOW_ITERATIONS = 32
   }
   return r;
@@ -256,42 +250,16 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
       solver::ElasticModel<Real> model(cl, mesh, rest, uniform_material(mesh, material), ProductVariant::cached);
       std::cerr << "  " << type << " " << n << "^3 (" << mesh.element_count() << " elements, " << pname << ")\n";
       const size_t ne = mesh.element_count();
-      ops.push_back({type, pname, "residual", n, ne,
-                     best_seconds(
-                         [&] {
-                           model.residual(x, r);
-                           cl.finish();
-                         },
-                         o.min_seconds)});
-      ops.push_back({type, pname, "energy", n, ne,
-                     best_seconds(
-                         [&] {
-                           model.energy(x);
-                           cl.finish();
-                         },
-                         o.min_seconds)});
-      ops.push_back({type, pname, "linearize", n, ne,
-                     best_seconds(
-                         [&] {
-                           model.linearize(x);
-                           cl.finish();
-                         },
-                         o.min_seconds)});
+      // The model's operations wait for their kernels (each is a phase scope,
+      // solver/phase_profile.h), so they are timed as they are.
+      ops.push_back({type, pname, "residual", n, ne, best_seconds([&] { model.residual(x, r); }, o.min_seconds)});
+      ops.push_back({type, pname, "energy", n, ne, best_seconds([&] { model.energy(x); }, o.min_seconds)});
+      ops.push_back({type, pname, "linearize", n, ne, best_seconds([&] { model.linearize(x); }, o.min_seconds)});
       for (const std::string& vname : o.variants) {
         const ProductVariant v = parse_product_variant(vname);
         model.set_variant(v);
-        const double setup = best_seconds(
-            [&] {
-              model.linearize(x);
-              cl.finish();
-            },
-            o.min_seconds);
-        const double product = best_seconds(
-            [&] {
-              model.product(p, y);
-              cl.finish();
-            },
-            o.min_seconds);
+        const double setup = best_seconds([&] { model.linearize(x); }, o.min_seconds);
+        const double product = best_seconds([&] { model.product(p, y); }, o.min_seconds);
         const Counts counts = product_counts(v, rest.nodes, rest.quadrature, rest.uniform, sizeof(Real),
                                              static_cast<double>(mesh.vertex_count()) * model.assembled_width(),
                                              static_cast<double>(ne), static_cast<double>(mesh.vertex_count()));
@@ -362,7 +330,7 @@ int run_throughput(const ThroughputOptions& o) {
             << std::setw(11) << "memory MB" << std::setw(8) << "%peak"
             << "%bw\n";
   for (const VariantRow& r : rows) {
-    const double rate = r.elements / r.product_seconds;
+    const double rate = static_cast<double>(r.elements) / r.product_seconds;
     const Roofline& roof = rooflines[r.precision];
     const double fpeak = r.counts.flops * rate / roof.peak();
     const double fbw = r.counts.bytes * rate / roof.bandwidth;
@@ -392,14 +360,14 @@ int run_throughput(const ThroughputOptions& o) {
                                   {"peak_ceiling", ceiling}});
     md << "| " << r.element_type << " | " << r.precision << " | " << r.size << "^3 | " << r.variant << " | "
        << fixed(1e3 * r.product_seconds, 3) << " | " << fixed(rate / 1e6, 3) << " | " << fixed(1e3 * r.setup_seconds, 3)
-       << " | " << fixed(r.memory_bytes / 1e6, 3) << " | " << fixed(r.counts.flops, 4) << " | "
+       << " | " << fixed(static_cast<double>(r.memory_bytes) / 1e6, 3) << " | " << fixed(r.counts.flops, 4) << " | "
        << fixed(r.counts.bytes, 4) << " | " << fixed(100 * fpeak, 3) << " | " << fixed(100 * fbw, 3) << " | "
        << (slow_ops ? fixed(100 * ceiling, 3) : "") << " |\n";
     std::cout << std::left << std::setw(6) << r.element_type << std::setw(8) << r.precision << std::setw(7)
               << (std::to_string(r.size) + "^3") << std::setw(18) << r.variant << std::setw(12)
               << fixed(1e3 * r.product_seconds, 3) << std::setw(10) << fixed(rate / 1e6, 3) << std::setw(11)
-              << fixed(1e3 * r.setup_seconds, 3) << std::setw(11) << fixed(r.memory_bytes / 1e6, 3) << std::setw(8)
-              << fixed(100 * fpeak, 3) << fixed(100 * fbw, 3) << '\n';
+              << fixed(1e3 * r.setup_seconds, 3) << std::setw(11) << fixed(static_cast<double>(r.memory_bytes) / 1e6, 3)
+              << std::setw(8) << fixed(100 * fpeak, 3) << fixed(100 * fbw, 3) << '\n';
   }
   // The winner per element type and precision: the least time per Newton
   // iteration for a typical 50 products per setup.
@@ -420,13 +388,13 @@ int run_throughput(const ThroughputOptions& o) {
   md << "\n| element | precision | cells | operation | ms | Melem/s |\n|---|---|---|---|---|---|\n";
   for (const OperationRow& r : ops) {
     md << "| " << r.element_type << " | " << r.precision << " | " << r.size << "^3 | " << r.operation << " | "
-       << fixed(1e3 * r.seconds, 3) << " | " << fixed(r.elements / r.seconds / 1e6, 3) << " |\n";
+       << fixed(1e3 * r.seconds, 3) << " | " << fixed(static_cast<double>(r.elements) / r.seconds / 1e6, 3) << " |\n";
     report["operations"].push_back({{"element_type", r.element_type},
                                     {"precision", r.precision},
                                     {"cells_per_side", r.size},
                                     {"operation", r.operation},
                                     {"seconds", r.seconds},
-                                    {"elements_per_second", r.elements / r.seconds}});
+                                    {"elements_per_second", static_cast<double>(r.elements) / r.seconds}});
   }
   std::ostringstream roof_md;
   roof_md

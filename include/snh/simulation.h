@@ -375,10 +375,11 @@ struct SolveProfile {
   double line_search_energies = 0.0;
   double transfers = 0.0;  // host <-> device reads and writes (incl. the downloads behind norms and dots)
   double other = 0.0;      // the rest: host-side Newton bookkeeping, constraint placement, statistics
-  // Seconds in each of the engine's OpenCL kernels by name (launch to
-  // completion; already counted in the phases above, which they break down
-  // further). ViennaCL's own vector kernels (CG's updates and reductions)
-  // are not listed.
+  // Seconds each of the engine's OpenCL kernels ran on the device, by name
+  // (from its profiling event's start to its end, so without the launch;
+  // already counted in the phases above, which they break down further).
+  // ViennaCL's own vector kernels (CG's updates and reductions) are not
+  // listed.
   std::map<std::string, double> kernels;
   // Wall time of the solve (or step), less the time in the caller's
   // callbacks (on_iteration, progress, on_step).
