@@ -266,7 +266,7 @@ void OpenClContext::collect_pending() const {
         end > start)
       kernel_seconds_[name] += 1e-9 * static_cast<double>(end - start);
     else
-      kernel_seconds_[name] += 0.0;
+      kernel_seconds_[name] += 0.0;  // listed as run, where the device gives no times
     clReleaseEvent(event);
   }
   pending_.clear();

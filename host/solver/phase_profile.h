@@ -46,7 +46,7 @@ class PhaseProfiler {
 
   // A scope charged to the phase already charged (nested in a
   // preconditioner's setup or apply) neither waits nor reads the clock: the
-  // V-cycle opens one per level product, and each wait cost pocl about 0.1 ms.
+  // V-cycle opens one per level product, and a wait costs pocl about 0.1 ms.
   void enter(Phase requested) {
     Phase phase = requested;
     if (!stack_.empty()) {
