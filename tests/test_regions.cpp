@@ -177,12 +177,6 @@ std::vector<double> perturbed(const Mesh& mesh, double amplitude, unsigned seed)
   return x;
 }
 
-double norm(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double c : v) s += c * c;
-  return std::sqrt(s);
-}
-
 std::vector<double> multiply(const Eigen::SparseMatrix<double>& k, const std::vector<double>& p) {
   const Eigen::VectorXd y = k * Eigen::Map<const Eigen::VectorXd>(p.data(), static_cast<Eigen::Index>(p.size()));
   return {y.data(), y.data() + y.size()};

@@ -65,11 +65,11 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
   prolong_k_ = cl_.kernel("multigrid.cl", coarse, "snh_prolong_add");
   restrict_k_ = cl_.kernel("multigrid.cl", coarse, "snh_restrict");
-  auto stencil_kernels_of = [&](const std::string& defines) {
-    return StencilKernels{cl_.kernel("stencil.cl", defines, "snh_stencil_assemble"),
-                          cl_.kernel("stencil.cl", defines, "snh_stencil_product"),
-                          cl_.kernel("stencil.cl", defines, "snh_stencil_residual"),
-                          cl_.kernel("multigrid.cl", defines, "snh_chebyshev_step")};
+  auto stencil_kernels_of = [&](const std::string& build) {
+    return StencilKernels{cl_.kernel("stencil.cl", build, "snh_stencil_assemble"),
+                          cl_.kernel("stencil.cl", build, "snh_stencil_product"),
+                          cl_.kernel("stencil.cl", build, "snh_stencil_residual"),
+                          cl_.kernel("multigrid.cl", build, "snh_chebyshev_step")};
   };
   stencil_k_ = stencil_kernels_of(coarse);
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", coarse, "snh_chebyshev_start");

@@ -125,9 +125,9 @@ struct Simulation::Impl {
     if (!friction) return;
     const size_t count = options.obstacles.size();
     friction_anchor.resize(count * x.size());
-    for (size_t v = 0; v < x.size() / 3; ++v)
+    for (size_t vertex = 0; vertex < x.size() / 3; ++vertex)
       for (size_t o = 0; o < count; ++o)
-        for (int d = 0; d < 3; ++d) friction_anchor[3 * (count * v + o) + d] = x[3 * v + d];
+        for (int d = 0; d < 3; ++d) friction_anchor[3 * (count * vertex + o) + d] = x[3 * vertex + d];
   }
   std::vector<Target> targets;
   std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
