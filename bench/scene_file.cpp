@@ -153,9 +153,9 @@ std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m
       k.angle = (1 - w) * keys[i].angle + w * keys[i + 1].angle;
       for (int d = 0; d < 3; ++d) k.translation[d] = (1 - w) * keys[i].translation[d] + w * keys[i + 1].translation[d];
     }
-    RigidTransform r = RigidTransform::rotation_about(axis, k.angle, center);
-    r.translation = k.translation;
-    return r;
+    RigidTransform pose = RigidTransform::rotation_about(axis, k.angle, center);
+    pose.translation = k.translation;
+    return pose;
   };
 }
 
@@ -316,8 +316,8 @@ SceneFile load_scene_file(const std::string& path) {
     out_rig.bones = read_bones(r, rig, folder);
     try {
       for (ConstraintSet& set : bone_constraints(s.mesh, out_rig.bones)) s.constraints.push_back(std::move(set));
-    } catch (const Error& e) {
-      r.fail("rig.bones", e.what());
+    } catch (const Error& error) {
+      r.fail("rig.bones", error.what());
     }
     if (!rig.contains("animation")) r.fail("rig.animation", "missing (a .json or .csv animation file)");
     out_rig.animation = read_animation((folder / r.text(rig, "rig", "animation", "")).string());
@@ -392,8 +392,8 @@ SceneFile load_scene_file(const std::string& path) {
     r.fail("contact.stiffness", "missing (the obstacles need a contact stiffness > 0)");
   try {
     solver::validate_obstacles(s.options.obstacles, s.options.contact);
-  } catch (const Error& e) {
-    r.fail("obstacles", e.what());
+  } catch (const Error& error) {
+    r.fail("obstacles", error.what());
   }
   const json solver = doc.value("solver", json::object());
   r.keys(solver, "solver",
@@ -404,8 +404,8 @@ SceneFile load_scene_file(const std::string& path) {
   s.options.max_newton_iterations = r.integer(solver, "solver", "max_newton_iterations", 200);
   try {
     s.options.preconditioner = parse_preconditioner(r.text(solver, "solver", "preconditioner", "automatic"));
-  } catch (const Error& e) {
-    throw Error(path + ": solver.preconditioner: " + e.what());
+  } catch (const Error& error) {
+    throw Error(path + ": solver.preconditioner: " + error.what());
   }
   s.options.hessian =
       r.text(solver, "solver", "hessian", "adaptive") == "projected" ? HessianMode::projected : HessianMode::adaptive;

@@ -239,7 +239,9 @@ TEST(LatticeHierarchy, SlitIsNotGluedOnCoarseLevels) {
     const auto& w = h.levels[0].prolongation_weights;
     for (int k = 0; k < 8; ++k) {
       EXPECT_EQ(w[8 * v + k], w[8 * duplicate[v] + k]);
-      if (w[8 * v + k] > 0.0) EXPECT_NE(p[8 * v + k], p[8 * duplicate[v] + k]);
+      if (w[8 * v + k] > 0.0) {
+        EXPECT_NE(p[8 * v + k], p[8 * duplicate[v] + k]);
+      }
     }
   }
   expect_affine_prolongation(h);
@@ -611,7 +613,9 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
     ba += b[i] * za[i];
     aa += a[i] * za[i];
     scale += std::abs(a[i] * zb[i]);
-    if (mask[i] == 0.0) EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
+    if (mask[i] == 0.0) {
+      EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
+    }
   }
   EXPECT_LT(std::abs(ab - ba), 1e-12 * scale);
   EXPECT_GT(aa, 0.0);

@@ -28,9 +28,12 @@ double max_difference(const std::vector<double>& a, const std::vector<double>& b
 struct StretchedBar {
   Mesh mesh = make_tet_box(8, 2, 2, 0.25);
   ConstraintSet held{"held", on_plane(mesh, 0, 0.0), {}, {}};
-  ConstraintSet pulled{"pulled", on_plane(mesh, 0, 2.0), [](double t) {
+  ConstraintSet pulled{"pulled",
+                       on_plane(mesh, 0, 2.0),
+                       [](double t) {
                          return RigidTransform::translation_by({t, 0.0, 0.0});
-                       }};
+                       },
+                       {}};
 };
 
 TEST(Simulation, DefaultStopIsScaleFreeSameShapeForAnyYoungsModulus) {
@@ -312,11 +315,14 @@ TEST(Simulation, ConstructionNamesConflictsAndBadInputs) {
       message({ConstraintSet{"floor", bottom, {}, {}, {false, false, true}}}, sideways).find("translation along x"),
       std::string::npos);
   // A non-finite target names its set, at the step that produces it.
-  ConstraintSet broken{"broken", bottom, [](double) {
+  ConstraintSet broken{"broken",
+                       bottom,
+                       [](double) {
                          RigidTransform t;
                          t.translation = {std::nan(""), 0, 0};
                          return t;
-                       }};
+                       },
+                       {}};
   Simulation s(mesh, material, {broken});
   try {
     s.solve();

@@ -257,8 +257,12 @@ TEST(Solver, AdaptiveHessianUsesTrueHessianNearSolutionAndNeedsFewerIterations) 
     ASSERT_TRUE(r.converged);
     int unprojected = 0;
     for (const NewtonIteration& h : r.history) unprojected += h.projected ? 0 : 1;
-    if (mode == HessianMode::projected) EXPECT_EQ(unprojected, 0);
-    if (mode == HessianMode::adaptive) EXPECT_GT(unprojected, 0);
+    if (mode == HessianMode::projected) {
+      EXPECT_EQ(unprojected, 0);
+    }
+    if (mode == HessianMode::adaptive) {
+      EXPECT_GT(unprojected, 0);
+    }
     iterations[mode == HessianMode::adaptive] = static_cast<int>(r.history.size());
   }
   EXPECT_LT(iterations[1], iterations[0]);

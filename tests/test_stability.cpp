@@ -168,8 +168,9 @@ TEST(Stability, PoorDirectionsKeepPositionsFinite) {
     for (const NewtonIteration& h : r.history)
       if (h.recovery.find("line_search_failed -> steepest_descent") != std::string::npos) {
         ++retries;
-        if (h.recovery.find("failed", h.recovery.find("steepest_descent")) == std::string::npos)
+        if (h.recovery.find("failed", h.recovery.find("steepest_descent")) == std::string::npos) {
           EXPECT_GT(h.step_length, 0.0);
+        }
       }
   }
   RecordProperty("steepest_descent_retries", retries);
