@@ -208,9 +208,12 @@ TEST(Dynamics, BarOscillatesAtTheLinearElasticPeriod) {
 // rigid-mode check does not apply (inertia holds every rigid motion).
 TEST(Dynamics, ConstrainedVerticesFollowTargetsAndFreeBodiesAreAccepted) {
   const Mesh mesh = make_tet_box(4, 1, 1, 0.1);
-  const ConstraintSet moved{"moved", on_plane(mesh, 0, 0.0), [](double t) {
+  const ConstraintSet moved{"moved",
+                            on_plane(mesh, 0, 0.0),
+                            [](double t) {
                               return RigidTransform::translation_by({0.0, 0.0, 0.05 * t});
-                            }};
+                            },
+                            {}};
   SolveOptions options;
   options.dynamics = DynamicsOptions{};
   options.dynamics->time_step = 0.01;

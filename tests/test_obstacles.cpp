@@ -27,9 +27,11 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
-Obstacle plane(Vec3 point, Vec3 normal) { return {ObstacleType::plane, point, normal, 0.0, {}}; }
-Obstacle sphere(Vec3 center, double radius) { return {ObstacleType::sphere, center, {0, 0, 1}, radius, {}}; }
-Obstacle cylinder(Vec3 point, Vec3 axis, double radius) { return {ObstacleType::cylinder, point, axis, radius, {}}; }
+Obstacle plane(Vec3 point, Vec3 normal) { return {ObstacleType::plane, point, normal, 0.0, {}, {}}; }
+Obstacle sphere(Vec3 center, double radius) { return {ObstacleType::sphere, center, {0, 0, 1}, radius, {}, {}}; }
+Obstacle cylinder(Vec3 point, Vec3 axis, double radius) {
+  return {ObstacleType::cylinder, point, axis, radius, {}, {}};
+}
 
 constexpr double kStiffness = 7.0, kThickness = 0.05;
 
