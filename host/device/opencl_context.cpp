@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cstdlib>
 #include <cstring>
 
@@ -260,13 +259,12 @@ void OpenClContext::collect_pending() const {
     cl_int status = CL_COMPLETE;
     clGetEventInfo(event, CL_EVENT_COMMAND_EXECUTION_STATUS, sizeof status, &status, nullptr);
     if (status < 0 && failed.empty()) failed = name + " (" + std::to_string(status) + ")";
+    double& seconds = kernel_seconds_[name];  // listed as run even where the device gives no times
     cl_ulong start = 0, end = 0;
     if (clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start, nullptr) == CL_SUCCESS &&
         clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, nullptr) == CL_SUCCESS &&
         end > start)
-      kernel_seconds_[name] += 1e-9 * static_cast<double>(end - start);
-    else
-      kernel_seconds_[name] += 0.0;  // listed as run, where the device gives no times
+      seconds += 1e-9 * static_cast<double>(end - start);
     clReleaseEvent(event);
   }
   pending_.clear();
