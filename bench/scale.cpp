@@ -216,6 +216,11 @@ std::vector<ScaleRecord> run_scale(const ScaleOptions& o) {
         std::cerr << "scale: " << name << " res " << res << " (" << thousands(static_cast<long long>(dofs)) << " DOF), "
                   << pre << " ... " << std::flush;
         records.push_back(run_one(name, res, pre, o));
+        // The rows so far go to scale.{json,csv,md} after each run (the plot
+        // waits for the end), so a run stopped part way keeps what it measured.
+        ScaleOptions partial = o;
+        partial.plots = false;
+        write_scale(partial, records);
         const ScaleRecord& r = records.back();
         if (!r.skipped.empty())
           std::cerr << "skipped: " << r.skipped << '\n';
