@@ -183,7 +183,8 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
   return h;
 }
 #else
-/* tet4 (point-major cache): lanes 0 .. lanes - 1 at out + 30 l, lane by lane
+/* Point-major cache (tet4; hex8 with SNH_CACHE_POINT_MAJOR): lanes
+ * 0 .. lanes - 1 at out + 30 l, lane by lane
  * (value by value measured 2.2x slower in float). */
 SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __global scalar_real* out) {
   SNH_UNROLL

@@ -98,8 +98,10 @@ namespace device {
 void check(cl_int status, const char* what) {
   if (status != CL_SUCCESS) {
     std::string hint;
-    if (status == CL_OUT_OF_RESOURCES || status == CL_MEM_OBJECT_ALLOCATION_FAILURE || status == CL_OUT_OF_HOST_MEMORY)
-      hint = " (the device ran out of memory)";
+    if (status == CL_MEM_OBJECT_ALLOCATION_FAILURE) hint = " (the device ran out of memory)";
+    if (status == CL_OUT_OF_RESOURCES) hint = " (the device ran out of resources, or of memory)";
+    if (status == CL_OUT_OF_HOST_MEMORY)
+      hint = " (the OpenCL implementation ran out of host memory; with a GPU, too many contexts at once can do this)";
     if (status == CL_INVALID_BUFFER_SIZE)
       hint = " (the buffer exceeds the device's memory or its largest allocation: the mesh is too large for it)";
     throw Error(std::string("OpenCL: ") + what + " failed with error " + std::to_string(status) + hint);

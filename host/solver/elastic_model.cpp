@@ -39,6 +39,11 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   // Build-time specialization: only what this scene uses is compiled in.
   defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " + material_.defines() +
              " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+  // Every program that reads the cache (multigrid.cl and stencil.cl too)
+  // builds from these defines, so they all agree on its layout.
+  const bool value_major = terms.hex8_cache == CacheLayout::value_major ||
+                           (terms.hex8_cache == CacheLayout::automatic && lanes_by_default());
+  if (mesh.type == ElementType::hex8 && !value_major) defines_ += " -DSNH_CACHE_POINT_MAJOR=1";
   elastic_defines_ = defines_;
   terms_ = terms;
   if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
@@ -104,7 +109,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
 
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
   forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
-  set_point_lanes(point_lanes_available() && !cl_.info().is_gpu);
+  set_point_lanes(point_lanes_available() && lanes_by_default());
   gather_k_ = cl_.kernel("fem.cl", defines_, "snh_gather_vectors");
   setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
   apply_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_apply");

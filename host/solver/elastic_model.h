@@ -32,11 +32,19 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 
 // Terms beyond elasticity that a scene compiles into the kernels (printed in
 // the kernel specialization): only what it uses.
+// How a hex8 mesh's linearization cache is laid out (kernels/fem/element.h).
+enum class CacheLayout {
+  automatic,    // value-major on devices where the lanes program is the default (CPUs), else point-major
+  value_major,  // per element, value k of point q at 240 e + 8 k + q: one vector load per value for the lanes
+  point_major,  // value k of point P at 30 P + k (SNH_CACHE_POINT_MAJOR): a work-item reads its points in turn
+};
+
 struct ModelTerms {
-  bool inertia = false;       // implicit Euler's inertia (SNH_INERTIA)
-  int obstacles = 0;          // kinematic obstacles' contact penalty (SNH_OBSTACLES)
-  bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
-  bool friction = false;      // lagged Coulomb friction against the obstacles (SNH_FRICTION)
+  bool inertia = false;                             // implicit Euler's inertia (SNH_INERTIA)
+  int obstacles = 0;                                // kinematic obstacles' contact penalty (SNH_OBSTACLES)
+  bool self_contact = false;                        // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
+  bool friction = false;                            // lagged Coulomb friction against the obstacles (SNH_FRICTION)
+  CacheLayout hex8_cache = CacheLayout::automatic;  // tet4 caches are point-major always
 };
 
 // Contact with the obstacles, and self-contact, at some x.
@@ -177,13 +185,17 @@ class ElasticModel {
   // recompute product, the element matrices, block-Jacobi's element blocks
   // and (float) the cached product over 8-wide vectors, a lane per quadrature point of a
   // hex8 element or per tet4 element, the scalar kernels' results bit for
-  // bit (but for exp's rounding). On by default on CPU devices (where pocl
-  // leaves the scalar kernels' per-point math unvectorized), off on GPUs.
-  // Not available for tet4 meshes with materials per region (throws
-  // snh::Error).
+  // bit on pocl (but for exp's rounding; NVIDIA's compiler rounds the two
+  // programs' float differently, by a few ulps). On by default on CPU
+  // devices (where pocl leaves the scalar kernels' per-point math
+  // unvectorized), off on GPUs. Not available for tet4 meshes with
+  // materials per region (throws snh::Error).
   void set_point_lanes(bool on);
   bool point_lanes() const { return point_lanes_; }
   bool point_lanes_available() const;
+  // The lanes program and the value-major hex8 cache (CacheLayout) are the
+  // defaults on CPU devices.
+  bool lanes_by_default() const { return !cl_.info().is_gpu; }
   // Device memory the current variant holds beyond the mesh and vectors:
   // the linearization cache, element matrices or assembled matrix.
   size_t variant_memory_bytes() const;

@@ -22,17 +22,21 @@
 #define SNH_DOFS (3 * SNH_NODES) /* an element's: the size of its matrices */
 
 /* Per quadrature point, the cached linearization: U, V, the PSD-projected
- * 3x3 block and the clamped twist and flip eigenvalues. hex8: stored per
- * element, value-major: value k of point q of element e at 240 e + 8 k + q,
- * so that the lanes kernels (fem_lanes.cl, a lane per point) move each value
- * of the element's 8 points as one vector. tet4: point-major, value k of
- * element e at 30 e + k (grouping 8 tet4 elements the same way measured
- * slower in double, README "Per-point lanes"). In general value k of point
- * P = SNH_QUADRATURE e + q at 30 G (P / G) + G k + P % G, G =
- * SNH_CACHE_GROUP (whole groups only: a hex8 element's 8 points, or a
- * single tet4 point). */
+ * 3x3 block and the clamped twist and flip eigenvalues. hex8 on CPU devices:
+ * stored per element, value-major: value k of point q of element e at
+ * 240 e + 8 k + q, so that the lanes kernels (fem_lanes.cl, a lane per point)
+ * move each value of the element's 8 points as one vector. tet4, and hex8
+ * built with SNH_CACHE_POINT_MAJOR (GPUs, where a work-item reads its
+ * element's points one after the other and the lanes program is not used:
+ * with the value-major layout the H200's hex8 cached product took 2x the
+ * time of session 8's H100 with this one, README "On a GPU"): point-major,
+ * value k of point P at 30 P + k
+ * (grouping 8 tet4 elements value-major measured slower in double, README
+ * "Per-point lanes"). In general value k of point P = SNH_QUADRATURE e + q at
+ * 30 G (P / G) + G k + P % G, G = SNH_CACHE_GROUP (whole groups only: a hex8
+ * element's 8 points, or a single point). */
 #define SNH_LINEARIZATION_SIZE 30
-#if SNH_HEX8
+#if SNH_HEX8 && !SNH_CACHE_POINT_MAJOR
 #define SNH_CACHE_GROUP 8
 #else
 #define SNH_CACHE_GROUP 1
