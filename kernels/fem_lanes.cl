@@ -91,12 +91,22 @@ SNH_FN void lanes_load_nodes(__global const scalar_real* x, __global const int* 
 
 /* Rest gradients: lane q holds point q's (layout [element][3 a + j][q]: one
  * vector per value; point by point, 192 lane inserts per element, the
- * cached product took 5.74 instead of 4.67 ms at 32^3 in double). */
+ * cached product took 5.74 instead of 4.67 ms at 32^3 in double). With
+ * SNH_POINT_MAJOR (element_data.h's [element][q][3 a + j], the GPUs'
+ * layout) point by point. */
 SNH_FN void lanes_load_gradients(__global const scalar_real* gradients, size_t w, int count, real* g) {
   (void)count;
   __global const scalar_real* src = gradients + (size_t)3 * SNH_NODES * SNH_QUADRATURE * REST_ELEMENT(w);
+#if SNH_POINT_MAJOR
+  SNH_UNROLL
+  for (int l = 0; l < SNH_QUADRATURE; ++l) {
+    SNH_UNROLL
+    for (int i = 0; i < 3 * SNH_NODES; ++i) LANE(g[i], l) = src[3 * SNH_NODES * l + i];
+  }
+#else
   SNH_UNROLL
   for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = vload8(i, src);
+#endif
 }
 
 SNH_FN real lanes_load_weights(__global const scalar_real* weights, size_t w, int count) {
@@ -183,7 +193,7 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
   return h;
 }
 #else
-/* Point-major cache (tet4; hex8 with SNH_CACHE_POINT_MAJOR): lanes
+/* Point-major cache (tet4; hex8 with SNH_POINT_MAJOR): lanes
  * 0 .. lanes - 1 at out + 30 l, lane by lane
  * (value by value measured 2.2x slower in float). */
 SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __global scalar_real* out) {

@@ -377,15 +377,16 @@ void expect_galerkin_coarse_operators(solver::ElasticModel<double>& model,
 
 // From the linearization cache (cached variant) and from the fine element
 // matrices (element-matrices variant), projected and true Hessian, with
-// either layout of the hex8 cache (the CPUs' and the GPUs' default).
-class CoarseOperator : public ::testing::TestWithParam<std::tuple<ProductVariant, bool, solver::CacheLayout>> {};
+// either layout of the hex8 per-point data (the CPUs' and the GPUs'
+// default).
+class CoarseOperator : public ::testing::TestWithParam<std::tuple<ProductVariant, bool, solver::PointDataLayout>> {};
 
 TEST_P(CoarseOperator, IsTheAssembledGalerkinProduct) {
   const auto [variant, projected, layout] = GetParam();
   DeviceCase c;
   device::OpenClContext& cl = device_for(Precision::double_);
   solver::ModelTerms terms;
-  terms.hex8_cache = layout;
+  terms.hex8_point_data = layout;
   solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), variant,
                                      device::MaterialKernel::specialized, terms);
   MultigridOptions options;
@@ -403,7 +404,7 @@ TEST_P(CoarseOperator, IsTheAssembledGalerkinProduct) {
 INSTANTIATE_TEST_SUITE_P(
     Multigrid, CoarseOperator,
     ::testing::Combine(::testing::Values(ProductVariant::cached, ProductVariant::element_matrices), ::testing::Bool(),
-                       ::testing::Values(solver::CacheLayout::value_major, solver::CacheLayout::point_major)));
+                       ::testing::Values(solver::PointDataLayout::value_major, solver::PointDataLayout::point_major)));
 
 // With implicit Euler's inertia (and its elastic scale) and a rough obstacle
 // pressing into the top, the first coarse level carries their per-vertex

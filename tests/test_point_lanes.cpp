@@ -270,11 +270,13 @@ TEST(PointLanes, FloatMatchesTheScalarKernels) {
   }
 }
 
-// The hex8 cache's two layouts (solver::CacheLayout, kernels/fem/element.h)
-// on this test's device: the point-major one (the GPUs' default) holds the
-// value-major one's values point by point, and the products, block-Jacobi
-// blocks and element matrices read from either are the same bit for bit,
-// in the lanes program and in the scalar kernels.
+// The two layouts of hex8 per-point data (solver::PointDataLayout: the
+// linearization cache, kernels/fem/element.h, and the rest gradients of a
+// mesh with its own rest shapes, kernels/fem/element_data.h) on this test's
+// device: the point-major one (the GPUs' default) holds the value-major
+// one's cache values point by point, and the products, block-Jacobi blocks
+// and element matrices read from either are the same bit for bit, in the
+// lanes program and in the scalar kernels.
 template <typename Real>
 void check_cache_layouts() {
   for (const Mesh& mesh : hex_meshes()) {
@@ -288,8 +290,8 @@ void check_cache_layouts() {
     const MaterialMap map = uniform_material(mesh, with(MaterialModel::stable_neo_hookean));
     device::OpenClContext& cl = device_for(precision_of<Real>);
     solver::ModelTerms value_major, point_major;
-    value_major.hex8_cache = solver::CacheLayout::value_major;
-    point_major.hex8_cache = solver::CacheLayout::point_major;
+    value_major.hex8_point_data = solver::PointDataLayout::value_major;
+    point_major.hex8_point_data = solver::PointDataLayout::point_major;
     solver::ElasticModel<Real> a(cl, mesh, rest, map, ProductVariant::recompute, device::MaterialKernel::specialized,
                                  value_major);
     solver::ElasticModel<Real> b(cl, mesh, rest, map, ProductVariant::recompute, device::MaterialKernel::specialized,
@@ -318,7 +320,7 @@ void check_cache_layouts() {
   }
 }
 
-TEST(PointLanes, Hex8CacheLayoutsHoldTheSameValues) {
+TEST(PointLanes, Hex8PointDataLayoutsGiveTheSameValues) {
   check_cache_layouts<double>();
   check_cache_layouts<float>();
 }

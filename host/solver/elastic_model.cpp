@@ -39,11 +39,12 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   // Build-time specialization: only what this scene uses is compiled in.
   defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " + material_.defines() +
              " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
-  // Every program that reads the cache (multigrid.cl and stencil.cl too)
-  // builds from these defines, so they all agree on its layout.
-  const bool value_major = terms.hex8_cache == CacheLayout::value_major ||
-                           (terms.hex8_cache == CacheLayout::automatic && lanes_by_default());
-  if (mesh.type == ElementType::hex8 && !value_major) defines_ += " -DSNH_CACHE_POINT_MAJOR=1";
+  // Every program that reads the cache or the gradients (multigrid.cl and
+  // stencil.cl too) builds from these defines, so they all agree on the
+  // layout.
+  const bool value_major = terms.hex8_point_data == PointDataLayout::value_major ||
+                           (terms.hex8_point_data == PointDataLayout::automatic && lanes_by_default());
+  if (mesh.type == ElementType::hex8 && !value_major) defines_ += " -DSNH_POINT_MAJOR=1";
   elastic_defines_ = defines_;
   terms_ = terms;
   if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
@@ -56,14 +57,14 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
 
   // The device's gradients value-major per element, [element][3 a + j][q]
   // (kernels/fem/element_data.h): a hex8 element's 8 points of one value
-  // are one vector for the lanes kernels (the host's RestState keeps
-  // [element][q][a][3]).
+  // are one vector for the lanes kernels; point-major, the host's RestState
+  // layout [element][q][a][3], with SNH_POINT_MAJOR.
   const size_t per_point = 3 * static_cast<size_t>(rest.nodes), points = static_cast<size_t>(rest.quadrature);
   std::vector<Real> gradients(rest.gradients.size());
   for (size_t e = 0; e < rest.gradients.size() / (per_point * points); ++e)
     for (size_t q = 0; q < points; ++q)
       for (size_t i = 0; i < per_point; ++i)
-        gradients[(e * per_point + i) * points + q] =
+        gradients[value_major ? (e * per_point + i) * points + q : (e * points + q) * per_point + i] =
             static_cast<Real>(rest.gradients[(e * points + q) * per_point + i]);
   const std::vector<Real> weights(rest.weights.begin(), rest.weights.end());
   const std::vector<int> elements(mesh.elements.begin(), mesh.elements.end());

@@ -32,19 +32,24 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
 
 // Terms beyond elasticity that a scene compiles into the kernels (printed in
 // the kernel specialization): only what it uses.
-// How a hex8 mesh's linearization cache is laid out (kernels/fem/element.h).
-enum class CacheLayout {
+// How a hex8 mesh's per-point data, its linearization cache
+// (kernels/fem/element.h) and rest gradients (kernels/fem/element_data.h),
+// are laid out on the device. tet4 meshes have one point per element: the
+// two coincide.
+enum class PointDataLayout {
   automatic,    // value-major on devices where the lanes program is the default (CPUs), else point-major
-  value_major,  // per element, value k of point q at 240 e + 8 k + q: one vector load per value for the lanes
-  point_major,  // value k of point P at 30 P + k (SNH_CACHE_POINT_MAJOR): a work-item reads its points in turn
+  value_major,  // per element, value k of point q at 240 e + 8 k + q (gradients 192 e + 8 k + q): one vector
+                // load per value for the lanes program
+  point_major,  // value k of point P at 30 P + k (gradients 24 P + k), SNH_POINT_MAJOR: a work-item reads its
+                // element's points in turn
 };
 
 struct ModelTerms {
-  bool inertia = false;                             // implicit Euler's inertia (SNH_INERTIA)
-  int obstacles = 0;                                // kinematic obstacles' contact penalty (SNH_OBSTACLES)
-  bool self_contact = false;                        // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
-  bool friction = false;                            // lagged Coulomb friction against the obstacles (SNH_FRICTION)
-  CacheLayout hex8_cache = CacheLayout::automatic;  // tet4 caches are point-major always
+  bool inertia = false;       // implicit Euler's inertia (SNH_INERTIA)
+  int obstacles = 0;          // kinematic obstacles' contact penalty (SNH_OBSTACLES)
+  bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
+  bool friction = false;      // lagged Coulomb friction against the obstacles (SNH_FRICTION)
+  PointDataLayout hex8_point_data = PointDataLayout::automatic;
 };
 
 // Contact with the obstacles, and self-contact, at some x.
@@ -193,8 +198,8 @@ class ElasticModel {
   void set_point_lanes(bool on);
   bool point_lanes() const { return point_lanes_; }
   bool point_lanes_available() const;
-  // The lanes program and the value-major hex8 cache (CacheLayout) are the
-  // defaults on CPU devices.
+  // The lanes program and the value-major hex8 point data (PointDataLayout)
+  // are the defaults on CPU devices.
   bool lanes_by_default() const { return !cl_.info().is_gpu; }
   // Device memory the current variant holds beyond the mesh and vectors:
   // the linearization cache, element matrices or assembled matrix.

@@ -22,9 +22,15 @@ SNH_FN void load_nodes(SNH_GLOBAL const real* x, SNH_GLOBAL const int* nodes, re
 }
 
 SNH_FN void load_gradients(SNH_GLOBAL const real* gradients, size_t e, int q, real* g) {
+#if SNH_POINT_MAJOR
+  SNH_GLOBAL const real* src = gradients + (size_t)3 * SNH_NODES * (SNH_QUADRATURE * REST_ELEMENT(e) + q);
+  SNH_UNROLL
+  for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = src[i];
+#else
   SNH_GLOBAL const real* src = gradients + (size_t)3 * SNH_NODES * SNH_QUADRATURE * REST_ELEMENT(e) + q;
   SNH_UNROLL
   for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = src[SNH_QUADRATURE * i];
+#endif
 }
 
 SNH_FN real load_weight(SNH_GLOBAL const real* weights, size_t e, int q) {
