@@ -160,8 +160,7 @@ using Maps = std::vector<std::pair<std::string, MaterialMap>>;
 
 // maps: materials over `meshes[0]`'s elements (the meshes have one element count).
 template <typename Real>
-void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::MaterialKernel build,
-                 const solver::ModelTerms& terms = {}) {
+void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::MaterialKernel build) {
   for (const Mesh& mesh : meshes) {
     const fem::RestState rest = fem::compute_rest_state(mesh);
     const std::vector<double> x = hard_positions(mesh);
@@ -172,9 +171,9 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
     for (const auto& [name, map] : maps) {
       SCOPED_TRACE(name + " / " + to_string(mesh.type) + (rest.uniform ? " uniform rest" : " own rest shapes"));
       device::OpenClContext& cl = device_for(precision_of<Real>);
-      solver::ElasticModel<Real> model(cl, mesh, rest, map, ProductVariant::recompute, build, terms);
+      solver::ElasticModel<Real> model(cl, mesh, rest, map, ProductVariant::recompute, build);
       // The lanes program is the default on CPU devices (pocl), the scalar
-      // kernels on GPUs (one work-item per point already fills a warp).
+      // kernels (a work-item per element) on GPUs.
       EXPECT_EQ(model.point_lanes(), !cl.info().is_gpu) << cl.info().name;
       model.set_point_lanes(true);
       const int nodes = nodes_per_element(mesh.type);
@@ -278,7 +277,7 @@ TEST(PointLanes, FloatMatchesTheScalarKernels) {
 // and element matrices read from either are the same bit for bit, in the
 // lanes program and in the scalar kernels.
 template <typename Real>
-void check_cache_layouts() {
+void check_point_data_layouts() {
   for (const Mesh& mesh : hex_meshes()) {
     const fem::RestState rest = fem::compute_rest_state(mesh);
     SCOPED_TRACE(rest.uniform ? "uniform rest" : "own rest shapes");
@@ -321,8 +320,8 @@ void check_cache_layouts() {
 }
 
 TEST(PointLanes, Hex8PointDataLayoutsGiveTheSameValues) {
-  check_cache_layouts<double>();
-  check_cache_layouts<float>();
+  check_point_data_layouts<double>();
+  check_point_data_layouts<float>();
 }
 
 TEST(PointLanes, Tet4RegionsKeepTheScalarKernels) {

@@ -30,8 +30,6 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
   return v.handle().opencl_handle().get();
 }
 
-// Terms beyond elasticity that a scene compiles into the kernels (printed in
-// the kernel specialization): only what it uses.
 // How a hex8 mesh's per-point data, its linearization cache
 // (kernels/fem/element.h) and rest gradients (kernels/fem/element_data.h),
 // are laid out on the device. tet4 meshes have one point per element: the
@@ -44,12 +42,15 @@ enum class PointDataLayout {
                 // element's points in turn
 };
 
+// Terms beyond elasticity that a scene compiles into the kernels (printed in
+// the kernel specialization): only what it uses; and the layout of the
+// per-point data they read.
 struct ModelTerms {
   bool inertia = false;       // implicit Euler's inertia (SNH_INERTIA)
   int obstacles = 0;          // kinematic obstacles' contact penalty (SNH_OBSTACLES)
   bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
   bool friction = false;      // lagged Coulomb friction against the obstacles (SNH_FRICTION)
-  PointDataLayout hex8_point_data = PointDataLayout::automatic;
+  PointDataLayout hex8_point_data = PointDataLayout::automatic;  // SNH_POINT_MAJOR when point-major
 };
 
 // Contact with the obstacles, and self-contact, at some x.

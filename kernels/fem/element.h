@@ -26,13 +26,13 @@
  * stored per element, value-major: value k of point q of element e at
  * 240 e + 8 k + q, so that the lanes kernels (fem_lanes.cl, a lane per point)
  * move each value of the element's 8 points as one vector. tet4, and hex8
- * built with SNH_POINT_MAJOR (GPUs, where a work-item reads its
- * element's points one after the other and the lanes program is not used:
- * with the value-major layout the H200's hex8 cached product took 2x the
- * time of session 8's H100 with this one, README "On a GPU"): point-major,
- * value k of point P at 30 P + k
- * (grouping 8 tet4 elements value-major measured slower in double, README
- * "Per-point lanes"). In general value k of point P = SNH_QUADRATURE e + q at
+ * built with SNH_POINT_MAJOR (GPUs, where a work-item reads its element's
+ * points one after the other and the lanes program is not used: with the
+ * value-major layout the H200's hex8 cached product took 2x the time of
+ * session 8's H100 with this one, README "On a GPU: NVIDIA H200"):
+ * point-major, value k of point P at 30 P + k (grouping 8 tet4 elements
+ * value-major measured slower in double, README "Per-point lanes"). In
+ * general value k of point P = SNH_QUADRATURE e + q at
  * 30 G (P / G) + G k + P % G, G = SNH_CACHE_GROUP (whole groups only: a hex8
  * element's 8 points, or a single point). */
 #define SNH_LINEARIZATION_SIZE 30
