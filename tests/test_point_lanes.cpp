@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <random>
 #include <string>
@@ -69,6 +70,15 @@ std::vector<double> hard_positions(const Mesh& mesh) {
   const int32_t* last = &mesh.elements[n * (mesh.element_count() - 1)];
   for (int i = 0; i < 3; ++i) x[3 * last[n - 1] + i] = x[3 * last[0] + i] + 1e-7 * (i + 1);
   return x;
+}
+
+// The direction the products are taken along: entries uniform in [-1, 1].
+std::vector<double> random_direction(size_t size, uint64_t seed) {
+  std::vector<double> p(size);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double& c : p) c = u(rng);
+  return p;
 }
 
 template <typename Real>
@@ -164,10 +174,7 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
   for (const Mesh& mesh : meshes) {
     const fem::RestState rest = fem::compute_rest_state(mesh);
     const std::vector<double> x = hard_positions(mesh);
-    std::vector<double> p(x.size());
-    std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (double& c : p) c = u(rng);
+    const std::vector<double> p = random_direction(x.size(), 7);
     for (const auto& [name, map] : maps) {
       SCOPED_TRACE(name + " / " + to_string(mesh.type) + (rest.uniform ? " uniform rest" : " own rest shapes"));
       device::OpenClContext& cl = device_for(precision_of<Real>);
@@ -282,10 +289,7 @@ void check_point_data_layouts() {
     const fem::RestState rest = fem::compute_rest_state(mesh);
     SCOPED_TRACE(rest.uniform ? "uniform rest" : "own rest shapes");
     const std::vector<double> x = hard_positions(mesh);
-    std::vector<double> p(x.size());
-    std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (double& c : p) c = u(rng);
+    const std::vector<double> p = random_direction(x.size(), 11);
     const MaterialMap map = uniform_material(mesh, with(MaterialModel::stable_neo_hookean));
     device::OpenClContext& cl = device_for(precision_of<Real>);
     solver::ModelTerms value_major, point_major;
