@@ -23,14 +23,15 @@ struct MultigridFlags {
                     "default: MultigridOptions::rebuild_every)")
         ->check(CLI::PositiveNumber);
     cmd->add_option("--multigrid-smoother-degree", smoother_degree,
-                    "multigrid: Chebyshev degree of each pre- and post-smoothing (default: "
+                    "multigrid: Chebyshev degree of each pre- and post-smoothing (default: automatic, "
                     "MultigridOptions::smoother_degree)")
         ->check(CLI::Range(1, 16));
     cmd->add_option("--multigrid-chebyshev", chebyshev,
                     "multigrid: the smoothing polynomial, first (first-kind Chebyshev on [0.1, 1.1] x the estimated "
                     "lambda_max), fourth or optimized-fourth (Lottes 2023, on [0, 1.1] x lambda_max; optimized: "
-                    "degrees 1-4) (default: MultigridOptions::chebyshev_kind)")
-        ->check(CLI::IsMember({"first", "fourth", "optimized-fourth"}));
+                    "degrees 1-4), or automatic (default: optimized-fourth of degree 1 under 400,000 DOFs and "
+                    "nu < 0.495, else first of degree 2; MultigridOptions::chebyshev_kind)")
+        ->check(CLI::IsMember({"automatic", "first", "fourth", "optimized-fourth"}));
     cmd->add_option("--multigrid-coarsest-dofs", coarsest_dofs,
                     "multigrid: coarsen until a level has at most this many DOFs, solved directly (default: "
                     "MultigridOptions::coarsest_dofs)")

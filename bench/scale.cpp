@@ -99,6 +99,9 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
     r.converged = result.converged;
     r.status = stop_status(result.steps);
     r.product = to_string(result.product);
+    if (result.preconditioner == Preconditioner::multigrid)
+      r.smoother =
+          std::string(to_string(result.multigrid_chebyshev)) + " " + std::to_string(result.multigrid_smoother_degree);
     r.device = result.device.platform + " / " + result.device.name;
     r.profile = result.profile;
   } catch (const Error& e) {
@@ -167,6 +170,7 @@ json record_json(const ScaleRecord& r) {
   j["converged"] = r.converged;
   j["status"] = r.status;
   j["product"] = r.product;
+  if (!r.smoother.empty()) j["smoother"] = r.smoother;
   j["device"] = r.device;
   j["profile"] = profile_json(r.profile);
   return j;

@@ -51,6 +51,7 @@ struct ScaleRecord {
   bool converged = false;
   std::string status;  // per-step statuses, e.g. "converged" or "converged x7, stagnated x1"
   std::string product;
+  std::string smoother;  // multigrid: its smoothing as used, e.g. "optimized-fourth 1" (SolveResult); else empty
   std::string device;
   SolveProfile profile;
 };

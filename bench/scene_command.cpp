@@ -109,6 +109,8 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   if (r.preconditioner == Preconditioner::multigrid) {
     j["multigrid_fine_level"] = to_string(options.multigrid.fine_level);  // as requested (automatic: README)
     j["multigrid_fine_float"] = options.multigrid.fine_level_float;
+    j["multigrid_smoother_degree"] = r.multigrid_smoother_degree;  // as used (automatic resolved)
+    j["multigrid_chebyshev"] = to_string(r.multigrid_chebyshev);
   }
   j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
   if (options.dynamics) {

@@ -1020,6 +1020,51 @@ TEST(Multigrid, PreconditionerNamesParse) {
   EXPECT_THROW(parse_preconditioner("jacobi"), Error);
 }
 
+// MultigridOptions' automatic smoothing (resolved_smoothing): degree 1 of the
+// optimized fourth kind below 400,000 DOFs and nu 0.495, else degree 2 of the
+// first kind; one of the two set leaves the other at its fixed default.
+TEST(Multigrid, AutomaticSmoothingFollowsSizeAndPoissonRatio) {
+  auto resolved = [](MultigridOptions o, size_t dofs, double nu) {
+    const MultigridOptions r = resolved_smoothing(o, dofs, nu);
+    return std::make_pair(r.smoother_degree, r.chebyshev_kind);
+  };
+  const MultigridOptions automatic;
+  EXPECT_EQ(automatic.smoother_degree, 0);
+  EXPECT_EQ(automatic.chebyshev_kind, ChebyshevKind::automatic);
+  const auto light = std::make_pair(1, ChebyshevKind::optimized_fourth);
+  const auto heavy = std::make_pair(2, ChebyshevKind::first);
+  EXPECT_EQ(resolved(automatic, 107811, 0.49), light);
+  EXPECT_EQ(resolved(automatic, 399999, 0.3), light);
+  EXPECT_EQ(resolved(automatic, 400000, 0.49), heavy);
+  EXPECT_EQ(resolved(automatic, 969111, 0.49), heavy);
+  EXPECT_EQ(resolved(automatic, 107811, 0.495), heavy);
+  EXPECT_EQ(resolved(automatic, 107811, 0.499), heavy);
+  MultigridOptions degree = automatic;
+  degree.smoother_degree = 3;
+  EXPECT_EQ(resolved(degree, 1000, 0.3), std::make_pair(3, ChebyshevKind::first));
+  MultigridOptions kind = automatic;
+  kind.chebyshev_kind = ChebyshevKind::fourth;
+  EXPECT_EQ(resolved(kind, 1000, 0.3), std::make_pair(2, ChebyshevKind::fourth));
+  for (ChebyshevKind k :
+       {ChebyshevKind::automatic, ChebyshevKind::first, ChebyshevKind::fourth, ChebyshevKind::optimized_fourth})
+    EXPECT_EQ(parse_chebyshev_kind(to_string(k)), k);
+
+  // The largest nu over the materials the elements use; the model and the
+  // solve report what was resolved.
+  const Mesh mesh = make_box_lattice(4, 4, 4, kH);
+  MaterialMap map = uniform_material(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3));
+  EXPECT_NEAR(max_poisson_ratio(map), 0.3, 1e-12);
+  map.materials.push_back(StableNeoHookean::from_youngs_modulus(1.0, 0.499));
+  EXPECT_NEAR(max_poisson_ratio(map), 0.3, 1e-12) << "a material no element uses";
+  map.element_material[5] = 1;
+  EXPECT_NEAR(max_poisson_ratio(map), 0.499, 1e-12);
+  for (double nu : {0.45, 0.499}) {
+    const SolveResult r = twist(Preconditioner::multigrid, 4, nu);
+    ASSERT_EQ(r.preconditioner, Preconditioner::multigrid);
+    EXPECT_EQ(std::make_pair(r.multigrid_smoother_degree, r.multigrid_chebyshev), nu < 0.495 ? light : heavy);
+  }
+}
+
 }  // namespace
 }  // namespace snh::test
 

@@ -35,6 +35,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
       quadrature_(rest.quadrature),
       material_(cl, validated(mesh, materials), build),
       variant_(variant),
+      max_poisson_ratio_(snh::max_poisson_ratio(materials)),
       linearized_x_(3 * mesh.vertex_count()) {
   // Build-time specialization: only what this scene uses is compiled in.
   defines_ = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " + material_.defines() +

@@ -182,6 +182,9 @@ class ElasticModel {
   // obstacles).
   const ModelTerms& terms() const { return terms_; }
   double elastic_scale() const { return elastic_scale_; }
+  // The largest small-strain Poisson's ratio over the materials the mesh's
+  // elements use (snh::max_poisson_ratio).
+  double max_poisson_ratio() const { return max_poisson_ratio_; }
   cl_mem inertia_buffer() const { return terms_.inertia ? inertia_mass_.get() : nullptr; }
   cl_mem contact_blocks_buffer() const { return terms_.obstacles > 0 ? contact_blocks_.get() : nullptr; }
   ProductVariant variant() const { return variant_; }
@@ -273,6 +276,7 @@ class ElasticModel {
   device::Buffer inertia_mass_, inertia_target_;
   std::vector<double> inertia_mass_host_, inertia_target_host_;
   double elastic_scale_ = 1.0;
+  double max_poisson_ratio_ = 0.0;
   double elastic_magnitude_ = 0.0, last_energy_magnitude_ = 0.0;
   // contact_blocks_ holds the blocks of the last linearize(), which the
   // products use; other evaluations write theirs to contact_scratch_.

@@ -42,10 +42,14 @@ struct MultigridPreconditioner<Real>::Level {
 template <typename Real>
 MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model, const Mesh& mesh,
                                                        const std::vector<char>& mask, const MultigridOptions& options)
-    : model_(model), cl_(model.context()), options_(options) {
-  if (options.smoother_degree < 1 || options.smoother_degree > 16)
-    throw Error("multigrid: smoother_degree must be in 1..16, got " + std::to_string(options.smoother_degree));
-  chebyshev_steps(options.chebyshev_kind, options.smoother_degree, 1.0);  // throws for a degree without coefficients
+    : model_(model),
+      cl_(model.context()),
+      options_(resolved_smoothing(options, 3 * mesh.vertex_count(), model.max_poisson_ratio())) {
+  if (options.smoother_degree < 0 || options.smoother_degree > 16)
+    throw Error("multigrid: smoother_degree must be in 1..16 (0: automatic), got " +
+                std::to_string(options.smoother_degree));
+  // Throws for a degree without coefficients.
+  chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, 1.0);
   if (options.max_levels < 2) throw Error("multigrid: max_levels must be at least 2");
   if (options.rebuild_every < 0)
     throw Error(

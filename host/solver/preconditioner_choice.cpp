@@ -1,4 +1,7 @@
 // Names of the CG preconditioners and the measured default.
+#include <algorithm>
+#include <vector>
+
 #include "snh/error.h"
 #include "snh/simulation.h"
 #include "solver/lattice_hierarchy.h"
@@ -46,6 +49,8 @@ MultigridFineLevel parse_multigrid_fine_level(const std::string& text) {
 
 const char* to_string(ChebyshevKind k) {
   switch (k) {
+    case ChebyshevKind::automatic:
+      return "automatic";
     case ChebyshevKind::first:
       return "first";
     case ChebyshevKind::fourth:
@@ -57,9 +62,49 @@ const char* to_string(ChebyshevKind k) {
 }
 
 ChebyshevKind parse_chebyshev_kind(const std::string& text) {
-  for (ChebyshevKind k : {ChebyshevKind::first, ChebyshevKind::fourth, ChebyshevKind::optimized_fourth})
+  for (ChebyshevKind k :
+       {ChebyshevKind::automatic, ChebyshevKind::first, ChebyshevKind::fourth, ChebyshevKind::optimized_fourth})
     if (text == to_string(k)) return k;
-  throw Error("chebyshev kind: expected first, fourth or optimized-fourth, got '" + text + "'");
+  throw Error("chebyshev kind: expected automatic, first, fourth or optimized-fourth, got '" + text + "'");
+}
+
+// Measured with `snh-gpu-bench scene twist|stretch --res R [--nu N]
+// --preconditioner multigrid [--multigrid-smoother-degree 1
+// --multigrid-chebyshev optimized-fourth]` (pocl, 2 CPU cores, double;
+// README "Multigrid on hex8 lattices", sessions 13 and 18), total seconds,
+// degree 2 of the first kind / degree 1 of the optimized fourth kind: twist
+// res 32 (107,811 DOFs) nu 0.49 13.0-13.5 / 9.1-11.2, nu 0.495 14.3 / 14.2,
+// nu 0.499 22.9 / 25.3; twist res 40 (206,763 DOFs) 23.1 / 20.5; stretch
+// res 32 (171,015 DOFs) 66.1 / 61.8; stretch res 40 (326,835 DOFs) 144 /
+// 120; twist res 48 (352,947 DOFs) 16.3 / 15.7 (session 13); the stretch
+// cylinder at 969,111 DOFs 28.9 / 36.3 s per load step (session 13, 74 more
+// Newton iterations). Not measured between 3.5 * 10^5 and 9.7 * 10^5 DOFs:
+// degree 2 there, the default before.
+MultigridOptions resolved_smoothing(MultigridOptions options, size_t dofs, double poisson_ratio) {
+  constexpr size_t kDegreeOneBelowDofs = 400000;
+  constexpr double kDegreeOneBelowPoisson = 0.495;
+  const bool degree_set = options.smoother_degree != 0, kind_set = options.chebyshev_kind != ChebyshevKind::automatic;
+  if (!degree_set && !kind_set) {
+    const bool light = dofs < kDegreeOneBelowDofs && poisson_ratio < kDegreeOneBelowPoisson;
+    options.smoother_degree = light ? 1 : 2;
+    options.chebyshev_kind = light ? ChebyshevKind::optimized_fourth : ChebyshevKind::first;
+  }
+  if (!degree_set && kind_set) options.smoother_degree = 2;
+  if (degree_set && !kind_set) options.chebyshev_kind = ChebyshevKind::first;
+  return options;
+}
+
+double max_poisson_ratio(const MaterialMap& materials) {
+  std::vector<char> used(materials.materials.size(), materials.element_material.empty() ? 1 : 0);
+  for (int32_t m : materials.element_material)
+    if (m >= 0 && static_cast<size_t>(m) < used.size()) used[static_cast<size_t>(m)] = 1;
+  double nu = 0.0;
+  for (size_t m = 0; m < used.size(); ++m) {
+    if (!used[m]) continue;
+    const LameParameters lame = materials.materials[m].lame();
+    nu = std::max(nu, lame.lambda / (2.0 * (lame.lambda + lame.mu)));
+  }
+  return nu;
 }
 
 // Measured with `snh-gpu-bench scale --scenes stretch,twist --res

@@ -265,10 +265,10 @@ struct Simulation::Impl {
     body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
   }
 
-  // The multigrid's options with the per-step rebuild resolved: off under
-  // dynamics unless asked for.
+  // The multigrid's options with the smoothing and the per-step rebuild
+  // resolved (rebuild: off under dynamics unless asked for).
   MultigridOptions multigrid_options() const {
-    MultigridOptions o = options.multigrid;
+    MultigridOptions o = resolved_smoothing(options.multigrid, 3 * mesh.vertex_count(), max_poisson_ratio(materials));
     if (!o.rebuild_each_load_step) o.rebuild_each_load_step = !options.dynamics.has_value();
     return o;
   }
@@ -494,6 +494,11 @@ struct Simulation::Impl {
     result.device = cl.info();
     result.product = product;
     result.preconditioner = preconditioner;
+    if (preconditioner == Preconditioner::multigrid) {
+      const MultigridOptions used = multigrid_options();
+      result.multigrid_smoother_degree = used.smoother_degree;
+      result.multigrid_chebyshev = used.chebyshev_kind;
+    }
     result.tolerance = tolerance;
     result.kernel_specialization = (single ? single->model->specialization() : dual->model->specialization()) +
                                    " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");

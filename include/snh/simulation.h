@@ -121,6 +121,9 @@ MultigridFineLevel parse_multigrid_fine_level(const std::string& text);  // the 
 // (solver/chebyshev.h); lambda below is each level's power-iteration
 // estimate of lambda_max(D^-1 A).
 enum class ChebyshevKind {
+  // The measured choice for the problem, with MultigridOptions::smoother_degree
+  // (resolved_smoothing below).
+  automatic,
   // First kind on [0.1, 1.1] lambda: the smallest largest residual factor
   // there (PETSc's default interval; Adams et al. 2003).
   first,
@@ -133,20 +136,23 @@ enum class ChebyshevKind {
   optimized_fourth,
 };
 
-const char* to_string(ChebyshevKind k);                       // "first", "fourth", "optimized-fourth"
+const char* to_string(ChebyshevKind k);                       // "automatic", "first", "fourth", "optimized-fourth"
 ChebyshevKind parse_chebyshev_kind(const std::string& text);  // the names above
 
 struct MultigridOptions {
   // Chebyshev degree of each pre- and post-smoothing (operator products
-  // each). 1 measured faster up to about 10^5 DOFs at nu <= 0.495 (twist
-  // res 32, the arm) but slower from 3.5 * 10^5 DOFs on (twist res 48,
-  // the stretch cylinder at 969,111 DOFs): README, "Multigrid on hex8
-  // lattices", session 12.
-  int smoother_degree = 2;
-  // The first kind measured best at degree 2; the optimized fourth kind at
-  // degree 1 was faster up to 3.5 * 10^5 DOFs at nu = 0.49 but slower at
-  // nu = 0.499 and on the 969,111-DOF cylinder (README, session 13).
-  ChebyshevKind chebyshev_kind = ChebyshevKind::first;
+  // each), and its polynomial. Both automatic by default (0 and automatic;
+  // resolved_smoothing below): degree 1 of the optimized fourth kind on
+  // fine levels of fewer than 400,000 DOFs whose materials all have
+  // Poisson's ratio below 0.495, degree 2 of the first kind otherwise. The
+  // former measured 6-30% faster from 10^5 to 3.5 * 10^5 DOFs at nu = 0.49
+  // (twist res 32, 40 and 48, stretch res 32 and 40), as fast at nu = 0.495,
+  // and 10-25% slower at nu = 0.499 and on the 969,111-DOF cylinder
+  // (README, "Multigrid on hex8 lattices", sessions 12, 13 and 18). Set one
+  // of the two and the other, left automatic, takes the fixed default:
+  // degree 2, the first kind.
+  int smoother_degree = 0;
+  ChebyshevKind chebyshev_kind = ChebyshevKind::automatic;
   size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
   int max_levels = 12;
   // Reuse between Newton linearizations (PETSc's SNESSetLagPreconditioner,
@@ -178,6 +184,14 @@ struct MultigridOptions {
   // lattices").
   bool fine_level_float = true;
 };
+
+// `options` with smoother_degree and chebyshev_kind resolved (see above) for
+// a fine level of `dofs` DOFs whose stiffest material in volume has
+// Poisson's ratio `poisson_ratio` (the largest over the materials).
+MultigridOptions resolved_smoothing(MultigridOptions options, size_t dofs, double poisson_ratio);
+// The largest small-strain Poisson's ratio lambda / (2 (lambda + mu)) over
+// the materials that some element uses (Material::lame()).
+double max_poisson_ratio(const MaterialMap& materials);
 
 struct NewtonIteration {
   int step = 0;
@@ -449,7 +463,11 @@ struct SolveResult {
   std::string kernel_specialization;                             // the build-time switches of the kernels used
   ProductVariant product = ProductVariant::cached;               // the variant used (automatic resolved)
   Preconditioner preconditioner = Preconditioner::block_jacobi;  // the one used (automatic resolved)
-  std::vector<std::string> warnings;                             // e.g. unused vertices (they stay where they are)
+  // With multigrid: its smoothing, automatic resolved (resolved_smoothing);
+  // 0 and automatic otherwise.
+  int multigrid_smoother_degree = 0;
+  ChebyshevKind multigrid_chebyshev = ChebyshevKind::automatic;
+  std::vector<std::string> warnings;  // e.g. unused vertices (they stay where they are)
 };
 
 // Called after each load step with the step's positions (e.g. to write a .vtu).
