@@ -29,7 +29,7 @@ struct MultigridFlags {
     cmd->add_option("--multigrid-chebyshev", chebyshev,
                     "multigrid: the smoothing polynomial, first (first-kind Chebyshev on [0.1, 1.1] x the estimated "
                     "lambda_max), fourth or optimized-fourth (Lottes 2023, on [0, 1.1] x lambda_max; optimized: "
-                    "degrees 1-4), or automatic (default: optimized-fourth of degree 1 under 400,000 DOFs and "
+                    "degrees 1-4), or automatic (default: optimized-fourth of degree 1 under 600,000 DOFs and "
                     "nu < 0.495, else first of degree 2; MultigridOptions::chebyshev_kind)")
         ->check(CLI::IsMember({"automatic", "first", "fourth", "optimized-fourth"}));
     cmd->add_option("--multigrid-coarsest-dofs", coarsest_dofs,

@@ -1021,7 +1021,7 @@ TEST(Multigrid, PreconditionerNamesParse) {
 }
 
 // MultigridOptions' automatic smoothing (resolved_smoothing): degree 1 of the
-// optimized fourth kind below 400,000 DOFs and nu 0.495, else degree 2 of the
+// optimized fourth kind below 600,000 DOFs and nu 0.495, else degree 2 of the
 // first kind; one of the two set leaves the other at its fixed default.
 TEST(Multigrid, AutomaticSmoothingFollowsSizeAndPoissonRatio) {
   auto resolved = [](MultigridOptions o, size_t dofs, double nu) {
@@ -1034,8 +1034,8 @@ TEST(Multigrid, AutomaticSmoothingFollowsSizeAndPoissonRatio) {
   const auto light = std::make_pair(1, ChebyshevKind::optimized_fourth);
   const auto heavy = std::make_pair(2, ChebyshevKind::first);
   EXPECT_EQ(resolved(automatic, 107811, 0.49), light);
-  EXPECT_EQ(resolved(automatic, 399999, 0.3), light);
-  EXPECT_EQ(resolved(automatic, 400000, 0.49), heavy);
+  EXPECT_EQ(resolved(automatic, 599999, 0.3), light);
+  EXPECT_EQ(resolved(automatic, 600000, 0.49), heavy);
   EXPECT_EQ(resolved(automatic, 969111, 0.49), heavy);
   EXPECT_EQ(resolved(automatic, 107811, 0.495), heavy);
   EXPECT_EQ(resolved(automatic, 107811, 0.499), heavy);

@@ -143,10 +143,10 @@ struct MultigridOptions {
   // Chebyshev degree of each pre- and post-smoothing (operator products
   // each), and its polynomial. Both automatic by default (0 and automatic;
   // resolved_smoothing below): degree 1 of the optimized fourth kind on
-  // fine levels of fewer than 400,000 DOFs whose materials all have
+  // fine levels of fewer than 600,000 DOFs whose materials all have
   // Poisson's ratio below 0.495, degree 2 of the first kind otherwise. The
-  // former measured 4-30% faster from 10^5 to 3.5 * 10^5 DOFs at nu = 0.49
-  // (twist res 32, 40 and 48, stretch res 32 and 40), as fast at nu = 0.495,
+  // former measured 4-30% faster from 10^5 to 5.5 * 10^5 DOFs at nu = 0.49
+  // (twist res 32, 40 and 48, stretch res 32, 40 and 48), as fast at nu = 0.495,
   // and 10-26% slower at nu = 0.499 and on the 969,111-DOF cylinder
   // (README, "Multigrid on hex8 lattices", sessions 12, 13 and 18). Set one
   // of the two and the other, left automatic, takes the fixed default:
