@@ -42,6 +42,9 @@ class DeviceProblem {
   }
 
   size_t dofs() const { return model_.dofs(); }
+  // The multigrid's options as it resolved them (the smoothing chosen from
+  // the mesh and materials); null without multigrid.
+  const MultigridOptions* multigrid_options() const { return multigrid_ ? &multigrid_->options() : nullptr; }
   // Device memory at the solve's peak: the model's buffers, the
   // preconditioner's, and the vectors of a Newton iteration (x and the
   // driver's r, p, trial, r_trial, far, r_far) with those of ViennaCL's CG

@@ -147,6 +147,8 @@ class MultigridPreconditioner {
   void apply(VectorBase& z) const;
 
   const LatticeHierarchy& hierarchy() const { return hierarchy_; }
+  // The options as used: the smoothing resolved (resolved_smoothing) from
+  // the mesh's DOFs and the model's largest Poisson ratio.
   const MultigridOptions& options() const { return options_; }
   int levels() const { return static_cast<int>(hierarchy_.levels.size()); }
   // The cell matrices of a level (tests), column-major 24x24 each: level >= 1,

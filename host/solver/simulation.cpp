@@ -265,10 +265,12 @@ struct Simulation::Impl {
     body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
   }
 
-  // The multigrid's options with the smoothing and the per-step rebuild
-  // resolved (rebuild: off under dynamics unless asked for).
+  // The multigrid's options with the per-step rebuild resolved (off under
+  // dynamics unless asked for). The smoothing is resolved by the
+  // preconditioner itself, from the mesh and the model's materials
+  // (resolved_smoothing); the result reports what it used.
   MultigridOptions multigrid_options() const {
-    MultigridOptions o = resolved_smoothing(options.multigrid, 3 * mesh.vertex_count(), max_poisson_ratio(materials));
+    MultigridOptions o = options.multigrid;
     if (!o.rebuild_each_load_step) o.rebuild_each_load_step = !options.dynamics.has_value();
     return o;
   }
@@ -494,10 +496,10 @@ struct Simulation::Impl {
     result.device = cl.info();
     result.product = product;
     result.preconditioner = preconditioner;
-    if (preconditioner == Preconditioner::multigrid) {
-      const MultigridOptions used = multigrid_options();
-      result.multigrid_smoother_degree = used.smoother_degree;
-      result.multigrid_chebyshev = used.chebyshev_kind;
+    if (const MultigridOptions* used =
+            single ? single->problem->multigrid_options() : dual->problem->multigrid_options()) {
+      result.multigrid_smoother_degree = used->smoother_degree;
+      result.multigrid_chebyshev = used->chebyshev_kind;
     }
     result.tolerance = tolerance;
     result.kernel_specialization = (single ? single->model->specialization() : dual->model->specialization()) +
