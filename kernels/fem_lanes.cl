@@ -199,18 +199,19 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
 SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __global scalar_real* out) {
   SNH_UNROLL
   for (int l = 0; l < 8; ++l) {
-    if (l >= lanes) break;
-    __global scalar_real* o = out + SNH_LINEARIZATION_SIZE * l;
-    SNH_UNROLL
-    for (int i = 0; i < 9; ++i) o[i] = LANE(h->u.a[i], l);
-    SNH_UNROLL
-    for (int i = 0; i < 9; ++i) o[9 + i] = LANE(h->v.a[i], l);
-    SNH_UNROLL
-    for (int i = 0; i < 6; ++i) o[18 + i] = LANE(h->block.a[i], l);
-    SNH_UNROLL
-    for (int i = 0; i < 3; ++i) o[24 + i] = LANE(h->twist.a[i], l);
-    SNH_UNROLL
-    for (int i = 0; i < 3; ++i) o[27 + i] = LANE(h->flip.a[i], l);
+    if (l < lanes) { /* not `break`: a loop with an early exit is not unrolled (pocl warned) */
+      __global scalar_real* o = out + SNH_LINEARIZATION_SIZE * l;
+      SNH_UNROLL
+      for (int i = 0; i < 9; ++i) o[i] = LANE(h->u.a[i], l);
+      SNH_UNROLL
+      for (int i = 0; i < 9; ++i) o[9 + i] = LANE(h->v.a[i], l);
+      SNH_UNROLL
+      for (int i = 0; i < 6; ++i) o[18 + i] = LANE(h->block.a[i], l);
+      SNH_UNROLL
+      for (int i = 0; i < 3; ++i) o[24 + i] = LANE(h->twist.a[i], l);
+      SNH_UNROLL
+      for (int i = 0; i < 3; ++i) o[27 + i] = LANE(h->flip.a[i], l);
+    }
   }
 }
 
@@ -247,9 +248,10 @@ SNH_FN void lanes_store_per_element(const real* v, int n, size_t w, int count, _
   const int lanes = LANES_STORED(w, count);
   SNH_UNROLL
   for (int l = 0; l < 8; ++l) {
-    if (l >= lanes) break;
-    SNH_UNROLL
-    for (int i = 0; i < n; ++i) out[n * (8 * w + l) + i] = LANE(v[i], l);
+    if (l < lanes) { /* as in lanes_linearization_store */
+      SNH_UNROLL
+      for (int i = 0; i < n; ++i) out[n * (8 * w + l) + i] = LANE(v[i], l);
+    }
   }
 #endif
 }
