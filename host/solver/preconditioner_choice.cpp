@@ -78,9 +78,9 @@ ChebyshevKind parse_chebyshev_kind(const std::string& text) {
 // res 32 (171,015 DOFs) 66.1 / 61.8; stretch res 40 (326,835 DOFs) 144 /
 // 120; stretch res 48 (553,191 DOFs) 292 / 248; twist res 48 (352,947
 // DOFs) 16.3 / 15.7 (session 13); the stretch cylinder at 969,111 DOFs 28.9
-// / 36.3 s per load step (session 13, 74 more Newton iterations). Not
-// measured between 5.5 * 10^5 and 9.7 * 10^5 DOFs: degree 2 from 6 * 10^5,
-// the default before.
+// / 36.3 s per load step (session 13, 74 more Newton iterations); between
+// them stretch res 52 (703,395 DOFs) 339 / 324, a tie (session 19): degree 2
+// from 6 * 10^5, the default before.
 MultigridOptions resolved_smoothing(MultigridOptions options, size_t dofs, double poisson_ratio) {
   constexpr size_t kDegreeOneBelowDofs = 600000;
   constexpr double kDegreeOneBelowPoisson = 0.495;
