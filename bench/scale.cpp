@@ -60,6 +60,7 @@ SolveOptions solve_options(const Scene& scene, const ScaleOptions& o, Preconditi
   options.precision = parse_precision(o.precision);
   options.device.match = o.device;
   options.preconditioner = preconditioner;
+  if (o.product_precision != "automatic") options.product_precision = parse_precision(o.product_precision);
   o.multigrid.apply(options.multigrid);
   return options;
 }
@@ -99,6 +100,7 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
     r.converged = result.converged;
     r.status = stop_status(result.steps);
     r.product = to_string(result.product);
+    r.product_precision = to_string(result.product_precision);
     if (result.preconditioner == Preconditioner::multigrid)
       r.smoother =
           std::string(to_string(result.multigrid_chebyshev)) + " " + std::to_string(result.multigrid_smoother_degree);
@@ -170,6 +172,7 @@ json record_json(const ScaleRecord& r) {
   j["converged"] = r.converged;
   j["status"] = r.status;
   j["product"] = r.product;
+  j["product_precision"] = r.product_precision;
   if (!r.smoother.empty()) j["smoother"] = r.smoother;
   j["device"] = r.device;
   j["profile"] = profile_json(r.profile);
@@ -297,6 +300,7 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
   summary["command"] = "scale";
   summary["device"] = device;
   summary["precision"] = o.precision;
+  summary["product_precision"] = o.product_precision;
   summary["youngs_modulus"] = o.youngs_modulus;
   summary["poisson_ratio"] = o.poisson_ratio;
   summary["max_dofs"] = o.max_dofs;
@@ -401,6 +405,11 @@ void add_scale_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();
   cmd->add_option("--precision", o->precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))
+      ->capture_default_str();
+  cmd->add_option("--product-precision", o->product_precision,
+                  "double solves: CG's Hessian products (cached variant) in float with double vectors, or in "
+                  "double (SolveOptions::product_precision)")
+      ->check(CLI::IsMember({"automatic", "float", "double"}))
       ->capture_default_str();
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");
   o->multigrid.add_to(cmd);

@@ -25,11 +25,12 @@ struct ScaleOptions {
   long long max_dofs = 0;
   double youngs_modulus = 1.0;
   double poisson_ratio = 0.49;
-  std::string precision = "double";       // float or double
-  std::string device;                     // substring of "<platform> / <device>"
-  MultigridFlags multigrid;               // --multigrid-* (multigrid_flags.h)
-  std::string out_dir = "bench-results";  // scale.* written here
-  bool plots = true;                      // run bench/plot_scale.py
+  std::string precision = "double";             // float or double
+  std::string product_precision = "automatic";  // SolveOptions::product_precision: float, double or automatic (unset)
+  std::string device;                           // substring of "<platform> / <device>"
+  MultigridFlags multigrid;                     // --multigrid-* (multigrid_flags.h)
+  std::string out_dir = "bench-results";        // scale.* written here
+  bool plots = true;                            // run bench/plot_scale.py
 };
 
 // One scene at one resolution with one preconditioner.
@@ -51,6 +52,7 @@ struct ScaleRecord {
   bool converged = false;
   std::string status;  // per-step statuses, e.g. "converged" or "converged x7, stagnated x1"
   std::string product;
+  std::string product_precision;  // the precision CG's products ran in (SolveResult::product_precision)
   std::string smoother;  // multigrid: its smoothing as used, e.g. "optimized-fourth 1" (SolveResult); else empty
   std::string device;
   SolveProfile profile;

@@ -58,6 +58,7 @@ struct SceneOptions {
   int frames = 0;
   std::string device;
   std::string variant = "automatic";
+  std::string product_precision = "automatic";  // SolveOptions::product_precision (automatic: unset)
   std::string preconditioner = "automatic";
   MultigridFlags multigrid;  // --multigrid-* (multigrid_flags.h)
   double strain_tolerance = 0.0;
@@ -105,6 +106,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["poisson_ratio"] = scene.material.poisson_ratio();
   j["barrier"] = scene.material.barrier;
   j["product"] = to_string(r.product);
+  j["product_precision"] = to_string(r.product_precision);
   j["preconditioner"] = to_string(r.preconditioner);
   if (r.preconditioner == Preconditioner::multigrid) {
     j["multigrid_fine_level"] = to_string(options.multigrid.fine_level);  // as requested (automatic: README)
@@ -243,6 +245,7 @@ int run_scene(const SceneOptions& given) {
     options.precision = parse_precision(o.precision);
     options.device.match = o.device;
     options.product = parse_product_variant(o.variant);
+    if (o.product_precision != "automatic") options.product_precision = parse_precision(o.product_precision);
     options.preconditioner = parse_preconditioner(o.preconditioner);
     o.multigrid.apply(options.multigrid);
     if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
@@ -466,6 +469,11 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--preconditioner", o->preconditioner,
                   "automatic (measured default), block-jacobi, multigrid (hex8 lattices) or none")
       ->check(CLI::IsMember({"automatic", "block-jacobi", "multigrid", "none"}))
+      ->capture_default_str();
+  cmd->add_option("--product-precision", o->product_precision,
+                  "double solves: CG's Hessian products (cached variant) in float with double vectors, or in "
+                  "double (SolveOptions::product_precision)")
+      ->check(CLI::IsMember({"automatic", "float", "double"}))
       ->capture_default_str();
   o->multigrid.add_to(cmd);
   cmd->add_option(

@@ -18,6 +18,8 @@
  *   SNH_SELF_CONTACT  self-collision springs (solver/self_contact.h): the
  *                     per-contact differences d_c = a_c^T u and their
  *                     per-vertex gather k a_i d_c in the same kernels
+ *   SNH_MIXED         a double solve's products in float (snh_portable.h):
+ *                     the program holds snh_element_product_cached alone
  * Element kernels write per-element nodal values; gather kernels sum them per
  * vertex over a fixed adjacency order, so results are bitwise reproducible
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
@@ -37,6 +39,8 @@
 #define SNH_SELF_SUM(v, r, out)                                    \
   for (int k_ = self_offsets[v]; k_ < self_offsets[(v) + 1]; ++k_) \
     out += self_coefficients[k_] * self_d[3 * self_entries[k_] + (r)];
+
+#if !SNH_MIXED /* the kernels of the working precision */
 
 /* Strain energy of each element, sum_q w_q psi(F_q), and its smallest J. */
 __kernel void snh_element_energy(__global const real* x, __global const int* elements, __global const real* gradients,
@@ -79,7 +83,12 @@ __kernel void snh_element_forces(__global const real* x, __global const int* ele
  * PSD when `project` (else the true Hessian, for Newton near a solution). */
 __kernel void snh_element_linearize(__global const real* x, __global const int* elements,
                                     __global const real* gradients, const int count, MATERIAL_ARGS, const int project,
-                                    __global real* cache) {
+                                    __global real* cache
+#if SNH_DOUBLE
+                                    ,
+                                    __global float* cache_float /* null, or the float copy (SNH_MIXED) */
+#endif
+) {
   const size_t e = get_global_id(0);
   if (e >= (size_t)count) return;
   real xs[3 * SNH_NODES], g[3 * SNH_NODES];
@@ -91,12 +100,21 @@ __kernel void snh_element_linearize(__global const real* x, __global const int* 
     if (project) h = principal_hessian_project(h);
     linearization_store(&h, SNH_CACHE_AT(cache, e, q));
   }
+#if SNH_DOUBLE
+  if (cache_float)
+    linearization_copy_float(SNH_CACHE_AT(cache, e, 0), SNH_LINEARIZATION_SIZE * SNH_QUADRATURE,
+                             SNH_CACHE_AT(cache_float, e, 0));
+#endif
 }
 
-/* Projected Hessian times p, per element, reusing the linearization. */
-__kernel void snh_element_product_cached(__global const real* p, __global const int* elements,
+#endif /* !SNH_MIXED */
+
+/* Projected Hessian times p, per element, reusing the linearization. With
+ * SNH_MIXED (the program holds this kernel alone) p and out are double, the
+ * rest float. */
+__kernel void snh_element_product_cached(__global const vector_real* p, __global const int* elements,
                                          __global const real* gradients, __global const real* weights, const int count,
-                                         __global const real* cache, __global real* out) {
+                                         __global const real* cache, __global vector_real* out) {
   const size_t e = get_global_id(0);
   if (e >= (size_t)count) return;
   real ps[3 * SNH_NODES], g[3 * SNH_NODES], y[3 * SNH_NODES];
@@ -111,6 +129,7 @@ __kernel void snh_element_product_cached(__global const real* p, __global const 
   for (int i = 0; i < 3 * SNH_NODES; ++i) out[3 * SNH_NODES * e + i] = y[i];
 }
 
+#if !SNH_MIXED
 /* The same, recomputing SVD and eigensystem from x at every product. */
 __kernel void snh_element_product_recompute(__global const real* p, __global const int* elements,
                                             __global const real* gradients, __global const real* weights,
@@ -477,3 +496,13 @@ __kernel void snh_self_contact_differences(__global const real* u, __global cons
     d[3 * c + r] = u[3 * s + r] - (w0 * u[3 * j0 + r] + w1 * u[3 * j1 + r] + w2 * u[3 * j2 + r]);
 }
 #endif
+
+#if SNH_DOUBLE
+/* out = (float)in over n values: the linearization cache and the rest data
+ * of a double solve whose products run in float (SNH_MIXED). */
+__kernel void snh_narrow(__global const real* in, const int n, __global float* out) {
+  const int i = get_global_id(0);
+  if (i < n) out[i] = (float)in[i];
+}
+#endif
+#endif /* !SNH_MIXED */

@@ -78,14 +78,14 @@ SNH_FN real lanes_sum8(const real* v) {
 
 #if SNH_HEX8
 /* Node values, the same in every lane. */
-SNH_FN void lanes_load_nodes(__global const scalar_real* x, __global const int* elements, size_t w, int count,
+SNH_FN void lanes_load_nodes(__global const vector_real* x, __global const int* elements, size_t w, int count,
                              real* xs) {
   (void)count;
   __global const int* nodes = elements + SNH_NODES * w;
   SNH_UNROLL
   for (int a = 0; a < SNH_NODES; ++a) {
     SNH_UNROLL
-    for (int i = 0; i < 3; ++i) xs[3 * a + i] = (real)(x[3 * nodes[a] + i]);
+    for (int i = 0; i < 3; ++i) xs[3 * a + i] = (real)((scalar_real)x[3 * nodes[a] + i]);
   }
 }
 
@@ -123,7 +123,7 @@ SNH_FN real lanes_load_weights(__global const scalar_real* weights, size_t w, in
 /* The element of lane l of work-item w (the last one past the end). */
 SNH_FN size_t lanes_element(size_t w, int l, int count) { return min(8 * w + l, (size_t)count - 1); }
 
-SNH_FN void lanes_load_nodes(__global const scalar_real* x, __global const int* elements, size_t w, int count,
+SNH_FN void lanes_load_nodes(__global const vector_real* x, __global const int* elements, size_t w, int count,
                              real* xs) {
   SNH_UNROLL
   for (int l = 0; l < 8; ++l) {
@@ -131,7 +131,7 @@ SNH_FN void lanes_load_nodes(__global const scalar_real* x, __global const int* 
     SNH_UNROLL
     for (int a = 0; a < SNH_NODES; ++a) {
       SNH_UNROLL
-      for (int i = 0; i < 3; ++i) LANE(xs[3 * a + i], l) = x[3 * nodes[a] + i];
+      for (int i = 0; i < 3; ++i) LANE(xs[3 * a + i], l) = (scalar_real)x[3 * nodes[a] + i];
     }
   }
 }
@@ -240,10 +240,14 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
 
 /* n values per element from v[n]: a hex8 element's points summed in the
  * scalar kernel's order (point 0 first), tet4 lanes per element. */
-SNH_FN void lanes_store_per_element(const real* v, int n, size_t w, int count, __global scalar_real* out) {
+SNH_FN void lanes_store_per_element(const real* v, int n, size_t w, int count, __global vector_real* out) {
 #if SNH_HEX8
   (void)count;
+#if SNH_MIXED
+  for (int i = 0; i < n; i += 8) vstore8(convert_double8(lanes_sum8(v + i)), 0, out + n * w + i);
+#else
   for (int i = 0; i < n; i += 8) vstore8(lanes_sum8(v + i), 0, out + n * w + i); /* n: 24 or 72 */
+#endif
 #else
   const int lanes = LANES_STORED(w, count);
   SNH_UNROLL
@@ -256,10 +260,16 @@ SNH_FN void lanes_store_per_element(const real* v, int n, size_t w, int count, _
 #endif
 }
 
+#if !SNH_MIXED /* SNH_MIXED: the cached product alone (fem.cl) */
 /* fem.cl's snh_element_linearize. */
 __kernel void snh_element_linearize(__global const scalar_real* x, __global const int* elements,
                                     __global const scalar_real* gradients, const int count, MATERIAL_ARGS,
-                                    const int project, __global scalar_real* cache) {
+                                    const int project, __global scalar_real* cache
+#if SNH_DOUBLE
+                                    ,
+                                    __global float* cache_float /* null, or the float copy (SNH_MIXED) */
+#endif
+) {
   const size_t w = get_global_id(0);
   if (!LANES_ACTIVE(w, count)) return;
   const size_t e = LANES_ELEMENT(w);
@@ -269,7 +279,12 @@ __kernel void snh_element_linearize(__global const scalar_real* x, __global cons
   principal_hessian h = material_principal_hessian(ELEMENT_MODEL(e), ELEMENT_BARRIER(e),
                                                    element_deformation_gradient(xs, g), ELEMENT_MATERIAL(e));
   if (project) h = principal_hessian_project(h);
-  lanes_linearization_store(&h, LANES_STORED(w, count), cache + SNH_CACHE_POINT((size_t)LANES_FIRST_POINT(w)));
+  const size_t first = SNH_CACHE_POINT((size_t)LANES_FIRST_POINT(w));
+  lanes_linearization_store(&h, LANES_STORED(w, count), cache + first);
+#if SNH_DOUBLE
+  if (cache_float)
+    linearization_copy_float(cache + first, SNH_LINEARIZATION_SIZE * LANES_STORED(w, count), cache_float + first);
+#endif
 }
 
 /* fem.cl's snh_element_product_recompute. */
@@ -339,12 +354,14 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
     }
 }
 
+#endif /* !SNH_MIXED */
+
 /* fem.cl's snh_element_product_cached: the linearization read back into
  * lanes. */
-__kernel void snh_element_product_cached(__global const scalar_real* p, __global const int* elements,
+__kernel void snh_element_product_cached(__global const vector_real* p, __global const int* elements,
                                          __global const scalar_real* gradients, __global const scalar_real* weights,
                                          const int count, __global const scalar_real* cache,
-                                         __global scalar_real* out) {
+                                         __global vector_real* out) {
   const size_t w = get_global_id(0);
   if (!LANES_ACTIVE(w, count)) return;
   const int lanes = LANES_STORED(w, count);
@@ -358,6 +375,7 @@ __kernel void snh_element_product_cached(__global const scalar_real* p, __global
   lanes_store_per_element(y, 3 * SNH_NODES, w, count, out);
 }
 
+#if !SNH_MIXED
 /* fem.cl's snh_element_diagonal: the 3x3 diagonal blocks K_aa of the
  * projected stiffness (projected even when the cache holds the true
  * Hessian), the points in lanes. */
@@ -385,3 +403,4 @@ __kernel void snh_element_diagonal(__global const int* elements, __global const 
     }
   lanes_store_per_element(k, 9 * SNH_NODES, w, count, out);
 }
+#endif /* !SNH_MIXED */

@@ -12,6 +12,15 @@
 #error "define SNH_DOUBLE as 1 (double) or 0 (float) before including the snh kernels"
 #endif
 
+/* SNH_MIXED = 1 (OpenCL only): a double solve's Hessian products in float
+ * (ElasticModel::set_float_products). The math, the linearization cache and
+ * the rest data are float (SNH_DOUBLE becomes 0); the solver's vectors that
+ * the kernels read and write (vector_real below) stay double. */
+#if SNH_MIXED
+#undef SNH_DOUBLE
+#define SNH_DOUBLE 0
+#endif
+
 #ifdef __OPENCL_C_VERSION__
 #define SNH_IS_OPENCL 1
 #else
@@ -113,6 +122,15 @@ typedef int snh_mask;
 #endif
 #define SNH_EPS FLT_EPSILON
 #define SNH_REAL_MIN FLT_MIN
+#endif
+
+/* The solver's vectors in the kernels (positions, directions, per-element
+ * nodal values before the gather): scalar_real, double with SNH_MIXED. */
+#if SNH_MIXED
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double vector_real;
+#else
+typedef scalar_real vector_real;
 #endif
 
 #if !SNH_IS_OPENCL

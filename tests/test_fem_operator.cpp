@@ -297,6 +297,68 @@ void check_product() {
 TEST(FemOperator, ProductMatchesAssembledStiffnessDouble) { check_product<double>(); }
 TEST(FemOperator, ProductMatchesAssembledStiffnessFloat) { check_product<float>(); }
 
+// Mixed precision (ElasticModel::set_float_products): a double model whose
+// cached product runs in float on a float copy of the double linearization,
+// p and the result in double. Against the reference at the unrounded
+// inputs it must meet the float bound, and it must differ from the double
+// product by more than the double bound (the float kernel ran). The float
+// copy that linearize() writes must equal the one set_float_products()
+// narrows from an existing cache, value for value; the lanes and scalar
+// kernels must agree value for value too (the same float operations in the
+// same order, fem_lanes.cl); and a model switched back off must give the
+// double product again, bit for bit.
+TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
+  Tolerance<float> tolerance;
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    const Scene& s = *c.scene;
+    device::OpenClContext& cl = device_for(Precision::double_);
+    const MaterialMap map = uniform_material(s.mesh, s.material);
+    solver::ElasticModel<double> model(cl, s.mesh, s.rest, map, ProductVariant::cached);
+    const std::vector<double> p = random_vector(c.x.size(), 1.0, 777);
+    const std::vector<double> expected =
+        multiply(reference::assembled_projected_stiffness(s.mesh, s.rest, s.material, c.x), p);
+    const viennacl::vector<double> xd = upload<double>(c.x), pd = upload<double>(p);
+    viennacl::vector<double> y(model.dofs());
+    model.linearize(xd);
+    model.product(pd, y);
+    const std::vector<double> in_double = download_raw(y);
+    EXPECT_FALSE(model.float_products());
+    model.set_float_products(true);  // narrows the existing cache
+    ASSERT_TRUE(model.float_products());
+    model.product(pd, y);
+    const std::vector<double> narrowed = download_raw(y);
+    tolerance.check(relative_difference(narrowed, expected), s, c.name);
+    EXPECT_GT(relative_difference(narrowed, in_double), kDoubleBound);
+    model.linearize(xd);  // writes the float copy itself
+    model.product(pd, y);
+    EXPECT_EQ(download_raw(y), narrowed);
+    model.product(pd, y);
+    EXPECT_EQ(download_raw(y), narrowed) << "not deterministic";
+    model.set_point_lanes(!model.point_lanes());
+    model.linearize(xd);
+    model.product(pd, y);
+    EXPECT_EQ(download_raw(y), narrowed) << "lanes and scalar kernels differ";
+    // Other variants keep double.
+    model.set_variant(ProductVariant::recompute);
+    EXPECT_FALSE(model.float_products());
+    model.set_variant(ProductVariant::cached);
+    model.set_float_products(false);
+    model.linearize(xd);
+    model.product(pd, y);
+    EXPECT_EQ(download_raw(y), in_double);
+  }
+}
+
+// A float model ignores the switch.
+TEST(FemOperator, FloatProductsAreTheWorkingPrecisionInFloatModels) {
+  const Scene& s = scenes()[0];
+  solver::ElasticModel<float> model(device_for(Precision::single), s.mesh, s.rest, uniform_material(s.mesh, s.material),
+                                    ProductVariant::cached);
+  model.set_float_products(true);
+  EXPECT_FALSE(model.float_products());
+}
+
 // --- constraints and external force ---------------------------------------
 
 // The residual is masked; for p in the free subspace the product is the

@@ -170,9 +170,40 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   cached_lanes_ = on && (sizeof(Real) == sizeof(float) || nodes_ == 8);
   product_cached_k_ = cached_lanes_ ? point_kernel("snh_element_product_cached")
                                     : cl_.kernel("fem.cl", defines_, "snh_element_product_cached");
+  if (float_products_) product_float_k_ = point_kernel("snh_element_product_cached", " -DSNH_MIXED=1");
   matrices_k_ = point_kernel("snh_element_matrices");
   matrices_float_k_ = device::Kernel();
   diagonal_k_ = point_kernel("snh_element_diagonal");
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_float_products(bool on) {
+  if (sizeof(Real) == sizeof(float) || on == float_products_) return;
+  float_products_ = on;
+  if (!on) {
+    product_float_k_ = device::Kernel();
+    cache_float_.reset();
+    gradients_float_.reset();
+    weights_float_.reset();
+    return;
+  }
+  product_float_k_ = point_kernel("snh_element_product_cached", " -DSNH_MIXED=1");
+  narrow_k_ = cl_.kernel("fem.cl", defines_, "snh_narrow");
+  narrow(gradients_.get(), device::OpenClContext::bytes(gradients_.get()) / sizeof(Real), gradients_float_);
+  narrow(weights_.get(), device::OpenClContext::bytes(weights_.get()) / sizeof(Real), weights_float_);
+  // This linearization's cache, if any (else the next linearize() writes it).
+  narrow(cache_.get(), cache_values(), cache_float_);
+}
+
+template <typename Real>
+void ElasticModel<Real>::narrow(cl_mem from, size_t values, device::Buffer& to) {
+  if (!to) to = cl_.buffer(CL_MEM_READ_WRITE, values * sizeof(float));
+  cl_kernel k = narrow_k_.get();
+  const int n = static_cast<int>(values);
+  set_arg(k, 0, from);
+  set_arg(k, 1, n);
+  set_arg(k, 2, to.get());
+  cl_.run(k, values);
 }
 
 template <typename Real>
@@ -193,8 +224,8 @@ size_t ElasticModel<Real>::variant_memory_bytes() const {
       return cache + element_count_ * m * sizeof(Real);
     case ProductVariant::assembled:  // the blocks and their neighbour table (and the assembly's tables)
       return cache + element_count_ * m * sizeof(Real) + stencil_memory_bytes();
-    default:
-      return cache;
+    default:  // cached: the cache, and its float copy with float products
+      return cache + (float_products() ? cache_values() * sizeof(float) : 0);
   }
 }
 
@@ -234,7 +265,10 @@ size_t ElasticModel<Real>::memory_bytes() const {
                                   &friction_start_,
                                   &friction_anchors_,
                                   &friction_start_records_,
-                                  &friction_records_})
+                                  &friction_records_,
+                                  &cache_float_,
+                                  &gradients_float_,
+                                  &weights_float_})
     bytes += device::OpenClContext::bytes(b->get());
   return bytes + stencil_memory_bytes();
 }
@@ -722,6 +756,8 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   const cl_uint next = set_material_args(k, 4);
   set_arg(k, next, projected_);
   set_arg(k, next + 1, cache_.get());
+  // Double: the cache's float copy for float products (null: none).
+  if (sizeof(Real) > sizeof(float)) set_arg(k, next + 2, float_products() ? cache_float_.get() : cl_mem{nullptr});
   run_point_kernel(k, point_lanes_);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
   last_assembly_seconds_ = 0.0;
@@ -771,13 +807,14 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(k, 3, count);
     set_arg(k, 4, element_scratch_.get());
   } else if (variant_ == ProductVariant::cached) {
-    k = product_cached_k_.get();
+    const bool narrow = float_products();
+    k = narrow ? product_float_k_.get() : product_cached_k_.get();
     set_arg(k, 0, mem(p));
     set_arg(k, 1, elements_.get());
-    set_arg(k, 2, gradients_.get());
-    set_arg(k, 3, weights_.get());
+    set_arg(k, 2, narrow ? gradients_float_.get() : gradients_.get());
+    set_arg(k, 3, narrow ? weights_float_.get() : weights_.get());
     set_arg(k, 4, count);
-    set_arg(k, 5, cache_.get());
+    set_arg(k, 5, narrow ? cache_float_.get() : cache_.get());
     set_arg(k, 6, element_scratch_.get());
   } else {
     k = product_recompute_k_.get();
@@ -794,7 +831,9 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   if (variant_ == ProductVariant::element_matrices)
     run_element_kernel(k);
   else
-    run_point_kernel(k, variant_ == ProductVariant::cached ? cached_lanes_ : point_lanes_);
+    run_point_kernel(k, variant_ != ProductVariant::cached ? point_lanes_
+                        : float_products()                 ? point_lanes_
+                                                           : cached_lanes_);
   self_differences(p);
   gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }

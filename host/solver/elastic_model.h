@@ -201,6 +201,18 @@ class ElasticModel {
   // materials per region (throws snh::Error).
   void set_point_lanes(bool on);
   bool point_lanes() const { return point_lanes_; }
+  // Mixed precision, double models with the cached variant: CG's products
+  // in float (kernels/snh_portable.h, SNH_MIXED). Each linearize() narrows
+  // its cache to float (the rest gradients and weights once, here); the
+  // product reads p and writes its per-element values in double, and the
+  // gather, the vertex terms, the energy, the residual, the linearization
+  // and the preconditioners keep double. A float model, or another
+  // variant, keeps its products in the working precision.
+  void set_float_products(bool on);
+  // Whether the products run in float now (set, a double model, the cached variant).
+  bool float_products() const {
+    return float_products_ && sizeof(Real) > sizeof(float) && variant_ == ProductVariant::cached;
+  }
   bool point_lanes_available() const;
   // The lanes program and the value-major hex8 point data (PointDataLayout)
   // are the defaults on CPU devices.
@@ -257,6 +269,12 @@ class ElasticModel {
   bool point_lanes_ = false;
   bool cached_lanes_ = false;                // the cached product's kernel is fem_lanes.cl's
   mutable device::Kernel matrices_float_k_;  // built at its first use
+  // set_float_products: the SNH_MIXED product, the narrowing kernel and the
+  // float copies of the cache, gradients and weights.
+  bool float_products_ = false;
+  device::Kernel product_float_k_, narrow_k_;
+  device::Buffer cache_float_, gradients_float_, weights_float_;
+  void narrow(cl_mem from, size_t values, device::Buffer& to);  // to (made if empty) <- (float)from
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
       element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
   bool has_external_ = false;

@@ -303,6 +303,7 @@ struct Simulation::Impl {
     std::vector<Real> mask(prescribed.size());
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
     engine->model->set_mask(mask);
+    engine->model->set_float_products(options.product_precision == Precision::single);
     std::unique_ptr<solver::MultigridPreconditioner<Real>> multigrid;
     if (preconditioner == Preconditioner::multigrid)
       multigrid = std::make_unique<solver::MultigridPreconditioner<Real>>(*engine->model, mesh, free_dofs(),
@@ -496,6 +497,7 @@ struct Simulation::Impl {
     result.device = cl.info();
     result.product = product;
     result.preconditioner = preconditioner;
+    result.product_precision = single || !dual->model->float_products() ? options.precision : Precision::single;
     if (const MultigridOptions* used =
             single ? single->problem->multigrid_options() : dual->problem->multigrid_options()) {
       result.multigrid_smoother_degree = used->smoother_degree;

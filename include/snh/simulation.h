@@ -346,6 +346,14 @@ struct SolveOptions {
   // retries once along the preconditioned steepest-descent direction).
   int line_search_halvings = 40;
   ProductVariant product = ProductVariant::automatic;
+  // Mixed precision in double solves: the precision of CG's Hessian
+  // products. float: the cached variant's products read a float copy of
+  // each linearization and compute in float (kernels/snh_portable.h,
+  // SNH_MIXED), while CG's vectors, the residual, the energy, the
+  // linearization and the preconditioners stay double, so Newton converges
+  // to double's tolerance; other variants keep double. Unset: double.
+  // Ignored in float. Reported in SolveResult::product_precision.
+  std::optional<Precision> product_precision;
   HessianMode hessian = HessianMode::adaptive;
   // Lumped external force, xyz per vertex; empty for none.
   std::vector<double> external_force;
@@ -463,6 +471,8 @@ struct SolveResult {
   std::string kernel_specialization;                             // the build-time switches of the kernels used
   ProductVariant product = ProductVariant::cached;               // the variant used (automatic resolved)
   Preconditioner preconditioner = Preconditioner::block_jacobi;  // the one used (automatic resolved)
+  // The precision CG's products ran in (SolveOptions::product_precision as used).
+  Precision product_precision = Precision::double_;
   // With multigrid: its smoothing, automatic resolved (resolved_smoothing);
   // 0 and automatic otherwise.
   int multigrid_smoother_degree = 0;

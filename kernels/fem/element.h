@@ -134,6 +134,18 @@ SNH_FN void element_product(const principal_hessian* h, const real* ps, const re
   element_scatter(dp, g, w, y);
 }
 
+#if SNH_IS_OPENCL && SNH_DOUBLE
+/* The float copy of n consecutive cache values, for a double solve's
+ * products in float (SNH_MIXED; ElasticModel::set_float_products): an
+ * element's points, or a tet4 work-item's lanes, are consecutive in every
+ * cache layout. */
+SNH_FN void linearization_copy_float(__global const double* in, int n, __global float* out) {
+  int i = 0;
+  for (; i + 8 <= n; i += 8) vstore8(convert_float8(vload8(0, in + i)), 0, out + i);
+  for (; i < n; ++i) out[i] = (float)in[i];
+}
+#endif
+
 #if SNH_LANES == 1
 /* out: SNH_CACHE_AT(cache, e, q); its values SNH_CACHE_STRIDE apart. */
 SNH_FN void linearization_store(const principal_hessian* h, SNH_GLOBAL real* out) {

@@ -15,10 +15,10 @@
 #define REST_ELEMENT(e) (e)
 #endif
 
-SNH_FN void load_nodes(SNH_GLOBAL const real* x, SNH_GLOBAL const int* nodes, real* xs) {
+SNH_FN void load_nodes(SNH_GLOBAL const vector_real* x, SNH_GLOBAL const int* nodes, real* xs) {
   SNH_UNROLL
   for (int a = 0; a < SNH_NODES; ++a)
-    for (int i = 0; i < 3; ++i) xs[3 * a + i] = x[3 * nodes[a] + i];
+    for (int i = 0; i < 3; ++i) xs[3 * a + i] = (real)x[3 * nodes[a] + i];
 }
 
 SNH_FN void load_gradients(SNH_GLOBAL const real* gradients, size_t e, int q, real* g) {
