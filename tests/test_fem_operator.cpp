@@ -350,6 +350,21 @@ TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
   }
 }
 
+// The float copies exist only while the products run in float: a model of
+// another variant holds none until it switches to the cached one.
+TEST(FemOperator, FloatProductsHoldFloatCopiesOnlyWithTheCachedVariant) {
+  const Scene& s = scenes()[1];
+  solver::ElasticModel<double> model(device_for(Precision::double_), s.mesh, s.rest,
+                                     uniform_material(s.mesh, s.material), ProductVariant::assembled);
+  const size_t bytes = model.memory_bytes();
+  model.set_float_products(true);
+  EXPECT_FALSE(model.float_products());
+  EXPECT_EQ(model.memory_bytes(), bytes);
+  model.set_variant(ProductVariant::cached);
+  EXPECT_TRUE(model.float_products());
+  EXPECT_GE(model.memory_bytes(), bytes + model.cache_values() * sizeof(float));
+}
+
 // A float model ignores the switch.
 TEST(FemOperator, FloatProductsAreTheWorkingPrecisionInFloatModels) {
   const Scene& s = scenes()[0];

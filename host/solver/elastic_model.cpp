@@ -143,6 +143,7 @@ template <typename Real>
 void ElasticModel<Real>::set_variant(ProductVariant v) {
   if (v == ProductVariant::automatic) throw Error("solver: resolve ProductVariant::automatic before use");
   variant_ = v;
+  prepare_float_products();
   const size_t m = static_cast<size_t>(3 * nodes_) * (3 * nodes_);
   if ((v == ProductVariant::element_matrices || v == ProductVariant::assembled) && !element_matrices_)
     element_matrices_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * m * sizeof(Real));
@@ -170,7 +171,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   cached_lanes_ = on && (sizeof(Real) == sizeof(float) || nodes_ == 8);
   product_cached_k_ = cached_lanes_ ? point_kernel("snh_element_product_cached")
                                     : cl_.kernel("fem.cl", defines_, "snh_element_product_cached");
-  if (float_products_) product_float_k_ = point_kernel("snh_element_product_cached", " -DSNH_MIXED=1");
+  if (product_float_k_) product_float_k_ = point_kernel("snh_element_product_cached", " -DSNH_MIXED=1");
   matrices_k_ = point_kernel("snh_element_matrices");
   matrices_float_k_ = device::Kernel();
   diagonal_k_ = point_kernel("snh_element_diagonal");
@@ -187,6 +188,14 @@ void ElasticModel<Real>::set_float_products(bool on) {
     weights_float_.reset();
     return;
   }
+  prepare_float_products();
+}
+
+template <typename Real>
+void ElasticModel<Real>::prepare_float_products() {
+  // Made when the products first run in float (the cached variant): other
+  // variants hold no float copies.
+  if (!float_products() || cache_float_) return;
   product_float_k_ = point_kernel("snh_element_product_cached", " -DSNH_MIXED=1");
   narrow_k_ = cl_.kernel("fem.cl", defines_, "snh_narrow");
   narrow(gradients_.get(), device::OpenClContext::bytes(gradients_.get()) / sizeof(Real), gradients_float_);

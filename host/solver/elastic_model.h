@@ -275,6 +275,7 @@ class ElasticModel {
   device::Kernel product_float_k_, narrow_k_;
   device::Buffer cache_float_, gradients_float_, weights_float_;
   void narrow(cl_mem from, size_t values, device::Buffer& to);  // to (made if empty) <- (float)from
+  void prepare_float_products();                                // the above, once float_products() holds
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
       element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
   bool has_external_ = false;
