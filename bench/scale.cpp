@@ -406,9 +406,10 @@ void add_scale_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--precision", o->precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  cmd->add_option("--product-precision", o->product_precision,
-                  "double solves: CG's Hessian products (cached variant) in float with double vectors, or in "
-                  "double (SolveOptions::product_precision)")
+  cmd->add_option(
+         "--product-precision", o->product_precision,
+         "double solves: CG's Hessian products (cached variant) in float with double vectors (automatic), or in "
+         "double (SolveOptions::product_precision)")
       ->check(CLI::IsMember({"automatic", "float", "double"}))
       ->capture_default_str();
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");

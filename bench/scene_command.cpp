@@ -470,9 +470,10 @@ void add_scene_command(CLI::App& app, int& exit_code) {
                   "automatic (measured default), block-jacobi, multigrid (hex8 lattices) or none")
       ->check(CLI::IsMember({"automatic", "block-jacobi", "multigrid", "none"}))
       ->capture_default_str();
-  cmd->add_option("--product-precision", o->product_precision,
-                  "double solves: CG's Hessian products (cached variant) in float with double vectors, or in "
-                  "double (SolveOptions::product_precision)")
+  cmd->add_option(
+         "--product-precision", o->product_precision,
+         "double solves: CG's Hessian products (cached variant) in float with double vectors (automatic), or in "
+         "double (SolveOptions::product_precision)")
       ->check(CLI::IsMember({"automatic", "float", "double"}))
       ->capture_default_str();
   o->multigrid.add_to(cmd);

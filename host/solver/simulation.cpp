@@ -303,7 +303,8 @@ struct Simulation::Impl {
     std::vector<Real> mask(prescribed.size());
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
     engine->model->set_mask(mask);
-    engine->model->set_float_products(options.product_precision == Precision::single);
+    // Unset: float (the model keeps double for variants other than cached).
+    engine->model->set_float_products(options.product_precision.value_or(Precision::single) == Precision::single);
     std::unique_ptr<solver::MultigridPreconditioner<Real>> multigrid;
     if (preconditioner == Preconditioner::multigrid)
       multigrid = std::make_unique<solver::MultigridPreconditioner<Real>>(*engine->model, mesh, free_dofs(),
