@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "product_precision_flag.h"
 #include "profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
@@ -60,7 +61,7 @@ SolveOptions solve_options(const Scene& scene, const ScaleOptions& o, Preconditi
   options.precision = parse_precision(o.precision);
   options.device.match = o.device;
   options.preconditioner = preconditioner;
-  if (o.product_precision != "automatic") options.product_precision = parse_precision(o.product_precision);
+  apply_product_precision(o.product_precision, options);
   o.multigrid.apply(options.multigrid);
   return options;
 }
@@ -406,12 +407,7 @@ void add_scale_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--precision", o->precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  cmd->add_option(
-         "--product-precision", o->product_precision,
-         "double solves: CG's Hessian products (cached variant) in float with double vectors (automatic), or in "
-         "double (SolveOptions::product_precision)")
-      ->check(CLI::IsMember({"automatic", "float", "double"}))
-      ->capture_default_str();
+  add_product_precision_option(cmd, o->product_precision);
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");
   o->multigrid.add_to(cmd);
   cmd->add_option("--out", o->out_dir, "folder for scale.csv, scale.json, scale.md and scale.png")

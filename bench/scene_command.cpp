@@ -19,6 +19,7 @@
 #include "material_options.h"
 #include "multigrid_flags.h"
 #include "obstacle_surface.h"
+#include "product_precision_flag.h"
 #include "profile_json.h"
 #include "rig_frames.h"
 #include "scene_file.h"
@@ -245,7 +246,7 @@ int run_scene(const SceneOptions& given) {
     options.precision = parse_precision(o.precision);
     options.device.match = o.device;
     options.product = parse_product_variant(o.variant);
-    if (o.product_precision != "automatic") options.product_precision = parse_precision(o.product_precision);
+    apply_product_precision(o.product_precision, options);
     options.preconditioner = parse_preconditioner(o.preconditioner);
     o.multigrid.apply(options.multigrid);
     if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
@@ -470,12 +471,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
                   "automatic (measured default), block-jacobi, multigrid (hex8 lattices) or none")
       ->check(CLI::IsMember({"automatic", "block-jacobi", "multigrid", "none"}))
       ->capture_default_str();
-  cmd->add_option(
-         "--product-precision", o->product_precision,
-         "double solves: CG's Hessian products (cached variant) in float with double vectors (automatic), or in "
-         "double (SolveOptions::product_precision)")
-      ->check(CLI::IsMember({"automatic", "float", "double"}))
-      ->capture_default_str();
+  add_product_precision_option(cmd, o->product_precision);
   o->multigrid.add_to(cmd);
   cmd->add_option(
       "--strain-tol", o->strain_tolerance,
