@@ -224,6 +224,7 @@ int run_scene(const SceneOptions& given) {
     if (!o.surface_prefix.empty() && !f.embedded) throw Error("scene: --surface needs a scene with \"embed\"");
     options.device.match = o.device;
     o.multigrid.apply(options.multigrid);
+    apply_product_precision(o.product_precision, options);  // the file's unless given
     if (f.rig) return run_rig_scene(f, options, {o.vtu_dir, o.json_path, o.surface_prefix, o.frames});
   } else {
     if (!o.surface_prefix.empty()) throw Error("scene: --surface needs a scene file with \"embed\"");

@@ -398,7 +398,7 @@ SceneFile load_scene_file(const std::string& path) {
   const json solver = doc.value("solver", json::object());
   r.keys(solver, "solver",
          {"steps", "precision", "strain_tolerance", "absolute_tolerance", "max_newton_iterations", "preconditioner",
-          "hessian"});
+          "hessian", "product_precision"});
   s.options.load_steps = r.integer(solver, "solver", "steps", 1);
   s.options.precision = parse_precision(r.text(solver, "solver", "precision", "double"));
   s.options.max_newton_iterations = r.integer(solver, "solver", "max_newton_iterations", 200);
@@ -409,6 +409,13 @@ SceneFile load_scene_file(const std::string& path) {
   }
   s.options.hessian =
       r.text(solver, "solver", "hessian", "adaptive") == "projected" ? HessianMode::projected : HessianMode::adaptive;
+  // SolveOptions::product_precision; absent or "automatic": unset.
+  const std::string product_precision = r.text(solver, "solver", "product_precision", "automatic");
+  try {
+    if (product_precision != "automatic") s.options.product_precision = parse_precision(product_precision);
+  } catch (const Error& error) {
+    throw Error(path + ": solver.product_precision: " + error.what());
+  }
   // Strain-equivalent tolerance as in make_scene, h from the first element's first edge.
   const auto a = s.mesh.vertex(s.mesh.elements[0]), b = s.mesh.vertex(s.mesh.elements[1]);
   const double h =

@@ -109,6 +109,20 @@ TEST(SceneFiles, SeedFourMaterialKeys) {
   EXPECT_NE(error_of("{" + mesh + R"(, "material": {"lambda_model": "jelly"}})").find("jelly"), std::string::npos);
 }
 
+// solver.product_precision (SolveOptions::product_precision): float or
+// double sets it, absent leaves it unset (the default), anything else is an
+// error naming the key.
+TEST(SceneFiles, ProductPrecisionKey) {
+  const std::string mesh = R"("mesh": {"generator": "box", "cells": [2, 2, 2], "size": 0.5})";
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_product_precision.json";
+  std::ofstream(path) << "{" + mesh + R"(, "solver": {"product_precision": "double"}})";
+  EXPECT_EQ(bench::load_scene_file(path.string()).scene.options.product_precision, Precision::double_);
+  std::ofstream(path) << "{" + mesh + "}";
+  EXPECT_FALSE(bench::load_scene_file(path.string()).scene.options.product_precision.has_value());
+  EXPECT_NE(error_of("{" + mesh + R"(, "solver": {"product_precision": "half"}})").find("solver.product_precision"),
+            std::string::npos);
+}
+
 // The shipped arm scene at a quarter of its elements (cell 0.25) on frames 0,
 // 8, 16 and 24 of its animation: every frame converges, the shoulder stays
 // and the forearm's tip follows the elbow's rotation.
