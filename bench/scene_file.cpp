@@ -9,6 +9,7 @@
 #include <random>
 #include <set>
 
+#include "product_precision_flag.h"
 #include "scene_json.h"
 #include "scene_selection.h"
 #include "snh/error.h"
@@ -412,7 +413,7 @@ SceneFile load_scene_file(const std::string& path) {
   // SolveOptions::product_precision; absent or "automatic": unset.
   const std::string product_precision = r.text(solver, "solver", "product_precision", "automatic");
   try {
-    if (product_precision != "automatic") s.options.product_precision = parse_precision(product_precision);
+    apply_product_precision(product_precision, s.options);
   } catch (const Error& error) {
     throw Error(path + ": solver.product_precision: " + error.what());
   }

@@ -840,9 +840,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   if (variant_ == ProductVariant::element_matrices)
     run_element_kernel(k);
   else
-    run_point_kernel(k, variant_ != ProductVariant::cached ? point_lanes_
-                        : float_products()                 ? point_lanes_
-                                                           : cached_lanes_);
+    run_point_kernel(k, variant_ == ProductVariant::cached && !float_products() ? cached_lanes_ : point_lanes_);
   self_differences(p);
   gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }
