@@ -1,5 +1,6 @@
 #include "rig_frames.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "snh/frames.h"
 #include "snh/io.h"
 #include "snh/regions.h"
+#include "solver_json.h"
 
 namespace snh::bench {
 namespace {
@@ -80,11 +82,13 @@ int run_rig_scene(const SceneFile& file, const SolveOptions& options, const RigR
   bool all = true;
   double seconds = 0.0;
   SolveProfile profile;
+  size_t device_memory = 0;
   std::cout << "frame  newton  cg      status                 residual   min J\n";
   for (const FrameRecord& r : records) {
     all = all && r.converged;
     seconds += r.seconds;
     profile += r.profile;
+    device_memory = std::max(device_memory, r.device_memory_bytes);
     std::cout << std::left << std::setw(7) << r.frame << std::setw(8) << r.newton_iterations << std::setw(8)
               << r.cg_iterations << std::setw(23) << r.status << std::setw(11) << std::setprecision(3)
               << r.residual_norm << std::setprecision(4) << r.min_j << '\n';
@@ -97,12 +101,20 @@ int run_rig_scene(const SceneFile& file, const SolveOptions& options, const RigR
     if (!out) throw Error("cannot write " + outputs.json_path);
     nlohmann::ordered_json j;
     j["scene"] = scene.name;
+    j["element_type"] = to_string(scene.mesh.type);
     j["elements"] = scene.mesh.element_count();
     j["dofs"] = 3 * scene.mesh.vertex_count();
+    j["device"] = simulation.device().platform + " / " + simulation.device().name;
+    j["precision"] = to_string(options.precision);
+    if (!records.empty()) {  // every frame runs on the same engine: the last frame's
+      j["kernel_specialization"] = records.back().kernel_specialization;
+      add_solver_json(j, options, records.back());
+    }
     j["load_steps_per_frame"] = options.load_steps;
     j["converged"] = all;
     j["seconds"] = seconds;
-    j["profile"] = profile_json(profile);  // summed over the frames
+    j["profile"] = profile_json(profile);      // summed over the frames
+    j["device_memory_bytes"] = device_memory;  // the largest frame's
     j["frames"] = nlohmann::ordered_json::array();
     for (const FrameRecord& r : records)
       j["frames"].push_back({{"frame", r.frame},

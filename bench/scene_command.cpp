@@ -32,6 +32,7 @@
 #include "snh/simulation.h"
 #include "snh/surface.h"
 #include "solver/self_contact.h"
+#include "solver_json.h"
 
 namespace snh::bench {
 namespace {
@@ -106,16 +107,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["youngs_modulus"] = scene.material.youngs_modulus();
   j["poisson_ratio"] = scene.material.poisson_ratio();
   j["barrier"] = scene.material.barrier;
-  j["product"] = to_string(r.product);
-  j["product_precision"] = to_string(r.product_precision);
-  j["preconditioner"] = to_string(r.preconditioner);
-  if (r.preconditioner == Preconditioner::multigrid) {
-    j["multigrid_fine_level"] = to_string(options.multigrid.fine_level);  // as requested (automatic: README)
-    j["multigrid_fine_float"] = options.multigrid.fine_level_float;
-    j["multigrid_smoother_degree"] = r.multigrid_smoother_degree;  // as used (automatic resolved)
-    j["multigrid_chebyshev"] = to_string(r.multigrid_chebyshev);
-  }
-  j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
+  add_solver_json(j, options, r);
   if (options.dynamics) {
     const DynamicsOptions& d = *options.dynamics;
     j["dynamics"] = {{"time_step", d.time_step},

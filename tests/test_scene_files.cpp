@@ -309,7 +309,8 @@ TEST(SceneFiles, SurfaceFileBonesHoldTheVerticesInsideAndFollowTheirFrames) {
 #ifdef SNH_BENCH_BINARY
 // `snh-gpu-bench scene --file` on the coarse arm (cell 0.25) with frames 0,
 // 12 and 24 of its animation: per frame the embedded surface as OBJ, the
-// lattice and the surface as .vtu parts of one .pvd, and the JSON record.
+// lattice and the surface as .vtu parts of one .pvd, and the JSON record
+// with what ran (here multigrid with double products, from the file).
 TEST(SceneFiles, RiggedSceneCommandWritesTheSurfacePerFrameAndAPvd) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / "snh_arm_command";
@@ -325,6 +326,8 @@ TEST(SceneFiles, RiggedSceneCommandWritesTheSurfacePerFrameAndAPvd) {
   doc["embed"]["cell"] = 0.25;
   doc["embed"]["surface"] = kScenes + doc["embed"]["surface"].get<std::string>();
   doc["rig"]["animation"] = "three.json";
+  doc["solver"]["preconditioner"] = "multigrid";  // the record reports what ran
+  doc["solver"]["product_precision"] = "double";
   doc["output"] = {
       {"vtu", (dir / "vtu").string()}, {"surface", (dir / "obj/").string()}, {"json", (dir / "run.json").string()}};
   std::ofstream(dir / "arm.json") << doc.dump();
@@ -359,6 +362,17 @@ TEST(SceneFiles, RiggedSceneCommandWritesTheSurfacePerFrameAndAPvd) {
   std::ifstream(dir / "run.json") >> run;
   EXPECT_EQ(run["converged"], true);
   EXPECT_EQ(run["frames"].size(), 3u);
+  // What ran, as in the plain scene record.
+  EXPECT_EQ(run["element_type"], "hex8");
+  EXPECT_EQ(run["precision"], "double");
+  EXPECT_FALSE(run["device"].get<std::string>().empty());
+  EXPECT_NE(run["kernel_specialization"].get<std::string>().find("-DSNH_HEX8=1"), std::string::npos);
+  EXPECT_EQ(run["preconditioner"], "multigrid");
+  EXPECT_EQ(run["product_precision"], "double");
+  EXPECT_TRUE(run["product"].is_string());
+  EXPECT_GT(run["multigrid_smoother_degree"].get<int>(), 0);
+  EXPECT_EQ(run["hessian"], "adaptive");
+  EXPECT_GT(run["device_memory_bytes"].get<size_t>(), 0u);
   fs::remove_all(dir);
 }
 #endif

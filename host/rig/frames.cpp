@@ -58,6 +58,13 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     record.min_j = r.min_j;
     record.inverted_elements = r.inverted_elements;
     record.history = r.history;
+    record.product = r.product;
+    record.preconditioner = r.preconditioner;
+    record.product_precision = r.product_precision;
+    record.multigrid_smoother_degree = r.multigrid_smoother_degree;
+    record.multigrid_chebyshev = r.multigrid_chebyshev;
+    record.kernel_specialization = r.kernel_specialization;
+    record.device_memory_bytes = r.device_memory_bytes;
     records.push_back(record);
     const std::vector<double>& x = simulation.positions();
     const std::vector<double> surface = embedding ? embedded_positions(*embedding, mesh, x) : std::vector<double>{};

@@ -29,6 +29,15 @@ struct FrameRecord {
   double min_j = 0.0;
   int inverted_elements = 0;
   std::vector<NewtonIteration> history;  // the frame's Newton iterations (SolveResult::history)
+  // What the frame's solve ran, as SolveResult reports it (the fields of the
+  // same names): automatic choices resolved.
+  ProductVariant product = ProductVariant::cached;
+  Preconditioner preconditioner = Preconditioner::block_jacobi;
+  Precision product_precision = Precision::double_;
+  int multigrid_smoother_degree = 0;
+  ChebyshevKind multigrid_chebyshev = ChebyshevKind::automatic;
+  std::string kernel_specialization;
+  size_t device_memory_bytes = 0;
 };
 
 struct FrameOptions {

@@ -1,0 +1,28 @@
+// What a solve ran, as the scene reports write it: the product variant and
+// precision, the preconditioner with the multigrid's smoothing, and the
+// Hessian mode. Shared by the scene JSON (from a SolveResult) and the rigged
+// scene's (from a FrameRecord, whose fields of the same names are the frame
+// solve's).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "snh/simulation.h"
+
+namespace snh::bench {
+
+template <class Ran>  // SolveResult or FrameRecord
+void add_solver_json(nlohmann::ordered_json& j, const SolveOptions& options, const Ran& r) {
+  j["product"] = to_string(r.product);
+  j["product_precision"] = to_string(r.product_precision);
+  j["preconditioner"] = to_string(r.preconditioner);
+  if (r.preconditioner == Preconditioner::multigrid) {
+    j["multigrid_fine_level"] = to_string(options.multigrid.fine_level);  // as requested (automatic: README)
+    j["multigrid_fine_float"] = options.multigrid.fine_level_float;
+    j["multigrid_smoother_degree"] = r.multigrid_smoother_degree;  // as used (automatic resolved)
+    j["multigrid_chebyshev"] = to_string(r.multigrid_chebyshev);
+  }
+  j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
+}
+
+}  // namespace snh::bench
