@@ -13,6 +13,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "commands.h"
@@ -69,7 +70,17 @@ struct SceneOptions {
   int max_newton = 0;
   double forcing_max = 0.0;
   std::string hessian = "adaptive";
+  std::set<std::string> given;  // the flags on the command line (with --file: which override the file)
 };
+
+// Flags that build a named scene (make_scene); a scene file sets these
+// itself, so with --file they are errors rather than silently ignored.
+const char* const kSceneBuildingFlags[] = {
+    "--res",          "--element",      "--E",       "--nu",   "--model",     "--alpha",
+    "--lambda-model", "--alpha-lambda", "--barrier", "--seed", "--strain-tol"};
+// Solver flags: with --file, those given override the file's "solver".
+const char* const kSolverFlags[] = {"--precision", "--variant", "--preconditioner", "--hessian",    "--steps",
+                                    "--rtol",      "--atol",    "--max-newton",     "--forcing-max"};
 
 // Per step, how far the body is from its rest shape (README "Dynamics and
 // obstacles", drop): volume, smallest J, and the RMS vertex distance after
@@ -154,6 +165,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["profile"] = profile_json(r.profile);
   j["device_memory_bytes"] = r.device_memory_bytes;
   j["final_residual"] = r.final_residual_norm;
+  j["tolerance"] = r.tolerance;  // the absolute residual norm Newton stopped at
   j["converged"] = r.converged;
   j["volume_ratio"] = r.volume_ratio;
   j["min_j"] = r.min_j;
@@ -189,6 +201,14 @@ json regions_json(const MaterialMap& materials) {
   return out;
 }
 
+// --rtol, --atol, --max-newton, --forcing-max where given.
+void apply_solver_limits(const SceneOptions& o, SolveOptions& options) {
+  if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
+  if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
+  if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
+  if (o.forcing_max > 0.0) options.forcing_max = o.forcing_max;
+}
+
 int run_scene(const SceneOptions& given) {
   SceneOptions o = given;
   if (o.name.empty() == o.file.empty()) throw Error("scene: give either a scene NAME or --file FILE");
@@ -215,6 +235,20 @@ int run_scene(const SceneOptions& given) {
     if (o.surface_prefix.empty()) o.surface_prefix = f.surface_prefix;
     if (!o.surface_prefix.empty() && !f.embedded) throw Error("scene: --surface needs a scene with \"embed\"");
     options.device.match = o.device;
+    for (const char* flag : kSceneBuildingFlags)
+      if (o.given.count(flag))
+        throw Error(std::string("scene: ") + flag + " builds a named scene; with --file set it in the file");
+    // Solver flags given on the command line override the file's.
+    if (o.given.count("--precision")) {
+      options.precision = parse_precision(o.precision);
+      if (!f.tolerance_given) options.absolute_tolerance = strain_tolerance_default(options.precision) * f.strain_scale;
+    }
+    if (o.given.count("--variant")) options.product = parse_product_variant(o.variant);
+    if (o.given.count("--preconditioner")) options.preconditioner = parse_preconditioner(o.preconditioner);
+    if (o.given.count("--hessian"))
+      options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
+    if (o.steps > 0) options.load_steps = o.steps;
+    apply_solver_limits(o, options);
     o.multigrid.apply(options.multigrid);
     apply_product_precision(o.product_precision, options);  // the file's unless given
     if (f.rig) return run_rig_scene(f, options, {o.vtu_dir, o.json_path, o.surface_prefix, o.frames});
@@ -228,12 +262,8 @@ int run_scene(const SceneOptions& given) {
     p.steps = o.steps;
     p.seed = o.seed;
     p.element_type = o.element == "tet4" ? ElementType::tet4 : ElementType::hex8;
-    // Float resolves J - alpha only to about FLT_EPSILON lambda / mu: its
-    // default stopping strain is 1e-4 (double: 1e-6).
-    if (o.strain_tolerance > 0.0)
-      p.strain_tolerance = o.strain_tolerance;
-    else if (o.precision == "float")
-      p.strain_tolerance = 1e-4;
+    p.strain_tolerance =
+        o.strain_tolerance > 0.0 ? o.strain_tolerance : strain_tolerance_default(parse_precision(o.precision));
     scene = make_scene(o.name, p);
     options = scene.options;
     options.precision = parse_precision(o.precision);
@@ -242,10 +272,7 @@ int run_scene(const SceneOptions& given) {
     apply_product_precision(o.product_precision, options);
     options.preconditioner = parse_preconditioner(o.preconditioner);
     o.multigrid.apply(options.multigrid);
-    if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
-    if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
-    if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
-    if (o.forcing_max > 0.0) options.forcing_max = o.forcing_max;
+    apply_solver_limits(o, options);
     options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
     snh::MaterialOptions material_options;
     material_options.barrier = p.barrier;
@@ -477,7 +504,14 @@ void add_scene_command(CLI::App& app, int& exit_code) {
                   "projected (always the PSD projection) or adaptive (true Hessian near convergence)")
       ->check(CLI::IsMember({"projected", "adaptive"}))
       ->capture_default_str();
-  cmd->callback([o, &exit_code] { exit_code = run_scene(*o); });
+  cmd->callback([o, cmd, &exit_code] {
+    const auto note = [&](const char* flag) {
+      if (cmd->count(flag) > 0) o->given.insert(flag);
+    };
+    for (const char* flag : kSceneBuildingFlags) note(flag);
+    for (const char* flag : kSolverFlags) note(flag);
+    exit_code = run_scene(*o);
+  });
 }
 
 }  // namespace snh::bench

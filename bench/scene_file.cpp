@@ -421,9 +421,11 @@ SceneFile load_scene_file(const std::string& path) {
   const auto a = s.mesh.vertex(s.mesh.elements[0]), b = s.mesh.vertex(s.mesh.elements[1]);
   const double h =
       std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+  out.strain_scale = e * h * h * std::sqrt(double(s.mesh.vertex_count()));
+  out.tolerance_given = solver.contains("strain_tolerance") || solver.contains("absolute_tolerance");
   s.options.absolute_tolerance = r.number(
       solver, "solver", "absolute_tolerance",
-      r.number(solver, "solver", "strain_tolerance", 1e-6) * e * h * h * std::sqrt(double(s.mesh.vertex_count())));
+      r.number(solver, "solver", "strain_tolerance", strain_tolerance_default(s.options.precision)) * out.strain_scale);
   const json output = doc.value("output", json::object());
   r.keys(output, "output", {"vtu", "json", "surface"});
   out.vtu_dir = r.text(output, "output", "vtu", "");

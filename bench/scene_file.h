@@ -79,7 +79,20 @@ struct SceneFile {
     Animation animation;
   };
   std::optional<Rig> rig;
+
+  // The residual norm of a unit strain error, E h^2 sqrt(vertices) (h: the
+  // first element's first edge): solver.strain_tolerance times this is the
+  // absolute tolerance, as make_scene does it. `tolerance_given`: the file
+  // sets solver.strain_tolerance or solver.absolute_tolerance; without them
+  // the strain tolerance is the precision's default (strain_tolerance_default).
+  double strain_scale = 0.0;
+  bool tolerance_given = false;
 };
+
+// The default stopping strain for a precision: 1e-6 in double, 1e-4 in float
+// (which resolves J - alpha only to about FLT_EPSILON lambda / mu), as for the
+// named scenes.
+inline double strain_tolerance_default(Precision precision) { return precision == Precision::single ? 1e-4 : 1e-6; }
 
 // The OBJ of step or frame `index` under a surface prefix ("output.surface").
 std::string surface_obj_path(const std::string& prefix, const std::string& scene, int index);
