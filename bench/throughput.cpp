@@ -145,20 +145,22 @@ double divisions_per_point(int real_bytes) { return real_bytes == 8 ? 71 : 70; }
 // stencil_blocks: the assembled operator's stored 3x3 blocks (vertices x
 // width); the kernel reads all of them, p three times per block (counted
 // once: neighbours' values stay in cache), the mask, and writes y.
+// stored_bytes: of each cached linearization and rest-state value (the
+// working precision's, or 4 for a double model's float products).
 Counts product_counts(ProductVariant v, int nodes, int quadrature, bool uniform, int real_bytes, double stencil_blocks,
-                      double elements, double vertices) {
+                      double elements, double vertices, int stored_bytes) {
   const double dofs = 3.0 * nodes, per_vertex = vertices / elements;
   // Shared: gather p (3N reals, N ints), write 3N reals; the vertex gather
   // reads them back with N adjacency ints and writes 3 reals per vertex.
   Counts c;
-  const double rest_bytes = uniform ? 0.0 : quadrature * (dofs + 1) * real_bytes;
+  const double rest_bytes = uniform ? 0.0 : quadrature * (dofs + 1) * stored_bytes;
   const double io = 2 * dofs * real_bytes + nodes * 4 + dofs * real_bytes + nodes * 4 + 3 * per_vertex * real_bytes;
   // F (18 N) and scatter (21 N) per point; the gather's 3 N additions.
   const double kinematics = quadrature * 39.0 * nodes + 3.0 * nodes;
   switch (v) {
     case ProductVariant::cached:
       c.flops = kinematics + quadrature * kActionFlops;
-      c.bytes = io + rest_bytes + quadrature * 30.0 * real_bytes;
+      c.bytes = io + rest_bytes + quadrature * 30.0 * stored_bytes;
       break;
     case ProductVariant::recompute:
       c.flops = kinematics + quadrature * (kActionFlops + kLinearizationFlops + 18.0 * nodes);
@@ -256,13 +258,20 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
       ops.push_back({type, pname, "energy", n, ne, best_seconds([&] { model.energy(x); }, o.min_seconds)});
       ops.push_back({type, pname, "linearize", n, ne, best_seconds([&] { model.linearize(x); }, o.min_seconds)});
       for (const std::string& vname : o.variants) {
-        const ProductVariant v = parse_product_variant(vname);
+        // cached-float-products: a double solve's default product
+        // (SolveOptions::product_precision), the cached one in float with
+        // double p and y; a float model's cached product is already that.
+        const bool float_products = vname == kCachedFloatProducts;
+        if (float_products && precision != Precision::double_) continue;
+        const ProductVariant v = float_products ? ProductVariant::cached : parse_product_variant(vname);
         model.set_variant(v);
+        model.set_float_products(float_products);
         const double setup = best_seconds([&] { model.linearize(x); }, o.min_seconds);
         const double product = best_seconds([&] { model.product(p, y); }, o.min_seconds);
-        const Counts counts = product_counts(v, rest.nodes, rest.quadrature, rest.uniform, sizeof(Real),
-                                             static_cast<double>(mesh.vertex_count()) * model.assembled_width(),
-                                             static_cast<double>(ne), static_cast<double>(mesh.vertex_count()));
+        const Counts counts =
+            product_counts(v, rest.nodes, rest.quadrature, rest.uniform, sizeof(Real),
+                           static_cast<double>(mesh.vertex_count()) * model.assembled_width(), static_cast<double>(ne),
+                           static_cast<double>(mesh.vertex_count()), float_products ? sizeof(float) : sizeof(Real));
         rows.push_back({type, pname, vname, n, ne, xh.size(), product, setup, model.last_assembly_seconds(),
                         model.variant_memory_bytes(), counts});
       }
@@ -325,7 +334,7 @@ int run_throughput(const ThroughputOptions& o) {
   std::ostringstream md;
   md << "| element | precision | cells | variant | product ms | Melem/s | setup ms | memory MB | flop/elem | "
         "byte/elem | % peak | % bandwidth | % peak ceiling |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::cout << std::left << std::setw(6) << "elem" << std::setw(8) << "prec" << std::setw(7) << "cells" << std::setw(18)
+  std::cout << std::left << std::setw(6) << "elem" << std::setw(8) << "prec" << std::setw(7) << "cells" << std::setw(23)
             << "variant" << std::setw(12) << "product ms" << std::setw(10) << "Melem/s" << std::setw(11) << "setup ms"
             << std::setw(11) << "memory MB" << std::setw(8) << "%peak"
             << "%bw\n";
@@ -364,7 +373,7 @@ int run_throughput(const ThroughputOptions& o) {
        << fixed(r.counts.bytes, 4) << " | " << fixed(100 * fpeak, 3) << " | " << fixed(100 * fbw, 3) << " | "
        << (slow_ops ? fixed(100 * ceiling, 3) : "") << " |\n";
     std::cout << std::left << std::setw(6) << r.element_type << std::setw(8) << r.precision << std::setw(7)
-              << (std::to_string(r.size) + "^3") << std::setw(18) << r.variant << std::setw(12)
+              << (std::to_string(r.size) + "^3") << std::setw(23) << r.variant << std::setw(12)
               << fixed(1e3 * r.product_seconds, 3) << std::setw(10) << fixed(rate / 1e6, 3) << std::setw(11)
               << fixed(1e3 * r.setup_seconds, 3) << std::setw(11) << fixed(static_cast<double>(r.memory_bytes) / 1e6, 3)
               << std::setw(8) << fixed(100 * fpeak, 3) << fixed(100 * fbw, 3) << '\n';
@@ -432,8 +441,10 @@ void add_throughput_command(CLI::App& app, int& exit_code) {
       ->delimiter(',')
       ->check(CLI::Range(1, 200))
       ->capture_default_str();
-  cmd->add_option("--variant", o->variants, "product variants: recompute, cached, element-matrices, assembled")
-      ->check(CLI::IsMember({"recompute", "cached", "element-matrices", "assembled"}))
+  cmd->add_option("--variant", o->variants,
+                  "product variants: recompute, cached, cached-float-products (double only: the cached product in "
+                  "float with double vectors, a double solve's default), element-matrices, assembled")
+      ->check(CLI::IsMember({"recompute", "cached", kCachedFloatProducts, "element-matrices", "assembled"}))
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--min-seconds", o->min_seconds, "minimum time spent timing each operation")->capture_default_str();

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -28,7 +29,8 @@ TEST(ThroughputCommand, RooflineHasSlowOperationRatesAndRecomputeItsCeiling) {
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "snh_throughput_test";
   std::filesystem::remove_all(out);
   ASSERT_EQ(run_command(std::string(SNH_BENCH_BINARY) +
-                        " throughput --element hex8,tet4 --precision double,float --size 2 --variant recompute,cached "
+                        " throughput --element hex8,tet4 --precision double,float --size 2 --variant "
+                        "recompute,cached,cached-float-products "
                         "--no-host-baseline --min-seconds 0.01 --out " +
                         out.string() + " > /dev/null 2>&1"),
             0);
@@ -42,8 +44,12 @@ TEST(ThroughputCommand, RooflineHasSlowOperationRatesAndRecomputeItsCeiling) {
       EXPECT_TRUE(positive(roof.at(key))) << p << " " << key << ": " << roof.at(key);
   }
   int recompute_rows = 0, cached_rows = 0;
+  std::map<std::string, double> cached_bytes;  // "<element> <precision> <variant>"
   for (const nlohmann::json& row : report.at("products")) {
     const std::string variant = row.at("variant"), precision = row.at("precision");
+    if (variant != "recompute")
+      cached_bytes[row.at("element_type").get<std::string>() + " " + precision + " " + variant] =
+          row.at("bytes_per_element").get<double>();
     const double points = row.at("element_type") == "hex8" ? 8 : 1;
     const double ceiling = row.at("peak_ceiling");
     if (variant == "recompute") {
@@ -64,7 +70,15 @@ TEST(ThroughputCommand, RooflineHasSlowOperationRatesAndRecomputeItsCeiling) {
     }
   }
   EXPECT_EQ(recompute_rows, 4);
-  EXPECT_EQ(cached_rows, 4);
+  // cached in both precisions, cached-float-products in double only.
+  EXPECT_EQ(cached_rows, 6);
+  EXPECT_EQ(cached_bytes.count("hex8 float cached-float-products"), 0u);
+  for (const std::string element : {"hex8", "tet4"}) {
+    // Float cache and double vectors: between the two precisions' cached product.
+    const double mixed = cached_bytes.at(element + " double cached-float-products");
+    EXPECT_LT(mixed, cached_bytes.at(element + " double cached"));
+    EXPECT_GT(mixed, cached_bytes.at(element + " float cached"));
+  }
 
   std::ifstream csv(out / "throughput.csv");
   std::string header;

@@ -171,7 +171,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   cached_lanes_ = on && (sizeof(Real) == sizeof(float) || nodes_ == 8);
   product_cached_k_ = cached_lanes_ ? point_kernel("snh_element_product_cached")
                                     : cl_.kernel("fem.cl", defines_, "snh_element_product_cached");
-  if (product_float_k_) product_float_k_ = point_kernel("snh_element_product_cached", " -DSNH_MIXED=1");
+  if (product_float_k_) product_float_k_ = float_product_kernel();
   matrices_k_ = point_kernel("snh_element_matrices");
   matrices_float_k_ = device::Kernel();
   diagonal_k_ = point_kernel("snh_element_diagonal");
@@ -196,12 +196,28 @@ void ElasticModel<Real>::prepare_float_products() {
   // Made when the products first run in float (the cached variant): other
   // variants hold no float copies.
   if (!float_products() || cache_float_) return;
-  product_float_k_ = point_kernel("snh_element_product_cached", " -DSNH_MIXED=1");
+  product_float_k_ = float_product_kernel();
   narrow_k_ = cl_.kernel("fem.cl", defines_, "snh_narrow");
   narrow(gradients_.get(), device::OpenClContext::bytes(gradients_.get()) / sizeof(Real), gradients_float_);
   narrow(weights_.get(), device::OpenClContext::bytes(weights_.get()) / sizeof(Real), weights_float_);
   // This linearization's cache, if any (else the next linearize() writes it).
   narrow(cache_.get(), cache_values(), cache_float_);
+}
+
+// The mixed product reads p and writes its results in double, so it takes
+// lanes where the double cached product does: hex8 (value-major cache), not
+// tet4, whose lanes gather 8 elements' double p into vectors (measured
+// slower than the scalar kernel, as in double: `throughput --element tet4
+// --size 48 --variant cached-float-products`, README "Mixed precision").
+template <typename Real>
+bool ElasticModel<Real>::float_product_lanes() const {
+  return point_lanes_ && nodes_ == 8;
+}
+
+template <typename Real>
+device::Kernel ElasticModel<Real>::float_product_kernel() const {
+  return float_product_lanes() ? point_kernel("snh_element_product_cached", " -DSNH_MIXED=1")
+                               : cl_.kernel("fem.cl", defines_ + " -DSNH_MIXED=1", "snh_element_product_cached");
 }
 
 template <typename Real>
@@ -840,7 +856,9 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   if (variant_ == ProductVariant::element_matrices)
     run_element_kernel(k);
   else
-    run_point_kernel(k, variant_ == ProductVariant::cached && !float_products() ? cached_lanes_ : point_lanes_);
+    run_point_kernel(k, variant_ != ProductVariant::cached ? point_lanes_
+                        : float_products()                 ? float_product_lanes()
+                                                           : cached_lanes_);
   self_differences(p);
   gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }

@@ -275,6 +275,8 @@ class ElasticModel {
   device::Kernel product_float_k_, narrow_k_;
   device::Buffer cache_float_, gradients_float_, weights_float_;
   void narrow(cl_mem from, size_t values, device::Buffer& to);  // to (made if empty) <- (float)from
+  bool float_product_lanes() const;                             // the mixed product runs fem_lanes.cl's kernel
+  device::Kernel float_product_kernel() const;                  // the SNH_MIXED cached product
   void prepare_float_products();                                // the above, once float_products() holds
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
       element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
