@@ -350,19 +350,70 @@ TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
   }
 }
 
-// The float copies exist only while the products run in float: a model of
-// another variant holds none until it switches to the cached one.
-TEST(FemOperator, FloatProductsHoldFloatCopiesOnlyWithTheCachedVariant) {
+// The assembled variant's float products: the blocks narrowed to float and
+// multiplied with double p and y meet the float bound against the assembled
+// reference, sit more than the double bound away from the double product,
+// are made again by each linearize() to the same values, are
+// deterministic, and switched off give the double product bit for bit.
+TEST(FemOperator, AssembledFloatProductsMeetTheFloatBoundInDoubleModels) {
+  Tolerance<float> tolerance;
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    const Scene& s = *c.scene;
+    solver::ElasticModel<double> model(device_for(Precision::double_), s.mesh, s.rest,
+                                       uniform_material(s.mesh, s.material), ProductVariant::assembled);
+    const std::vector<double> p = random_vector(c.x.size(), 1.0, 778);
+    const std::vector<double> expected =
+        multiply(reference::assembled_projected_stiffness(s.mesh, s.rest, s.material, c.x), p);
+    const viennacl::vector<double> xd = upload<double>(c.x), pd = upload<double>(p);
+    viennacl::vector<double> y(model.dofs());
+    model.linearize(xd);
+    model.product(pd, y);
+    const std::vector<double> in_double = download_raw(y);
+    model.set_float_products(true);  // narrows the blocks assembled above
+    ASSERT_TRUE(model.float_products());
+    model.product(pd, y);
+    const std::vector<double> narrowed = download_raw(y);
+    tolerance.check(relative_difference(narrowed, expected), s, c.name);
+    EXPECT_GT(relative_difference(narrowed, in_double), kDoubleBound);
+    model.linearize(xd);  // assembles and narrows again
+    model.product(pd, y);
+    EXPECT_EQ(download_raw(y), narrowed);
+    model.product(pd, y);
+    EXPECT_EQ(download_raw(y), narrowed) << "not deterministic";
+    model.set_float_products(false);
+    model.product(pd, y);
+    EXPECT_EQ(download_raw(y), in_double);
+  }
+}
+
+// The float copies exist only while the products run in float: element
+// matrices and recompute hold none; the assembled variant holds its blocks'
+// copy (9 floats per stored block), the cached one its cache's.
+TEST(FemOperator, FloatProductsHoldFloatCopiesOnlyWithTheirVariants) {
   const Scene& s = scenes()[1];
   solver::ElasticModel<double> model(device_for(Precision::double_), s.mesh, s.rest,
-                                     uniform_material(s.mesh, s.material), ProductVariant::assembled);
-  const size_t bytes = model.memory_bytes();
+                                     uniform_material(s.mesh, s.material), ProductVariant::element_matrices);
+  const viennacl::vector<double> xd = upload<double>(s.mesh.positions);
+  model.linearize(xd);
+  const size_t matrices = model.memory_bytes();
   model.set_float_products(true);
   EXPECT_FALSE(model.float_products());
-  EXPECT_EQ(model.memory_bytes(), bytes);
-  model.set_variant(ProductVariant::cached);
+  EXPECT_EQ(model.memory_bytes(), matrices);
+  model.set_float_products(false);
+  model.set_variant(ProductVariant::assembled);
+  model.linearize(xd);
+  const size_t assembled = model.memory_bytes();
+  model.set_float_products(true);
   EXPECT_TRUE(model.float_products());
-  EXPECT_GE(model.memory_bytes(), bytes + model.cache_values() * sizeof(float));
+  EXPECT_EQ(model.memory_bytes(), assembled + s.mesh.vertex_count() * model.assembled_width() * 9 * sizeof(float));
+  model.set_float_products(false);
+  EXPECT_EQ(model.memory_bytes(), assembled);
+  model.set_variant(ProductVariant::cached);
+  const size_t cached = model.memory_bytes();
+  model.set_float_products(true);
+  EXPECT_TRUE(model.float_products());
+  EXPECT_GE(model.memory_bytes(), cached + model.cache_values() * sizeof(float));
 }
 
 // A float model ignores the switch.

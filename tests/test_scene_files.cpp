@@ -67,7 +67,10 @@ TEST(SceneFiles, GmshMeshWithPinnedWallAndGravitySags) {
 }
 
 std::string error_of(const std::string& text) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_bad_scene.json";
+  // A file per test: ctest -j runs the tests of this file side by side.
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() /
+      (std::string("snh_bad_scene_") + ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".json");
   std::ofstream(path) << text;
   try {
     bench::load_scene_file(path.string());

@@ -183,9 +183,11 @@ void ElasticModel<Real>::set_float_products(bool on) {
   float_products_ = on;
   if (!on) {
     product_float_k_ = device::Kernel();
+    stencil_product_float_k_ = device::Kernel();
     cache_float_.reset();
     gradients_float_.reset();
     weights_float_.reset();
+    stencil_float_.reset();
     return;
   }
   prepare_float_products();
@@ -193,11 +195,21 @@ void ElasticModel<Real>::set_float_products(bool on) {
 
 template <typename Real>
 void ElasticModel<Real>::prepare_float_products() {
-  // Made when the products first run in float (the cached variant): other
-  // variants hold no float copies.
-  if (!float_products() || cache_float_) return;
+  // Made when the products first run in float (the cached or assembled
+  // variant): other variants hold no float copies.
+  if (!float_products()) return;
+  if (!narrow_k_) narrow_k_ = cl_.kernel("fem.cl", defines_, "snh_narrow");
+  if (variant_ == ProductVariant::assembled) {
+    // The blocks assembled so far, if any (else the next assembly writes
+    // their float copy as it goes).
+    if (stencil_ && !stencil_float_) {
+      make_stencil_float();
+      narrow(stencil_.get(), static_cast<size_t>(vertex_count_) * stencil_width_ * 9, stencil_float_);
+    }
+    return;
+  }
+  if (cache_float_) return;
   product_float_k_ = float_product_kernel();
-  narrow_k_ = cl_.kernel("fem.cl", defines_, "snh_narrow");
   narrow(gradients_.get(), device::OpenClContext::bytes(gradients_.get()) / sizeof(Real), gradients_float_);
   narrow(weights_.get(), device::OpenClContext::bytes(weights_.get()) / sizeof(Real), weights_float_);
   // This linearization's cache, if any (else the next linearize() writes it).
@@ -218,6 +230,16 @@ template <typename Real>
 device::Kernel ElasticModel<Real>::float_product_kernel() const {
   return float_product_lanes() ? point_kernel("snh_element_product_cached", " -DSNH_MIXED=1")
                                : cl_.kernel("fem.cl", defines_ + " -DSNH_MIXED=1", "snh_element_product_cached");
+}
+
+template <typename Real>
+void ElasticModel<Real>::make_stencil_float() {
+  if (!stencil_product_float_k_)
+    stencil_product_float_k_ =
+        cl_.kernel("stencil.cl", elastic_defines_ + " -DSNH_MATRIX_FLOAT=1", "snh_stencil_product");
+  if (!stencil_float_)
+    stencil_float_ =
+        cl_.buffer(CL_MEM_READ_WRITE, static_cast<size_t>(vertex_count_) * stencil_width_ * 9 * sizeof(float));
 }
 
 template <typename Real>
@@ -247,7 +269,7 @@ size_t ElasticModel<Real>::variant_memory_bytes() const {
       return dofs() * sizeof(Real);  // the linearization point x
     case ProductVariant::element_matrices:
       return cache + element_count_ * m * sizeof(Real);
-    case ProductVariant::assembled:  // the blocks and their neighbour table (and the assembly's tables)
+    case ProductVariant::assembled:  // the blocks (and their float copy), the neighbour and assembly tables
       return cache + element_count_ * m * sizeof(Real) + stencil_memory_bytes();
     default:  // cached: the cache, and its float copy with float products
       return cache + (float_products() ? cache_values() * sizeof(float) : 0);
@@ -257,7 +279,8 @@ size_t ElasticModel<Real>::variant_memory_bytes() const {
 template <typename Real>
 size_t ElasticModel<Real>::stencil_memory_bytes() const {
   size_t bytes = 0;
-  for (const device::Buffer* b : {&stencil_, &stencil_neighbours_, &stencil_part_offsets_, &stencil_parts_})
+  for (const device::Buffer* b :
+       {&stencil_, &stencil_float_, &stencil_neighbours_, &stencil_part_offsets_, &stencil_parts_})
     if (*b) bytes += device::OpenClContext::bytes(b->get());
   return bytes;
 }
@@ -357,6 +380,8 @@ void ElasticModel<Real>::assemble() {
   set_arg(k, 2, stencil_parts_.get());
   set_arg(k, 3, blocks);
   set_arg(k, 4, stencil_.get());
+  if (float_products()) make_stencil_float();
+  set_arg(k, 5, float_products() ? stencil_float_.get() : cl_mem{nullptr});
   cl_.run(k, static_cast<size_t>(blocks));
   cl_.finish();
   last_assembly_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -782,7 +807,8 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   set_arg(k, next, projected_);
   set_arg(k, next + 1, cache_.get());
   // Double: the cache's float copy for float products (null: none).
-  if (sizeof(Real) > sizeof(float)) set_arg(k, next + 2, float_products() ? cache_float_.get() : cl_mem{nullptr});
+  if (sizeof(Real) > sizeof(float))
+    set_arg(k, next + 2, float_products() && variant_ == ProductVariant::cached ? cache_float_.get() : cl_mem{nullptr});
   run_point_kernel(k, point_lanes_);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
   last_assembly_seconds_ = 0.0;
@@ -798,11 +824,13 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   if (variant_ == ProductVariant::assembled) {
     // y = mask * (K p) from the blocks (kernels/stencil.cl); the per-vertex
     // terms then as after the element products (mask * mask = mask).
-    cl_kernel sk = stencil_product_k_.get();
+    // Float products: the float blocks, with p and y in double.
+    const bool narrow = float_products();
+    cl_kernel sk = narrow ? stencil_product_float_k_.get() : stencil_product_k_.get();
     const int vertices = static_cast<int>(vertex_count_);
     set_arg(sk, 0, mem(p));
     set_arg(sk, 1, stencil_neighbours_.get());
-    set_arg(sk, 2, stencil_.get());
+    set_arg(sk, 2, narrow ? stencil_float_.get() : stencil_.get());
     set_arg(sk, 3, mask_.get());
     set_arg(sk, 4, vertices);
     set_arg(sk, 5, stencil_width_);

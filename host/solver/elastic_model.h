@@ -201,17 +201,22 @@ class ElasticModel {
   // materials per region (throws snh::Error).
   void set_point_lanes(bool on);
   bool point_lanes() const { return point_lanes_; }
-  // Mixed precision, double models with the cached variant: CG's products
-  // in float (kernels/snh_portable.h, SNH_MIXED). Each linearize() narrows
-  // its cache to float (the rest gradients and weights once, here); the
-  // product reads p and writes its per-element values in double, and the
-  // gather, the vertex terms, the energy, the residual, the linearization
-  // and the preconditioners keep double. A float model, or another
-  // variant, keeps its products in the working precision.
+  // Mixed precision, double models with the cached or the assembled
+  // variant: CG's products in float. Cached (kernels/snh_portable.h,
+  // SNH_MIXED): each linearize() writes its cache's float copy too (the rest
+  // gradients and weights are narrowed once, here); the product reads p and
+  // writes its per-element values in double. Assembled: each linearize()
+  // narrows the assembled blocks to float, and the stencil product reads
+  // them with double p and y (SNH_MATRIX_FLOAT). The gather, the vertex
+  // terms, the energy, the residual, the linearization and the
+  // preconditioners keep double. A float model, or another variant, keeps
+  // its products in the working precision.
   void set_float_products(bool on);
-  // Whether the products run in float now (set, a double model, the cached variant).
+  // Whether the products run in float now (set, a double model, the cached
+  // or assembled variant).
   bool float_products() const {
-    return float_products_ && sizeof(Real) > sizeof(float) && variant_ == ProductVariant::cached;
+    return float_products_ && sizeof(Real) > sizeof(float) &&
+           (variant_ == ProductVariant::cached || variant_ == ProductVariant::assembled);
   }
   bool point_lanes_available() const;
   // The lanes program and the value-major hex8 point data (PointDataLayout)
@@ -272,8 +277,9 @@ class ElasticModel {
   // set_float_products: the SNH_MIXED product, the narrowing kernel and the
   // float copies of the cache, gradients and weights.
   bool float_products_ = false;
-  device::Kernel product_float_k_, narrow_k_;
-  device::Buffer cache_float_, gradients_float_, weights_float_;
+  device::Kernel product_float_k_, narrow_k_, stencil_product_float_k_;
+  device::Buffer cache_float_, gradients_float_, weights_float_, stencil_float_;
+  void make_stencil_float();                                    // the float blocks' buffer and product kernel, once
   void narrow(cl_mem from, size_t values, device::Buffer& to);  // to (made if empty) <- (float)from
   bool float_product_lanes() const;                             // the mixed product runs fem_lanes.cl's kernel
   device::Kernel float_product_kernel() const;                  // the SNH_MIXED cached product

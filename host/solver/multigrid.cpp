@@ -240,6 +240,7 @@ void MultigridPreconditioner<Real>::assemble_stencil(int level) {
   set_arg(k, 2, L.parts.get());
   set_arg(k, 3, blocks);
   set_arg(k, 4, L.stencil.get());
+  set_arg(k, 5, cl_mem{nullptr});
   cl_.run(k, static_cast<size_t>(blocks));
 }
 

@@ -349,13 +349,14 @@ struct SolveOptions {
   // Mixed precision in double solves: the precision of CG's Hessian
   // products. float: the cached variant's products read a float copy of
   // each linearization and compute in float (kernels/snh_portable.h,
-  // SNH_MIXED), while CG's vectors, the residual, the energy, the
-  // linearization and the preconditioners stay double, so Newton converges
-  // to double's tolerance; other variants keep double. Unset: float, as
-  // measured (the products' time halved, twist and stretch res 32 5-12%
-  // faster in all, the same Newton counts; README, "Multigrid on hex8
-  // lattices", session 20). Ignored in float. Reported in
-  // SolveResult::product_precision.
+  // SNH_MIXED), the assembled variant's read a float copy of its blocks,
+  // while CG's vectors, the residual, the energy, the linearization and the
+  // preconditioners stay double, so Newton converges to double's
+  // tolerance; element_matrices and recompute keep double. Unset: float,
+  // as measured (the products' time halved for cached hex8, 1.5x faster for
+  // assembled; twist and stretch res 32 5-16% faster in all; README,
+  // "Multigrid on hex8 lattices", sessions 20 and 21). Ignored in float.
+  // Reported in SolveResult::product_precision.
   std::optional<Precision> product_precision;
   HessianMode hessian = HessianMode::adaptive;
   // Lumped external force, xyz per vertex; empty for none.
