@@ -19,7 +19,9 @@
  *                     per-contact differences d_c = a_c^T u and their
  *                     per-vertex gather k a_i d_c in the same kernels
  *   SNH_MIXED         a double solve's products in float (snh_portable.h):
- *                     the program holds snh_element_product_cached alone
+ *                     the program holds snh_element_product_cached and
+ *                     snh_element_matrices (the multigrid's float fine level
+ *                     from the float copies) alone
  * Element kernels write per-element nodal values; gather kernels sum them per
  * vertex over a fixed adjacency order, so results are bitwise reproducible
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
@@ -340,6 +342,8 @@ __kernel void snh_block_jacobi_apply(__global const real* inverse, __global cons
     z[3 * v + i] = inverse[9 * v + i] * r0 + inverse[9 * v + 3 + i] * r1 + inverse[9 * v + 6 + i] * r2;
 }
 
+#endif /* !SNH_MIXED */
+
 /* Per element, the projected stiffness K_e = sum_q w_q B_q^T H_q B_q
  * (24 x 24 for hex8, 12 x 12 for tet4), column-major:
  * out[e * (3N)^2 + (3 b + d) * 3N + 3 a + i]. Column (b, d) is the response
@@ -348,7 +352,7 @@ __kernel void snh_block_jacobi_apply(__global const real* inverse, __global cons
  * block-Jacobi preconditioner's, as snh_element_diagonal writes them). */
 __kernel void snh_element_matrices(__global const int* elements, __global const real* gradients,
                                    __global const real* weights, const int count, __global const real* cache,
-                                   __global matrix_real* out, __global real* diagonal_blocks) {
+                                   __global matrix_real* out, __global vector_real* diagonal_blocks) {
   const int e = get_global_id(0);
   if (e >= count) return;
   element_linearization l;
@@ -357,7 +361,7 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
    * the points in private memory and written at both places; its diagonal
    * block's entries go to the block-Jacobi blocks as well. */
   __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
-  __global real* blocks = diagonal_blocks + (size_t)9 * SNH_NODES * e;
+  __global vector_real* blocks = diagonal_blocks + (size_t)9 * SNH_NODES * e;
   for (int b = 0; b < SNH_NODES; ++b)
     for (int d = 0; d < 3; ++d) {
       real column[SNH_DOFS];
@@ -366,6 +370,8 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
       for (int i = d; i < 3; ++i) blocks[9 * b + 3 * d + i] = blocks[9 * b + 3 * i + d] = column[3 * b + i];
     }
 }
+
+#if !SNH_MIXED
 
 /* y_e = K_e p_e from the stored element matrices. */
 __kernel void snh_element_matrix_product(__global const real* p, __global const int* elements,

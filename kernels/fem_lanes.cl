@@ -308,15 +308,19 @@ __kernel void snh_element_product_recompute(__global const scalar_real* p, __glo
   lanes_store_per_element(y, 3 * SNH_NODES, w, count, out);
 }
 
+#endif /* !SNH_MIXED */
+
 /* fem.cl's snh_element_matrices: the stiffness from the cached
  * linearization, column by column (element.h's rank-one columns), its lower
  * triangle only (element_matrix_store mirrors it), the points in lanes; a
  * hex8 column's points summed in the scalar kernel's order. (The lower
- * triangle only: twist res 32 multigrid, 14 builds, 0.435 -> 0.375 s.) */
+ * triangle only: twist res 32 multigrid, 14 builds, 0.435 -> 0.375 s.)
+ * SNH_MIXED: from the float copies, in float, the diagonal blocks written
+ * in double (a double solve's multigrid fine level with float products). */
 __kernel void snh_element_matrices(__global const int* elements, __global const scalar_real* gradients,
                                    __global const scalar_real* weights, const int count,
                                    __global const scalar_real* cache, __global matrix_real* out,
-                                   __global scalar_real* diagonal_blocks) {
+                                   __global vector_real* diagonal_blocks) {
   (void)elements;
   const size_t w = get_global_id(0);
   if (!LANES_ACTIVE(w, count)) return;
@@ -334,7 +338,7 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
       element_column_scatter_from(element_column_frame(&h, vg, b, d), vg, qw, b, column);
 #if SNH_HEX8
       __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * w;
-      __global scalar_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * w + 9 * b;
+      __global vector_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * w + 9 * b;
       for (int i = 3 * b + d; i < SNH_DOFS; ++i) {
         scalar_real sum = LANE(column[i], 0);
         SNH_UNROLL
@@ -346,15 +350,13 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
       for (int l = 0; l < lanes; ++l) {
         const size_t e = 8 * w + l;
         __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
-        __global scalar_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * e + 9 * b;
+        __global vector_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * e + 9 * b;
         for (int i = 3 * b + d; i < SNH_DOFS; ++i) element_matrix_store(k, SNH_DOFS, 3 * b + d, i, LANE(column[i], l));
         for (int i = d; i < 3; ++i) block[3 * d + i] = block[3 * i + d] = LANE(column[3 * b + i], l);
       }
 #endif
     }
 }
-
-#endif /* !SNH_MIXED */
 
 /* fem.cl's snh_element_product_cached: the linearization read back into
  * lanes. */

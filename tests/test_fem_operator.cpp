@@ -387,6 +387,59 @@ TEST(FemOperator, AssembledFloatProductsMeetTheFloatBoundInDoubleModels) {
   }
 }
 
+// The multigrid's float fine-level matrices (element_matrices_into with
+// single_precision): with float products on, computed in float from the
+// cache's float copy. They stay exactly symmetric, within the float bound
+// of the ones computed in double and stored in float (relative to the
+// largest entry), not equal to them (the float path ran), deterministic,
+// and their diagonal blocks (written in double) agree with their entries.
+TEST(FemOperator, FloatMatricesFromTheFloatCopiesMeetTheFloatBound) {
+  Tolerance<float> tolerance;
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    const Scene& s = *c.scene;
+    device::OpenClContext& cl = device_for(Precision::double_);
+    solver::ElasticModel<double> model(cl, s.mesh, s.rest, uniform_material(s.mesh, s.material),
+                                       ProductVariant::cached);
+    const size_t n = 3 * static_cast<size_t>(s.rest.nodes), ne = s.mesh.element_count();
+    device::Buffer kd = cl.buffer(CL_MEM_READ_WRITE, ne * n * n * sizeof(float));
+    device::Buffer bd = cl.buffer(CL_MEM_READ_WRITE, ne * 3 * n * sizeof(double));
+    auto matrices = [&](std::vector<double>* blocks) {
+      model.element_matrices_into(kd.get(), bd.get(), true);
+      std::vector<float> k(ne * n * n);
+      cl.read(kd.get(), k.size() * sizeof(float), k.data());
+      if (blocks) {
+        blocks->resize(ne * 3 * n);
+        cl.read(bd.get(), blocks->size() * sizeof(double), blocks->data());
+      }
+      return k;
+    };
+    model.linearize(upload<double>(c.x));
+    const std::vector<float> from_double = matrices(nullptr);
+    model.set_float_products(true);
+    model.linearize(upload<double>(c.x));
+    std::vector<double> blocks;
+    const std::vector<float> from_copies = matrices(&blocks);
+    EXPECT_EQ(matrices(nullptr), from_copies) << "not deterministic";
+    double largest = 0.0, worst = 0.0;
+    for (size_t i = 0; i < from_copies.size(); ++i) {
+      largest = std::max(largest, std::abs(static_cast<double>(from_double[i])));
+      worst = std::max(worst, std::abs(static_cast<double>(from_copies[i]) - from_double[i]));
+    }
+    EXPECT_GT(worst, 0.0) << "the float path did not run";
+    tolerance.check(worst / largest, s, c.name);
+    for (size_t e = 0; e < ne; ++e)
+      for (size_t col = 0; col < n; ++col)
+        for (size_t row = 0; row < n; ++row) {
+          const float kc = from_copies[e * n * n + col * n + row];
+          ASSERT_EQ(kc, from_copies[e * n * n + row * n + col]) << "element " << e;
+          if (row / 3 == col / 3) {  // the node's diagonal block, column-major [e][9 a + 3 d + i]
+            ASSERT_EQ(blocks[e * 3 * n + 9 * (col / 3) + 3 * (col % 3) + row % 3], static_cast<double>(kc));
+          }
+        }
+  }
+}
+
 // The float copies exist only while the products run in float: element
 // matrices and recompute hold none; the assembled variant holds its blocks'
 // copy (9 floats per stored block), the cached one its cache's.

@@ -174,6 +174,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   if (product_float_k_) product_float_k_ = float_product_kernel();
   matrices_k_ = point_kernel("snh_element_matrices");
   matrices_float_k_ = device::Kernel();
+  matrices_mixed_k_ = device::Kernel();
   diagonal_k_ = point_kernel("snh_element_diagonal");
 }
 
@@ -337,15 +338,22 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
     cl_.copy(element_blocks_.get(), diagonal_blocks, element_count_ * 9 * nodes * sizeof(Real));
     return;
   }
-  if (single_precision && !matrices_float_k_)
-    matrices_float_k_ = point_kernel("snh_element_matrices", " -DSNH_MATRIX_FLOAT=1");
-  cl_kernel k = single_precision ? matrices_float_k_.get() : matrices_k_.get();
+  // Float matrices in a model with float products (the cached variant's
+  // float copies): computed in float from those copies (SNH_MIXED), the
+  // diagonal blocks still written in double; else in the working precision
+  // and stored in float.
+  const bool from_copies = single_precision && float_products() && variant_ == ProductVariant::cached;
+  device::Kernel& float_kernel = from_copies ? matrices_mixed_k_ : matrices_float_k_;
+  if (single_precision && !float_kernel)
+    float_kernel = point_kernel("snh_element_matrices",
+                                from_copies ? " -DSNH_MIXED=1 -DSNH_MATRIX_FLOAT=1" : " -DSNH_MATRIX_FLOAT=1");
+  cl_kernel k = single_precision ? float_kernel.get() : matrices_k_.get();
   const int count = static_cast<int>(element_count_);
   set_arg(k, 0, elements_.get());
-  set_arg(k, 1, gradients_.get());
-  set_arg(k, 2, weights_.get());
+  set_arg(k, 1, from_copies ? gradients_float_.get() : gradients_.get());
+  set_arg(k, 2, from_copies ? weights_float_.get() : weights_.get());
   set_arg(k, 3, count);
-  set_arg(k, 4, cache_.get());
+  set_arg(k, 4, from_copies ? cache_float_.get() : cache_.get());
   set_arg(k, 5, matrices);
   set_arg(k, 6, diagonal_blocks);
   run_point_kernel(k, point_lanes_);

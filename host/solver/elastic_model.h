@@ -173,7 +173,9 @@ class ElasticModel {
   // snh_element_matrices writes them), whatever the product variant. With
   // single_precision (double builds), the matrices in float, exactly
   // symmetric (kernels/fem/element.h, SNH_MATRIX_FLOAT); the blocks stay in
-  // the working precision.
+  // the working precision. With float products on (the cached variant)
+  // those float matrices are computed in float from the cache's float copy
+  // (SNH_MIXED; multigrid's built fine level).
   void element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks, bool single_precision = false) const;
   // The per-vertex terms a multigrid's coarse levels take in (solver/multigrid.h):
   // the terms built in, the elastic energy's scale (implicit Euler's), the
@@ -274,6 +276,7 @@ class ElasticModel {
   bool point_lanes_ = false;
   bool cached_lanes_ = false;                // the cached product's kernel is fem_lanes.cl's
   mutable device::Kernel matrices_float_k_;  // built at its first use
+  mutable device::Kernel matrices_mixed_k_;  // the same from the float copies (float products), likewise
   // set_float_products: the SNH_MIXED product, the narrowing kernel and the
   // float copies of the cache, gradients and weights.
   bool float_products_ = false;
