@@ -20,6 +20,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -298,24 +299,26 @@ TEST(FemOperator, ProductMatchesAssembledStiffnessDouble) { check_product<double
 TEST(FemOperator, ProductMatchesAssembledStiffnessFloat) { check_product<float>(); }
 
 // Mixed precision (ElasticModel::set_float_products): a double model whose
-// cached product runs in float on a float copy of the double linearization,
-// p and the result in double. Against the reference at the unrounded
-// inputs it must meet the float bound, and it must differ from the double
+// products run in float on float copies of the double linearization (the
+// cached variant's cache, the assembled one's blocks), p and the result in
+// double. For both variants, against the reference at the unrounded inputs
+// the product must meet the float bound, and it must differ from the double
 // product by more than the double bound (the float kernel ran). The float
 // copy that linearize() writes must equal the one set_float_products()
-// narrows from an existing cache, value for value; the lanes and scalar
-// kernels must agree value for value too (the same float operations in the
-// same order, fem_lanes.cl); and a model switched back off must give the
-// double product again, bit for bit.
-TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
+// narrows from what exists, value for value; the product is deterministic;
+// and a model switched back off must give the double product again, bit for
+// bit. `more` runs the variant's own checks while the products are float.
+using FloatProductChecks = std::function<void(solver::ElasticModel<double>&, const viennacl::vector<double>& xd,
+                                              const viennacl::vector<double>& pd, const std::vector<double>& narrowed)>;
+
+void check_float_products(ProductVariant variant, uint64_t seed, const FloatProductChecks& more) {
   Tolerance<float> tolerance;
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     const Scene& s = *c.scene;
-    device::OpenClContext& cl = device_for(Precision::double_);
-    const MaterialMap map = uniform_material(s.mesh, s.material);
-    solver::ElasticModel<double> model(cl, s.mesh, s.rest, map, ProductVariant::cached);
-    const std::vector<double> p = random_vector(c.x.size(), 1.0, 777);
+    solver::ElasticModel<double> model(device_for(Precision::double_), s.mesh, s.rest,
+                                       uniform_material(s.mesh, s.material), variant);
+    const std::vector<double> p = random_vector(c.x.size(), 1.0, seed);
     const std::vector<double> expected =
         multiply(reference::assembled_projected_stiffness(s.mesh, s.rest, s.material, c.x), p);
     const viennacl::vector<double> xd = upload<double>(c.x), pd = upload<double>(p);
@@ -324,7 +327,7 @@ TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
     model.product(pd, y);
     const std::vector<double> in_double = download_raw(y);
     EXPECT_FALSE(model.float_products());
-    model.set_float_products(true);  // narrows the existing cache
+    model.set_float_products(true);  // narrows what the linearization above made
     ASSERT_TRUE(model.float_products());
     model.product(pd, y);
     const std::vector<double> narrowed = download_raw(y);
@@ -335,14 +338,7 @@ TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
     EXPECT_EQ(download_raw(y), narrowed);
     model.product(pd, y);
     EXPECT_EQ(download_raw(y), narrowed) << "not deterministic";
-    model.set_point_lanes(!model.point_lanes());
-    model.linearize(xd);
-    model.product(pd, y);
-    EXPECT_EQ(download_raw(y), narrowed) << "lanes and scalar kernels differ";
-    // Other variants keep double.
-    model.set_variant(ProductVariant::recompute);
-    EXPECT_FALSE(model.float_products());
-    model.set_variant(ProductVariant::cached);
+    more(model, xd, pd, narrowed);
     model.set_float_products(false);
     model.linearize(xd);
     model.product(pd, y);
@@ -350,41 +346,32 @@ TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
   }
 }
 
-// The assembled variant's float products: the blocks narrowed to float and
-// multiplied with double p and y meet the float bound against the assembled
-// reference, sit more than the double bound away from the double product,
-// are made again by each linearize() to the same values, are
-// deterministic, and switched off give the double product bit for bit.
+// The cached variant's lanes and scalar kernels agree value for value (the
+// same float operations in the same order, fem_lanes.cl), and other
+// variants keep double.
+TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
+  check_float_products(ProductVariant::cached, 777,
+                       [](solver::ElasticModel<double>& model, const viennacl::vector<double>& xd,
+                          const viennacl::vector<double>& pd, const std::vector<double>& narrowed) {
+                         viennacl::vector<double> y(model.dofs());
+                         if (model.point_lanes_available()) {
+                           model.set_point_lanes(!model.point_lanes());
+                           model.linearize(xd);
+                           model.product(pd, y);
+                           EXPECT_EQ(download_raw(y), narrowed) << "lanes and scalar kernels differ";
+                         }
+                         model.set_variant(ProductVariant::recompute);
+                         EXPECT_FALSE(model.float_products());
+                         model.set_variant(ProductVariant::cached);
+                       });
+}
+
+// The assembled variant: the blocks narrowed to float and multiplied with
+// double p and y.
 TEST(FemOperator, AssembledFloatProductsMeetTheFloatBoundInDoubleModels) {
-  Tolerance<float> tolerance;
-  for (const Case& c : cases()) {
-    SCOPED_TRACE(c.name);
-    const Scene& s = *c.scene;
-    solver::ElasticModel<double> model(device_for(Precision::double_), s.mesh, s.rest,
-                                       uniform_material(s.mesh, s.material), ProductVariant::assembled);
-    const std::vector<double> p = random_vector(c.x.size(), 1.0, 778);
-    const std::vector<double> expected =
-        multiply(reference::assembled_projected_stiffness(s.mesh, s.rest, s.material, c.x), p);
-    const viennacl::vector<double> xd = upload<double>(c.x), pd = upload<double>(p);
-    viennacl::vector<double> y(model.dofs());
-    model.linearize(xd);
-    model.product(pd, y);
-    const std::vector<double> in_double = download_raw(y);
-    model.set_float_products(true);  // narrows the blocks assembled above
-    ASSERT_TRUE(model.float_products());
-    model.product(pd, y);
-    const std::vector<double> narrowed = download_raw(y);
-    tolerance.check(relative_difference(narrowed, expected), s, c.name);
-    EXPECT_GT(relative_difference(narrowed, in_double), kDoubleBound);
-    model.linearize(xd);  // assembles and narrows again
-    model.product(pd, y);
-    EXPECT_EQ(download_raw(y), narrowed);
-    model.product(pd, y);
-    EXPECT_EQ(download_raw(y), narrowed) << "not deterministic";
-    model.set_float_products(false);
-    model.product(pd, y);
-    EXPECT_EQ(download_raw(y), in_double);
-  }
+  check_float_products(ProductVariant::assembled, 778,
+                       [](solver::ElasticModel<double>&, const viennacl::vector<double>&,
+                          const viennacl::vector<double>&, const std::vector<double>&) {});
 }
 
 // The multigrid's float fine-level matrices (element_matrices_into with
