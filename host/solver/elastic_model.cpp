@@ -205,11 +205,11 @@ void ElasticModel<Real>::prepare_float_products() {
     // their float copy as it goes).
     if (stencil_ && !stencil_float_) {
       make_stencil_float();
-      narrow(stencil_.get(), static_cast<size_t>(vertex_count_) * stencil_width_ * 9, stencil_float_);
+      narrow(stencil_.get(), stencil_values(), stencil_float_);
     }
     return;
   }
-  if (cache_float_) return;
+  if (!float_cache() || cache_float_) return;
   product_float_k_ = float_product_kernel();
   narrow(gradients_.get(), device::OpenClContext::bytes(gradients_.get()) / sizeof(Real), gradients_float_);
   narrow(weights_.get(), device::OpenClContext::bytes(weights_.get()) / sizeof(Real), weights_float_);
@@ -238,9 +238,7 @@ void ElasticModel<Real>::make_stencil_float() {
   if (!stencil_product_float_k_)
     stencil_product_float_k_ =
         cl_.kernel("stencil.cl", elastic_defines_ + " -DSNH_MATRIX_FLOAT=1", "snh_stencil_product");
-  if (!stencil_float_)
-    stencil_float_ =
-        cl_.buffer(CL_MEM_READ_WRITE, static_cast<size_t>(vertex_count_) * stencil_width_ * 9 * sizeof(float));
+  if (!stencil_float_) stencil_float_ = cl_.buffer(CL_MEM_READ_WRITE, stencil_values() * sizeof(float));
 }
 
 template <typename Real>
@@ -342,7 +340,7 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
   // float copies): computed in float from those copies (SNH_MIXED), the
   // diagonal blocks still written in double; else in the working precision
   // and stored in float.
-  const bool from_copies = single_precision && float_products() && variant_ == ProductVariant::cached;
+  const bool from_copies = single_precision && float_cache();
   device::Kernel& float_kernel = from_copies ? matrices_mixed_k_ : matrices_float_k_;
   if (single_precision && !float_kernel)
     float_kernel = point_kernel("snh_element_matrices",
@@ -382,7 +380,7 @@ void ElasticModel<Real>::assemble() {
     stencil_product_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_product");
   }
   cl_kernel k = stencil_assemble_k_.get();
-  const int blocks = static_cast<int>(vertex_count_) * stencil_width_;
+  const int blocks = static_cast<int>(stencil_values() / 9);
   set_arg(k, 0, element_matrices_.get());
   set_arg(k, 1, stencil_part_offsets_.get());
   set_arg(k, 2, stencil_parts_.get());
@@ -815,8 +813,7 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   set_arg(k, next, projected_);
   set_arg(k, next + 1, cache_.get());
   // Double: the cache's float copy for float products (null: none).
-  if (sizeof(Real) > sizeof(float))
-    set_arg(k, next + 2, float_products() && variant_ == ProductVariant::cached ? cache_float_.get() : cl_mem{nullptr});
+  if (sizeof(Real) > sizeof(float)) set_arg(k, next + 2, float_cache() ? cache_float_.get() : cl_mem{nullptr});
   run_point_kernel(k, point_lanes_);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
   last_assembly_seconds_ = 0.0;
@@ -868,7 +865,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(k, 3, count);
     set_arg(k, 4, element_scratch_.get());
   } else if (variant_ == ProductVariant::cached) {
-    const bool narrow = float_products();
+    const bool narrow = float_cache();
     k = narrow ? product_float_k_.get() : product_cached_k_.get();
     set_arg(k, 0, mem(p));
     set_arg(k, 1, elements_.get());

@@ -287,6 +287,8 @@ class ElasticModel {
   bool float_product_lanes() const;                             // the mixed product runs fem_lanes.cl's kernel
   device::Kernel float_product_kernel() const;                  // the SNH_MIXED cached product
   void prepare_float_products();                                // the above, once float_products() holds
+  // The cached variant's products read the float copies now.
+  bool float_cache() const { return float_products() && variant_ == ProductVariant::cached; }
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
       element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
   bool has_external_ = false;
@@ -298,6 +300,8 @@ class ElasticModel {
   device::Buffer stencil_, stencil_neighbours_, stencil_part_offsets_, stencil_parts_;
   device::Kernel stencil_assemble_k_, stencil_product_k_;
   int stencil_width_ = 0;
+  // The stencil's stored values: 9 per block, stencil_width_ blocks per vertex.
+  size_t stencil_values() const { return vertex_count_ * static_cast<size_t>(stencil_width_) * 9; }
   size_t stencil_memory_bytes() const;
   std::vector<int> elements_host_;
   double last_min_j_ = 0.0;
