@@ -223,7 +223,7 @@ SolveOptions series_options(const Scene& scene, const ErrtimeOptions& o) {
   options.relative_tolerance = 0.0;
   options.max_newton_iterations = std::max(options.max_newton_iterations, 100);
   options.product = parse_product_variant(o.variant);
-  options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
+  options.hessian = parse_hessian_mode(o.hessian);
   return options;
 }
 

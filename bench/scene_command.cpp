@@ -245,8 +245,7 @@ int run_scene(const SceneOptions& given) {
     }
     if (o.given.count("--variant")) options.product = parse_product_variant(o.variant);
     if (o.given.count("--preconditioner")) options.preconditioner = parse_preconditioner(o.preconditioner);
-    if (o.given.count("--hessian"))
-      options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
+    if (o.given.count("--hessian")) options.hessian = parse_hessian_mode(o.hessian);
     if (o.steps > 0) options.load_steps = o.steps;
     apply_solver_limits(o, options);
     o.multigrid.apply(options.multigrid);
@@ -273,7 +272,7 @@ int run_scene(const SceneOptions& given) {
     options.preconditioner = parse_preconditioner(o.preconditioner);
     o.multigrid.apply(options.multigrid);
     apply_solver_limits(o, options);
-    options.hessian = o.hessian == "projected" ? HessianMode::projected : HessianMode::adaptive;
+    options.hessian = parse_hessian_mode(o.hessian);
     snh::MaterialOptions material_options;
     material_options.barrier = p.barrier;
     material_options.alpha = o.alpha;

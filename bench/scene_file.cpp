@@ -408,8 +408,11 @@ SceneFile load_scene_file(const std::string& path) {
   } catch (const Error& error) {
     throw Error(path + ": solver.preconditioner: " + error.what());
   }
-  s.options.hessian =
-      r.text(solver, "solver", "hessian", "adaptive") == "projected" ? HessianMode::projected : HessianMode::adaptive;
+  try {
+    s.options.hessian = parse_hessian_mode(r.text(solver, "solver", "hessian", "adaptive"));
+  } catch (const Error& error) {
+    throw Error(path + ": solver.hessian: " + error.what());
+  }
   // SolveOptions::product_precision; absent or "automatic": unset.
   const std::string product_precision = r.text(solver, "solver", "product_precision", "automatic");
   try {

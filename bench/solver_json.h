@@ -22,7 +22,7 @@ void add_solver_json(nlohmann::ordered_json& j, const SolveOptions& options, con
     j["multigrid_smoother_degree"] = r.multigrid_smoother_degree;  // as used (automatic resolved)
     j["multigrid_chebyshev"] = to_string(r.multigrid_chebyshev);
   }
-  j["hessian"] = options.hessian == HessianMode::adaptive ? "adaptive" : "projected";
+  j["hessian"] = to_string(options.hessian);
 }
 
 }  // namespace snh::bench

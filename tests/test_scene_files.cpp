@@ -85,6 +85,8 @@ TEST(SceneFiles, BadFilesNameTheKey) {
   EXPECT_NE(error_of("{" + mesh + R"(, "materail": {}})").find("scene.materail: unknown key"), std::string::npos);
   EXPECT_NE(error_of("{" + mesh + R"(, "solver": {"steps": "two"}})").find("solver.steps: expected an integer"),
             std::string::npos);
+  EXPECT_NE(error_of("{" + mesh + R"(, "solver": {"hessian": "exact"}})").find("solver.hessian: hessian: expected"),
+            std::string::npos);
   EXPECT_NE(error_of("{" + mesh + R"(, "material": {"nu": "half"}})").find("material.nu: expected a number"),
             std::string::npos);
   EXPECT_NE(error_of("{" + mesh + R"(, "constraints": [{"select": {"plane": {"axis": "z", "value": 7}}}]})")

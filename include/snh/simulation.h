@@ -223,6 +223,9 @@ enum class HessianMode {
   adaptive,
 };
 
+const char* to_string(HessianMode m);                     // "projected", "adaptive"
+HessianMode parse_hessian_mode(const std::string& text);  // the names above
+
 // Implicit (backward) Euler time stepping, each step the minimization of the
 // incremental potential (Simulation::solve with dynamics; README "Dynamics
 // and obstacles"): with h = time_step / substeps, x~ = x_n + h v_n,
