@@ -105,7 +105,7 @@ __kernel void snh_element_linearize(__global const real* x, __global const int* 
 #if SNH_DOUBLE
   if (cache_float)
     linearization_copy_float(SNH_CACHE_AT(cache, e, 0), SNH_LINEARIZATION_SIZE * SNH_QUADRATURE,
-                             SNH_CACHE_AT(cache_float, e, 0));
+                             SNH_CACHE_ELEMENT_STRIDE, SNH_CACHE_AT(cache_float, e, 0));
 #endif
 }
 

@@ -27,6 +27,9 @@
 #if SNH_LANES != 8 || (!SNH_HEX8 && SNH_REGIONS)
 #error "fem_lanes.cl: SNH_LANES = 8, and tet4 only without SNH_REGIONS (a material per work-item)"
 #endif
+#if SNH_CACHE_TILE != 1
+#error "fem_lanes.cl: the value-major or point-major cache, not the tiled one (SNH_CACHE_TILE)"
+#endif
 
 #if SNH_UNIFORM_REST
 #define REST_ELEMENT(e) 0
@@ -283,7 +286,7 @@ __kernel void snh_element_linearize(__global const scalar_real* x, __global cons
   lanes_linearization_store(&h, LANES_STORED(w, count), cache + first);
 #if SNH_DOUBLE
   if (cache_float)
-    linearization_copy_float(cache + first, SNH_LINEARIZATION_SIZE * LANES_STORED(w, count), cache_float + first);
+    linearization_copy_float(cache + first, SNH_LINEARIZATION_SIZE * LANES_STORED(w, count), 1, cache_float + first);
 #endif
 }
 

@@ -378,8 +378,8 @@ void expect_galerkin_coarse_operators(solver::ElasticModel<double>& model,
 
 // From the linearization cache (cached variant) and from the fine element
 // matrices (element-matrices variant), projected and true Hessian, with
-// either layout of the hex8 per-point data (the CPUs' and the GPUs'
-// default).
+// each layout of the per-point data (value-major, the CPUs' default;
+// point-major; tiled, the GPUs' default).
 class CoarseOperator : public ::testing::TestWithParam<std::tuple<ProductVariant, bool, solver::PointDataLayout>> {};
 
 TEST_P(CoarseOperator, IsTheAssembledGalerkinProduct) {
@@ -402,10 +402,12 @@ TEST_P(CoarseOperator, IsTheAssembledGalerkinProduct) {
   expect_galerkin_coarse_operators(model, mg, c.mesh);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Multigrid, CoarseOperator,
-    ::testing::Combine(::testing::Values(ProductVariant::cached, ProductVariant::element_matrices), ::testing::Bool(),
-                       ::testing::Values(solver::PointDataLayout::value_major, solver::PointDataLayout::point_major)));
+INSTANTIATE_TEST_SUITE_P(Multigrid, CoarseOperator,
+                         ::testing::Combine(::testing::Values(ProductVariant::cached, ProductVariant::element_matrices),
+                                            ::testing::Bool(),
+                                            ::testing::Values(solver::PointDataLayout::value_major,
+                                                              solver::PointDataLayout::point_major,
+                                                              solver::PointDataLayout::tiled)));
 
 // With implicit Euler's inertia (and its elastic scale) and a rough obstacle
 // pressing into the top, the first coarse level carries their per-vertex

@@ -178,7 +178,11 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
     for (const auto& [name, map] : maps) {
       SCOPED_TRACE(name + " / " + to_string(mesh.type) + (rest.uniform ? " uniform rest" : " own rest shapes"));
       device::OpenClContext& cl = device_for(precision_of<Real>);
-      solver::ElasticModel<Real> model(cl, mesh, rest, map, ProductVariant::recompute, build);
+      // The lanes program reads the value-major or point-major cache: on a
+      // GPU, whose default is the tiled one, the point-major.
+      solver::ModelTerms terms;
+      if (cl.info().is_gpu) terms.hex8_point_data = solver::PointDataLayout::point_major;
+      solver::ElasticModel<Real> model(cl, mesh, rest, map, ProductVariant::recompute, build, terms);
       // The lanes program is the default on CPU devices (pocl), the scalar
       // kernels (a work-item per element) on GPUs.
       EXPECT_EQ(model.point_lanes(), !cl.info().is_gpu) << cl.info().name;
@@ -276,54 +280,124 @@ TEST(PointLanes, FloatMatchesTheScalarKernels) {
   }
 }
 
-// The two layouts of hex8 per-point data (solver::PointDataLayout: the
+// The layouts of the per-point data (solver::PointDataLayout: the
 // linearization cache, kernels/fem/element.h, and the rest gradients of a
-// mesh with its own rest shapes, kernels/fem/element_data.h) on this test's
-// device: the point-major one (the GPUs' default) holds the value-major
-// one's cache values point by point, and the products, block-Jacobi blocks
-// and element matrices read from either are the same bit for bit, in the
-// lanes program and in the scalar kernels.
+// hex8 mesh with its own rest shapes, kernels/fem/element_data.h) on this
+// test's device: the point-major one holds the value-major one's cache
+// values point by point, the tiled one (the GPUs' default) the point-major
+// one's tile by tile, and the products, block-Jacobi blocks and element
+// matrices read from any of them are the same bit for bit, in the lanes
+// program (value- and point-major) and in the scalar kernels (all three).
+// The meshes' elements fill one tile in part, or more than one.
 template <typename Real>
 void check_point_data_layouts() {
-  for (const Mesh& mesh : hex_meshes()) {
+  std::vector<Mesh> meshes = hex_meshes();
+  meshes.push_back(jittered(make_box_lattice(5, 4, 3, kH), kH));
+  meshes.push_back(jittered(make_tet_box(3, 2, 1, kH), kH));
+  for (const Mesh& mesh : meshes) {
     const fem::RestState rest = fem::compute_rest_state(mesh);
-    SCOPED_TRACE(rest.uniform ? "uniform rest" : "own rest shapes");
+    const size_t n = static_cast<size_t>(rest.nodes), points = static_cast<size_t>(rest.quadrature);
+    SCOPED_TRACE(std::string(to_string(mesh.type)) + " of " + std::to_string(mesh.element_count()) +
+                 (rest.uniform ? ", uniform rest" : ", own rest shapes"));
     const std::vector<double> x = hard_positions(mesh);
     const std::vector<double> p = random_direction(x.size(), 11);
     const MaterialMap map = uniform_material(mesh, with(MaterialModel::stable_neo_hookean));
     device::OpenClContext& cl = device_for(precision_of<Real>);
-    solver::ModelTerms value_major, point_major;
+    solver::ModelTerms value_major, point_major, tiled;
     value_major.hex8_point_data = solver::PointDataLayout::value_major;
     point_major.hex8_point_data = solver::PointDataLayout::point_major;
+    tiled.hex8_point_data = solver::PointDataLayout::tiled;
     solver::ElasticModel<Real> a(cl, mesh, rest, map, ProductVariant::recompute, device::MaterialKernel::specialized,
                                  value_major);
     solver::ElasticModel<Real> b(cl, mesh, rest, map, ProductVariant::recompute, device::MaterialKernel::specialized,
                                  point_major);
+    solver::ElasticModel<Real> c(cl, mesh, rest, map, ProductVariant::recompute, device::MaterialKernel::specialized,
+                                 tiled);
+    EXPECT_EQ(c.cache_tile(), 32u);
+    EXPECT_FALSE(c.point_lanes());
+    EXPECT_FALSE(c.point_lanes_available());
+    EXPECT_THROW(c.set_point_lanes(true), Error);
+    const size_t tiles = (mesh.element_count() + 31) / 32;
+    EXPECT_EQ(c.cache_values(), tiles * 32 * points * 30);
     for (bool lanes : {true, false}) {
       SCOPED_TRACE(lanes ? "lanes program" : "scalar kernels");
       a.set_point_lanes(lanes);
       b.set_point_lanes(lanes);
-      const Outputs<Real> va = run(a, 8, x, p), pm = run(b, 8, x, p);
+      const int nodes = static_cast<int>(n);
+      const Outputs<Real> va = run(a, nodes, x, p), pm = run(b, nodes, x, p);
+      std::optional<Outputs<Real>> tl;
+      if (!lanes) tl = run(c, nodes, x, p);
       for (int k = 0; k < 2; ++k) {
         const std::string at = k == 0 ? "projected" : "true Hessian";
         ASSERT_EQ(va.cache[k].size(), pm.cache[k].size());
-        size_t differ = 0;
+        size_t differ = 0, differ_tiled = 0;
         for (size_t e = 0; e < mesh.element_count(); ++e)
-          for (size_t q = 0; q < 8; ++q)
-            for (size_t v = 0; v < 30; ++v)
-              differ += va.cache[k][240 * e + 8 * v + q] != pm.cache[k][30 * (8 * e + q) + v];
+          for (size_t q = 0; q < points; ++q)
+            for (size_t v = 0; v < 30; ++v) {
+              const Real value = pm.cache[k][30 * (points * e + q) + v];
+              differ += va.cache[k][30 * points * e + points * v + q] != value;
+              if (tl) differ_tiled += tl->cache[k][30 * points * 32 * (e / 32) + 32 * (30 * q + v) + e % 32] != value;
+            }
         EXPECT_EQ(differ, 0u) << "linearization, " + at;
-        expect_equal_values(pm.product[k], va.product[k], 0.0, "recompute product, " + at);
-        expect_equal_values(pm.cached[k], va.cached[k], 0.0, "cached product, " + at);
-        expect_equal_values(pm.jacobi[k], va.jacobi[k], 0.0, "block-Jacobi blocks, " + at);
-        expect_equal_values(pm.matrices[k], va.matrices[k], 0.0, "element matrices, " + at);
-        expect_equal_values(pm.blocks[k], va.blocks[k], 0.0, "diagonal blocks, " + at);
+        EXPECT_EQ(differ_tiled, 0u) << "tiled linearization, " + at;
+        for (const Outputs<Real>* o : {&va, tl ? &*tl : &va}) {
+          const std::string which = o == &va ? "" : "tiled ";
+          expect_equal_values(o->product[k], pm.product[k], 0.0, which + "recompute product, " + at);
+          expect_equal_values(o->cached[k], pm.cached[k], 0.0, which + "cached product, " + at);
+          expect_equal_values(o->jacobi[k], pm.jacobi[k], 0.0, which + "block-Jacobi blocks, " + at);
+          expect_equal_values(o->matrices[k], pm.matrices[k], 0.0, which + "element matrices, " + at);
+          expect_equal_values(o->blocks[k], pm.blocks[k], 0.0, which + "diagonal blocks, " + at);
+        }
       }
     }
   }
 }
 
-TEST(PointLanes, Hex8PointDataLayoutsGiveTheSameValues) {
+// A double model's float products (ElasticModel::set_float_products) in
+// the scalar kernels: the float copy each linearize() writes (strided in the
+// tiled cache), the mixed cached product, and the float element matrices
+// computed from the copies (fem.cl's SNH_MIXED build, the multigrid fine
+// level's on GPUs), the same bit for bit from the point-major and tiled
+// caches.
+void check_float_copies_across_layouts() {
+  std::vector<Mesh> meshes = {jittered(make_box_lattice(5, 4, 3, kH), kH), jittered(make_tet_box(3, 2, 1, kH), kH)};
+  for (const Mesh& mesh : meshes) {
+    const fem::RestState rest = fem::compute_rest_state(mesh);
+    SCOPED_TRACE(to_string(mesh.type));
+    const size_t n = 3 * static_cast<size_t>(rest.nodes), ne = mesh.element_count();
+    const std::vector<double> x = hard_positions(mesh);
+    const viennacl::vector<double> xd = upload<double>(x), pd = upload<double>(random_direction(x.size(), 13));
+    const MaterialMap map = uniform_material(mesh, with(MaterialModel::stable_neo_hookean));
+    device::OpenClContext& cl = device_for(Precision::double_);
+    std::vector<double> products[2];
+    std::vector<float> matrices[2];
+    int i = 0;
+    for (solver::PointDataLayout layout : {solver::PointDataLayout::point_major, solver::PointDataLayout::tiled}) {
+      solver::ModelTerms terms;
+      terms.hex8_point_data = layout;
+      solver::ElasticModel<double> model(cl, mesh, rest, map, ProductVariant::cached,
+                                         device::MaterialKernel::specialized, terms);
+      model.set_point_lanes(false);
+      model.set_float_products(true);
+      model.linearize(xd);
+      viennacl::vector<double> y(model.dofs());
+      model.product(pd, y);
+      products[i] = download_raw(y);
+      device::Buffer kd = cl.buffer(CL_MEM_READ_WRITE, ne * n * n * sizeof(float));
+      device::Buffer bd = cl.buffer(CL_MEM_READ_WRITE, ne * 3 * n * sizeof(double));
+      model.element_matrices_into(kd.get(), bd.get(), true);
+      matrices[i].resize(ne * n * n);
+      cl.read(kd.get(), matrices[i].size() * sizeof(float), matrices[i].data());
+      ++i;
+    }
+    EXPECT_EQ(products[1], products[0]) << "mixed cached product";
+    EXPECT_EQ(matrices[1], matrices[0]) << "float element matrices from the float copies";
+  }
+}
+
+TEST(PointLanes, FloatCopiesAreTheSameInEveryLayout) { check_float_copies_across_layouts(); }
+
+TEST(PointLanes, PointDataLayoutsGiveTheSameValues) {
   check_point_data_layouts<double>();
   check_point_data_layouts<float>();
 }

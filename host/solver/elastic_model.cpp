@@ -43,9 +43,15 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   // Every program that reads the cache or the gradients (multigrid.cl and
   // stencil.cl too) builds from these defines, so they all agree on the
   // layout.
-  const bool value_major = terms.hex8_point_data == PointDataLayout::value_major ||
-                           (terms.hex8_point_data == PointDataLayout::automatic && lanes_by_default());
+  PointDataLayout layout = terms.hex8_point_data;
+  if (layout == PointDataLayout::automatic)
+    layout = lanes_by_default() ? PointDataLayout::value_major : PointDataLayout::tiled;
+  const bool value_major = layout == PointDataLayout::value_major;
   if (mesh.type == ElementType::hex8 && !value_major) defines_ += " -DSNH_POINT_MAJOR=1";
+  if (layout == PointDataLayout::tiled) {
+    cache_tile_ = 32;
+    defines_ += " -DSNH_CACHE_TILE=" + std::to_string(cache_tile_);
+  }
   elastic_defines_ = defines_;
   terms_ = terms;
   if (terms.inertia) defines_ += " -DSNH_INERTIA=1";
@@ -151,12 +157,17 @@ void ElasticModel<Real>::set_variant(ProductVariant v) {
 
 template <typename Real>
 bool ElasticModel<Real>::point_lanes_available() const {
-  // tet4 lanes hold 8 elements, so they share one material.
-  return nodes_ == 8 || !material_.per_element();
+  // tet4 lanes hold 8 elements, so they share one material; the lanes read
+  // the value-major or point-major cache.
+  return cache_tile_ == 1 && (nodes_ == 8 || !material_.per_element());
 }
 
 template <typename Real>
 void ElasticModel<Real>::set_point_lanes(bool on) {
+  if (on && cache_tile_ > 1)
+    throw Error(
+        "solver: the per-point lanes program reads the value-major or point-major cache, not the tiled one "
+        "(PointDataLayout)");
   if (on && !point_lanes_available())
     throw Error("solver: per-point lanes of tet4 meshes need one material for the mesh (this map has regions)");
   point_lanes_ = on;

@@ -30,16 +30,19 @@ cl_mem mem(const viennacl::vector_base<Real>& v) {
   return v.handle().opencl_handle().get();
 }
 
-// How a hex8 mesh's per-point data, its linearization cache
-// (kernels/fem/element.h) and rest gradients (kernels/fem/element_data.h),
-// are laid out on the device. tet4 meshes have one point per element: the
-// two coincide.
+// How a mesh's per-point data, its linearization cache
+// (kernels/fem/element.h) and, for hex8, its rest gradients
+// (kernels/fem/element_data.h), are laid out on the device. tet4 meshes have
+// one point per element: value-major and point-major coincide for them.
 enum class PointDataLayout {
-  automatic,    // value-major on devices where the lanes program is the default (CPUs), else point-major
+  automatic,    // value-major on devices where the lanes program is the default (CPUs), else tiled
   value_major,  // per element, value k of point q at 240 e + 8 k + q (gradients 192 e + 8 k + q): one vector
                 // load per value for the lanes program
   point_major,  // value k of point P at 30 P + k (gradients 24 P + k), SNH_POINT_MAJOR: a work-item reads its
                 // element's points in turn
+  tiled,        // the cache in tiles of 32 elements, value k of point q of element e at
+                // 30 Q 32 (e / 32) + 32 (30 q + k) + e % 32 (SNH_CACHE_TILE; hex8 gradients point-major): the
+                // scalar kernels' consecutive work-items read consecutive words; not for the lanes program
 };
 
 // Terms beyond elasticity that a scene compiles into the kernels (printed in
@@ -50,7 +53,7 @@ struct ModelTerms {
   int obstacles = 0;          // kinematic obstacles' contact penalty (SNH_OBSTACLES)
   bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
   bool friction = false;      // lagged Coulomb friction against the obstacles (SNH_FRICTION)
-  PointDataLayout hex8_point_data = PointDataLayout::automatic;  // SNH_POINT_MAJOR when point-major
+  PointDataLayout hex8_point_data = PointDataLayout::automatic;  // SNH_POINT_MAJOR, SNH_CACHE_TILE (tet4 too)
 };
 
 // Contact with the obstacles, and self-contact, at some x.
@@ -158,7 +161,12 @@ class ElasticModel {
   cl_mem weights_buffer() const { return weights_.get(); }
   cl_mem cache_buffer() const { return cache_.get(); }
   // Its size in values: 30 per quadrature point (kernels/fem/element.h).
-  size_t cache_values() const { return element_count_ * quadrature_ * 30; }
+  // The cache's values (the tiled layout rounds the elements up to whole tiles).
+  size_t cache_values() const {
+    return (element_count_ + cache_tile_ - 1) / cache_tile_ * cache_tile_ * quadrature_ * 30;
+  }
+  // Elements per tile of the cache: 1, or 32 in the tiled layout.
+  size_t cache_tile() const { return cache_tile_; }
   // The per-element matrices of the last linearize() (element_matrices and
   // assembled variants), else null.
   cl_mem element_matrices_buffer() const {
@@ -199,7 +207,8 @@ class ElasticModel {
   // bit on pocl (but for exp's rounding; NVIDIA's compiler rounds the two
   // programs' float differently, by a few ulps). On by default on CPU
   // devices (where pocl leaves the scalar kernels' per-point math
-  // unvectorized), off on GPUs. Not available for tet4 meshes with
+  // unvectorized), off on GPUs. Not available with the tiled cache
+  // (PointDataLayout, the GPUs' default) or for tet4 meshes with
   // materials per region (throws snh::Error).
   void set_point_lanes(bool on);
   bool point_lanes() const { return point_lanes_; }
@@ -274,6 +283,7 @@ class ElasticModel {
   ProductVariant variant_;
   std::string defines_, elastic_defines_;
   bool point_lanes_ = false;
+  size_t cache_tile_ = 1;                    // PointDataLayout::tiled: 32
   bool cached_lanes_ = false;                // the cached product's kernel is fem_lanes.cl's
   mutable device::Kernel matrices_float_k_;  // built at its first use
   mutable device::Kernel matrices_mixed_k_;  // the same from the float copies (float products), likewise

@@ -22,30 +22,53 @@
 #define SNH_DOFS (3 * SNH_NODES) /* an element's: the size of its matrices */
 
 /* Per quadrature point, the cached linearization: U, V, the PSD-projected
- * 3x3 block and the clamped twist and flip eigenvalues. hex8 on CPU devices:
- * stored per element, value-major: value k of point q of element e at
- * 240 e + 8 k + q, so that the lanes kernels (fem_lanes.cl, a lane per point)
- * move each value of the element's 8 points as one vector. tet4, and hex8
- * built with SNH_POINT_MAJOR (GPUs, where a work-item reads its element's
- * points one after the other and the lanes program is not used: with the
- * value-major layout the H200's hex8 cached product took 2x the time of
- * session 8's H100 with this one, README "On a GPU: NVIDIA H200"):
- * point-major, value k of point P at 30 P + k (grouping 8 tet4 elements
- * value-major measured slower in double, README "Per-point lanes"). In
- * general value k of point P = SNH_QUADRATURE e + q at
- * 30 G (P / G) + G k + P % G, G = SNH_CACHE_GROUP (whole groups only: a hex8
- * element's 8 points, or a single point). */
+ * 3x3 block and the clamped twist and flip eigenvalues. Three layouts
+ * (solver::PointDataLayout), fixed at build time:
+ * - value-major (hex8 on CPU devices): stored per element, value k of point
+ *   q of element e at 240 e + 8 k + q, so that the lanes kernels
+ *   (fem_lanes.cl, a lane per point) move each value of the element's 8
+ *   points as one vector;
+ * - point-major (tet4 on CPU devices; hex8 with SNH_POINT_MAJOR): value k of
+ *   point P = SNH_QUADRATURE e + q at 30 P + k (grouping 8 tet4 elements
+ *   value-major measured slower in double, README "Per-point lanes");
+ * - tiled (GPUs, SNH_CACHE_TILE = T > 1, with SNH_POINT_MAJOR for hex8):
+ *   elements in tiles of T, value k of point q of element e at
+ *   30 SNH_QUADRATURE T (e / T) + T (30 q + k) + e % T, so that the
+ *   consecutive work-items of the scalar kernels (a work-item per element)
+ *   read each value from consecutive words: with point-major, the layout
+ *   of sessions 8 to 21, they read words 30 SNH_QUADRATURE apart (README "On
+ *   a GPU: NVIDIA H200"). The lanes program reads the first two only.
+ * SNH_CACHE_AT(cache, e, q) is point q of element e, its values
+ * SNH_CACHE_STRIDE apart; an element's 30 SNH_QUADRATURE values, in the
+ * order (q, k), are SNH_CACHE_TILE apart from SNH_CACHE_AT(cache, e, 0) in
+ * the point-major and tiled layouts and consecutive in the value-major one.
+ * SNH_CACHE_POINT(P) (lanes) is point P's first value in the first two:
+ * value k of point P at 30 G (P / G) + G k + P % G, G = SNH_CACHE_GROUP. */
 #define SNH_LINEARIZATION_SIZE 30
 #if SNH_HEX8 && !SNH_POINT_MAJOR
 #define SNH_CACHE_GROUP 8
+#define SNH_CACHE_TILE 1
+#define SNH_CACHE_STRIDE SNH_CACHE_GROUP
 #else
 #define SNH_CACHE_GROUP 1
+#ifndef SNH_CACHE_TILE
+#define SNH_CACHE_TILE 1
 #endif
-#define SNH_CACHE_STRIDE SNH_CACHE_GROUP
+#define SNH_CACHE_STRIDE SNH_CACHE_TILE
+#endif
 #define SNH_CACHE_POINT(point) \
   ((size_t)SNH_LINEARIZATION_SIZE * SNH_CACHE_GROUP * ((point) / SNH_CACHE_GROUP) + (point) % SNH_CACHE_GROUP)
 /* Point q of element e in the cache. */
+#if SNH_CACHE_GROUP > 1
 #define SNH_CACHE_AT(cache, e, q) ((cache) + SNH_CACHE_POINT((size_t)SNH_QUADRATURE * (e) + (q)))
+#else
+#define SNH_CACHE_AT(cache, e, q)                                                                       \
+  ((cache) + (size_t)SNH_LINEARIZATION_SIZE * SNH_QUADRATURE * SNH_CACHE_TILE * ((e) / SNH_CACHE_TILE) + \
+   (size_t)SNH_LINEARIZATION_SIZE * SNH_CACHE_TILE * (q) + (e) % SNH_CACHE_TILE)
+#endif
+/* The distance between an element's consecutive cache values in the order
+ * (q, k) (linearization_copy_float). */
+#define SNH_CACHE_ELEMENT_STRIDE SNH_CACHE_TILE
 
 /* Element matrices' storage: the working precision, or float with
  * SNH_MATRIX_FLOAT = 1 (a double build's multigrid fine level, whose
@@ -135,14 +158,15 @@ SNH_FN void element_product(const principal_hessian* h, const real* ps, const re
 }
 
 #if SNH_IS_OPENCL && SNH_DOUBLE
-/* The float copy of n consecutive cache values, for a double solve's
+/* The float copy of n cache values `stride` apart, for a double solve's
  * products in float (SNH_MIXED; ElasticModel::set_float_products): an
- * element's points, or a tet4 work-item's lanes, are consecutive in every
- * cache layout. */
-SNH_FN void linearization_copy_float(__global const double* in, int n, __global float* out) {
+ * element's values (SNH_CACHE_ELEMENT_STRIDE apart), or a tet4 lanes
+ * work-item's (consecutive). */
+SNH_FN void linearization_copy_float(__global const double* in, int n, int stride, __global float* out) {
   int i = 0;
-  for (; i + 8 <= n; i += 8) vstore8(convert_float8(vload8(0, in + i)), 0, out + i);
-  for (; i < n; ++i) out[i] = (float)in[i];
+  if (stride == 1)
+    for (; i + 8 <= n; i += 8) vstore8(convert_float8(vload8(0, in + i)), 0, out + i);
+  for (; i < n; ++i) out[(size_t)stride * i] = (float)in[(size_t)stride * i];
 }
 #endif
 
