@@ -365,10 +365,10 @@ void check_float_copies_across_layouts() {
     const fem::RestState rest = fem::compute_rest_state(mesh);
     SCOPED_TRACE(to_string(mesh.type));
     const size_t n = 3 * static_cast<size_t>(rest.nodes), ne = mesh.element_count();
+    device::OpenClContext& cl = device_for(Precision::double_);  // before the uploads: ViennaCL's context
     const std::vector<double> x = hard_positions(mesh);
     const viennacl::vector<double> xd = upload<double>(x), pd = upload<double>(random_direction(x.size(), 13));
     const MaterialMap map = uniform_material(mesh, with(MaterialModel::stable_neo_hookean));
-    device::OpenClContext& cl = device_for(Precision::double_);
     std::vector<double> products[2];
     std::vector<float> matrices[2];
     int i = 0;
