@@ -62,7 +62,7 @@
 #if SNH_CACHE_GROUP > 1
 #define SNH_CACHE_AT(cache, e, q) ((cache) + SNH_CACHE_POINT((size_t)SNH_QUADRATURE * (e) + (q)))
 #else
-#define SNH_CACHE_AT(cache, e, q)                                                                       \
+#define SNH_CACHE_AT(cache, e, q)                                                                        \
   ((cache) + (size_t)SNH_LINEARIZATION_SIZE * SNH_QUADRATURE * SNH_CACHE_TILE * ((e) / SNH_CACHE_TILE) + \
    (size_t)SNH_LINEARIZATION_SIZE * SNH_CACHE_TILE * (q) + (e) % SNH_CACHE_TILE)
 #endif
