@@ -160,8 +160,8 @@ class ElasticModel {
   cl_mem gradients_buffer() const { return gradients_.get(); }
   cl_mem weights_buffer() const { return weights_.get(); }
   cl_mem cache_buffer() const { return cache_.get(); }
-  // Its size in values: 30 per quadrature point (kernels/fem/element.h).
-  // The cache's values (the tiled layout rounds the elements up to whole tiles).
+  // The cache's size in values: 30 per quadrature point (kernels/fem/element.h),
+  // with the elements rounded up to whole tiles in the tiled layout.
   size_t cache_values() const {
     return (element_count_ + cache_tile_ - 1) / cache_tile_ * cache_tile_ * quadrature_ * 30;
   }
