@@ -26,6 +26,7 @@
 #include <random>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "device_test_support.h"
@@ -340,8 +341,9 @@ void check_point_data_layouts() {
             }
         EXPECT_EQ(differ, 0u) << "linearization, " + at;
         EXPECT_EQ(differ_tiled, 0u) << "tiled linearization, " + at;
-        for (const Outputs<Real>* o : {&va, tl ? &*tl : &va}) {
-          const std::string which = o == &va ? "" : "tiled ";
+        std::vector<std::pair<const Outputs<Real>*, std::string>> layouts = {{&va, ""}};
+        if (tl) layouts.emplace_back(&*tl, "tiled ");
+        for (const auto& [o, which] : layouts) {
           expect_equal_values(o->product[k], pm.product[k], 0.0, which + "recompute product, " + at);
           expect_equal_values(o->cached[k], pm.cached[k], 0.0, which + "cached product, " + at);
           expect_equal_values(o->jacobi[k], pm.jacobi[k], 0.0, which + "block-Jacobi blocks, " + at);
