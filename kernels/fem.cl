@@ -389,6 +389,28 @@ __kernel void snh_element_matrix_product(__global const real* p, __global const 
   for (int i = 0; i < SNH_DOFS; ++i) out[SNH_DOFS * e + i] = y[i];
 }
 
+/* The same with a work-item per row (count * SNH_DOFS work-items, the GPUs'
+ * kernel): consecutive work-items read consecutive entries of each column
+ * and write consecutive values, where a work-item per element reads each
+ * entry (3 nodes)^2 words from its neighbour's. Row r summed over the
+ * columns in the same order as above: the same values. */
+__kernel void snh_element_matrix_product_rows(__global const real* p, __global const int* elements,
+                                              __global const matrix_real* matrices, const int count,
+                                              __global real* out) {
+  const size_t i = get_global_id(0);
+  if (i >= (size_t)SNH_DOFS * count) return;
+  const size_t e = i / SNH_DOFS;
+  __global const int* nodes = elements + SNH_NODES * e;
+  __global const matrix_real* k = matrices + (size_t)SNH_DOFS * SNH_DOFS * e + i % SNH_DOFS;
+  real y = SNH_R(0);
+  SNH_UNROLL
+  for (int b = 0; b < SNH_NODES; ++b) {
+    __global const real* pb = p + 3 * nodes[b];
+    for (int d = 0; d < 3; ++d) y += (real)k[SNH_DOFS * (3 * b + d)] * pb[d];
+  }
+  out[i] = y;
+}
+
 /* y = mask * y, elementwise (after an assembled product); with vertex terms
  * y = mask * (elastic_scale * y + c m_v p + contact block p), the gather's. */
 __kernel void snh_apply_mask(__global const real* mask, const int size, __global real* y

@@ -291,6 +291,17 @@ void check_product() {
       viennacl::vector<Real> y(model.dofs());
       model.product(pd, y);
       tolerance.check(relative_difference(download(y), expected), s, c.name + "/" + to_string(variant));
+      if (variant == ProductVariant::element_matrices) {
+        // Its two kernels, a work-item per element (CPUs) or per row (GPUs),
+        // sum each row in one order: the same values.
+        const bool rows = model.matrix_product_rows();
+        EXPECT_EQ(rows, device_for(precision_of<Real>).info().is_gpu);
+        model.set_matrix_product_rows(!rows);
+        viennacl::vector<Real> other(model.dofs());
+        model.product(pd, other);
+        model.set_matrix_product_rows(rows);
+        EXPECT_EQ(download(other), download(y)) << c.name << ": the element-matrices product per row and per element";
+      }
     }
   }
 }

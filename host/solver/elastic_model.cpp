@@ -122,6 +122,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
   apply_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_apply");
   matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
+  matrix_rows_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product_rows");
+  matrix_rows_ = cl_.info().is_gpu;
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
   if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
   if (terms.friction) friction_anchors_k_ = cl_.kernel("fem.cl", defines_, "snh_friction_anchors");
@@ -869,7 +871,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     return;
   }
   if (variant_ == ProductVariant::element_matrices) {
-    k = matrix_product_k_.get();
+    k = matrix_rows_ ? matrix_rows_k_.get() : matrix_product_k_.get();
     set_arg(k, 0, mem(p));
     set_arg(k, 1, elements_.get());
     set_arg(k, 2, element_matrices_.get());
@@ -898,7 +900,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(k, next + 1, element_scratch_.get());
   }
   if (variant_ == ProductVariant::element_matrices)
-    run_element_kernel(k);
+    cl_.run(k, matrix_rows_ ? element_count_ * 3 * nodes_ : element_count_);
   else
     run_point_kernel(k, variant_ != ProductVariant::cached ? point_lanes_
                         : float_products()                 ? float_product_lanes()

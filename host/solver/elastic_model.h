@@ -230,6 +230,11 @@ class ElasticModel {
            (variant_ == ProductVariant::cached || variant_ == ProductVariant::assembled);
   }
   bool point_lanes_available() const;
+  // The element-matrices product with a work-item per matrix row instead of
+  // per element (fem.cl, snh_element_matrix_product_rows): coalesced reads
+  // on GPUs, where it is the default; the same values.
+  void set_matrix_product_rows(bool on) { matrix_rows_ = on; }
+  bool matrix_product_rows() const { return matrix_rows_; }
   // The lanes program and the value-major hex8 point data (PointDataLayout)
   // are the defaults on CPU devices.
   bool lanes_by_default() const { return !cl_.info().is_gpu; }
@@ -283,8 +288,10 @@ class ElasticModel {
   ProductVariant variant_;
   std::string defines_, elastic_defines_;
   bool point_lanes_ = false;
-  size_t cache_tile_ = 1;                    // PointDataLayout::tiled: 32
-  bool cached_lanes_ = false;                // the cached product's kernel is fem_lanes.cl's
+  size_t cache_tile_ = 1;      // PointDataLayout::tiled: 32
+  bool cached_lanes_ = false;  // the cached product's kernel is fem_lanes.cl's
+  bool matrix_rows_ = false;   // set_matrix_product_rows
+  device::Kernel matrix_rows_k_;
   mutable device::Kernel matrices_float_k_;  // built at its first use
   mutable device::Kernel matrices_mixed_k_;  // the same from the float copies (float products), likewise
   // set_float_products: the SNH_MIXED product, the narrowing kernel and the
