@@ -14,10 +14,13 @@
  * blocks in the same order and, from exactly symmetric element matrices,
  * come out exactly transposed (host/solver/block_stencil.h). */
 __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __global const int* part_offsets,
-                                   __global const int* parts, const int blocks, __global matrix_real* stencil,
+                                   __global const int* parts, const int blocks, const int width,
+                                   __global matrix_real* stencil,
                                    __global float* stencil_float /* null, or the blocks' float copy */) {
   const int item = get_global_id(0);
   if (item >= blocks) return;
+  /* Block s of vertex v, where the layout puts it (fem/block_stencil.h). */
+  const size_t at = SNH_STENCIL_BLOCKS_AT(width, item / width) + (size_t)9 * SNH_STENCIL_TILE * (item % width);
   real block[9];
   for (int i = 0; i < 9; ++i) block[i] = SNH_R(0);
   for (int k = part_offsets[item]; k < part_offsets[item + 1]; ++k) {
@@ -25,11 +28,11 @@ __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __globa
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) block[3 * j + i] += (real)ke[SNH_DOFS * j + i];
   }
-  for (int i = 0; i < 9; ++i) stencil[(size_t)9 * item + i] = (matrix_real)block[i];
+  for (int i = 0; i < 9; ++i) stencil[at + SNH_STENCIL_TILE * i] = (matrix_real)block[i];
   /* A double model's float products (ElasticModel::set_float_products): the
    * same values narrowed, as snh_narrow would from the stored blocks. */
   if (stencil_float)
-    for (int i = 0; i < 9; ++i) stencil_float[(size_t)9 * item + i] = (float)(matrix_real)block[i];
+    for (int i = 0; i < 9; ++i) stencil_float[at + SNH_STENCIL_TILE * i] = (float)(matrix_real)block[i];
 }
 
 /* y = mask * (A p). */

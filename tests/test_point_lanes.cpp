@@ -84,17 +84,19 @@ std::vector<double> random_direction(size_t size, uint64_t seed) {
 
 template <typename Real>
 struct Outputs {
-  std::vector<Real> cache[2];     // projected, true Hessian
-  std::vector<Real> product[2];   // recompute product at each
-  std::vector<Real> cached[2];    // cached product at each
-  std::vector<Real> jacobi[2];    // block-Jacobi's inverted blocks at each
-  std::vector<Real> matrices[2];  // element matrices at each
-  std::vector<Real> blocks[2];    // and their diagonal blocks
+  std::vector<Real> cache[2];      // projected, true Hessian
+  std::vector<Real> product[2];    // recompute product at each
+  std::vector<Real> cached[2];     // cached product at each
+  std::vector<Real> jacobi[2];     // block-Jacobi's inverted blocks at each
+  std::vector<Real> matrices[2];   // element matrices at each
+  std::vector<Real> blocks[2];     // and their diagonal blocks
+  std::vector<Real> assembled[2];  // the assembled product (block stencil) at each, when asked for
 };
 
+// assembled: the assembled variant's product too.
 template <typename Real>
 Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, const std::vector<double>& x,
-                  const std::vector<double>& p) {
+                  const std::vector<double>& p, bool assembled = false) {
   Outputs<Real> out;
   device::OpenClContext& cl = device_for(precision_of<Real>);
   const viennacl::vector<Real> xd = upload<Real>(x), pd = upload<Real>(p);
@@ -123,6 +125,13 @@ Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, const std::vecto
     model.element_matrices_into(kd.get(), bd.get());
     cl.read(kd.get(), k.size() * sizeof(Real), k.data());
     cl.read(bd.get(), b.size() * sizeof(Real), b.data());
+    if (assembled) {
+      model.set_variant(ProductVariant::assembled);
+      model.linearize(xd, projected == 0);
+      model.product(pd, y);
+      out.assembled[projected] = download_raw(y);
+      model.set_variant(ProductVariant::recompute);
+    }
   }
   return out;
 }
@@ -288,8 +297,10 @@ TEST(PointLanes, FloatMatchesTheScalarKernels) {
 // values point by point, the tiled one (the GPUs' default) the point-major
 // one's tile by tile, and the products, block-Jacobi blocks and element
 // matrices read from any of them are the same bit for bit, in the lanes
-// program (value- and point-major) and in the scalar kernels (all three).
-// The meshes' elements fill one tile in part, or more than one.
+// program (value- and point-major) and in the scalar kernels (all three);
+// so is the assembled product, whose block stencil the tiled layout stores
+// in tiles of 32 vertices (kernels/fem/block_stencil.h). The meshes'
+// elements and vertices fill one tile in part, or more than one.
 template <typename Real>
 void check_point_data_layouts() {
   std::vector<Mesh> meshes = hex_meshes();
@@ -325,9 +336,9 @@ void check_point_data_layouts() {
       a.set_point_lanes(lanes);
       b.set_point_lanes(lanes);
       const int nodes = static_cast<int>(n);
-      const Outputs<Real> va = run(a, nodes, x, p), pm = run(b, nodes, x, p);
+      const Outputs<Real> va = run(a, nodes, x, p, true), pm = run(b, nodes, x, p, true);
       std::optional<Outputs<Real>> tl;
-      if (!lanes) tl = run(c, nodes, x, p);
+      if (!lanes) tl = run(c, nodes, x, p, true);
       for (int k = 0; k < 2; ++k) {
         const std::string at = k == 0 ? "projected" : "true Hessian";
         ASSERT_EQ(va.cache[k].size(), pm.cache[k].size());
@@ -349,6 +360,7 @@ void check_point_data_layouts() {
           expect_equal_values(o->jacobi[k], pm.jacobi[k], 0.0, which + "block-Jacobi blocks, " + at);
           expect_equal_values(o->matrices[k], pm.matrices[k], 0.0, which + "element matrices, " + at);
           expect_equal_values(o->blocks[k], pm.blocks[k], 0.0, which + "diagonal blocks, " + at);
+          expect_equal_values(o->assembled[k], pm.assembled[k], 0.0, which + "assembled product, " + at);
         }
       }
     }

@@ -50,7 +50,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   if (mesh.type == ElementType::hex8 && !value_major) defines_ += " -DSNH_POINT_MAJOR=1";
   if (layout == PointDataLayout::tiled) {
     cache_tile_ = 32;
-    defines_ += " -DSNH_CACHE_TILE=" + std::to_string(cache_tile_);
+    defines_ +=
+        " -DSNH_CACHE_TILE=" + std::to_string(cache_tile_) + " -DSNH_STENCIL_TILE=" + std::to_string(cache_tile_);
   }
   elastic_defines_ = defines_;
   terms_ = terms;
@@ -385,22 +386,23 @@ void ElasticModel<Real>::assemble() {
       if (!values.empty()) cl_.write(b.get(), values.size() * sizeof(int), values.data());
       return b;
     };
-    stencil_neighbours_ = upload(t.neighbours);
+    stencil_neighbours_ = upload(tiled_neighbours(t, vertex_count_, stencil_tile()));
     stencil_part_offsets_ = upload(t.part_offsets);
     stencil_parts_ = upload(t.parts);
-    stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(t.neighbours.size(), 1) * 9 * sizeof(Real));
+    stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_values(), 1) * sizeof(Real));
     stencil_assemble_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_assemble");
     stencil_product_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_product");
   }
   cl_kernel k = stencil_assemble_k_.get();
-  const int blocks = static_cast<int>(stencil_values() / 9);
+  const int blocks = static_cast<int>(vertex_count_) * stencil_width_;
   set_arg(k, 0, element_matrices_.get());
   set_arg(k, 1, stencil_part_offsets_.get());
   set_arg(k, 2, stencil_parts_.get());
   set_arg(k, 3, blocks);
-  set_arg(k, 4, stencil_.get());
+  set_arg(k, 4, stencil_width_);
+  set_arg(k, 5, stencil_.get());
   if (float_products()) make_stencil_float();
-  set_arg(k, 5, float_products() ? stencil_float_.get() : cl_mem{nullptr});
+  set_arg(k, 6, float_products() ? stencil_float_.get() : cl_mem{nullptr});
   cl_.run(k, static_cast<size_t>(blocks));
   cl_.finish();
   last_assembly_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

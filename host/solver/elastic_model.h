@@ -41,8 +41,10 @@ enum class PointDataLayout {
   point_major,  // value k of point P at 30 P + k (gradients 24 P + k), SNH_POINT_MAJOR: a work-item reads its
                 // element's points in turn
   tiled,        // the cache in tiles of 32 elements, value k of point q of element e at
-                // 30 Q 32 (e / 32) + 32 (30 q + k) + e % 32 (SNH_CACHE_TILE; hex8 gradients point-major): the
-                // scalar kernels' consecutive work-items read consecutive words; not for the lanes program
+                // 30 Q 32 (e / 32) + 32 (30 q + k) + e % 32 (SNH_CACHE_TILE; hex8 gradients point-major), and
+                // the block stencils (assembled variant, multigrid levels) in tiles of 32 vertices
+                // (SNH_STENCIL_TILE, kernels/fem/block_stencil.h): the scalar kernels' consecutive
+                // work-items read consecutive words; not for the lanes program
 };
 
 // Terms beyond elasticity that a scene compiles into the kernels (printed in
@@ -167,6 +169,9 @@ class ElasticModel {
   }
   // Elements per tile of the cache: 1, or 32 in the tiled layout.
   size_t cache_tile() const { return cache_tile_; }
+  // Vertices per tile of the block stencils (the multigrid's levels read
+  // this model's defines): the same.
+  size_t stencil_tile() const { return cache_tile_; }
   // The per-element matrices of the last linearize() (element_matrices and
   // assembled variants), else null.
   cl_mem element_matrices_buffer() const {
@@ -317,8 +322,11 @@ class ElasticModel {
   device::Buffer stencil_, stencil_neighbours_, stencil_part_offsets_, stencil_parts_;
   device::Kernel stencil_assemble_k_, stencil_product_k_;
   int stencil_width_ = 0;
-  // The stencil's stored values: 9 per block, stencil_width_ blocks per vertex.
-  size_t stencil_values() const { return vertex_count_ * static_cast<size_t>(stencil_width_) * 9; }
+  // The stencil's stored values: 9 per block, stencil_width_ blocks per
+  // vertex, whole tiles (stencil_entries).
+  size_t stencil_values() const {
+    return 9 * static_cast<size_t>(stencil_width_) * ((vertex_count_ + cache_tile_ - 1) / cache_tile_ * cache_tile_);
+  }
   size_t stencil_memory_bytes() const;
   std::vector<int> elements_host_;
   double last_min_j_ = 0.0;

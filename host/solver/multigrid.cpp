@@ -135,11 +135,12 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       L.adjacency = upload_int(slots.adjacency, L.bytes);
       const StencilTables stencil = stencil_tables(h.elements, L.vertices, 8, slots);
       L.width = stencil.width;
-      L.neighbours = upload_int(stencil.neighbours, L.bytes);
+      L.neighbours = upload_int(tiled_neighbours(stencil, L.vertices, model.stencil_tile()), L.bytes);
       L.part_offsets = upload_int(stencil.part_offsets, L.bytes);
       L.parts = upload_int(stencil.parts, L.bytes);
       const size_t entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(Real);
-      const size_t matrix_bytes = L.cells * kCellMatrix * entry, stencil_bytes = stencil.neighbours.size() * 9 * entry;
+      const size_t matrix_bytes = L.cells * kCellMatrix * entry,
+                   stencil_bytes = stencil_entries(stencil, L.vertices, model.stencil_tile()) * entry;
       L.matrices = cl_.buffer(CL_MEM_READ_WRITE, matrix_bytes);
       L.stencil = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_bytes, 1));
       L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
@@ -239,8 +240,9 @@ void MultigridPreconditioner<Real>::assemble_stencil(int level) {
   set_arg(k, 1, L.part_offsets.get());
   set_arg(k, 2, L.parts.get());
   set_arg(k, 3, blocks);
-  set_arg(k, 4, L.stencil.get());
-  set_arg(k, 5, cl_mem{nullptr});
+  set_arg(k, 4, L.width);
+  set_arg(k, 5, L.stencil.get());
+  set_arg(k, 6, cl_mem{nullptr});
   cl_.run(k, static_cast<size_t>(blocks));
 }
 

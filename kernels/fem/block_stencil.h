@@ -4,11 +4,28 @@
  * again as padding with zero blocks) at neighbours[width v + s], and the
  * blocks A(v, n) column-major at stencil[9 (width v + s) + 3 j + i]. The
  * storage of the assembled product variant (host/solver/elastic_model.h) and
- * of the multigrid's assembled levels (host/solver/multigrid.h). OpenCL only. */
+ * of the multigrid's assembled levels (host/solver/multigrid.h). OpenCL only.
+ *
+ * Tiled (SNH_STENCIL_TILE = T > 1, the GPUs' layout with the tiled cache,
+ * solver::PointDataLayout::tiled): vertices in tiles of T, entry m of block
+ * s of vertex v at 9 width T (v / T) + T (9 s + m) + v % T and its neighbour
+ * at width T (v / T) + T s + v % T, so that consecutive work-items read
+ * consecutive words; T = 1 is the layout above. The buffers hold whole
+ * tiles (host/solver/block_stencil.h). */
 #ifndef SNH_FEM_BLOCK_STENCIL_H
 #define SNH_FEM_BLOCK_STENCIL_H
 
 #include "fem/element.h"
+
+#ifndef SNH_STENCIL_TILE
+#define SNH_STENCIL_TILE 1
+#endif
+/* Where vertex v's first block (its first neighbour) starts: its entries
+ * (neighbours) follow SNH_STENCIL_TILE apart. */
+#define SNH_STENCIL_BLOCKS_AT(width, v) \
+  ((size_t)9 * (width)*SNH_STENCIL_TILE * ((v) / SNH_STENCIL_TILE) + (v) % SNH_STENCIL_TILE)
+#define SNH_STENCIL_NEIGHBOURS_AT(width, v) \
+  ((size_t)(width)*SNH_STENCIL_TILE * ((v) / SNH_STENCIL_TILE) + (v) % SNH_STENCIL_TILE)
 
 /* (A p) at vertex v: its row of blocks in order (deterministic sums), the
  * padding's zero blocks too (stopping at the padding, a compare per block,
@@ -16,14 +33,16 @@
 SNH_FN void stencil_row(__global const real* p, __global const int* neighbours, __global const matrix_real* stencil,
                         const int width, const int v, real* out) {
   real s0 = SNH_R(0), s1 = SNH_R(0), s2 = SNH_R(0);
-  __global const int* around = neighbours + (size_t)width * v;
-  __global const matrix_real* a = stencil + (size_t)9 * width * v;
+  __global const int* around = neighbours + SNH_STENCIL_NEIGHBOURS_AT(width, v);
+  __global const matrix_real* a = stencil + SNH_STENCIL_BLOCKS_AT(width, v);
+  const int t = SNH_STENCIL_TILE;
   for (int s = 0; s < width; ++s) {
-    const int n = around[s];
+    const int n = around[t * s];
     const real p0 = p[3 * n], p1 = p[3 * n + 1], p2 = p[3 * n + 2];
-    s0 += (real)a[9 * s] * p0 + (real)a[9 * s + 3] * p1 + (real)a[9 * s + 6] * p2;
-    s1 += (real)a[9 * s + 1] * p0 + (real)a[9 * s + 4] * p1 + (real)a[9 * s + 7] * p2;
-    s2 += (real)a[9 * s + 2] * p0 + (real)a[9 * s + 5] * p1 + (real)a[9 * s + 8] * p2;
+    __global const matrix_real* b = a + 9 * t * s;
+    s0 += (real)b[0] * p0 + (real)b[3 * t] * p1 + (real)b[6 * t] * p2;
+    s1 += (real)b[t] * p0 + (real)b[4 * t] * p1 + (real)b[7 * t] * p2;
+    s2 += (real)b[2 * t] * p0 + (real)b[5 * t] * p1 + (real)b[8 * t] * p2;
   }
   out[0] = s0;
   out[1] = s1;
