@@ -46,30 +46,6 @@ __kernel void snh_stencil_product(__global const real* p, __global const int* ne
   for (int i = 0; i < 3; ++i) y[3 * v + i] = mask[3 * v + i] * ap[i];
 }
 
-/* The same with a work-item per row (3 per vertex, the GPUs' kernel):
- * work-item g takes row i = (g / T) % 3 of vertex v = T (g / 3T) + g % T,
- * T = SNH_STENCIL_TILE, so that with the tiled stencil a warp reads one row
- * of 32 consecutive vertices' blocks from consecutive words, and three
- * times as many work-items share the latency. Row i summed as stencil_row
- * sums it: the same values. Global size 3 T ceil(count / T). */
-__kernel void snh_stencil_product_rows(__global const real* p, __global const int* neighbours,
-                                       __global const matrix_real* stencil, __global const real* mask, const int count,
-                                       const int width, __global real* y) {
-  const size_t g = get_global_id(0);
-  const int t = SNH_STENCIL_TILE;
-  const int v = (int)(t * (g / (3 * t)) + g % t), i = (int)((g / t) % 3);
-  if (v >= count) return;
-  __global const int* around = neighbours + SNH_STENCIL_NEIGHBOURS_AT(width, v);
-  __global const matrix_real* a = stencil + SNH_STENCIL_BLOCKS_AT(width, v) + t * i;
-  real si = SNH_R(0);
-  for (int s = 0; s < width; ++s) {
-    const int n = around[t * s];
-    __global const matrix_real* b = a + 9 * t * s;
-    si += (real)b[0] * p[3 * n] + (real)b[3 * t] * p[3 * n + 1] + (real)b[6 * t] * p[3 * n + 2];
-  }
-  y[3 * v + i] = mask[3 * v + i] * si;
-}
-
 /* r = base - mask * (A p) (base may be r: r -= A p). */
 __kernel void snh_stencil_residual(__global const real* p, __global const int* neighbours,
                                    __global const matrix_real* stencil, __global const real* mask, const int count,

@@ -325,7 +325,6 @@ void check_point_data_layouts() {
                                  point_major);
     solver::ElasticModel<Real> c(cl, mesh, rest, map, ProductVariant::recompute, device::MaterialKernel::specialized,
                                  tiled);
-    c.set_matrix_product_rows(true);  // as on GPUs: the assembled product a work-item per row
     EXPECT_EQ(c.cache_tile(), 32u);
     EXPECT_FALSE(c.point_lanes());
     EXPECT_FALSE(c.point_lanes_available());

@@ -199,7 +199,6 @@ void ElasticModel<Real>::set_float_products(bool on) {
   if (!on) {
     product_float_k_ = device::Kernel();
     stencil_product_float_k_ = device::Kernel();
-    stencil_rows_float_k_ = device::Kernel();
     cache_float_.reset();
     gradients_float_.reset();
     weights_float_.reset();
@@ -250,12 +249,9 @@ device::Kernel ElasticModel<Real>::float_product_kernel() const {
 
 template <typename Real>
 void ElasticModel<Real>::make_stencil_float() {
-  if (!stencil_product_float_k_) {
+  if (!stencil_product_float_k_)
     stencil_product_float_k_ =
         cl_.kernel("stencil.cl", elastic_defines_ + " -DSNH_MATRIX_FLOAT=1", "snh_stencil_product");
-    stencil_rows_float_k_ =
-        cl_.kernel("stencil.cl", elastic_defines_ + " -DSNH_MATRIX_FLOAT=1", "snh_stencil_product_rows");
-  }
   if (!stencil_float_) stencil_float_ = cl_.buffer(CL_MEM_READ_WRITE, stencil_values() * sizeof(float));
 }
 
@@ -396,7 +392,6 @@ void ElasticModel<Real>::assemble() {
     stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_values(), 1) * sizeof(Real));
     stencil_assemble_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_assemble");
     stencil_product_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_product");
-    stencil_rows_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_product_rows");
   }
   cl_kernel k = stencil_assemble_k_.get();
   const int blocks = static_cast<int>(vertex_count_) * stencil_width_;
@@ -851,8 +846,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     // terms then as after the element products (mask * mask = mask).
     // Float products: the float blocks, with p and y in double.
     const bool narrow = float_products();
-    cl_kernel sk = matrix_rows_ ? (narrow ? stencil_rows_float_k_.get() : stencil_rows_k_.get())
-                                : (narrow ? stencil_product_float_k_.get() : stencil_product_k_.get());
+    cl_kernel sk = narrow ? stencil_product_float_k_.get() : stencil_product_k_.get();
     const int vertices = static_cast<int>(vertex_count_);
     set_arg(sk, 0, mem(p));
     set_arg(sk, 1, stencil_neighbours_.get());
@@ -861,8 +855,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     set_arg(sk, 4, vertices);
     set_arg(sk, 5, stencil_width_);
     set_arg(sk, 6, mem(y));
-    const size_t tile = stencil_tile();
-    cl_.run(sk, matrix_rows_ ? 3 * tile * ((vertex_count_ + tile - 1) / tile) : vertex_count_);
+    cl_.run(sk, vertex_count_);
     if (!vertex_terms()) return;
     cl_kernel mk = mask_k_.get();
     const int size = static_cast<int>(dofs());

@@ -235,12 +235,9 @@ class ElasticModel {
            (variant_ == ProductVariant::cached || variant_ == ProductVariant::assembled);
   }
   bool point_lanes_available() const;
-  // The products from stored matrices with a work-item per matrix row: the
-  // element-matrices product (fem.cl, snh_element_matrix_product_rows)
-  // instead of a work-item per element, the assembled one
-  // (stencil.cl, snh_stencil_product_rows) instead of one per vertex.
-  // Coalesced reads and more work-items on GPUs, where it is the default;
-  // the same values.
+  // The element-matrices product with a work-item per matrix row instead of
+  // per element (fem.cl, snh_element_matrix_product_rows): coalesced reads
+  // on GPUs, where it is the default; the same values.
   void set_matrix_product_rows(bool on) { matrix_rows_ = on; }
   bool matrix_product_rows() const { return matrix_rows_; }
   // The lanes program and the value-major hex8 point data (PointDataLayout)
@@ -305,7 +302,7 @@ class ElasticModel {
   // set_float_products: the SNH_MIXED product, the narrowing kernel and the
   // float copies of the cache, gradients and weights.
   bool float_products_ = false;
-  device::Kernel product_float_k_, narrow_k_, stencil_product_float_k_, stencil_rows_float_k_;
+  device::Kernel product_float_k_, narrow_k_, stencil_product_float_k_;
   device::Buffer cache_float_, gradients_float_, weights_float_, stencil_float_;
   void make_stencil_float();                                    // the float blocks' buffer and product kernel, once
   void narrow(cl_mem from, size_t values, device::Buffer& to);  // to (made if empty) <- (float)from
@@ -323,7 +320,7 @@ class ElasticModel {
   // on the device from the element matrices in element order
   // (deterministic), and its width.
   device::Buffer stencil_, stencil_neighbours_, stencil_part_offsets_, stencil_parts_;
-  device::Kernel stencil_assemble_k_, stencil_product_k_, stencil_rows_k_;
+  device::Kernel stencil_assemble_k_, stencil_product_k_;
   int stencil_width_ = 0;
   // The stencil's stored values: 9 per block, stencil_width_ blocks per
   // vertex, whole tiles (stencil_entries).
