@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "fem/vertex_slots.h"
@@ -40,5 +41,13 @@ inline size_t stencil_entries(const StencilTables& t, size_t vertex_count, size_
 }
 // The neighbour table in that layout (padding of the last tile: 0).
 std::vector<int> tiled_neighbours(const StencilTables& t, size_t vertex_count, size_t tile);
+
+// The build option that makes a stencil's width a constant of the kernels
+// that read it (SNH_STENCIL_WIDTH: their loop over a vertex's blocks
+// unrolled), with the per-vertex blocks (tile 1, CPUs; measured there). The
+// tiled layout (GPUs) keeps the width an argument: "" .
+inline std::string stencil_width_define(int width, size_t tile) {
+  return tile == 1 && width > 0 ? " -DSNH_STENCIL_WIDTH=" + std::to_string(width) : std::string();
+}
 
 }  // namespace snh::solver

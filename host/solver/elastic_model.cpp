@@ -251,7 +251,7 @@ template <typename Real>
 void ElasticModel<Real>::make_stencil_float() {
   if (!stencil_product_float_k_)
     stencil_product_float_k_ =
-        cl_.kernel("stencil.cl", elastic_defines_ + " -DSNH_MATRIX_FLOAT=1", "snh_stencil_product");
+        cl_.kernel("stencil.cl", stencil_defines() + " -DSNH_MATRIX_FLOAT=1", "snh_stencil_product");
   if (!stencil_float_) stencil_float_ = cl_.buffer(CL_MEM_READ_WRITE, stencil_values() * sizeof(float));
 }
 
@@ -390,8 +390,8 @@ void ElasticModel<Real>::assemble() {
     stencil_part_offsets_ = upload(t.part_offsets);
     stencil_parts_ = upload(t.parts);
     stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_values(), 1) * sizeof(Real));
-    stencil_assemble_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_assemble");
-    stencil_product_k_ = cl_.kernel("stencil.cl", elastic_defines_, "snh_stencil_product");
+    stencil_assemble_k_ = cl_.kernel("stencil.cl", stencil_defines(), "snh_stencil_assemble");
+    stencil_product_k_ = cl_.kernel("stencil.cl", stencil_defines(), "snh_stencil_product");
   }
   cl_kernel k = stencil_assemble_k_.get();
   const int blocks = static_cast<int>(vertex_count_) * stencil_width_;

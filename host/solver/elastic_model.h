@@ -328,6 +328,11 @@ class ElasticModel {
     return 9 * static_cast<size_t>(stencil_width_) * ((vertex_count_ + cache_tile_ - 1) / cache_tile_ * cache_tile_);
   }
   size_t stencil_memory_bytes() const;
+  // The stencil kernels' build: the model's, with the width made a constant
+  // where the layout allows (stencil_width_define).
+  std::string stencil_defines() const {
+    return elastic_defines_ + stencil_width_define(stencil_width_, stencil_tile());
+  }
   std::vector<int> elements_host_;
   double last_min_j_ = 0.0;
   std::vector<double> external_host_;

@@ -31,6 +31,7 @@ struct MultigridPreconditioner<Real>::Level {
   // and what they add up.
   device::Buffer neighbours, part_offsets, parts, stencil;
   int width = 0;
+  StencilKernels stencil_kernels;  // built for this level's width and matrices
   device::Buffer prolong_vertices, prolong_weights, restrict_offsets, restrict_vertices, restrict_weights;
   viennacl::vector<Real> b, x, r, d, t, d_next;
   viennacl::vector<Real> eigenvector;  // of D^-1 A, the last power iteration's
@@ -38,6 +39,12 @@ struct MultigridPreconditioner<Real>::Level {
   ChebyshevSteps steps;  // the smoothing's coefficients for lambda (estimate_bound)
   size_t bytes = 0;
 };
+
+template <typename Real>
+const typename MultigridPreconditioner<Real>::StencilKernels& MultigridPreconditioner<Real>::stencil_kernels(
+    int level) const {
+  return levels_[level]->stencil_kernels;
+}
 
 template <typename Real>
 MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model, const Mesh& mesh,
@@ -75,7 +82,6 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
                           cl_.kernel("stencil.cl", build, "snh_stencil_residual"),
                           cl_.kernel("multigrid.cl", build, "snh_chebyshev_step")};
   };
-  stencil_k_ = stencil_kernels_of(coarse);
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", coarse, "snh_chebyshev_start");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
   jacobi_apply_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_apply");
@@ -87,11 +93,8 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   fine_built_ = options.fine_level == MultigridFineLevel::built ||
                 (options.fine_level == MultigridFineLevel::automatic && !vertex_terms_);
   fine_float_ = fine_built_ && options.fine_level_float && sizeof(Real) > sizeof(float);
-  if (fine_float_) {
-    const std::string narrow = coarse + " -DSNH_MATRIX_FLOAT=1";
-    fine_float_stencil_k_ = stencil_kernels_of(narrow);
-    fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", narrow, "snh_galerkin_from_matrices");
-  }
+  if (fine_float_)
+    fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", coarse + " -DSNH_MATRIX_FLOAT=1", "snh_galerkin_from_matrices");
   if (vertex_terms_) {
     galerkin_vertex_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_vertex_terms");
     // Each vertex's terms shared out equally to the cells around it.
@@ -135,6 +138,8 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       L.adjacency = upload_int(slots.adjacency, L.bytes);
       const StencilTables stencil = stencil_tables(h.elements, L.vertices, 8, slots);
       L.width = stencil.width;
+      L.stencil_kernels = stencil_kernels_of(coarse + (l == 0 && fine_float_ ? " -DSNH_MATRIX_FLOAT=1" : "") +
+                                             stencil_width_define(L.width, model.stencil_tile()));
       L.neighbours = upload_int(tiled_neighbours(stencil, L.vertices, model.stencil_tile()), L.bytes);
       L.part_offsets = upload_int(stencil.part_offsets, L.bytes);
       L.parts = upload_int(stencil.parts, L.bytes);

@@ -190,10 +190,9 @@ class MultigridPreconditioner {
   struct StencilKernels {
     device::Kernel assemble, product, residual, step;
   };
-  StencilKernels stencil_k_, fine_float_stencil_k_;
-  const StencilKernels& stencil_kernels(int level) const {
-    return level == 0 && fine_float_ ? fine_float_stencil_k_ : stencil_k_;
-  }
+  // Each level's, built for its width (stencil_width_define) and, on a
+  // float fine level, its float matrices.
+  const StencilKernels& stencil_kernels(int level) const;
   // Inertia or obstacle contact in the fine operator: added to the first
   // coarse level's cell matrices (snh_galerkin_vertex_terms) with each
   // vertex's share 1 / (cells around it).
