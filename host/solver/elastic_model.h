@@ -325,7 +325,8 @@ class ElasticModel {
   // The stencil's stored values: 9 per block, stencil_width_ blocks per
   // vertex, whole tiles (stencil_entries).
   size_t stencil_values() const {
-    return 9 * static_cast<size_t>(stencil_width_) * ((vertex_count_ + cache_tile_ - 1) / cache_tile_ * cache_tile_);
+    return 9 * static_cast<size_t>(stencil_width_) *
+           ((vertex_count_ + stencil_tile() - 1) / stencil_tile() * stencil_tile());
   }
   size_t stencil_memory_bytes() const;
   // The stencil kernels' build: the model's, with the width made a constant
