@@ -47,7 +47,7 @@ StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_cou
 std::vector<int> tiled_neighbours(const StencilTables& t, size_t vertex_count, size_t tile) {
   if (tile <= 1) return t.neighbours;
   const size_t width = static_cast<size_t>(t.width);
-  std::vector<int> out(stencil_entries(t, vertex_count, tile) / 9, 0);
+  std::vector<int> out(stencil_entries(t.width, vertex_count, tile) / 9, 0);
   for (size_t v = 0; v < vertex_count; ++v)
     for (size_t s = 0; s < width; ++s)
       out[width * tile * (v / tile) + tile * s + v % tile] = t.neighbours[width * v + s];

@@ -35,9 +35,9 @@ StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_cou
 // The device's layout of the blocks and the neighbour table: per vertex as
 // in the tables (tile 1, CPUs), or in tiles of `tile` vertices
 // (SNH_STENCIL_TILE, GPUs: kernels/fem/block_stencil.h), the last tile
-// whole. Block entries stored: 9 per block.
-inline size_t stencil_entries(const StencilTables& t, size_t vertex_count, size_t tile) {
-  return 9 * static_cast<size_t>(t.width) * ((vertex_count + tile - 1) / tile * tile);
+// whole. Block entries stored: 9 per block, `width` blocks per vertex.
+inline size_t stencil_entries(int width, size_t vertex_count, size_t tile) {
+  return 9 * static_cast<size_t>(width) * ((vertex_count + tile - 1) / tile * tile);
 }
 // The neighbour table in that layout (padding of the last tile: 0).
 std::vector<int> tiled_neighbours(const StencilTables& t, size_t vertex_count, size_t tile);

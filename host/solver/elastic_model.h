@@ -322,12 +322,8 @@ class ElasticModel {
   device::Buffer stencil_, stencil_neighbours_, stencil_part_offsets_, stencil_parts_;
   device::Kernel stencil_assemble_k_, stencil_product_k_;
   int stencil_width_ = 0;
-  // The stencil's stored values: 9 per block, stencil_width_ blocks per
-  // vertex, whole tiles (stencil_entries).
-  size_t stencil_values() const {
-    return 9 * static_cast<size_t>(stencil_width_) *
-           ((vertex_count_ + stencil_tile() - 1) / stencil_tile() * stencil_tile());
-  }
+  // The stencil's stored values (stencil_entries).
+  size_t stencil_values() const { return stencil_entries(stencil_width_, vertex_count_, stencil_tile()); }
   size_t stencil_memory_bytes() const;
   // The stencil kernels' build: the model's, with the width made a constant
   // where the layout allows (stencil_width_define).

@@ -145,7 +145,7 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       L.parts = upload_int(stencil.parts, L.bytes);
       const size_t entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(Real);
       const size_t matrix_bytes = L.cells * kCellMatrix * entry,
-                   stencil_bytes = stencil_entries(stencil, L.vertices, model.stencil_tile()) * entry;
+                   stencil_bytes = stencil_entries(stencil.width, L.vertices, model.stencil_tile()) * entry;
       L.matrices = cl_.buffer(CL_MEM_READ_WRITE, matrix_bytes);
       L.stencil = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_bytes, 1));
       L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
