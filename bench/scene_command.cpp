@@ -204,7 +204,10 @@ json regions_json(const MaterialMap& materials) {
 // --rtol, --atol, --max-newton, --forcing-max where given.
 void apply_solver_limits(const SceneOptions& o, SolveOptions& options) {
   if (o.relative_tolerance >= 0.0) options.relative_tolerance = o.relative_tolerance;
-  if (o.absolute_tolerance >= 0.0) options.absolute_tolerance = o.absolute_tolerance;
+  if (o.absolute_tolerance >= 0.0) {  // overrides a scene file's strain tolerance
+    options.absolute_tolerance = o.absolute_tolerance;
+    options.strain_tolerance.reset();
+  }
   if (o.max_newton > 0) options.max_newton_iterations = o.max_newton;
   if (o.forcing_max > 0.0) options.forcing_max = o.forcing_max;
 }
@@ -241,7 +244,7 @@ int run_scene(const SceneOptions& given) {
     // Solver flags given on the command line override the file's.
     if (o.given.count("--precision")) {
       options.precision = parse_precision(o.precision);
-      if (!f.tolerance_given) options.absolute_tolerance = strain_tolerance_default(options.precision) * f.strain_scale;
+      if (!f.tolerance_given) options.strain_tolerance = strain_tolerance_default(options.precision);
     }
     if (o.given.count("--variant")) options.product = parse_product_variant(o.variant);
     if (o.given.count("--preconditioner")) options.preconditioner = parse_preconditioner(o.preconditioner);

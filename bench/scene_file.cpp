@@ -292,7 +292,6 @@ SceneFile load_scene_file(const std::string& path) {
 
   const json material = doc.value("material", json::object());
   out.material = read_material(r, material, "material");
-  const double e = r.number(material, "material", "E", 1.0);
   out.materials = read_regions(r, doc, s.mesh, out.material);
 
   if (doc.contains("constraints")) {
@@ -420,15 +419,16 @@ SceneFile load_scene_file(const std::string& path) {
   } catch (const Error& error) {
     throw Error(path + ": solver.product_precision: " + error.what());
   }
-  // Strain-equivalent tolerance as in make_scene, h from the first element's first edge.
-  const auto a = s.mesh.vertex(s.mesh.elements[0]), b = s.mesh.vertex(s.mesh.elements[1]);
-  const double h =
-      std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-  out.strain_scale = e * h * h * std::sqrt(double(s.mesh.vertex_count()));
+  // The stopping rule: an absolute residual tolerance when the file gives
+  // one, else a strain error (SolveOptions::strain_tolerance: the library
+  // scales it by the smallest Young's modulus and the mesh's mean vertex
+  // spacing), the precision's default unless given.
   out.tolerance_given = solver.contains("strain_tolerance") || solver.contains("absolute_tolerance");
-  s.options.absolute_tolerance = r.number(
-      solver, "solver", "absolute_tolerance",
-      r.number(solver, "solver", "strain_tolerance", strain_tolerance_default(s.options.precision)) * out.strain_scale);
+  if (solver.contains("absolute_tolerance"))
+    s.options.absolute_tolerance = r.number(solver, "solver", "absolute_tolerance", 0.0);
+  else
+    s.options.strain_tolerance =
+        r.number(solver, "solver", "strain_tolerance", strain_tolerance_default(s.options.precision));
   const json output = doc.value("output", json::object());
   r.keys(output, "output", {"vtu", "json", "surface"});
   out.vtu_dir = r.text(output, "output", "vtu", "");

@@ -80,12 +80,10 @@ struct SceneFile {
   };
   std::optional<Rig> rig;
 
-  // The residual norm of a unit strain error, E h^2 sqrt(vertices) (h: the
-  // first element's first edge): solver.strain_tolerance times this is the
-  // absolute tolerance, as make_scene does it. `tolerance_given`: the file
-  // sets solver.strain_tolerance or solver.absolute_tolerance; without them
-  // the strain tolerance is the precision's default (strain_tolerance_default).
-  double strain_scale = 0.0;
+  // The file sets solver.strain_tolerance or solver.absolute_tolerance;
+  // without them the strain tolerance is the precision's default
+  // (strain_tolerance_default), set again when the command line changes the
+  // precision.
   bool tolerance_given = false;
 };
 

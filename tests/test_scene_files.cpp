@@ -59,11 +59,50 @@ TEST(SceneFiles, GmshMeshWithPinnedWallAndGravitySags) {
   QuasistaticSolver solver(f.scene.mesh, f.material, f.scene.constraints, f.scene.options);
   const SolveResult r = solver.solve();
   EXPECT_TRUE(r.converged);
+  // The stopping residual of a strain error of 1e-6 (SolveOptions::
+  // strain_tolerance) with the mesh's mean vertex spacing (0.082), not with
+  // its first element's first edge (0.175 on this Gmsh mesh: a tolerance 4.6x
+  // looser, as scene files had it before).
+  const double h = vertex_spacing(f.scene.mesh);
+  EXPECT_NEAR(r.tolerance, 1e-6 * 1e5 * h * h * std::sqrt(static_cast<double>(f.scene.mesh.vertex_count())),
+              1e-12 * r.tolerance);
   double tip = 0.0;
   for (size_t v = 0; v < f.scene.mesh.vertex_count(); ++v)
     if (f.scene.mesh.positions[3 * v] > 1.0 - 1e-9)
       tip = std::min(tip, r.positions[3 * v + 2] - f.scene.mesh.positions[3 * v + 2]);
   EXPECT_LT(tip, -1e-3);
+}
+
+// A scene file's stopping strain scales by the smallest Young's modulus of
+// its materials (here a soft region's, not the file's base material's), as
+// SolveOptions::strain_tolerance does; an absolute tolerance stands alone.
+TEST(SceneFiles, StrainToleranceFollowsTheLibrarysRule) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_strain_tolerance_scene.json";
+  const auto load = [&](const std::string& solver) {
+    std::ofstream(path) << R"({"mesh": {"generator": "box", "cells": [4, 2, 2], "size": 0.25},
+      "material": {"model": "snh", "E": 4.0, "nu": 0.45},
+      "regions": [{"name": "soft", "select": {"box": {"min": [-1, -1, -1], "max": [0.5, 1, 1]}},
+                   "material": {"model": "snh", "E": 1.0, "nu": 0.45}}],
+      "constraints": [{"name": "left", "select": {"plane": {"axis": "x", "value": 0.0, "tolerance": 1e-9}}}],
+      "solver": )" + solver + "}";
+    return bench::load_scene_file(path.string());
+  };
+  const bench::SceneFile plain = load("{}");
+  ASSERT_TRUE(plain.scene.options.strain_tolerance.has_value());
+  EXPECT_EQ(*plain.scene.options.strain_tolerance, 1e-6);
+  EXPECT_EQ(plain.scene.options.absolute_tolerance, 0.0);
+  const double h = vertex_spacing(plain.scene.mesh);
+  EXPECT_NEAR(h, std::cbrt(0.25 / 45.0), 1e-12);  // 45 vertices over a 1 x 0.5 x 0.5 box
+  const double n = static_cast<double>(plain.scene.mesh.vertex_count());
+  EXPECT_NEAR(residual_tolerance(plain.scene.mesh, plain.materials, plain.scene.options),
+              1e-6 * 1.0 * h * h * std::sqrt(n), 1e-15);
+  const bench::SceneFile given = load(R"({"strain_tolerance": 1e-5, "precision": "float"})");
+  EXPECT_NEAR(residual_tolerance(given.scene.mesh, given.materials, given.scene.options), 1e-5 * h * h * std::sqrt(n),
+              1e-15);
+  const bench::SceneFile absolute = load(R"({"absolute_tolerance": 1e-3})");
+  EXPECT_FALSE(absolute.scene.options.strain_tolerance.has_value());
+  EXPECT_EQ(residual_tolerance(absolute.scene.mesh, absolute.materials, absolute.scene.options), 1e-3);
+  std::filesystem::remove(path);
 }
 
 std::string error_of(const std::string& text) {
