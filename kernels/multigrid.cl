@@ -235,11 +235,9 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
  * r = base - A d (base: r, or b the first time from x = 0),
  * d_next = c_d d + c_z Dinv r, x += beta d_next (d_next a separate buffer:
  * the neighbours read d). Dinv: 3x3 column-major blocks per vertex
- * (snh_block_jacobi_setup's). */
-SNH_FN void block_inverse_apply(__global const real* inverse, const int v, const real* r, real* z) {
-  for (int i = 0; i < 3; ++i)
-    z[i] = inverse[9 * v + i] * r[0] + inverse[9 * v + 3 + i] * r[1] + inverse[9 * v + 6 + i] * r[2];
-}
+ * (snh_block_jacobi_setup's). The step reads the level's stencil: it is
+ * stencil.cl's, built with the stencil's width as the other stencil kernels
+ * are, so that this program is built once. */
 
 __kernel void snh_chebyshev_start(__global const real* inverse, __global const real* r, const real c, const real beta,
                                   const int count, const int accumulate, __global real* d, __global real* x) {
@@ -252,27 +250,6 @@ __kernel void snh_chebyshev_start(__global const real* inverse, __global const r
     const real dv = c * z[i];
     d[3 * v + i] = dv;
     x[3 * v + i] = accumulate ? x[3 * v + i] + beta * dv : beta * dv;
-  }
-}
-
-__kernel void snh_chebyshev_step(__global const real* d, __global const int* neighbours,
-                                 __global const matrix_real* stencil, __global const real* mask,
-                                 __global const real* inverse, const int count, const int width, const real c_d,
-                                 const real c_z, const real beta, __global const real* base, __global real* r,
-                                 __global real* x, __global real* d_next) {
-  const int v = get_global_id(0);
-  if (v >= count) return;
-  real ap[3], rv[3], z[3];
-  stencil_row(d, neighbours, stencil, width, v, ap);
-  for (int i = 0; i < 3; ++i) {
-    rv[i] = base[3 * v + i] - mask[3 * v + i] * ap[i];
-    r[3 * v + i] = rv[i];
-  }
-  block_inverse_apply(inverse, v, rv, z);
-  for (int i = 0; i < 3; ++i) {
-    const real dv = c_d * d[3 * v + i] + c_z * z[i];
-    d_next[3 * v + i] = dv;
-    x[3 * v + i] += beta * dv;
   }
 }
 

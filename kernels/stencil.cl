@@ -56,3 +56,27 @@ __kernel void snh_stencil_residual(__global const real* p, __global const int* n
   stencil_row(p, neighbours, stencil, width, v, ap);
   for (int i = 0; i < 3; ++i) r[3 * v + i] = base[3 * v + i] - mask[3 * v + i] * ap[i];
 }
+
+/* One step of the multigrid's Chebyshev smoothing on an assembled level
+ * (kernels/multigrid.cl, snh_chebyshev_start): r = base - mask * (A d),
+ * d_next = c_d d + c_z Dinv r, x += beta d_next. */
+__kernel void snh_chebyshev_step(__global const real* d, __global const int* neighbours,
+                                 __global const matrix_real* stencil, __global const real* mask,
+                                 __global const real* inverse, const int count, const int width, const real c_d,
+                                 const real c_z, const real beta, __global const real* base, __global real* r,
+                                 __global real* x, __global real* d_next) {
+  const int v = get_global_id(0);
+  if (v >= count) return;
+  real ap[3], rv[3], z[3];
+  stencil_row(d, neighbours, stencil, width, v, ap);
+  for (int i = 0; i < 3; ++i) {
+    rv[i] = base[3 * v + i] - mask[3 * v + i] * ap[i];
+    r[3 * v + i] = rv[i];
+  }
+  block_inverse_apply(inverse, v, rv, z);
+  for (int i = 0; i < 3; ++i) {
+    const real dv = c_d * d[3 * v + i] + c_z * z[i];
+    d_next[3 * v + i] = dv;
+    x[3 * v + i] += beta * dv;
+  }
+}

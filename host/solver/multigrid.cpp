@@ -77,10 +77,9 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   prolong_k_ = cl_.kernel("multigrid.cl", coarse, "snh_prolong_add");
   restrict_k_ = cl_.kernel("multigrid.cl", coarse, "snh_restrict");
   auto stencil_kernels_of = [&](const std::string& build) {
-    return StencilKernels{cl_.kernel("stencil.cl", build, "snh_stencil_assemble"),
-                          cl_.kernel("stencil.cl", build, "snh_stencil_product"),
-                          cl_.kernel("stencil.cl", build, "snh_stencil_residual"),
-                          cl_.kernel("multigrid.cl", build, "snh_chebyshev_step")};
+    return StencilKernels{
+        cl_.kernel("stencil.cl", build, "snh_stencil_assemble"), cl_.kernel("stencil.cl", build, "snh_stencil_product"),
+        cl_.kernel("stencil.cl", build, "snh_stencil_residual"), cl_.kernel("stencil.cl", build, "snh_chebyshev_step")};
   };
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", coarse, "snh_chebyshev_start");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
