@@ -88,7 +88,10 @@ TEST(Drop, BuiltInSceneMatchesTheSceneFile) {
   EXPECT_DOUBLE_EQ(a.body_force[2], -9.81 * a.dynamics->density);
   EXPECT_EQ(a.contact.stiffness, b.contact.stiffness);
   EXPECT_EQ(a.contact.thickness, b.contact.thickness);
-  EXPECT_NEAR(a.absolute_tolerance, b.absolute_tolerance, 1e-12 * b.absolute_tolerance);
+  EXPECT_EQ(a.strain_tolerance, b.strain_tolerance);
+  EXPECT_EQ(a.absolute_tolerance, b.absolute_tolerance);
+  EXPECT_EQ(residual_tolerance(built.mesh, uniform_material(built.mesh, Material(built.material)), a),
+            residual_tolerance(f.scene.mesh, f.materials, b));
   ASSERT_EQ(a.obstacles.size(), 6u);
   ASSERT_EQ(b.obstacles.size(), 6u);
   for (size_t k = 0; k < 6; ++k) {

@@ -22,7 +22,9 @@ struct SceneParameters {
   // hex8 (the paper's lattices) or tet4 (each lattice hex split in six).
   ElementType element_type = ElementType::hex8;
   // Newton stops when the force residual is that of a strain error of this
-  // size: |r| <= strain_tolerance * E * h^2 * sqrt(vertices), h the cell size.
+  // size: |r| <= strain_tolerance * E * h^2 * sqrt(vertices), h the cell size
+  // on the lattice scenes; drop (a Gmsh tet blob) passes it on as
+  // SolveOptions::strain_tolerance (h its mean vertex spacing).
   double strain_tolerance = 1e-6;
 };
 
