@@ -130,17 +130,21 @@ constexpr double kActionFlops = 219;
 // snh_principal_hessian + principal_hessian_project: the SVD's 5 Jacobi
 // sweeps, the material's block and pairs, eigen_sym3 with its Newton steps
 // on the cubic, the projected block rebuilt. Counted in pocl's compiled
-// SNH linearization (the hex8 lanes program, objdump of its cached object):
-// 1,475 multiplies, adds and subtracts per point in double, less F's 144;
-// selects and the FP contraction that the kernels do not use are not
+// SNH linearization (the hex8 lanes program, objdump of its cached object,
+// three copies of the body): 1,595 multiplies, adds and subtracts per point
+// in double (vmulpd, vaddpd, vsubpd on zmm registers: 4,785 / 3), less F's
+// 144; selects and the FP contraction that the kernels do not use are not
 // counted. (Until session 15 a hand count of 576, from the data-dependent
-// SVD and the acos/cos eigensolver that sessions 6 and 11 replaced.)
-constexpr double kLinearizationFlops = 1331;
+// SVD and the acos/cos eigensolver that sessions 6 and 11 replaced; 1,331
+// until session 24's Jacobi rotations, math/svd3.h, which take 8 more
+// multiplies and adds each and fewer square roots and divisions.)
+constexpr double kLinearizationFlops = 1451;
 // Square roots and divisions per point of the same kernel (vsqrtpd and
 // vdivpd per lane; float has one Newton step of the cubic less): Jacobi
 // and Givens rotations, eigenvector normalizations, the cubic's steps.
-constexpr double kSqrtPerPoint = 53;
-double divisions_per_point(int real_bytes) { return real_bytes == 8 ? 71 : 70; }
+// Before session 24: 53 and 71 (float 70).
+constexpr double kSqrtPerPoint = 38;
+double divisions_per_point(int real_bytes) { return real_bytes == 8 ? 41 : 40; }
 
 // stencil_blocks: the assembled operator's stored 3x3 blocks (vertices x
 // width); the kernel reads all of them, p three times per block (counted

@@ -150,4 +150,59 @@ using std::pow;
 using std::sqrt;
 #endif
 
+/* 2^-floor(log2 m) for a normal, positive, finite m below the largest
+ * power of two (so that m times it lies in [1, 2)): built from m's exponent
+ * bits, so scaling by it is exact and needs no division. Per lane with
+ * SNH_LANES = 8. */
+#if SNH_DOUBLE
+#define SNH_MANTISSA_BITS 52
+#define SNH_EXPONENT_MASK 0x7ff
+#define SNH_EXPONENT_BIAS 1023
+#else
+#define SNH_MANTISSA_BITS 23
+#define SNH_EXPONENT_MASK 0xff
+#define SNH_EXPONENT_BIAS 127
+#endif
+#if SNH_IS_OPENCL
+#if SNH_DOUBLE && SNH_LANES == 8
+typedef ulong8 snh_bits;
+#define SNH_AS_BITS(x) as_ulong8(x)
+#define SNH_FROM_BITS(b) as_double8(b)
+#elif SNH_DOUBLE
+typedef ulong snh_bits;
+#define SNH_AS_BITS(x) as_ulong(x)
+#define SNH_FROM_BITS(b) as_double(b)
+#elif SNH_LANES == 8
+typedef uint8 snh_bits;
+#define SNH_AS_BITS(x) as_uint8(x)
+#define SNH_FROM_BITS(b) as_float8(b)
+#else
+typedef uint snh_bits;
+#define SNH_AS_BITS(x) as_uint(x)
+#define SNH_FROM_BITS(b) as_float(b)
+#endif
+#else
+#if SNH_DOUBLE
+typedef unsigned long long snh_bits;
+#else
+typedef unsigned int snh_bits;
+#endif
+static inline snh_bits snh_as_bits(real x) {
+  snh_bits b;
+  __builtin_memcpy(&b, &x, sizeof b);
+  return b;
+}
+static inline real snh_from_bits(snh_bits b) {
+  real x;
+  __builtin_memcpy(&x, &b, sizeof x);
+  return x;
+}
+#define SNH_AS_BITS(x) snh_as_bits(x)
+#define SNH_FROM_BITS(b) snh_from_bits(b)
+#endif
+SNH_FN real snh_pow2_inverse(real m) {
+  const snh_bits exponent = (SNH_AS_BITS(m) >> SNH_MANTISSA_BITS) & (snh_bits)SNH_EXPONENT_MASK;
+  return SNH_FROM_BITS(((snh_bits)(2 * SNH_EXPONENT_BIAS) - exponent) << SNH_MANTISSA_BITS);
+}
+
 #endif /* SNH_PORTABLE_H */

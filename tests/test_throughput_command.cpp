@@ -55,8 +55,8 @@ TEST(ThroughputCommand, RooflineHasSlowOperationRatesAndRecomputeItsCeiling) {
     if (variant == "recompute") {
       ++recompute_rows;
       // Counted in the compiled linearization (bench/throughput.cpp).
-      EXPECT_EQ(row.at("sqrts_per_element").get<double>(), 53 * points);
-      EXPECT_EQ(row.at("divisions_per_element").get<double>(), (precision == "double" ? 71 : 70) * points);
+      EXPECT_EQ(row.at("sqrts_per_element").get<double>(), 38 * points);
+      EXPECT_EQ(row.at("divisions_per_element").get<double>(), (precision == "double" ? 41 : 40) * points);
       EXPECT_GT(ceiling, 0.0);
       EXPECT_LE(ceiling, 1.0);
       // Its measured fraction of the FMA peak cannot exceed the ceiling
