@@ -2,7 +2,11 @@
 // sigma0 >= sigma1 >= |sigma2|, sign(sigma2) = sign(det F).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfloat>
+#include <cmath>
+#include <limits>
+#include <random>
 
 #include "hard_deformations.h"
 #include "reference/element_reference.h"
@@ -59,12 +63,13 @@ TEST(Svd, ManyRandomMatricesIncludingNearSingular) {
 // The fixed sweep count (math/svd3.h) against extreme spectra: singular
 // values log-uniform over 1e-12..1e2 with either sign of det, repeated
 // (a, a, a), (a, a, b), (a, a, -a), one tiny singular value, and F = I + 1e-6 X.
-// Bounds: the worst errors measured over 10^5 such F per family (worst case in
-// parentheses), which are also those of the data-dependent loop the fixed
-// sweeps replaced: reconstruction / |F| double 4e-15 (1.8e-15), float 2e-6
-// (9.2e-7); orthogonality double 5e-15 (2.6e-15), float 2.5e-6 (1.24e-6);
-// singular values / |F| against Eigen in long double, double 2e-15 (1.0e-15),
-// float 1.2e-6 (5.4e-7).
+// Bounds: about twice the worst errors measured over 10^5 such F per family
+// with the data-dependent loop the fixed sweeps replaced (in parentheses,
+// then session 24's closed-form rotations' over 6 x 10^5 F): reconstruction
+// / |F| double 4e-15 (1.8e-15; 2.09e-15), float 2e-6 (9.2e-7; 1.05e-6);
+// orthogonality double 5e-15 (2.6e-15; 2.71e-15), float 2.5e-6 (1.24e-6;
+// 1.37e-6); singular values / |F| against Eigen in long double, double 2e-15
+// (1.0e-15; 1.2e-15), float 1.2e-6 (5.4e-7; 5.6e-7).
 template <typename Real>
 void check_svd_extreme(const Eigen::Matrix3d& fd, double recon_tol, double orth_tol, double sigma_tol) {
   const auto svd = reference::svd_rotation_variant<Real>(to_array<Real>(fd));
@@ -118,6 +123,32 @@ TEST(Svd, FixedSweepsOnExtremeSpectra) {
     check_svd_extreme<double>(f, 4e-15, 5e-15, 2e-15);
     check_svd_extreme<float>(f, 2e-6, 2.5e-6, 1.2e-6);
   }
+}
+
+// The exact power-of-two scale of the Jacobi rotations (snh_pow2_inverse):
+// m times it lies in [1, 2), for m over every binade of normal numbers.
+template <typename Real>
+void check_pow2_inverse() {
+  std::mt19937_64 rng(24);
+  std::uniform_real_distribution<double> mantissa(1.0, 2.0);
+  const int low = std::numeric_limits<Real>::min_exponent - 1, high = std::numeric_limits<Real>::max_exponent - 2;
+  for (int e = low; e <= high; ++e)
+    for (int n = 0; n < 20; ++n) {
+      const Real below_two = std::nextafter(Real(2), Real(1));
+      const Real x = n == 0 ? Real(1) : n == 1 ? below_two : std::min(static_cast<Real>(mantissa(rng)), below_two);
+      const Real m = std::ldexp(x, e);
+      const Real k = reference::pow2_inverse<Real>(m);
+      ASSERT_EQ(k, std::ldexp(Real(1), -e)) << m;
+      const Real scaled = m * k;
+      EXPECT_GE(scaled, Real(1));
+      EXPECT_LT(scaled, Real(2));
+      EXPECT_EQ(std::ldexp(scaled, e), m);  // exact
+    }
+}
+
+TEST(Svd, PowerOfTwoScaleIsExact) {
+  check_pow2_inverse<double>();
+  check_pow2_inverse<float>();
 }
 
 TEST(Svd, NonFiniteInputTerminates) {

@@ -46,6 +46,10 @@ Svd<Real> svd_rotation_variant(const Mat3<Real>& f);
 template <typename Real>
 SymmetricEigen<Real> symmetric_eigen(const std::array<Real, 6>& packed);  // a00 a01 a02 a11 a12 a22
 
+// snh_portable.h's snh_pow2_inverse: 2^-floor(log2 m), for normal m > 0.
+template <typename Real>
+Real pow2_inverse(Real m);
+
 template <typename Real>
 Real snh_energy(const Mat3<Real>& f, const SnhParameters& p);
 
