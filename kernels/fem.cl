@@ -27,6 +27,7 @@
  * (no atomics). Layouts: x, p: xyz per vertex; elements: SNH_NODES ints per
  * element; gradients: [element][q][a][3]; weights: [element][q]. */
 #include "contact/obstacle.h"
+#include "fem/block_jacobi.h"
 #include "fem/element_data.h"
 #include "fem/vertex_terms.h"
 #include "materials/kernel_args.h"
@@ -337,9 +338,10 @@ __kernel void snh_block_jacobi_apply(__global const real* inverse, __global cons
                                      __global real* z) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
-  const real r0 = r[3 * v], r1 = r[3 * v + 1], r2 = r[3 * v + 2]; /* r and z may alias */
-  for (int i = 0; i < 3; ++i)
-    z[3 * v + i] = inverse[9 * v + i] * r0 + inverse[9 * v + 3 + i] * r1 + inverse[9 * v + 6 + i] * r2;
+  real rv[3], zv[3]; /* r and z may alias */
+  for (int i = 0; i < 3; ++i) rv[i] = r[3 * v + i];
+  block_inverse_apply(inverse, v, rv, zv);
+  for (int i = 0; i < 3; ++i) z[3 * v + i] = zv[i];
 }
 
 #endif /* !SNH_MIXED */

@@ -18,7 +18,7 @@
  * Element matrices are column-major, [cell][(3 b + d) * 24 + 3 a + i]; both
  * Galerkin kernels also write each cell's 3x3 diagonal blocks,
  * [cell][9 b + 3 d + i] (the smoother's block-Jacobi blocks). */
-#include "fem/block_stencil.h"
+#include "fem/block_jacobi.h"
 #include "fem/element_data.h"
 #include "fem/vertex_terms.h"
 

@@ -3,6 +3,7 @@
  * fem.cl; the element matrices are SNH_DOFS x SNH_DOFS, column-major,
  * [element][(3 b + d) SNH_DOFS + 3 a + i] (snh_element_matrices, and the
  * multigrid's Galerkin cell matrices). */
+#include "fem/block_jacobi.h"
 #include "fem/block_stencil.h"
 #include "fem/element_data.h"
 

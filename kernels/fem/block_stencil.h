@@ -58,11 +58,4 @@ SNH_FN void stencil_row(__global const real* p, __global const int* neighbours, 
   out[2] = s2;
 }
 
-/* z = Dinv r at vertex v: Dinv 3x3 column-major blocks per vertex
- * (snh_block_jacobi_setup's), r and z private. */
-SNH_FN void block_inverse_apply(__global const real* inverse, const int v, const real* r, real* z) {
-  for (int i = 0; i < 3; ++i)
-    z[i] = inverse[9 * v + i] * r[0] + inverse[9 * v + 3 + i] * r[1] + inverse[9 * v + 6 + i] * r[2];
-}
-
 #endif
