@@ -1,11 +1,17 @@
 /* The per-point kernels of fem.cl for CPU devices (the linearization, the
  * cached and recompute products, the element matrices, the block-Jacobi
  * blocks), written over lanes:
- * built with SNH_LANES = 8 (snh_portable.h), so `real` holds 8 points, the
- * 8 quadrature points of one hex8 element (one work-item per element) or
- * the one point of 8 consecutive tet4 elements (one work-item per 8
- * elements; lanes past the last element repeat it and store nothing), and
- * the SVD, the material and the eigen-projection run as 8-wide SIMD. pocl's
+ * built with SNH_LANES = 8 or 16 (snh_portable.h), so `real` holds 8 or 16
+ * points: the 8 quadrature points of one or two hex8 elements (a work-item
+ * per element or per two, each element's points in 8 consecutive lanes, its
+ * part) or the one point of 8 or 16 consecutive tet4 elements (a work-item
+ * per 8 or 16 elements); lanes past the last element repeat it and store
+ * nothing. The SVD, the material and the eigen-projection run as 8- or
+ * 16-wide SIMD. 16 lanes in double are two independent AVX-512 vectors, whose
+ * chains of dependent square roots and divisions fill each other's latency
+ * (ElasticModel::default_material_lanes: the linearization and recompute
+ * product; the kernels that read the cache measured no faster, or slower,
+ * at 16 and are built at 8). pocl's
  * work-item vectorizer leaves the scalar kernels' per-point math scalar (its
  * program build SLP-vectorizes the straight-line SVD into 2-wide pieces the
  * loop vectorizer cannot widen; README, throughput), so on a CPU these
@@ -19,13 +25,14 @@
  * Same names, arguments and outputs as fem.cl's kernels: the host picks the
  * program and the launch (ElasticModel::set_point_lanes). Built with the
  * same specialization defines as fem.cl (SNH_MODEL, SNH_BARRIER,
- * SNH_NONLINEAR, SNH_REGIONS, ...); tet4 lanes hold different elements, so
- * they need one material for the mesh (no SNH_REGIONS). */
+ * SNH_NONLINEAR, SNH_REGIONS, ...); tet4 lanes and 16 hex8 lanes hold
+ * different elements, so they need one material for the mesh (no
+ * SNH_REGIONS). */
 #include "fem/element.h"
 #include "materials/kernel_args.h"
 
-#if SNH_LANES != 8 || (!SNH_HEX8 && SNH_REGIONS)
-#error "fem_lanes.cl: SNH_LANES = 8, and tet4 only without SNH_REGIONS (a material per work-item)"
+#if (SNH_LANES != 8 && SNH_LANES != 16) || ((!SNH_HEX8 || SNH_LANES > 8) && SNH_REGIONS)
+#error "fem_lanes.cl: SNH_LANES = 8 or 16, and tet4 or 16 lanes only without SNH_REGIONS (a material per work-item)"
 #endif
 #if SNH_CACHE_TILE != 1
 #error "fem_lanes.cl: the value-major or point-major cache, not the tiled one (SNH_CACHE_TILE)"
@@ -42,24 +49,29 @@
 
 #if SNH_HEX8
 #if SNH_DOUBLE
+typedef double8 lanes8;
 typedef ulong8 lanes_shuffle;
 #else
+typedef float8 lanes8;
 typedef uint8 lanes_shuffle;
 #endif
+/* A hex8 work-item's elements: SNH_LANES / 8, an element's points in 8
+ * consecutive lanes (its part). */
+#define SNH_LANE_ELEMENTS (SNH_LANES / 8)
 
 /* Lane k: the sum of v[k]'s 8 lanes, in lane order ((v.s0 + v.s1) + v.s2)
  * + ... (the scalar kernels' order over the points, so bit for bit theirs),
  * for k = 0..7 at once: the 8 x 8 block transposed in three rounds of
  * shuffles (24 in all), then 7 vector additions, instead of 56 lane
  * extractions and additions one at a time. */
-SNH_FN real lanes_sum8(const real* v) {
+SNH_FN lanes8 lanes_sum8(const lanes8* v) {
   const lanes_shuffle even = (lanes_shuffle)(0, 8, 2, 10, 4, 12, 6, 14),
                       odd = (lanes_shuffle)(1, 9, 3, 11, 5, 13, 7, 15);
   const lanes_shuffle low2 = (lanes_shuffle)(0, 1, 8, 9, 4, 5, 12, 13),
                       high2 = (lanes_shuffle)(2, 3, 10, 11, 6, 7, 14, 15);
   const lanes_shuffle low4 = (lanes_shuffle)(0, 1, 2, 3, 8, 9, 10, 11),
                       high4 = (lanes_shuffle)(4, 5, 6, 7, 12, 13, 14, 15);
-  real b[8], c[8], t[8];
+  lanes8 b[8], c[8], t[8];
   for (int k = 0; k < 8; k += 2) {
     b[k] = shuffle2(v[k], v[k + 1], even);    /* lanes 0, 2, 4, 6 of v[k] and v[k + 1], interleaved */
     b[k + 1] = shuffle2(v[k], v[k + 1], odd); /* lanes 1, 3, 5, 7 */
@@ -73,63 +85,80 @@ SNH_FN real lanes_sum8(const real* v) {
     t[j] = shuffle2(c[j], c[j + 4], low4);      /* lane j of v[0..7] */
     t[j + 4] = shuffle2(c[j], c[j + 4], high4); /* lane j + 4 */
   }
-  real sum = t[0];
+  lanes8 sum = t[0];
   for (int q = 1; q < 8; ++q) sum += t[q];
   return sum;
 }
 #endif
 
 #if SNH_HEX8
-/* Node values, the same in every lane. */
+/* Part k of a real: the 8 lanes of the work-item's k-th element. */
+#define LANES_PART(v, k) (((lanes8*)&(v))[k])
+
+/* The element of part k of work-item w (the last one past the end). */
+SNH_FN size_t lanes_element(size_t w, int k, int count) {
+  return min((size_t)SNH_LANE_ELEMENTS * w + k, (size_t)count - 1);
+}
+
+/* Node values, the same in every lane of a part. */
 SNH_FN void lanes_load_nodes(__global const vector_real* x, __global const int* elements, size_t w, int count,
                              real* xs) {
-  (void)count;
-  __global const int* nodes = elements + SNH_NODES * w;
   SNH_UNROLL
-  for (int a = 0; a < SNH_NODES; ++a) {
+  for (int k = 0; k < SNH_LANE_ELEMENTS; ++k) {
+    __global const int* nodes = elements + SNH_NODES * lanes_element(w, k, count);
     SNH_UNROLL
-    for (int i = 0; i < 3; ++i) xs[3 * a + i] = (real)((scalar_real)x[3 * nodes[a] + i]);
+    for (int a = 0; a < SNH_NODES; ++a) {
+      SNH_UNROLL
+      for (int i = 0; i < 3; ++i) LANES_PART(xs[3 * a + i], k) = (lanes8)((scalar_real)x[3 * nodes[a] + i]);
+    }
   }
 }
 
-/* Rest gradients: lane q holds point q's (layout [element][3 a + j][q]: one
- * vector per value; point by point, 192 lane inserts per element, the
- * cached product took 5.74 instead of 4.67 ms at 32^3 in double). With
- * SNH_POINT_MAJOR (element_data.h's [element][q][3 a + j], the GPUs'
- * layout) point by point. */
+/* Rest gradients: lane q of a part holds point q's (layout [element][3 a +
+ * j][q]: one vector per value; point by point, 192 lane inserts per
+ * element, the cached product took 5.74 instead of 4.67 ms at 32^3 in
+ * double). With SNH_POINT_MAJOR (element_data.h's [element][q][3 a + j],
+ * the GPUs' layout) point by point. */
 SNH_FN void lanes_load_gradients(__global const scalar_real* gradients, size_t w, int count, real* g) {
-  (void)count;
-  __global const scalar_real* src = gradients + (size_t)3 * SNH_NODES * SNH_QUADRATURE * REST_ELEMENT(w);
+  SNH_UNROLL
+  for (int k = 0; k < SNH_LANE_ELEMENTS; ++k) {
+    __global const scalar_real* src =
+        gradients + (size_t)3 * SNH_NODES * SNH_QUADRATURE * REST_ELEMENT(lanes_element(w, k, count));
 #if SNH_POINT_MAJOR
-  SNH_UNROLL
-  for (int l = 0; l < SNH_QUADRATURE; ++l) {
     SNH_UNROLL
-    for (int i = 0; i < 3 * SNH_NODES; ++i) LANE(g[i], l) = src[3 * SNH_NODES * l + i];
-  }
+    for (int l = 0; l < SNH_QUADRATURE; ++l) {
+      SNH_UNROLL
+      for (int i = 0; i < 3 * SNH_NODES; ++i) LANE(g[i], 8 * k + l) = src[3 * SNH_NODES * l + i];
+    }
 #else
-  SNH_UNROLL
-  for (int i = 0; i < 3 * SNH_NODES; ++i) g[i] = vload8(i, src);
+    SNH_UNROLL
+    for (int i = 0; i < 3 * SNH_NODES; ++i) LANES_PART(g[i], k) = vload8(i, src);
 #endif
+  }
 }
 
 SNH_FN real lanes_load_weights(__global const scalar_real* weights, size_t w, int count) {
-  (void)count;
-  return vload8(0, weights + SNH_QUADRATURE * REST_ELEMENT(w));
+  real out;
+  SNH_UNROLL
+  for (int k = 0; k < SNH_LANE_ELEMENTS; ++k)
+    LANES_PART(out, k) = vload8(0, weights + SNH_QUADRATURE * REST_ELEMENT(lanes_element(w, k, count)));
+  return out;
 }
 
 /* Work-item w's first point and how many lanes it stores. */
-#define LANES_FIRST_POINT(w) (SNH_QUADRATURE * (w))
-#define LANES_STORED(w, count) SNH_QUADRATURE
-#define LANES_ELEMENT(w) (w)
-#define LANES_ACTIVE(w, count) ((w) < (size_t)(count))
+#define LANES_FIRST_POINT(w) (SNH_LANES * (w))
+#define LANES_STORED(w, count) \
+  (SNH_QUADRATURE * (int)min((size_t)SNH_LANE_ELEMENTS, (size_t)(count)-SNH_LANE_ELEMENTS * (w)))
+#define LANES_ELEMENT(w) (SNH_LANE_ELEMENTS * (w))
+#define LANES_ACTIVE(w, count) (SNH_LANE_ELEMENTS * (w) < (size_t)(count))
 #else
 /* The element of lane l of work-item w (the last one past the end). */
-SNH_FN size_t lanes_element(size_t w, int l, int count) { return min(8 * w + l, (size_t)count - 1); }
+SNH_FN size_t lanes_element(size_t w, int l, int count) { return min((size_t)SNH_LANES * w + l, (size_t)count - 1); }
 
 SNH_FN void lanes_load_nodes(__global const vector_real* x, __global const int* elements, size_t w, int count,
                              real* xs) {
   SNH_UNROLL
-  for (int l = 0; l < 8; ++l) {
+  for (int l = 0; l < SNH_LANES; ++l) {
     __global const int* nodes = elements + SNH_NODES * lanes_element(w, l, count);
     SNH_UNROLL
     for (int a = 0; a < SNH_NODES; ++a) {
@@ -141,7 +170,7 @@ SNH_FN void lanes_load_nodes(__global const vector_real* x, __global const int* 
 
 SNH_FN void lanes_load_gradients(__global const scalar_real* gradients, size_t w, int count, real* g) {
   SNH_UNROLL
-  for (int l = 0; l < 8; ++l) {
+  for (int l = 0; l < SNH_LANES; ++l) {
     __global const scalar_real* src = gradients + (size_t)3 * SNH_NODES * REST_ELEMENT(lanes_element(w, l, count));
     SNH_UNROLL
     for (int i = 0; i < 3 * SNH_NODES; ++i) LANE(g[i], l) = src[i];
@@ -151,46 +180,64 @@ SNH_FN void lanes_load_gradients(__global const scalar_real* gradients, size_t w
 SNH_FN real lanes_load_weights(__global const scalar_real* weights, size_t w, int count) {
   real out;
   SNH_UNROLL
-  for (int l = 0; l < 8; ++l) LANE(out, l) = weights[REST_ELEMENT(lanes_element(w, l, count))];
+  for (int l = 0; l < SNH_LANES; ++l) LANE(out, l) = weights[REST_ELEMENT(lanes_element(w, l, count))];
   return out;
 }
 
-#define LANES_FIRST_POINT(w) (8 * (w))
-#define LANES_STORED(w, count) ((int)min((size_t)8, (size_t)(count)-8 * (w)))
-#define LANES_ELEMENT(w) (8 * (w))
-#define LANES_ACTIVE(w, count) (8 * (w) < (size_t)(count))
+#define LANES_FIRST_POINT(w) (SNH_LANES * (w))
+#define LANES_STORED(w, count) ((int)min((size_t)SNH_LANES, (size_t)(count)-SNH_LANES * (w)))
+#define LANES_ELEMENT(w) (SNH_LANES * (w))
+#define LANES_ACTIVE(w, count) (SNH_LANES * (w) < (size_t)(count))
 #endif
 
 #if SNH_CACHE_GROUP == 8
-/* hex8: the element's 8 points, lane q point q, each cached value of them one
- * vector (element.h's layout, values 8 apart). */
+/* hex8: an element's 8 points, lane q point q, each cached value of them one
+ * vector (element.h's layout, values 8 apart, elements 240 apart); the
+ * work-item's elements part by part (lanes / 8 of them stored). */
+#define LANES_ELEMENT_CACHE (SNH_LINEARIZATION_SIZE * SNH_CACHE_GROUP)
+
+SNH_FN void lanes_value_store(const real* v, int value, int parts, __global scalar_real* out) {
+  SNH_UNROLL
+  for (int k = 0; k < SNH_LANE_ELEMENTS; ++k)
+    if (k < parts) vstore8(LANES_PART(*v, k), 0, out + LANES_ELEMENT_CACHE * k + SNH_CACHE_STRIDE * value);
+}
+
+/* Parts past the stored ones repeat the last. */
+SNH_FN real lanes_value_load(__global const scalar_real* in, int value, int parts) {
+  real v;
+  SNH_UNROLL
+  for (int k = 0; k < SNH_LANE_ELEMENTS; ++k)
+    LANES_PART(v, k) = vload8(0, in + LANES_ELEMENT_CACHE * min(k, parts - 1) + SNH_CACHE_STRIDE * value);
+  return v;
+}
+
 SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __global scalar_real* out) {
-  (void)lanes;
+  const int parts = lanes / SNH_QUADRATURE;
   SNH_UNROLL
-  for (int i = 0; i < 9; ++i) vstore8(h->u.a[i], 0, out + SNH_CACHE_STRIDE * i);
+  for (int i = 0; i < 9; ++i) lanes_value_store(&h->u.a[i], i, parts, out);
   SNH_UNROLL
-  for (int i = 0; i < 9; ++i) vstore8(h->v.a[i], 0, out + SNH_CACHE_STRIDE * (9 + i));
+  for (int i = 0; i < 9; ++i) lanes_value_store(&h->v.a[i], 9 + i, parts, out);
   SNH_UNROLL
-  for (int i = 0; i < 6; ++i) vstore8(h->block.a[i], 0, out + SNH_CACHE_STRIDE * (18 + i));
+  for (int i = 0; i < 6; ++i) lanes_value_store(&h->block.a[i], 18 + i, parts, out);
   SNH_UNROLL
-  for (int i = 0; i < 3; ++i) vstore8(h->twist.a[i], 0, out + SNH_CACHE_STRIDE * (24 + i));
+  for (int i = 0; i < 3; ++i) lanes_value_store(&h->twist.a[i], 24 + i, parts, out);
   SNH_UNROLL
-  for (int i = 0; i < 3; ++i) vstore8(h->flip.a[i], 0, out + SNH_CACHE_STRIDE * (27 + i));
+  for (int i = 0; i < 3; ++i) lanes_value_store(&h->flip.a[i], 27 + i, parts, out);
 }
 
 SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in, int lanes) {
-  (void)lanes;
+  const int parts = lanes / SNH_QUADRATURE;
   principal_hessian h;
   SNH_UNROLL
-  for (int i = 0; i < 9; ++i) h.u.a[i] = vload8(0, in + SNH_CACHE_STRIDE * i);
+  for (int i = 0; i < 9; ++i) h.u.a[i] = lanes_value_load(in, i, parts);
   SNH_UNROLL
-  for (int i = 0; i < 9; ++i) h.v.a[i] = vload8(0, in + SNH_CACHE_STRIDE * (9 + i));
+  for (int i = 0; i < 9; ++i) h.v.a[i] = lanes_value_load(in, 9 + i, parts);
   SNH_UNROLL
-  for (int i = 0; i < 6; ++i) h.block.a[i] = vload8(0, in + SNH_CACHE_STRIDE * (18 + i));
+  for (int i = 0; i < 6; ++i) h.block.a[i] = lanes_value_load(in, 18 + i, parts);
   SNH_UNROLL
-  for (int i = 0; i < 3; ++i) h.twist.a[i] = vload8(0, in + SNH_CACHE_STRIDE * (24 + i));
+  for (int i = 0; i < 3; ++i) h.twist.a[i] = lanes_value_load(in, 24 + i, parts);
   SNH_UNROLL
-  for (int i = 0; i < 3; ++i) h.flip.a[i] = vload8(0, in + SNH_CACHE_STRIDE * (27 + i));
+  for (int i = 0; i < 3; ++i) h.flip.a[i] = lanes_value_load(in, 27 + i, parts);
   SNH_UNROLL
   for (int i = 0; i < 3; ++i) h.sigma.a[i] = SNH_R(0);
   return h;
@@ -201,7 +248,7 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
  * (value by value measured 2.2x slower in float). */
 SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __global scalar_real* out) {
   SNH_UNROLL
-  for (int l = 0; l < 8; ++l) {
+  for (int l = 0; l < SNH_LANES; ++l) {
     if (l < lanes) { /* not `break`: a loop with an early exit is not unrolled (pocl warned) */
       __global scalar_real* o = out + SNH_LINEARIZATION_SIZE * l;
       SNH_UNROLL
@@ -222,7 +269,7 @@ SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __g
 SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in, int lanes) {
   principal_hessian h;
   SNH_UNROLL
-  for (int l = 0; l < 8; ++l) {
+  for (int l = 0; l < SNH_LANES; ++l) {
     __global const scalar_real* s = in + SNH_LINEARIZATION_SIZE * min(l, lanes - 1);
     SNH_UNROLL
     for (int i = 0; i < 9; ++i) LANE(h.u.a[i], l) = s[i];
@@ -245,19 +292,30 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
  * scalar kernel's order (point 0 first), tet4 lanes per element. */
 SNH_FN void lanes_store_per_element(const real* v, int n, size_t w, int count, __global vector_real* out) {
 #if SNH_HEX8
-  (void)count;
+  const int parts = LANES_STORED(w, count) / SNH_QUADRATURE;
+  SNH_UNROLL
+  for (int k = 0; k < SNH_LANE_ELEMENTS; ++k) {
+    if (k < parts) {
+      __global vector_real* o = out + (size_t)n * (SNH_LANE_ELEMENTS * w + k);
+      for (int i = 0; i < n; i += 8) { /* n: 24 or 72 */
+        lanes8 part[8];
+        SNH_UNROLL
+        for (int j = 0; j < 8; ++j) part[j] = LANES_PART(v[i + j], k);
 #if SNH_MIXED
-  for (int i = 0; i < n; i += 8) vstore8(convert_double8(lanes_sum8(v + i)), 0, out + n * w + i);
+        vstore8(convert_double8(lanes_sum8(part)), 0, o + i);
 #else
-  for (int i = 0; i < n; i += 8) vstore8(lanes_sum8(v + i), 0, out + n * w + i); /* n: 24 or 72 */
+        vstore8(lanes_sum8(part), 0, o + i);
 #endif
+      }
+    }
+  }
 #else
   const int lanes = LANES_STORED(w, count);
   SNH_UNROLL
-  for (int l = 0; l < 8; ++l) {
+  for (int l = 0; l < SNH_LANES; ++l) {
     if (l < lanes) { /* as in lanes_linearization_store */
       SNH_UNROLL
-      for (int i = 0; i < n; ++i) out[n * (8 * w + l) + i] = LANE(v[i], l);
+      for (int i = 0; i < n; ++i) out[n * (SNH_LANES * w + l) + i] = LANE(v[i], l);
     }
   }
 #endif
@@ -340,18 +398,21 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
       for (int i = 0; i < SNH_DOFS; ++i) column[i] = SNH_R(0);
       element_column_scatter_from(element_column_frame(&h, vg, b, d), vg, qw, b, column);
 #if SNH_HEX8
-      __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * w;
-      __global vector_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * w + 9 * b;
-      for (int i = 3 * b + d; i < SNH_DOFS; ++i) {
-        scalar_real sum = LANE(column[i], 0);
-        SNH_UNROLL
-        for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(column[i], q);
-        element_matrix_store(k, SNH_DOFS, 3 * b + d, i, sum);
-        if (i / 3 == b) block[3 * d + i % 3] = block[3 * (i % 3) + d] = sum;
+      for (int part = 0; part < lanes / SNH_QUADRATURE; ++part) {
+        const size_t e = SNH_LANE_ELEMENTS * w + part;
+        __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
+        __global vector_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * e + 9 * b;
+        for (int i = 3 * b + d; i < SNH_DOFS; ++i) {
+          scalar_real sum = LANE(column[i], 8 * part);
+          SNH_UNROLL
+          for (int q = 1; q < SNH_QUADRATURE; ++q) sum += LANE(column[i], 8 * part + q);
+          element_matrix_store(k, SNH_DOFS, 3 * b + d, i, sum);
+          if (i / 3 == b) block[3 * d + i % 3] = block[3 * (i % 3) + d] = sum;
+        }
       }
 #else
       for (int l = 0; l < lanes; ++l) {
-        const size_t e = 8 * w + l;
+        const size_t e = SNH_LANES * w + l;
         __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
         __global vector_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * e + 9 * b;
         for (int i = 3 * b + d; i < SNH_DOFS; ++i) element_matrix_store(k, SNH_DOFS, 3 * b + d, i, LANE(column[i], l));

@@ -79,9 +79,10 @@
 #pragma OPENCL FP_CONTRACT OFF
 #endif
 
-/* Lanes (SNH_LANES = 8, OpenCL only; kernels/fem_lanes.cl): `real` is a
- * vector of 8 values, one per lane (a hex8 element's 8 quadrature points),
- * so the per-point math below runs as 8-wide SIMD on CPU devices, where
+/* Lanes (SNH_LANES = 8 or 16, OpenCL only; kernels/fem_lanes.cl): `real` is
+ * a vector of 8 or 16 values, one per lane (a hex8 element's 8 quadrature
+ * points, or two elements'),
+ * so the per-point math below runs as SIMD on CPU devices, where
  * pocl's work-item vectorizer does not widen it (README, throughput).
  * scalar_real is the element type (buffers, material parameters) and
  * snh_mask what a comparison of two reals gives: int per point, or one
@@ -93,8 +94,8 @@
 #ifndef SNH_LANES
 #define SNH_LANES 1
 #endif
-#if SNH_LANES != 1 && (SNH_LANES != 8 || !SNH_IS_OPENCL)
-#error "SNH_LANES is 1, or 8 in OpenCL kernels"
+#if SNH_LANES != 1 && ((SNH_LANES != 8 && SNH_LANES != 16) || !SNH_IS_OPENCL)
+#error "SNH_LANES is 1, or 8 or 16 in OpenCL kernels"
 #endif
 
 #if SNH_DOUBLE
@@ -105,6 +106,9 @@ typedef double scalar_real;
 #if SNH_LANES == 8
 typedef double8 real;
 typedef long8 snh_mask;
+#elif SNH_LANES == 16
+typedef double16 real;
+typedef long16 snh_mask;
 #else
 typedef double real;
 typedef int snh_mask;
@@ -116,6 +120,9 @@ typedef float scalar_real;
 #if SNH_LANES == 8
 typedef float8 real;
 typedef int8 snh_mask;
+#elif SNH_LANES == 16
+typedef float16 real;
+typedef int16 snh_mask;
 #else
 typedef float real;
 typedef int snh_mask;
@@ -153,7 +160,7 @@ using std::sqrt;
 /* 2^-floor(log2 m) for a normal, positive, finite m below the largest
  * power of two (so that m times it lies in [1, 2)): built from m's exponent
  * bits, so scaling by it is exact and needs no division. Per lane with
- * SNH_LANES = 8. */
+ * SNH_LANES = 8 or 16. */
 #if SNH_DOUBLE
 #define SNH_MANTISSA_BITS 52
 #define SNH_EXPONENT_MASK 0x7ff
@@ -168,6 +175,14 @@ using std::sqrt;
 typedef ulong8 snh_bits;
 #define SNH_AS_BITS(x) as_ulong8(x)
 #define SNH_FROM_BITS(b) as_double8(b)
+#elif SNH_DOUBLE && SNH_LANES == 16
+typedef ulong16 snh_bits;
+#define SNH_AS_BITS(x) as_ulong16(x)
+#define SNH_FROM_BITS(b) as_double16(b)
+#elif SNH_LANES == 16
+typedef uint16 snh_bits;
+#define SNH_AS_BITS(x) as_uint16(x)
+#define SNH_FROM_BITS(b) as_float16(b)
 #elif SNH_DOUBLE
 typedef ulong snh_bits;
 #define SNH_AS_BITS(x) as_ulong(x)

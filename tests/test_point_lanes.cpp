@@ -13,10 +13,10 @@
 // with entries of order 1), so there the bound is 1e-14 of the largest
 // entry. For every model, the seed 004 path, materials per region and
 // the run-time material kernel, at projected and true-Hessian
-// linearizations, on a lattice with jittered rest shapes (no shared rest
-// data) and a uniform one and on tet4 boxes whose element count is not a
-// multiple of 8, with large rotations and stretches, an inverted element and
-// a collapsed one.
+// linearizations, on lattices of an odd element count with jittered rest
+// shapes (no shared rest data) and a uniform one and on tet4 boxes whose
+// element count is not a multiple of 8, with large rotations and stretches,
+// an inverted element and a collapsed one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -197,13 +197,35 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
       // kernels (a work-item per element) on GPUs.
       EXPECT_EQ(model.point_lanes(), !cl.info().is_gpu) << cl.info().name;
       model.set_point_lanes(true);
+      const bool regions = !map.uniform();
       const int nodes = nodes_per_element(mesh.type);
+      // The material kernels' width: two of the device's native vectors
+      // where it has 8-wide ones (16 lanes), but one element's material per
+      // hex8 work-item with regions.
+      const unsigned native =
+          std::is_same_v<Real, double> ? cl.info().native_vector_width_double : cl.info().native_vector_width_float;
+      EXPECT_EQ(model.material_lanes(), native >= 8 && !(nodes == 8 && regions) ? 16 : 8);
       const Outputs<Real> lanes = run(model, nodes, x, p);
+      // The other width, where it exists: the linearization and the
+      // recompute product (the kernels that read the cache keep 8 lanes).
+      std::optional<Outputs<Real>> other;
+      if (nodes == 8 && regions) {
+        EXPECT_THROW(model.set_material_lanes(16), Error);
+      } else {
+        model.set_material_lanes(model.material_lanes() == 16 ? 8 : 16);
+        other = run(model, nodes, x, p);
+      }
       model.set_point_lanes(false);
+      EXPECT_EQ(model.material_lanes(), 0);
       const Outputs<Real> scalar = run(model, nodes, x, p);
       const double relative = calls_exp(map) ? 1e-14 : 0.0;
       for (int k = 0; k < 2; ++k) {
         const std::string at = k == 0 ? "projected" : "true Hessian";
+        if (other) {
+          const std::string width = std::to_string(model.default_material_lanes() == 16 ? 8 : 16) + " lanes, ";
+          expect_equal_values(other->cache[k], scalar.cache[k], relative, width + "linearization, " + at);
+          expect_equal_values(other->product[k], scalar.product[k], relative, width + "recompute product, " + at);
+        }
         expect_equal_values(lanes.cache[k], scalar.cache[k], relative, "linearization, " + at);
         expect_equal_values(lanes.product[k], scalar.product[k], relative, "recompute product, " + at);
         expect_equal_values(lanes.cached[k], scalar.cached[k], relative, "cached product, " + at);
@@ -223,10 +245,12 @@ MaterialMap two_regions(const Mesh& mesh, const Material& base, const Material& 
   return map;
 }
 
-std::vector<Mesh> hex_meshes() { return {jittered(make_box_lattice(3, 2, 2, kH), kH), make_box_lattice(3, 2, 2, kH)}; }
+// 3 x 3 x 1 cubes: 9 elements, the last work-item of 16 lanes (two
+// elements) half full.
+std::vector<Mesh> hex_meshes() { return {jittered(make_box_lattice(3, 3, 1, kH), kH), make_box_lattice(3, 3, 1, kH)}; }
 
 // 3 x 2 x 1 cubes of 6 tetrahedra: 36 elements, the last work-item's lanes
-// half full.
+// half full (8 lanes) or a quarter full (16).
 std::vector<Mesh> tet_meshes() { return {jittered(make_tet_box(3, 2, 1, kH), kH), make_tet_box(3, 2, 1, kH)}; }
 
 Maps every_model(const Mesh& mesh) {

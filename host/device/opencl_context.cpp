@@ -72,6 +72,12 @@ std::vector<Candidate> all_devices() {
       cl_ulong mem = 0;
       clGetDeviceInfo(d, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, nullptr);
       c.info.global_memory_bytes = mem;
+      cl_uint width = 0;
+      clGetDeviceInfo(d, CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT, sizeof width, &width, nullptr);
+      c.info.native_vector_width_float = width;
+      width = 0;
+      clGetDeviceInfo(d, CL_DEVICE_NATIVE_VECTOR_WIDTH_DOUBLE, sizeof width, &width, nullptr);
+      c.info.native_vector_width_double = width;
       out.push_back(c);
     }
   }

@@ -174,8 +174,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   if (on && !point_lanes_available())
     throw Error("solver: per-point lanes of tet4 meshes need one material for the mesh (this map has regions)");
   point_lanes_ = on;
-  linearize_k_ = point_kernel("snh_element_linearize");
-  product_recompute_k_ = point_kernel("snh_element_product_recompute");
+  set_material_lanes(on ? default_material_lanes() : 8);
   // The cached product over lanes in float, and for hex8 in double too (its
   // cache value-major per element: one vector load per value); tet4 in
   // double keeps the scalar kernel, which pocl vectorizes across
@@ -190,6 +189,31 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   matrices_float_k_ = device::Kernel();
   matrices_mixed_k_ = device::Kernel();
   diagonal_k_ = point_kernel("snh_element_diagonal");
+}
+
+template <typename Real>
+int ElasticModel<Real>::default_material_lanes() const {
+  // Two of the device's native vectors per lane vector where it has 8-wide
+  // ones for Real (AVX-512 in double, AVX and up in float): the SVD's chains
+  // of dependent square roots and divisions bound one vector's throughput,
+  // and a second, independent one fills their latency (twice the elements
+  // per work-item). 8 where hex8 elements carry their own material (a
+  // work-item's material is one element's).
+  const unsigned native =
+      sizeof(Real) == sizeof(double) ? cl_.info().native_vector_width_double : cl_.info().native_vector_width_float;
+  return native >= 8 && !(nodes_ == 8 && material_.per_element()) ? 16 : 8;
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_material_lanes(int lanes) {
+  if (lanes != 8 && lanes != 16) throw Error("solver: material lanes are 8 or 16, not " + std::to_string(lanes));
+  if (lanes == 16 && nodes_ == 8 && material_.per_element())
+    throw Error(
+        "solver: 16 material lanes hold two hex8 elements, so they need one material for the mesh (this map has "
+        "regions)");
+  material_lanes_ = point_lanes_ ? lanes : 0;
+  linearize_k_ = point_kernel("snh_element_linearize", "", material_lanes_);
+  product_recompute_k_ = point_kernel("snh_element_product_recompute", "", material_lanes_);
 }
 
 template <typename Real>
@@ -267,9 +291,10 @@ void ElasticModel<Real>::narrow(cl_mem from, size_t values, device::Buffer& to) 
 }
 
 template <typename Real>
-device::Kernel ElasticModel<Real>::point_kernel(const char* name, const std::string& extra) const {
+device::Kernel ElasticModel<Real>::point_kernel(const char* name, const std::string& extra, int lanes) const {
   // The lanes program needs only the element's own specialization.
-  if (point_lanes_) return cl_.kernel("fem_lanes.cl", elastic_defines_ + " -DSNH_LANES=8" + extra, name);
+  if (point_lanes_)
+    return cl_.kernel("fem_lanes.cl", elastic_defines_ + " -DSNH_LANES=" + std::to_string(lanes) + extra, name);
   return cl_.kernel("fem.cl", defines_ + extra, name);
 }
 
@@ -368,7 +393,7 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
   set_arg(k, 4, from_copies ? cache_float_.get() : cache_.get());
   set_arg(k, 5, matrices);
   set_arg(k, 6, diagonal_blocks);
-  run_point_kernel(k, point_lanes_);
+  run_point_kernel(k, point_lanes_ ? 8 : 0);
 }
 
 template <typename Real>
@@ -718,9 +743,10 @@ void ElasticModel<Real>::run_element_kernel(cl_kernel k) const {
 }
 
 template <typename Real>
-void ElasticModel<Real>::run_point_kernel(cl_kernel k, bool lanes) const {
-  // tet4 lanes: a work-item per 8 elements.
-  cl_.run(k, lanes && nodes_ == 4 ? (element_count_ + 7) / 8 : element_count_);
+void ElasticModel<Real>::run_point_kernel(cl_kernel k, int lanes) const {
+  // A work-item per lanes / points elements: tet4 one per lane, hex8 8.
+  const size_t per_item = lanes == 0 ? 1 : static_cast<size_t>(lanes / quadrature_);
+  cl_.run(k, (element_count_ + per_item - 1) / per_item);
 }
 
 template <typename Real>
@@ -829,7 +855,7 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   set_arg(k, next + 1, cache_.get());
   // Double: the cache's float copy for float products (null: none).
   if (sizeof(Real) > sizeof(float)) set_arg(k, next + 2, float_cache() ? cache_float_.get() : cl_mem{nullptr});
-  run_point_kernel(k, point_lanes_);
+  run_point_kernel(k, material_lanes_);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
   last_assembly_seconds_ = 0.0;
   if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled) compute_element_matrices();
@@ -904,9 +930,9 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   if (variant_ == ProductVariant::element_matrices)
     cl_.run(k, matrix_rows_ ? element_count_ * 3 * nodes_ : element_count_);
   else
-    run_point_kernel(k, variant_ != ProductVariant::cached ? point_lanes_
-                        : float_products()                 ? float_product_lanes()
-                                                           : cached_lanes_);
+    run_point_kernel(k, variant_ != ProductVariant::cached                           ? material_lanes_
+                        : (float_products() ? float_product_lanes() : cached_lanes_) ? 8
+                                                                                     : 0);
   self_differences(p);
   gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }
@@ -925,7 +951,7 @@ void ElasticModel<Real>::setup_preconditioner() {
     set_arg(k, 3, count);
     set_arg(k, 4, cache_.get());
     set_arg(k, 5, element_blocks_.get());
-    run_point_kernel(k, point_lanes_);
+    run_point_kernel(k, point_lanes_ ? 8 : 0);
   }
   cl_kernel s = setup_k_.get();
   const int vertices = static_cast<int>(vertex_count_);

@@ -217,6 +217,15 @@ class ElasticModel {
   // materials per region (throws snh::Error).
   void set_point_lanes(bool on);
   bool point_lanes() const { return point_lanes_; }
+  // With point lanes on: the width of the kernels that evaluate the
+  // material (the linearization and the recompute product), 8 or 16 lanes
+  // (a work-item per 2 hex8 elements or 16 tet4 ones); the kernels that
+  // read the cache keep 8. set_point_lanes picks default_material_lanes();
+  // 16 on hex8 meshes with materials per region throws snh::Error. 0 with
+  // lanes off.
+  void set_material_lanes(int lanes);
+  int material_lanes() const { return material_lanes_; }
+  int default_material_lanes() const;
   // Mixed precision, double models with the cached or the assembled
   // variant: CG's products in float. Cached (kernels/snh_portable.h,
   // SNH_MIXED): each linearize() writes its cache's float copy too (the rest
@@ -268,11 +277,12 @@ class ElasticModel {
   void run_element_kernel(cl_kernel k) const;
   // The same for the kernels fem_lanes.cl also has (linearize, cached and
   // recompute products, element matrices, element blocks).
-  // lanes: the kernel is fem_lanes.cl's (tet4: a work-item per 8 elements).
-  void run_point_kernel(cl_kernel k, bool lanes) const;
-  // Kernel `name` of the program set_point_lanes chose (fem_lanes.cl or
-  // fem.cl), its defines followed by `extra`.
-  device::Kernel point_kernel(const char* name, const std::string& extra = "") const;
+  // lanes: 0 for fem.cl's kernel, else fem_lanes.cl's at that width (a
+  // work-item per lanes / quadrature points elements).
+  void run_point_kernel(cl_kernel k, int lanes) const;
+  // Kernel `name` of the program set_point_lanes chose (fem_lanes.cl at
+  // `lanes` lanes, or fem.cl), its defines followed by `extra`.
+  device::Kernel point_kernel(const char* name, const std::string& extra = "", int lanes = 8) const;
   // Per-element elastic forces at x into element_scratch_ (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
   void compute_element_matrices();
@@ -293,6 +303,7 @@ class ElasticModel {
   ProductVariant variant_;
   std::string defines_, elastic_defines_;
   bool point_lanes_ = false;
+  int material_lanes_ = 0;     // set_material_lanes
   size_t cache_tile_ = 1;      // PointDataLayout::tiled: 32
   bool cached_lanes_ = false;  // the cached product's kernel is fem_lanes.cl's
   bool matrix_rows_ = false;   // set_matrix_product_rows

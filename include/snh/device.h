@@ -26,6 +26,10 @@ struct DeviceInfo {
   bool has_fp64 = false;
   unsigned compute_units = 0;
   unsigned long long global_memory_bytes = 0;
+  // CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT / _DOUBLE: the SIMD width in lanes
+  // (0 without fp64).
+  unsigned native_vector_width_float = 0;
+  unsigned native_vector_width_double = 0;
 };
 
 // Every OpenCL device on this machine; empty when no platform is installed.
