@@ -214,6 +214,7 @@ struct VariantRow {
   double product_seconds, setup_seconds, assembly_seconds;
   size_t memory_bytes;
   Counts counts;
+  int material_lanes;  // of the linearization and recompute product; 0: the scalar kernels
 };
 
 struct OperationRow {
@@ -254,6 +255,12 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
       for (Real& v : ph) v = Real(u(rng));
       viennacl::copy(ph.begin(), ph.end(), p.begin());
       solver::ElasticModel<Real> model(cl, mesh, rest, uniform_material(mesh, material), ProductVariant::cached);
+      if (o.material_lanes != 0) {
+        if (!model.point_lanes())
+          throw Error("throughput: --material-lanes needs the lanes program (CPU devices); " + cl.info().name +
+                      " runs the scalar kernels");
+        model.set_material_lanes(o.material_lanes);
+      }
       std::cerr << "  " << type << " " << n << "^3 (" << mesh.element_count() << " elements, " << pname << ")\n";
       const size_t ne = mesh.element_count();
       // The model's operations wait for their kernels (each is a phase scope,
@@ -277,14 +284,15 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
                            static_cast<double>(mesh.vertex_count()) * model.assembled_width(), static_cast<double>(ne),
                            static_cast<double>(mesh.vertex_count()), float_products ? sizeof(float) : sizeof(Real));
         rows.push_back({type, pname, vname, n, ne, xh.size(), product, setup, model.last_assembly_seconds(),
-                        model.variant_memory_bytes(), counts});
+                        model.variant_memory_bytes(), counts, model.material_lanes()});
       }
       if (o.host_baseline && precision == Precision::double_) {
         const HostProductTiming host = time_host_product(mesh, material, xh, 20);
         rows.push_back({type, "double", "host-eigen-csr", n, ne, xh.size(), host.product_seconds, host.assembly_seconds,
                         host.assembly_seconds, host.nonzeros * 12 + (xh.size() + 1) * 4,
                         csr_counts(static_cast<double>(host.nonzeros), static_cast<double>(ne),
-                                   static_cast<double>(mesh.vertex_count()))});
+                                   static_cast<double>(mesh.vertex_count())),
+                        0});
       }
     }
 }
@@ -370,7 +378,8 @@ int run_throughput(const ThroughputOptions& o) {
                                   {"fraction_of_bandwidth", fbw},
                                   {"sqrts_per_element", r.counts.sqrts},
                                   {"divisions_per_element", r.counts.divisions},
-                                  {"peak_ceiling", ceiling}});
+                                  {"peak_ceiling", ceiling},
+                                  {"material_lanes", r.material_lanes}});
     md << "| " << r.element_type << " | " << r.precision << " | " << r.size << "^3 | " << r.variant << " | "
        << fixed(1e3 * r.product_seconds, 3) << " | " << fixed(rate / 1e6, 3) << " | " << fixed(1e3 * r.setup_seconds, 3)
        << " | " << fixed(static_cast<double>(r.memory_bytes) / 1e6, 3) << " | " << fixed(r.counts.flops, 4) << " | "
@@ -453,6 +462,10 @@ void add_throughput_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--min-seconds", o->min_seconds, "minimum time spent timing each operation")->capture_default_str();
   cmd->add_flag("!--no-host-baseline", o->host_baseline, "skip the host Eigen CSR product");
+  cmd->add_option("--material-lanes", o->material_lanes,
+                  "CPU devices: lanes of the linearization and recompute product, 8 or 16 (default: 16 where the "
+                  "device's native vectors hold 8 values of the precision, else 8)")
+      ->check(CLI::IsMember({8, 16}));
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();
   cmd->callback([o, &exit_code] { exit_code = run_throughput(*o); });

@@ -52,6 +52,13 @@ TEST(ThroughputCommand, RooflineHasSlowOperationRatesAndRecomputeItsCeiling) {
           row.at("bytes_per_element").get<double>();
     const double points = row.at("element_type") == "hex8" ? 8 : 1;
     const double ceiling = row.at("peak_ceiling");
+    // The lanes program's width of the material kernels on CPUs, the scalar
+    // kernels (0) on GPUs.
+    const int lanes = row.at("material_lanes");
+    if (report.at("device_is_gpu").get<bool>())
+      EXPECT_EQ(lanes, 0);
+    else
+      EXPECT_TRUE(lanes == 8 || lanes == 16) << lanes;
     if (variant == "recompute") {
       ++recompute_rows;
       // Counted in the compiled linearization (bench/throughput.cpp).
@@ -92,6 +99,28 @@ TEST(ThroughputCommand, RooflineHasSlowOperationRatesAndRecomputeItsCeiling) {
   text << md.rdbuf();
   EXPECT_NE(text.str().find("| sqrt 8-wide G/s | div 8-wide G/s | sqrt+div 8-wide G/s |"), std::string::npos);
   EXPECT_NE(text.str().find("| % bandwidth | % peak ceiling |"), std::string::npos);
+  std::filesystem::remove_all(out);
+}
+
+TEST(ThroughputCommand, MaterialLanesAreChosenOrRefused) {
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "snh_throughput_lanes_test";
+  std::filesystem::remove_all(out);
+  const std::string command = std::string(SNH_BENCH_BINARY) +
+                              " throughput --element hex8,tet4 --precision float --size 2 --variant recompute "
+                              "--no-host-baseline --min-seconds 0.01 --out " +
+                              out.string();
+  EXPECT_NE(run_command(command + " --material-lanes 12 > /dev/null 2>&1"), 0);
+  const int status = run_command(command + " --material-lanes 8 > /dev/null 2>&1");
+  std::ifstream file(out / "throughput.json");
+  if (!file.good()) {
+    // Refused where the device runs the scalar kernels (GPUs), with an error.
+    EXPECT_NE(status, 0);
+    GTEST_SKIP() << "--material-lanes: the lanes program runs on CPU devices only";
+  }
+  ASSERT_EQ(status, 0);
+  const nlohmann::json report = nlohmann::json::parse(file);
+  ASSERT_EQ(report.at("products").size(), 2u);
+  for (const nlohmann::json& row : report.at("products")) EXPECT_EQ(row.at("material_lanes"), 8) << row;
   std::filesystem::remove_all(out);
 }
 
