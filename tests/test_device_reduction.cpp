@@ -1,5 +1,8 @@
 // Device reductions (solver/device_reduction.h): the Newton loop's energies,
-// norms and dot products summed on the device in a fixed order.
+// norms and dot products summed on the device in a fixed order. And
+// ViennaCL's element-wise vector kernels (CG's updates) at the work-group
+// sizes device/viennacl_binding.h sets on CPU devices: the same values as
+// at ViennaCL's own.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +13,7 @@
 
 #include "device_test_support.h"
 #include "solver/device_reduction.h"
+#include "viennacl/linalg/opencl/kernels/vector.hpp"
 
 namespace snh::test {
 namespace {
@@ -83,6 +87,70 @@ TEST(DeviceReduction, NonFiniteEntriesReachTheSum) {
   a[5000] = std::numeric_limits<double>::infinity();
   cl.write(da.get(), a.size() * sizeof(double), a.data());
   EXPECT_TRUE(std::isinf(reduction.sum(da.get(), a.size())));
+}
+
+// CG's updates (x += a p, r -= a q, p = z + b p) and a copy, in ViennaCL's
+// own kernels.
+std::vector<double> cg_updates(const viennacl::vector<double>& p, const viennacl::vector<double>& q,
+                               const viennacl::vector<double>& z) {
+  viennacl::vector<double> x = z, r = q, w = p;
+  x += 0.37 * w;
+  r -= 1.3 * q;
+  w = z + 0.61 * w;
+  x = x + 0.5 * r;
+  x -= w;
+  const std::vector<double> hx = download(x), hr = download(r), hw = download(w);
+  std::vector<double> out(hx);
+  out.insert(out.end(), hr.begin(), hr.end());
+  out.insert(out.end(), hw.begin(), hw.end());
+  return out;
+}
+
+TEST(ViennaclVectorKernels, WorkGroupsFollowTheSizeAndKeepTheValues) {
+  const device::OpenClContext& cl = device_for(Precision::double_);
+  const bool gpu = cl.info().is_gpu;
+  using Kernels = viennacl::linalg::opencl::kernels::vector<double>;
+  viennacl::ocl::context& ctx = viennacl::ocl::current_context();
+  // Below 16 x 512 entries ViennaCL's own size (1 on CPUs), then the
+  // largest power of two up to size / 512 (GPUs: ViennaCL's, untouched).
+  const std::vector<std::pair<size_t, size_t>> expected = {{2154, 1},   {8191, 1},     {8192, 16},
+                                                           {20000, 32}, {107811, 128}, {300000, 512}};
+  for (const auto& [size, local] : expected) {
+    const size_t set = device::tune_viennacl_vector_kernels<double>(size);
+    EXPECT_EQ(set, gpu ? 0u : local) << size;
+    if (!gpu) {
+      EXPECT_EQ(ctx.get_program(Kernels::program_name()).get_kernel("avbv_v_cpu_cpu").local_work_size(), local) << size;
+    }
+  }
+  EXPECT_LE(device::tune_viennacl_vector_kernels<double>(size_t(1) << 26), gpu ? 0u : 4096u);
+  // The same values at ViennaCL's sizes and at the tuned ones, at a size
+  // that is no multiple of the group and spans many groups.
+  const size_t n = 300007;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> hp(n), hq(n), hz(n);
+  for (size_t i = 0; i < n; ++i) {
+    hp[i] = u(rng);
+    hq[i] = u(rng);
+    hz[i] = u(rng);
+  }
+  const viennacl::vector<double> p = upload<double>(hp), q = upload<double>(hq), z = upload<double>(hz);
+  device::tune_viennacl_vector_kernels<double>(1);
+  const std::vector<double> reference = cg_updates(p, q, z);
+  EXPECT_EQ(device::tune_viennacl_vector_kernels<double>(n), gpu ? 0u : 512u);
+  const std::vector<double> tuned = cg_updates(p, q, z);
+  ASSERT_EQ(tuned.size(), reference.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < tuned.size(); ++i) differ += tuned[i] != reference[i];
+  EXPECT_EQ(differ, 0u);
+  // And what those updates are: x = (z + 0.37 p) + 0.5 (q - 1.3 q) - (z + 0.61 p), entry 0 and the last.
+  for (size_t i : {size_t(0), n - 1}) {
+    const double w = hz[i] + 0.61 * hp[i], r = hq[i] - 1.3 * hq[i];
+    EXPECT_NEAR(tuned[i], (hz[i] + 0.37 * hp[i]) + 0.5 * r - w, 1e-14);
+    EXPECT_NEAR(tuned[n + i], r, 1e-15);
+    EXPECT_NEAR(tuned[2 * n + i], w, 1e-15);
+  }
+  device::tune_viennacl_vector_kernels<double>(1);
 }
 
 }  // namespace

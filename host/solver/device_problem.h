@@ -12,6 +12,7 @@
 #include <memory>
 #include <vector>
 
+#include "device/viennacl_binding.h"
 #include "snh/error.h"
 #include "solver/elastic_model.h"
 #include "solver/matrix_free.h"
@@ -105,6 +106,7 @@ class DeviceProblem {
 
   LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations) {
     PhaseScope timed(&model_.profiler(), Phase::cg_vector_work);
+    device::tune_viennacl_vector_kernels<Real>(r.size());
     op_.reset();
     viennacl::linalg::cg_tag tag(static_cast<Real>(eta), static_cast<unsigned>(max_iterations));
     viennacl::linalg::cg_solver<Vector> cg(tag);
