@@ -38,6 +38,7 @@
 #include "snh/regions.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
+#include "solver/matrix_free.h"
 #include "vector_compare.h"
 #include "viennacl/ocl/backend.hpp"
 #include "viennacl/vector.hpp"
@@ -682,6 +683,66 @@ void check_determinism() {
 
 TEST(FemOperator, DeterministicResidualAndProductDouble) { check_determinism<double>(); }
 TEST(FemOperator, DeterministicResidualAndProductFloat) { check_determinism<float>(); }
+
+// What CG multiplies by (solver/matrix_free.h's HessianOperator) at a true-
+// Hessian linearization with negative curvature: K p as it is along a
+// direction of positive curvature, the infinitely stiff response p / eps^2
+// with the flag set along the most negative eigenvector, and nothing flagged
+// for a zero p.
+TEST(FemOperator, HessianOperatorFlagsNegativeCurvatureOnly) {
+  const Mesh mesh = make_box_lattice(1, 1, 1, 1.0);
+  const fem::RestState rest = fem::compute_rest_state(mesh);
+  device::OpenClContext& cl = device_for(Precision::double_);
+  solver::ElasticModel<double> model(
+      cl, mesh, rest, uniform_material(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.45, Barrier::off)),
+      ProductVariant::cached);
+  // Squashed to a fifth along z and sheared: the true Hessian is indefinite.
+  std::vector<double> x = mesh.positions;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    x[3 * v] += 0.6 * mesh.positions[3 * v + 2];
+    x[3 * v + 2] *= 0.2;
+  }
+  const viennacl::vector<double> xd = upload<double>(x);
+  model.linearize(xd, false);
+  const size_t n = model.dofs();
+  Eigen::MatrixXd k(n, n);
+  viennacl::vector<double> e(n), y(n);
+  for (size_t j = 0; j < n; ++j) {
+    std::vector<double> unit(n, 0.0);
+    unit[j] = 1.0;
+    e = upload<double>(unit);
+    model.product(e, y);
+    const std::vector<double> column = download(y);
+    for (size_t i = 0; i < n; ++i) k(i, j) = column[i];
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (k + k.transpose()));
+  ASSERT_LT(eigen.eigenvalues()(0), -1e-3 * eigen.eigenvalues()(n - 1)) << "the state should be indefinite";
+  solver::HessianOperator<double> op(model);
+  const auto as_vector = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  // The most positive direction: K p, no flag.
+  const viennacl::vector<double> positive = upload<double>(as_vector(eigen.eigenvectors().col(n - 1)));
+  op.apply(positive, y);
+  EXPECT_FALSE(op.negative_curvature());
+  EXPECT_FALSE(op.breakdown());
+  viennacl::vector<double> ky(n);
+  model.product(positive, ky);
+  EXPECT_EQ(download(y), download(ky));
+  // A zero direction: nothing to flag.
+  const viennacl::vector<double> zero = upload<double>(std::vector<double>(n, 0.0));
+  op.apply(zero, y);
+  EXPECT_FALSE(op.negative_curvature());
+  EXPECT_FALSE(op.breakdown());
+  // The most negative direction: flagged, answered stiffly.
+  const std::vector<double> hp = as_vector(eigen.eigenvectors().col(0));
+  op.apply(upload<double>(hp), y);
+  EXPECT_TRUE(op.negative_curvature());
+  EXPECT_FALSE(op.breakdown());
+  const std::vector<double> stiff = download(y);
+  const double scale = 1.0 / (DBL_EPSILON * DBL_EPSILON);
+  for (size_t i = 0; i < n; ++i) EXPECT_DOUBLE_EQ(stiff[i], hp[i] * scale) << i;
+  op.reset();
+  EXPECT_FALSE(op.negative_curvature());
+}
 
 }  // namespace
 }  // namespace snh::test

@@ -9,7 +9,6 @@
 
 #include "solver/elastic_model.h"
 #include "solver/multigrid.h"
-#include "viennacl/linalg/inner_prod.hpp"
 
 namespace snh::solver {
 
@@ -22,15 +21,20 @@ class HessianOperator {
   // only for a singular K or through rounding, K being PSD by construction)
   // is reported and answered with an infinitely stiff response, y = big * p,
   // so that CG's step along it vanishes; the monitor then ends the solve.
+  // Both reduced by the model's DeviceReduction (a fixed order, one kernel
+  // and one read; ViennaCL's inner_prod allocates, runs two kernels and
+  // reads), and p^T p only when p^T K p is not positive and finite (a zero
+  // p, or one of those directions): one reduction per product, not two.
   void apply(const viennacl::vector_base<Real>& p, viennacl::vector_base<Real>& y) const {
     model_.product(p, y);
-    const Real pp = viennacl::linalg::inner_prod(p, p);
-    const Real pkp = viennacl::linalg::inner_prod(p, y);
-    if (!(pp > Real(0))) return;
-    if (!std::isfinite(static_cast<double>(pkp))) {
+    const double pkp = model_.reduction().dot(mem(p), mem(y), p.size());
+    if (pkp > 0.0 && std::isfinite(pkp)) return;
+    const double pp = model_.reduction().sum_of_squares(mem(p), p.size());
+    if (!(pp > 0.0)) return;
+    if (!std::isfinite(pkp)) {
       breakdown_ = true;
       y = p * kStiff;
-    } else if (!(pkp > Real(0))) {
+    } else if (!(pkp > 0.0)) {
       negative_curvature_ = true;
       y = p * kStiff;
     }
