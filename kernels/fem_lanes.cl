@@ -296,7 +296,7 @@ SNH_FN void lanes_store_per_element(const real* v, int n, size_t w, int count, _
   SNH_UNROLL
   for (int k = 0; k < SNH_LANE_ELEMENTS; ++k) {
     if (k < parts) {
-      __global vector_real* o = out + (size_t)n * (SNH_LANE_ELEMENTS * w + k);
+      __global vector_real* o = out + (size_t)n * (LANES_ELEMENT(w) + k);
       for (int i = 0; i < n; i += 8) { /* n: 24 or 72 */
         lanes8 part[8];
         SNH_UNROLL
@@ -399,7 +399,7 @@ __kernel void snh_element_matrices(__global const int* elements, __global const 
       element_column_scatter_from(element_column_frame(&h, vg, b, d), vg, qw, b, column);
 #if SNH_HEX8
       for (int part = 0; part < lanes / SNH_QUADRATURE; ++part) {
-        const size_t e = SNH_LANE_ELEMENTS * w + part;
+        const size_t e = LANES_ELEMENT(w) + part;
         __global matrix_real* k = out + (size_t)SNH_DOFS * SNH_DOFS * e;
         __global vector_real* block = diagonal_blocks + (size_t)9 * SNH_NODES * e + 9 * b;
         for (int i = 3 * b + d; i < SNH_DOFS; ++i) {

@@ -174,7 +174,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   if (on && !point_lanes_available())
     throw Error("solver: per-point lanes of tet4 meshes need one material for the mesh (this map has regions)");
   point_lanes_ = on;
-  set_material_lanes(on ? default_material_lanes() : 8);
+  set_material_lanes(on ? default_material_lanes() : kCacheLanes);
   // The cached product over lanes in float, and for hex8 in double too (its
   // cache value-major per element: one vector load per value); tet4 in
   // double keeps the scalar kernel, which pocl vectorizes across
@@ -201,13 +201,13 @@ int ElasticModel<Real>::default_material_lanes() const {
   // work-item's material is one element's).
   const unsigned native =
       sizeof(Real) == sizeof(double) ? cl_.info().native_vector_width_double : cl_.info().native_vector_width_float;
-  return native >= 8 && !(nodes_ == 8 && material_.per_element()) ? 16 : 8;
+  return native >= 8 && !hex8_materials_per_element() ? 16 : kCacheLanes;
 }
 
 template <typename Real>
 void ElasticModel<Real>::set_material_lanes(int lanes) {
   if (lanes != 8 && lanes != 16) throw Error("solver: material lanes are 8 or 16, not " + std::to_string(lanes));
-  if (lanes == 16 && nodes_ == 8 && material_.per_element())
+  if (lanes == 16 && hex8_materials_per_element())
     throw Error(
         "solver: 16 material lanes hold two hex8 elements, so they need one material for the mesh (this map has "
         "regions)");
@@ -393,7 +393,7 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
   set_arg(k, 4, from_copies ? cache_float_.get() : cache_.get());
   set_arg(k, 5, matrices);
   set_arg(k, 6, diagonal_blocks);
-  run_point_kernel(k, point_lanes_ ? 8 : 0);
+  run_point_kernel(k, point_lanes_ ? kCacheLanes : 0);
 }
 
 template <typename Real>
@@ -931,7 +931,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     cl_.run(k, matrix_rows_ ? element_count_ * 3 * nodes_ : element_count_);
   else
     run_point_kernel(k, variant_ != ProductVariant::cached                           ? material_lanes_
-                        : (float_products() ? float_product_lanes() : cached_lanes_) ? 8
+                        : (float_products() ? float_product_lanes() : cached_lanes_) ? kCacheLanes
                                                                                      : 0);
   self_differences(p);
   gather(element_scratch_, y, false, &p, 2, elastic_scale_);
@@ -951,7 +951,7 @@ void ElasticModel<Real>::setup_preconditioner() {
     set_arg(k, 3, count);
     set_arg(k, 4, cache_.get());
     set_arg(k, 5, element_blocks_.get());
-    run_point_kernel(k, point_lanes_ ? 8 : 0);
+    run_point_kernel(k, point_lanes_ ? kCacheLanes : 0);
   }
   cl_kernel s = setup_k_.get();
   const int vertices = static_cast<int>(vertex_count_);

@@ -282,7 +282,12 @@ class ElasticModel {
   void run_point_kernel(cl_kernel k, int lanes) const;
   // Kernel `name` of the program set_point_lanes chose (fem_lanes.cl at
   // `lanes` lanes, or fem.cl), its defines followed by `extra`.
-  device::Kernel point_kernel(const char* name, const std::string& extra = "", int lanes = 8) const;
+  device::Kernel point_kernel(const char* name, const std::string& extra = "", int lanes = kCacheLanes) const;
+  // The width of the lanes kernels that read the cache (cached product,
+  // element matrices, element blocks), whatever material_lanes() is.
+  static constexpr int kCacheLanes = 8;
+  // hex8 elements with their own materials: a lanes work-item holds one.
+  bool hex8_materials_per_element() const { return nodes_ == 8 && material_.per_element(); }
   // Per-element elastic forces at x into element_scratch_ (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
   void compute_element_matrices();
