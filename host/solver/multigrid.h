@@ -17,7 +17,7 @@
 //   - Smoother: Chebyshev of degree k over block-Jacobi (solver/chebyshev.h:
 //     first kind on [0.1, 1.1] * lambda_max(D^-1 A), or Lottes' fourth kind
 //     on [0, 1.1] * lambda_max; lambda_max by power iteration per level and
-//     linearization: 10 steps the first time, then 4 from the last
+//     linearization: 10 steps the first time, then 2 from the last
 //     estimate); the same before and after the coarse correction, so the
 //     V-cycle is symmetric. On the assembled levels one kernel per degree
 //     does the product, the residual, the block-Jacobi solve and both
