@@ -8,8 +8,12 @@
 #include "fem/element_data.h"
 
 /* Block (v, s) is the sum of the element blocks (a, b) with node a at v and b
- * at n, listed (as the offset of the block's first entry,
- * SNH_DOFS^2 e + 3 SNH_DOFS b + 3 a: no decoding in the kernel) between
+ * at n, each read as the transpose of block (b, a) in node a's columns (the
+ * same values: element matrices are stored exactly symmetric, the
+ * multigrid's Galerkin cell matrices symmetric to rounding; a vertex's
+ * blocks then come from its own nodes' contiguous columns), listed (as the
+ * offset of that block's first entry, SNH_DOFS^2 e + 3 SNH_DOFS a + 3 b: no
+ * decoding in the kernel) between
  * parts[width v + s] and the next offset in increasing element order, so
  * that blocks (v, n) and (n, v) add the same elements' mutually transposed
  * blocks in the same order and, from exactly symmetric element matrices,
@@ -27,7 +31,7 @@ __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __globa
   for (int k = part_offsets[item]; k < part_offsets[item + 1]; ++k) {
     __global const matrix_real* ke = matrices + parts[k];
     for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) block[3 * j + i] += (real)ke[SNH_DOFS * j + i];
+      for (int i = 0; i < 3; ++i) block[3 * j + i] += (real)ke[SNH_DOFS * i + j];
   }
   for (int i = 0; i < 9; ++i) stencil[at + SNH_STENCIL_TILE * i] = (matrix_real)block[i];
   /* A double model's float products (ElasticModel::set_float_products): the

@@ -66,9 +66,10 @@ TEST(BlockStencil, TablesListEveryElementBlockOnceInElementOrder) {
     for (size_t s = 0; s < size; ++s) {
       const int first = t.part_offsets[v * width + s], last = t.part_offsets[v * width + s + 1];
       EXPECT_GT(last, first) << "a neighbour shares an element";
-      // Offset 144 e + 36 b + 3 a: node a of e at v, node b at the neighbour.
+      // Offset 144 e + 36 a + 3 b: node a of e at v, node b at the neighbour
+      // (block (b, a), read transposed).
       for (int k = first; k < last; ++k) {
-        const int part = t.parts[k], e = part / 144, b = (part % 144) / 36, a = (part % 36) / 3;
+        const int part = t.parts[k], e = part / 144, a = (part % 144) / 36, b = (part % 36) / 3;
         EXPECT_EQ(part % 3, 0);
         EXPECT_EQ(elements[4 * e + a], static_cast<int>(v));
         EXPECT_EQ(elements[4 * e + b], row[s]);

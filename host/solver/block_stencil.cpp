@@ -30,7 +30,7 @@ StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_cou
           const int n = elements[static_cast<size_t>(nodes) * e + b];
           const size_t s =
               n == static_cast<int>(v) ? 0 : static_cast<size_t>(std::lower_bound(row + 1, row + size, n) - row);
-          visit(v * width + s, matrix * e + dofs * 3 * b + 3 * a);
+          visit(v * width + s, matrix * e + dofs * 3 * a + 3 * b);
         }
       }
     }
