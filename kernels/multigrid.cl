@@ -105,9 +105,10 @@ typedef float8 corners8;
  * second product skips W_o's zero weights (37 of each child's 64
  * node-corner pairs), the same in every lane; missing children and
  * constrained DOFs multiply by 0. Per fine node a the first product's three
- * rows are formed and at once spread by the second (session 26: the same
- * sums in the same order as forming a column's 24 rows first, twist res 32
- * 12 builds 0.30 -> 0.28 s).
+ * rows are formed, in three named vectors, and at once spread by the second
+ * (session 26: the same sums in the same order as forming a column's 24
+ * rows first into an indexed array, which pocl kept in memory with a load
+ * and a store per term; twist res 32, 12 builds: 0.30 -> 0.19 s).
  * Twist res 32, 14 builds: 0.26 s, against
  * 0.50 s with one scalar work-item per coarse column skipping zeros in both
  * products (pocl ran those one by one; also with the columns of 8 cells side
@@ -137,18 +138,22 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
       for (int a = 0; a < 8; ++a) {
         /* rows (a, .) of D K_child D W_o e_(B,d) for every B: the child's
          * columns (b, d) times the weight rows, summed over b */
-        corners8 right[3];
-        for (int i = 0; i < 3; ++i) right[i] = (corners8)(SNH_R(0));
+        corners8 right0 = (corners8)(SNH_R(0)), right1 = right0, right2 = right0;
+        SNH_UNROLL
         for (int b = 0; b < 8; ++b) {
           __global const matrix_real* kb = ke + MG_DOFS * (3 * b + d) + 3 * a;
-          for (int i = 0; i < 3; ++i) right[i] += wb[b] * (real)kb[i];
+          right0 += wb[b] * (real)kb[0];
+          right1 += wb[b] * (real)kb[1];
+          right2 += wb[b] * (real)kb[2];
         }
         /* columns (., d) += W_o^T D right */
-        for (int i = 0; i < 3; ++i) {
-          const corners8 v = m[3 * a + i] * right[i];
-          for (int corner = 0; corner < 8; ++corner) {
-            const real wa = w[8 * a + corner];
-            if (wa != SNH_R(0)) column[3 * corner + i] += wa * v;
+        const corners8 v0 = m[3 * a] * right0, v1 = m[3 * a + 1] * right1, v2 = m[3 * a + 2] * right2;
+        for (int corner = 0; corner < 8; ++corner) {
+          const real wa = w[8 * a + corner];
+          if (wa != SNH_R(0)) {
+            column[3 * corner] += wa * v0;
+            column[3 * corner + 1] += wa * v1;
+            column[3 * corner + 2] += wa * v2;
           }
         }
       }
