@@ -20,7 +20,7 @@
  * come out exactly transposed (host/solver/block_stencil.h). */
 __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __global const int* part_offsets,
                                    __global const int* parts, const int blocks, const int width,
-                                   __global matrix_real* stencil,
+                                   __global matrix_real* stencil /* null: the float copy only */,
                                    __global float* stencil_float /* null, or the blocks' float copy */) {
   const int item = get_global_id(0);
   if (item >= blocks) return;
@@ -33,7 +33,8 @@ __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __globa
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) block[3 * j + i] += (real)ke[SNH_DOFS * i + j];
   }
-  for (int i = 0; i < 9; ++i) stencil[at + SNH_STENCIL_TILE * i] = (matrix_real)block[i];
+  if (stencil)
+    for (int i = 0; i < 9; ++i) stencil[at + SNH_STENCIL_TILE * i] = (matrix_real)block[i];
   /* A double model's float products (ElasticModel::set_float_products): the
    * same values narrowed, as snh_narrow would from the stored blocks. */
   if (stencil_float)

@@ -227,6 +227,9 @@ void ElasticModel<Real>::set_float_products(bool on) {
     gradients_float_.reset();
     weights_float_.reset();
     stencil_float_.reset();
+    // Blocks assembled in float only: the double ones from the same element
+    // matrices.
+    if (variant_ == ProductVariant::assembled && stencil_neighbours_ && !stencil_) assemble();
     return;
   }
   prepare_float_products();
@@ -399,7 +402,7 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
 template <typename Real>
 void ElasticModel<Real>::assemble() {
   const auto start = std::chrono::steady_clock::now();
-  if (!stencil_) {
+  if (!stencil_neighbours_) {
     // The pattern and the element blocks that add up to each of its blocks,
     // once (solver/block_stencil.h).
     const StencilTables t =
@@ -414,9 +417,17 @@ void ElasticModel<Real>::assemble() {
     stencil_neighbours_ = upload(tiled_neighbours(t, vertex_count_, stencil_tile()));
     stencil_part_offsets_ = upload(t.part_offsets);
     stencil_parts_ = upload(t.parts);
-    stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_values(), 1) * sizeof(Real));
     stencil_assemble_k_ = cl_.kernel("stencil.cl", stencil_defines(), "snh_stencil_assemble");
     stencil_product_k_ = cl_.kernel("stencil.cl", stencil_defines(), "snh_stencil_product");
+  }
+  // With float products only the blocks' float copy is written, and the
+  // double blocks, which no product would read, are given back
+  // (set_float_products(false) assembles them again).
+  if (float_products()) {
+    make_stencil_float();
+    stencil_.reset();
+  } else if (!stencil_) {
+    stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_values(), 1) * sizeof(Real));
   }
   cl_kernel k = stencil_assemble_k_.get();
   const int blocks = static_cast<int>(vertex_count_) * stencil_width_;
@@ -425,8 +436,7 @@ void ElasticModel<Real>::assemble() {
   set_arg(k, 2, stencil_parts_.get());
   set_arg(k, 3, blocks);
   set_arg(k, 4, stencil_width_);
-  set_arg(k, 5, stencil_.get());
-  if (float_products()) make_stencil_float();
+  set_arg(k, 5, float_products() ? cl_mem{nullptr} : stencil_.get());
   set_arg(k, 6, float_products() ? stencil_float_.get() : cl_mem{nullptr});
   cl_.run(k, static_cast<size_t>(blocks));
   cl_.finish();
