@@ -310,7 +310,7 @@ size_t ElasticModel<Real>::variant_memory_bytes() const {
       return dofs() * sizeof(Real);  // the linearization point x
     case ProductVariant::element_matrices:
       return cache + element_count_ * m * sizeof(Real);
-    case ProductVariant::assembled:  // the blocks (and their float copy), the neighbour and assembly tables
+    case ProductVariant::assembled:  // the blocks (with float products: their float copy only), the tables
       return cache + element_count_ * m * sizeof(Real) + stencil_memory_bytes();
     default:  // cached: the cache, and its float copy with float products
       return cache + (float_products() ? cache_values() * sizeof(float) : 0);
