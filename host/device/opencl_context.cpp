@@ -209,8 +209,17 @@ Buffer OpenClContext::buffer(cl_mem_flags flags, size_t bytes, const void* host)
     throw Error("OpenCL: clCreateBuffer failed: " + std::to_string(bytes) +
                 " bytes exceed the device's largest allocation (" + std::to_string(max_allocation_bytes_) +
                 " bytes, CL_DEVICE_MAX_MEM_ALLOC_SIZE): the mesh is too large for the device's memory");
-  Buffer b(clCreateBuffer(context_, flags, std::max<size_t>(bytes, 1), const_cast<void*>(host), &status));
+  const size_t size = std::max<size_t>(bytes, 1);
+  Buffer b(clCreateBuffer(context_, flags, size, const_cast<void*>(host), &status));
   check(status, "clCreateBuffer");
+  if (!host) {
+    // The widest pattern OpenCL allows that divides the size (pocl copies
+    // the pattern at a time).
+    size_t pattern = 128;
+    while (size % pattern != 0) pattern /= 2;
+    static const cl_uchar zeros[128] = {};
+    check(clEnqueueFillBuffer(queue_, b.get(), zeros, pattern, 0, size, 0, nullptr, nullptr), "clEnqueueFillBuffer");
+  }
   return b;
 }
 
