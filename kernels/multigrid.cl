@@ -84,11 +84,17 @@ __kernel void snh_galerkin_from_cache(__global const real* octant_weights, __glo
         galerkin_add_column(w, m, b, d, column, k);
       }
   }
+  /* Its lower triangle, mirrored: exactly symmetric (as in
+   * snh_galerkin_from_matrices below). */
   __global real* dst = out + (size_t)MG_DOFS * MG_DOFS * c;
-  for (int i = 0; i < MG_DOFS * MG_DOFS; ++i) dst[i] = k[i];
+  for (int col = 0; col < MG_DOFS; ++col)
+    for (int row = 0; row < MG_DOFS; ++row)
+      dst[MG_DOFS * col + row] = row >= col ? k[MG_DOFS * col + row] : k[MG_DOFS * row + col];
   for (int b = 0; b < 8; ++b)
     for (int d = 0; d < 3; ++d)
-      for (int i = 0; i < 3; ++i) blocks[(size_t)72 * c + 9 * b + 3 * d + i] = k[MG_DOFS * (3 * b + d) + 3 * b + i];
+      for (int i = 0; i < 3; ++i)
+        blocks[(size_t)72 * c + 9 * b + 3 * d + i] =
+            i >= d ? k[MG_DOFS * (3 * b + d) + 3 * b + i] : k[MG_DOFS * (3 * b + i) + 3 * b + d];
 }
 
 #if SNH_DOUBLE
@@ -159,14 +165,22 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
       }
     }
   }
-  const real* flat = (const real*)k; /* entry (row, (B, d)) at 8 (MG_DOFS d + row) + B */
+  /* entry (row, (B, d)) at 8 (MG_DOFS d + row) + B; written from the lower
+   * triangle (row >= 3 B + d), each entry above it as its mirror: K_C is
+   * symmetric, and so stored exactly (the rounding of the two triangles'
+   * sums differs), so that the coarse stencils, their smoothers and the
+   * coarsest factor see one symmetric operator. */
+  const real* flat = (const real*)k;
   __global real* dst = out + (size_t)MG_DOFS * MG_DOFS * c;
   for (int corner_b = 0; corner_b < 8; ++corner_b)
     for (int d = 0; d < 3; ++d) {
+      const int col = 3 * corner_b + d;
       for (int row = 0; row < MG_DOFS; ++row)
-        dst[MG_DOFS * (3 * corner_b + d) + row] = flat[8 * (MG_DOFS * d + row) + corner_b];
+        dst[MG_DOFS * col + row] =
+            row >= col ? flat[8 * (MG_DOFS * d + row) + corner_b] : flat[8 * (MG_DOFS * (row % 3) + col) + row / 3];
       for (int i = 0; i < 3; ++i)
-        blocks[(size_t)72 * c + 9 * corner_b + 3 * d + i] = flat[8 * (MG_DOFS * d + 3 * corner_b + i) + corner_b];
+        blocks[(size_t)72 * c + 9 * corner_b + 3 * d + i] =
+            i >= d ? flat[8 * (MG_DOFS * d + 3 * corner_b + i) + corner_b] : flat[8 * (MG_DOFS * i + col) + corner_b];
     }
 }
 
@@ -222,6 +236,10 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
       }
     }
   }
+  /* The contact and friction blocks are symmetric to rounding: the lower
+   * triangle mirrored again, as the Galerkin kernels store it. */
+  for (int col = 0; col < MG_DOFS; ++col)
+    for (int row = col + 1; row < MG_DOFS; ++row) k[MG_DOFS * row + col] = k[MG_DOFS * col + row];
   for (int b = 0; b < 8; ++b)
     for (int d = 0; d < 3; ++d)
       for (int i = 0; i < 3; ++i) blocks[(size_t)72 * c + 9 * b + 3 * d + i] = k[MG_DOFS * (3 * b + d) + 3 * b + i];

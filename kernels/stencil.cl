@@ -9,8 +9,8 @@
 
 /* Block (v, s) is the sum of the element blocks (a, b) with node a at v and b
  * at n, each read as the transpose of block (b, a) in node a's columns (the
- * same values: element matrices are stored exactly symmetric, the
- * multigrid's Galerkin cell matrices symmetric to rounding; a vertex's
+ * same values: element matrices and the multigrid's Galerkin cell matrices
+ * are stored exactly symmetric, their lower triangles mirrored; a vertex's
  * blocks then come from its own nodes' contiguous columns), listed (as the
  * offset of that block's first entry, SNH_DOFS^2 e + 3 SNH_DOFS a + 3 b: no
  * decoding in the kernel) between

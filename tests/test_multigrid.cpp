@@ -371,13 +371,21 @@ void expect_galerkin_coarse_operators(solver::ElasticModel<double>& model,
                     3 * coarse.elements[8 * cell + col / 3] + col % 3) += cells[576 * cell + 24 * col + row];
     const double error = (assembled - expected).norm() / expected.norm();
     EXPECT_LT(error, 1e-12) << "level " << l;
+    // Each cell matrix exactly symmetric (its lower triangle mirrored): the
+    // two triangles' sums round differently.
+    size_t asymmetric = 0;
+    for (size_t cell = 0; cell < coarse.cells.size(); ++cell)
+      for (int col = 0; col < 24; ++col)
+        for (int row = col + 1; row < 24; ++row)
+          asymmetric += cells[576 * cell + 24 * col + row] != cells[576 * cell + 24 * row + col];
+    EXPECT_EQ(asymmetric, 0u) << "level " << l << ": entries unequal to their mirror";
     std::printf("level %d: %zu DOFs, |A_device - P^T D A D P| / |P^T D A D P| = %.2e\n", l, nc, error);
     a = expected;
   }
 }
 
 // From the linearization cache (cached variant) and from the fine element
-// matrices (element-matrices variant), projected and true Hessian, with
+// matrices (element-matrices variant), exactly symmetric, projected and true Hessian, with
 // each layout of the per-point data (value-major, the CPUs' default;
 // point-major; tiled, the GPUs' default).
 class CoarseOperator : public ::testing::TestWithParam<std::tuple<ProductVariant, bool, solver::PointDataLayout>> {};

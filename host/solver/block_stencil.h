@@ -21,9 +21,9 @@ namespace snh::solver {
 // (3 nodes)^2 e + 9 nodes a + 3 b (node a of element e at v, node b at
 // neighbour s): the block (b, a), in the columns of node a, which the
 // kernel reads transposed, so that a vertex's blocks come from its own
-// nodes' columns, contiguous (exactly block (a, b): element matrices are
-// stored exactly symmetric, the multigrid's Galerkin cell matrices
-// symmetric to rounding; session 26: twist res 32 block-Jacobi's
+// nodes' columns, contiguous (exactly block (a, b): element matrices and
+// the multigrid's Galerkin cell matrices are stored exactly symmetric;
+// session 26: twist res 32 block-Jacobi's
 // assemblies 1.56 -> 1.15 s, against block (a, b) read across the columns
 // of every node b); between part_offsets[width v + s] and the next, in
 // increasing element order (deterministic sums, exactly transposed blocks
