@@ -156,6 +156,7 @@ void ElasticModel<Real>::set_variant(ProductVariant v) {
   const size_t m = static_cast<size_t>(3 * nodes_) * (3 * nodes_);
   if ((v == ProductVariant::element_matrices || v == ProductVariant::assembled) && !element_matrices_)
     element_matrices_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * m * sizeof(Real));
+  if (v == ProductVariant::assembled) prepare_stencil();
 }
 
 template <typename Real>
@@ -243,11 +244,12 @@ void ElasticModel<Real>::prepare_float_products() {
   if (!narrow_k_) narrow_k_ = cl_.kernel("fem.cl", defines_, "snh_narrow");
   if (variant_ == ProductVariant::assembled) {
     // The blocks assembled so far, if any (else the next assembly writes
-    // their float copy as it goes).
+    // their float copy as it goes, into the buffer made here).
     if (stencil_ && !stencil_float_) {
       make_stencil_float();
       narrow(stencil_.get(), stencil_values(), stencil_float_);
     }
+    if (stencil_neighbours_) make_stencil_float();
     return;
   }
   if (!float_cache() || cache_float_) return;
@@ -400,26 +402,30 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
 }
 
 template <typename Real>
+void ElasticModel<Real>::prepare_stencil() {
+  if (stencil_neighbours_) return;
+  // The pattern and the element blocks that add up to each of its blocks
+  // (solver/block_stencil.h).
+  const StencilTables t =
+      stencil_tables(elements_host_, vertex_count_, nodes_, fem::vertex_slots(elements_host_, vertex_count_));
+  stencil_width_ = t.width;
+  PhaseScope transfer(&profiler_, Phase::transfers);
+  auto upload = [&](const std::vector<int>& values) {
+    device::Buffer b = cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(values.size(), 1) * sizeof(int));
+    if (!values.empty()) cl_.write(b.get(), values.size() * sizeof(int), values.data());
+    return b;
+  };
+  stencil_neighbours_ = upload(tiled_neighbours(t, vertex_count_, stencil_tile()));
+  stencil_part_offsets_ = upload(t.part_offsets);
+  stencil_parts_ = upload(t.parts);
+  stencil_assemble_k_ = cl_.kernel("stencil.cl", stencil_defines(), "snh_stencil_assemble");
+  stencil_product_k_ = cl_.kernel("stencil.cl", stencil_defines(), "snh_stencil_product");
+}
+
+template <typename Real>
 void ElasticModel<Real>::assemble() {
   const auto start = std::chrono::steady_clock::now();
-  if (!stencil_neighbours_) {
-    // The pattern and the element blocks that add up to each of its blocks,
-    // once (solver/block_stencil.h).
-    const StencilTables t =
-        stencil_tables(elements_host_, vertex_count_, nodes_, fem::vertex_slots(elements_host_, vertex_count_));
-    stencil_width_ = t.width;
-    PhaseScope transfer(&profiler_, Phase::transfers);
-    auto upload = [&](const std::vector<int>& values) {
-      device::Buffer b = cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(values.size(), 1) * sizeof(int));
-      if (!values.empty()) cl_.write(b.get(), values.size() * sizeof(int), values.data());
-      return b;
-    };
-    stencil_neighbours_ = upload(tiled_neighbours(t, vertex_count_, stencil_tile()));
-    stencil_part_offsets_ = upload(t.part_offsets);
-    stencil_parts_ = upload(t.parts);
-    stencil_assemble_k_ = cl_.kernel("stencil.cl", stencil_defines(), "snh_stencil_assemble");
-    stencil_product_k_ = cl_.kernel("stencil.cl", stencil_defines(), "snh_stencil_product");
-  }
+  prepare_stencil();
   // With float products only the blocks' float copy is written, and the
   // double blocks, which no product would read, are given back
   // (set_float_products(false) assembles them again).

@@ -294,6 +294,9 @@ class ElasticModel {
   // MATERIAL_ARGS from index first; returns the next index.
   cl_uint set_material_args(cl_kernel k, cl_uint first) const;
   void assemble();
+  // The assembled variant's stencil tables on the device and its kernels,
+  // once: made when the variant is chosen, not in the first solve.
+  void prepare_stencil();
   // vertex_mode: 0 none, 1 residual terms of u = x, 2 product terms of u = p
   // (fem.cl, snh_gather_vectors); scale multiplies the element values.
   void gather(const device::Buffer& element_values, VectorBase& out, bool external, const VectorBase* u = nullptr,
