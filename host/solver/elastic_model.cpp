@@ -411,9 +411,8 @@ void ElasticModel<Real>::prepare_stencil() {
   stencil_width_ = t.width;
   PhaseScope transfer(&profiler_, Phase::transfers);
   auto upload = [&](const std::vector<int>& values) {
-    device::Buffer b = cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(values.size(), 1) * sizeof(int));
-    if (!values.empty()) cl_.write(b.get(), values.size() * sizeof(int), values.data());
-    return b;
+    return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(values.size(), 1) * sizeof(int),
+                      values.empty() ? nullptr : values.data());
   };
   stencil_neighbours_ = upload(tiled_neighbours(t, vertex_count_, stencil_tile()));
   stencil_part_offsets_ = upload(t.part_offsets);
