@@ -124,6 +124,12 @@ struct Counts {
   double sqrts = 0.0, divisions = 0.0;  // of the per-point SVD and eigensystem (recompute)
 };
 
+// The assembled variant's block stencil (ElasticModel::assembled_blocks):
+// blocks stored, blocks read per product, neighbour-table ints read.
+struct StencilShape {
+  double stored = 0.0, reads = 0.0, indices = 0.0;
+};
+
 // principal_hessian_action: U^T dF and (.) V (2 x 45), the block (15), three
 // twist/flip pairs (3 x 8), U (.) and (.) V^T (2 x 45).
 constexpr double kActionFlops = 219;
@@ -151,8 +157,8 @@ double divisions_per_point(int real_bytes) { return real_bytes == 8 ? 41 : 40; }
 // once: neighbours' values stay in cache), the mask, and writes y.
 // stored_bytes: of each cached linearization and rest-state value (the
 // working precision's, or 4 for a double model's float products).
-Counts product_counts(ProductVariant v, int nodes, int quadrature, bool uniform, int real_bytes, double stencil_blocks,
-                      double elements, double vertices, int stored_bytes) {
+Counts product_counts(ProductVariant v, int nodes, int quadrature, bool uniform, int real_bytes,
+                      const StencilShape& stencil, double elements, double vertices, int stored_bytes) {
   const double dofs = 3.0 * nodes, per_vertex = vertices / elements;
   // Shared: gather p (3N reals, N ints), write 3N reals; the vertex gather
   // reads them back with N adjacency ints and writes 3 reals per vertex.
@@ -176,9 +182,11 @@ Counts product_counts(ProductVariant v, int nodes, int quadrature, bool uniform,
       c.flops = 2.0 * dofs * dofs + 3.0 * nodes;
       c.bytes = io + dofs * dofs * real_bytes;
       break;
-    default:  // assembled block stencil (kernels/fem/block_stencil.h): every stored block, padding included
-      c.flops = 18.0 * stencil_blocks / elements;
-      c.bytes = (stencil_blocks * (9.0 * real_bytes + 4.0) + 3 * 3 * vertices * real_bytes) / elements;
+    default:  // assembled block stencil (kernels/fem/block_stencil.h): every stored block once, padding
+              // included, each read block's neighbour index (and in the upper layout its mirrored block's
+              // index; the mirrored blocks themselves come from the caches), p, y and the mask
+      c.flops = 18.0 * stencil.reads / elements;
+      c.bytes = (stencil.stored * 9.0 * real_bytes + stencil.indices * 4.0 + 3 * 3 * vertices * real_bytes) / elements;
       break;
   }
   return c;
@@ -279,10 +287,13 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
         model.set_float_products(float_products);
         const double setup = best_seconds([&] { model.linearize(x); }, o.min_seconds);
         const double product = best_seconds([&] { model.product(p, y); }, o.min_seconds);
+        const double nv = static_cast<double>(mesh.vertex_count()), width = model.assembled_width(),
+                     lower = model.assembled_lower();
+        const StencilShape stencil{static_cast<double>(model.assembled_blocks()), nv * (width + lower),
+                                   nv * (width + 2 * lower)};
         const Counts counts =
-            product_counts(v, rest.nodes, rest.quadrature, rest.uniform, sizeof(Real),
-                           static_cast<double>(mesh.vertex_count()) * model.assembled_width(), static_cast<double>(ne),
-                           static_cast<double>(mesh.vertex_count()), float_products ? sizeof(float) : sizeof(Real));
+            product_counts(v, rest.nodes, rest.quadrature, rest.uniform, sizeof(Real), stencil, static_cast<double>(ne),
+                           nv, float_products ? sizeof(float) : sizeof(Real));
         rows.push_back({type, pname, vname, n, ne, xh.size(), product, setup, model.last_assembly_seconds(),
                         model.variant_memory_bytes(), counts, model.material_lanes()});
       }

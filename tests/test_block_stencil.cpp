@@ -83,6 +83,66 @@ TEST(BlockStencil, TablesListEveryElementBlockOnceInElementOrder) {
   EXPECT_LT(shortest, width);
 }
 
+// The upper layout (the CPUs' multigrid levels): each vertex pair's block
+// stored once, in the row of the first of the two, with the full layout's
+// parts for it; the other reads it through its index; padding reads the
+// zero block after the stored ones.
+TEST(BlockStencil, UpperTablesStoreEachPairOnceAndPointAtItsMirror) {
+  const Mesh mesh = blob();
+  const std::vector<int> elements = element_ints(mesh);
+  const size_t count = mesh.vertex_count();
+  const solver::StencilTables full = solver::stencil_tables(elements, count, 4, fem::vertex_slots(elements, count));
+  const solver::StencilTables t = solver::upper_stencil_tables(full, count);
+  const size_t width = static_cast<size_t>(full.width), upper = static_cast<size_t>(t.width),
+               lower = static_cast<size_t>(t.lower), row = upper + 2 * lower;
+  ASSERT_GT(lower, 0u);
+  EXPECT_LT(upper, width);
+  ASSERT_EQ(t.neighbours.size(), row * count);
+  ASSERT_EQ(t.part_offsets.size(), upper * count + 1);
+  EXPECT_EQ(solver::stencil_entries(t, count, 1), 9 * (upper * count + 1));
+  const int zero_block = static_cast<int>(upper * count);
+  // The full layout's parts of a block, by its vertex pair.
+  auto full_parts = [&](size_t v, int n) {
+    const int* r = full.neighbours.data() + width * v;
+    const size_t s = n == static_cast<int>(v) ? 0 : static_cast<size_t>(std::find(r + 1, r + width, n) - r);
+    return std::vector<int>(full.parts.begin() + full.part_offsets[width * v + s],
+                            full.parts.begin() + full.part_offsets[width * v + s + 1]);
+  };
+  size_t stored = 0, mirrored = 0, pairs = 0;
+  for (size_t v = 0; v < count; ++v) {
+    const int self = static_cast<int>(v);
+    const int* r = t.neighbours.data() + row * v;
+    EXPECT_EQ(r[0], self);
+    for (size_t u = 0; u < upper; ++u) {
+      const std::vector<int> parts(t.parts.begin() + t.part_offsets[upper * v + u],
+                                   t.parts.begin() + t.part_offsets[upper * v + u + 1]);
+      if (u > 0 && r[u] == self) {
+        EXPECT_TRUE(parts.empty()) << "padding adds nothing";
+        continue;
+      }
+      EXPECT_TRUE(u == 0 || r[u] > self);
+      EXPECT_EQ(parts, full_parts(v, r[u])) << "vertex " << v << " block " << u;
+      ++stored;
+    }
+    for (size_t s = 0; s < lower; ++s) {
+      const int n = r[upper + s], block = r[upper + lower + s];
+      if (n == self) {
+        EXPECT_EQ(block, zero_block) << "padding reads the zero block";
+        continue;
+      }
+      ASSERT_LT(n, self);
+      ASSERT_GE(block, 0);
+      ASSERT_LT(block, zero_block);
+      EXPECT_EQ(static_cast<size_t>(block) / upper, static_cast<size_t>(n)) << "in the row of the first vertex";
+      EXPECT_EQ(t.neighbours[row * static_cast<size_t>(n) + static_cast<size_t>(block) % upper], self);
+      ++mirrored;
+    }
+    for (size_t s = 1; s < width && full.neighbours[width * v + s] != self; ++s) ++pairs;
+  }
+  EXPECT_EQ(mirrored, pairs / 2);
+  EXPECT_EQ(stored, count + pairs / 2) << "each vertex's own block and each pair once";
+}
+
 template <typename Real>
 void check_assembled_on_blob(double bound) {
   Mesh mesh = blob();

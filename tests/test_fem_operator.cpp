@@ -458,7 +458,7 @@ TEST(FemOperator, FloatProductsHoldFloatCopiesOnlyWithTheirVariants) {
   const size_t assembled = model.memory_bytes();
   model.set_float_products(true);
   EXPECT_TRUE(model.float_products());
-  EXPECT_EQ(model.memory_bytes(), assembled + s.mesh.vertex_count() * model.assembled_width() * 9 * sizeof(float));
+  EXPECT_EQ(model.memory_bytes(), assembled + model.assembled_blocks() * 9 * sizeof(float));
   model.set_float_products(false);
   EXPECT_EQ(model.memory_bytes(), assembled);
   model.set_variant(ProductVariant::cached);
@@ -483,7 +483,7 @@ TEST(FemOperator, AssembledFloatProductsKeepOnlyTheFloatBlocks) {
   model.product(pd, y);
   const std::vector<double> in_double = download_raw(y);
   const size_t with_double = model.memory_bytes();
-  const size_t blocks = s.mesh.vertex_count() * static_cast<size_t>(model.assembled_width()) * 9;
+  const size_t blocks = model.assembled_blocks() * 9;
   model.set_float_products(true);
   model.linearize(xd);
   EXPECT_EQ(model.memory_bytes(), with_double - blocks * sizeof(double) + blocks * sizeof(float));

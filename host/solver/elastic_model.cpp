@@ -405,10 +405,13 @@ template <typename Real>
 void ElasticModel<Real>::prepare_stencil() {
   if (stencil_neighbours_) return;
   // The pattern and the element blocks that add up to each of its blocks
-  // (solver/block_stencil.h).
-  const StencilTables t =
+  // (solver/block_stencil.h); with per-vertex blocks (CPUs) the upper
+  // layout, half the blocks and the same products bit for bit.
+  StencilTables t =
       stencil_tables(elements_host_, vertex_count_, nodes_, fem::vertex_slots(elements_host_, vertex_count_));
+  if (stencil_tile() == 1) t = upper_stencil_tables(t, vertex_count_);
   stencil_width_ = t.width;
+  stencil_lower_ = t.lower;
   PhaseScope transfer(&profiler_, Phase::transfers);
   auto upload = [&](const std::vector<int>& values) {
     return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(values.size(), 1) * sizeof(int),

@@ -262,6 +262,12 @@ class ElasticModel {
   // first assembly): the most vertices any vertex shares an element with,
   // plus one (kernels/fem/block_stencil.h).
   int assembled_width() const { return stencil_width_; }
+  // The blocks each vertex reads as the transposes of its neighbours' (the
+  // upper layout, per-vertex blocks on CPUs: solver/block_stencil.h), else
+  // 0; and the blocks stored (padding and the upper layout's zero block
+  // included).
+  int assembled_lower() const { return stencil_lower_; }
+  size_t assembled_blocks() const { return stencil_values() / 9; }
   // Device memory of every buffer the model holds: mesh, rest state,
   // material, scratch, preconditioner and variant_memory_bytes(); not the
   // solver's vectors.
@@ -340,14 +346,16 @@ class ElasticModel {
   // (deterministic), and its width.
   device::Buffer stencil_, stencil_neighbours_, stencil_part_offsets_, stencil_parts_;
   device::Kernel stencil_assemble_k_, stencil_product_k_;
-  int stencil_width_ = 0;
+  int stencil_width_ = 0, stencil_lower_ = 0;
   // The stencil's stored values (stencil_entries).
-  size_t stencil_values() const { return stencil_entries(stencil_width_, vertex_count_, stencil_tile()); }
+  size_t stencil_values() const {
+    return stencil_entries(stencil_width_, vertex_count_, stencil_tile(), stencil_lower_);
+  }
   size_t stencil_memory_bytes() const;
   // The stencil kernels' build: the model's, with the width made a constant
   // where the layout allows (stencil_width_define).
   std::string stencil_defines() const {
-    return elastic_defines_ + stencil_width_define(stencil_width_, stencil_tile());
+    return elastic_defines_ + stencil_width_define(stencil_width_, stencil_tile(), stencil_lower_);
   }
   std::vector<int> elements_host_;
   double last_min_j_ = 0.0;

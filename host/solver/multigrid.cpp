@@ -141,16 +141,20 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
       L.offsets = upload_int(slots.offsets, L.bytes);
       L.adjacency = upload_int(slots.adjacency, L.bytes);
-      const StencilTables stencil = stencil_tables(h.elements, L.vertices, 8, slots);
+      // Per-vertex blocks (CPUs): the upper layout, half the bytes.
+      const size_t tile = model.stencil_tile();
+      const StencilTables stencil =
+          tile == 1 ? upper_stencil_tables(stencil_tables(h.elements, L.vertices, 8, slots), L.vertices)
+                    : stencil_tables(h.elements, L.vertices, 8, slots);
       L.width = stencil.width;
       L.stencil_kernels = stencil_kernels_of(coarse + (l == 0 && fine_float_ ? " -DSNH_MATRIX_FLOAT=1" : "") +
-                                             stencil_width_define(L.width, model.stencil_tile()));
-      L.neighbours = upload_int(tiled_neighbours(stencil, L.vertices, model.stencil_tile()), L.bytes);
+                                             stencil_width_define(L.width, tile, stencil.lower));
+      L.neighbours = upload_int(tiled_neighbours(stencil, L.vertices, tile), L.bytes);
       L.part_offsets = upload_int(stencil.part_offsets, L.bytes);
       L.parts = upload_int(stencil.parts, L.bytes);
       const size_t entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(Real);
       const size_t matrix_bytes = L.cells * kCellMatrix * entry,
-                   stencil_bytes = stencil_entries(stencil.width, L.vertices, model.stencil_tile()) * entry;
+                   stencil_bytes = stencil_entries(stencil, L.vertices, tile) * entry;
       L.matrices = cl_.buffer(CL_MEM_READ_WRITE, matrix_bytes);
       L.stencil = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_bytes, 1));
       L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
