@@ -255,7 +255,9 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
  * matrices and gather, read as about a third of the bytes (27 blocks a
  * vertex against 8 cells' 64 blocks of which each vertex owns 8) and without
  * the per-cell scratch. (Vertex-minor blocks, [(9 s + 3 j + i) count + v],
- * measured 2.2x slower on pocl: 243 streams at once.) */
+ * measured 2.2x slower on pocl: 243 streams at once.) On CPUs the blocks
+ * are in the upper layout (kernels/fem/block_stencil.h): 14 stored a
+ * vertex on a box, the other 13 read as their mirrors' transposes. */
 
 /* Chebyshev smoothing over block-Jacobi (MultigridPreconditioner::chebyshev,
  * the recurrence of solver/chebyshev.h) in one pass per degree on the
