@@ -730,13 +730,10 @@ TEST(Multigrid, FloatFineLevelHalvesItsMatricesAndStaysClose) {
   solver::MultigridPreconditioner<double> full(model, c.mesh, c.mask, built_fine_level(false));
   // Half of the cell matrices' and of the assembled blocks' bytes (the
   // upper layout's where blocks are per vertex, CPUs).
-  const size_t count = c.mesh.vertex_count();
-  const solver::StencilTables full_tables =
-      solver::stencil_tables(c.mesh.elements, count, 8, fem::vertex_slots(c.mesh.elements, count));
-  const size_t tile = model.stencil_tile();
-  const size_t entries = tile == 1
-                             ? solver::stencil_entries(solver::upper_stencil_tables(full_tables, count), count, tile)
-                             : solver::stencil_entries(full_tables, count, tile);
+  const size_t count = c.mesh.vertex_count(), tile = model.stencil_tile();
+  const size_t entries = solver::stencil_entries(
+      solver::device_stencil_tables(c.mesh.elements, count, 8, fem::vertex_slots(c.mesh.elements, count), tile), count,
+      tile);
   EXPECT_EQ(full.memory_bytes() - single.memory_bytes(), (c.mesh.element_count() * 576 + entries) * sizeof(float));
   model.linearize(upload(c.x), true);
   model.setup_preconditioner();

@@ -104,6 +104,12 @@ StencilTables upper_stencil_tables(const StencilTables& full, size_t vertex_coun
   return t;
 }
 
+StencilTables device_stencil_tables(const std::vector<int>& elements, size_t vertex_count, int nodes,
+                                    const fem::VertexSlots& slots, size_t tile) {
+  StencilTables full = stencil_tables(elements, vertex_count, nodes, slots);
+  return tile == 1 ? upper_stencil_tables(full, vertex_count) : full;
+}
+
 std::vector<int> tiled_neighbours(const StencilTables& t, size_t vertex_count, size_t tile) {
   if (t.lower > 0 && tile > 1) throw Error("block stencil: the upper layout is per vertex (tile 1)");
   if (tile <= 1) return t.neighbours;

@@ -59,6 +59,11 @@ StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_cou
 // 0.83-0.86 s, the assemblies 0.19 -> 0.13 s.
 StencilTables upper_stencil_tables(const StencilTables& full, size_t vertex_count);
 
+// The tables in the layout for blocks in tiles of `tile` vertices: the
+// upper layout per vertex (tile 1, CPUs), else the full one.
+StencilTables device_stencil_tables(const std::vector<int>& elements, size_t vertex_count, int nodes,
+                                    const fem::VertexSlots& slots, size_t tile);
+
 // The device's layout of the blocks and the neighbour table: per vertex as
 // in the tables (tile 1, CPUs), or in tiles of `tile` vertices
 // (SNH_STENCIL_TILE, GPUs: kernels/fem/block_stencil.h), the last tile

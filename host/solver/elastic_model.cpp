@@ -152,11 +152,11 @@ template <typename Real>
 void ElasticModel<Real>::set_variant(ProductVariant v) {
   if (v == ProductVariant::automatic) throw Error("solver: resolve ProductVariant::automatic before use");
   variant_ = v;
-  prepare_float_products();
   const size_t m = static_cast<size_t>(3 * nodes_) * (3 * nodes_);
   if ((v == ProductVariant::element_matrices || v == ProductVariant::assembled) && !element_matrices_)
     element_matrices_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * m * sizeof(Real));
   if (v == ProductVariant::assembled) prepare_stencil();
+  prepare_float_products();
 }
 
 template <typename Real>
@@ -243,13 +243,13 @@ void ElasticModel<Real>::prepare_float_products() {
   if (!float_products()) return;
   if (!narrow_k_) narrow_k_ = cl_.kernel("fem.cl", defines_, "snh_narrow");
   if (variant_ == ProductVariant::assembled) {
-    // The blocks assembled so far, if any (else the next assembly writes
-    // their float copy as it goes, into the buffer made here).
-    if (stencil_ && !stencil_float_) {
+    // The float blocks' buffer (the stencil's tables are made with the
+    // variant), holding the blocks assembled so far, if any (else the next
+    // assembly writes their float copy as it goes).
+    if (!stencil_float_) {
       make_stencil_float();
-      narrow(stencil_.get(), stencil_values(), stencil_float_);
+      if (stencil_) narrow(stencil_.get(), stencil_values(), stencil_float_);
     }
-    if (stencil_neighbours_) make_stencil_float();
     return;
   }
   if (!float_cache() || cache_float_) return;
@@ -405,11 +405,9 @@ template <typename Real>
 void ElasticModel<Real>::prepare_stencil() {
   if (stencil_neighbours_) return;
   // The pattern and the element blocks that add up to each of its blocks
-  // (solver/block_stencil.h); with per-vertex blocks (CPUs) the upper
-  // layout, half the blocks and the same products bit for bit.
-  StencilTables t =
-      stencil_tables(elements_host_, vertex_count_, nodes_, fem::vertex_slots(elements_host_, vertex_count_));
-  if (stencil_tile() == 1) t = upper_stencil_tables(t, vertex_count_);
+  // (solver/block_stencil.h), in the layout for the device.
+  const StencilTables t = device_stencil_tables(elements_host_, vertex_count_, nodes_,
+                                                fem::vertex_slots(elements_host_, vertex_count_), stencil_tile());
   stencil_width_ = t.width;
   stencil_lower_ = t.lower;
   PhaseScope transfer(&profiler_, Phase::transfers);

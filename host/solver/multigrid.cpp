@@ -141,11 +141,8 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
       L.offsets = upload_int(slots.offsets, L.bytes);
       L.adjacency = upload_int(slots.adjacency, L.bytes);
-      // Per-vertex blocks (CPUs): the upper layout, half the bytes.
       const size_t tile = model.stencil_tile();
-      const StencilTables stencil =
-          tile == 1 ? upper_stencil_tables(stencil_tables(h.elements, L.vertices, 8, slots), L.vertices)
-                    : stencil_tables(h.elements, L.vertices, 8, slots);
+      const StencilTables stencil = device_stencil_tables(h.elements, L.vertices, 8, slots, tile);
       L.width = stencil.width;
       L.stencil_kernels = stencil_kernels_of(coarse + (l == 0 && fine_float_ ? " -DSNH_MATRIX_FLOAT=1" : "") +
                                              stencil_width_define(L.width, tile, stencil.lower));

@@ -46,11 +46,13 @@
  * argument's value, known when the kernel is built) the loop's count is a
  * constant and unrolled: on pocl the multigrid's stencil passes of twist res
  * 32 took 0.87-0.91 s against 1.24-1.26 s. */
-SNH_FN void stencil_block_add(__global const matrix_real* b, const int t, const real p0, const real p1, const real p2,
-                              real* s0, real* s1, real* s2) {
-  *s0 += (real)b[0] * p0 + (real)b[3 * t] * p1 + (real)b[6 * t] * p2;
-  *s1 += (real)b[t] * p0 + (real)b[4 * t] * p1 + (real)b[7 * t] * p2;
-  *s2 += (real)b[2 * t] * p0 + (real)b[5 * t] * p1 + (real)b[8 * t] * p2;
+/* s += B p for a block whose entry (i, j) is at b[i r + j c]: stored
+ * column-major (r = tile, c = 3 tile), or read transposed (r = 3, c = 1). */
+SNH_FN void stencil_block_add(__global const matrix_real* b, const int r, const int c, const real p0, const real p1,
+                              const real p2, real* s0, real* s1, real* s2) {
+  *s0 += (real)b[0] * p0 + (real)b[c] * p1 + (real)b[2 * c] * p2;
+  *s1 += (real)b[r] * p0 + (real)b[r + c] * p1 + (real)b[r + 2 * c] * p2;
+  *s2 += (real)b[2 * r] * p0 + (real)b[2 * r + c] * p1 + (real)b[2 * r + 2 * c] * p2;
 }
 
 SNH_FN void stencil_row(__global const real* p, __global const int* neighbours, __global const matrix_real* stencil,
@@ -63,20 +65,17 @@ SNH_FN void stencil_row(__global const real* p, __global const int* neighbours, 
    * same sums in the same order, bit for bit. */
   __global const int* around = neighbours + (size_t)(SNH_STENCIL_WIDTH + 2 * SNH_STENCIL_LOWER) * v;
   __global const matrix_real* a = stencil + (size_t)9 * SNH_STENCIL_WIDTH * v;
-  stencil_block_add(a, 1, p[3 * v], p[3 * v + 1], p[3 * v + 2], &s0, &s1, &s2);
+  stencil_block_add(a, 1, 3, p[3 * v], p[3 * v + 1], p[3 * v + 2], &s0, &s1, &s2);
   SNH_UNROLL
   for (int s = 0; s < SNH_STENCIL_LOWER; ++s) {
     const int n = around[SNH_STENCIL_WIDTH + s];
-    const real p0 = p[3 * n], p1 = p[3 * n + 1], p2 = p[3 * n + 2];
     __global const matrix_real* b = stencil + (size_t)9 * around[SNH_STENCIL_WIDTH + SNH_STENCIL_LOWER + s];
-    s0 += (real)b[0] * p0 + (real)b[1] * p1 + (real)b[2] * p2;
-    s1 += (real)b[3] * p0 + (real)b[4] * p1 + (real)b[5] * p2;
-    s2 += (real)b[6] * p0 + (real)b[7] * p1 + (real)b[8] * p2;
+    stencil_block_add(b, 3, 1, p[3 * n], p[3 * n + 1], p[3 * n + 2], &s0, &s1, &s2);
   }
   SNH_UNROLL
   for (int s = 1; s < SNH_STENCIL_WIDTH; ++s) {
     const int n = around[s];
-    stencil_block_add(a + 9 * s, 1, p[3 * n], p[3 * n + 1], p[3 * n + 2], &s0, &s1, &s2);
+    stencil_block_add(a + 9 * s, 1, 3, p[3 * n], p[3 * n + 1], p[3 * n + 2], &s0, &s1, &s2);
   }
 #else
   __global const int* around = neighbours + SNH_STENCIL_NEIGHBOURS_AT(width, v);
@@ -89,7 +88,7 @@ SNH_FN void stencil_row(__global const real* p, __global const int* neighbours, 
   for (int s = 0; s < width; ++s) {
 #endif
     const int n = around[t * s];
-    stencil_block_add(a + 9 * t * s, t, p[3 * n], p[3 * n + 1], p[3 * n + 2], &s0, &s1, &s2);
+    stencil_block_add(a + 9 * t * s, t, 3 * t, p[3 * n], p[3 * n + 1], p[3 * n + 2], &s0, &s1, &s2);
   }
 #endif
   out[0] = s0;
