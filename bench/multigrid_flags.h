@@ -16,6 +16,7 @@ struct MultigridFlags {
   std::string chebyshev;                 // non-empty: MultigridOptions::chebyshev_kind
   std::string fine_level = "automatic";  // MultigridOptions::fine_level
   std::string fine_float = "on";         // MultigridOptions::fine_level_float
+  std::string float_cycle = "on";        // MultigridOptions::float_cycle
 
   void add_to(CLI::App* cmd) {
     cmd->add_option("--multigrid-rebuild-every", rebuild_every,
@@ -47,6 +48,11 @@ struct MultigridFlags {
                     "(off)")
         ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
+    cmd->add_option("--multigrid-float-cycle", float_cycle,
+                    "multigrid, double with a built fine level: the V-cycle's vectors, stencils and smoother in "
+                    "float (on; its builds and CG stay double) or in double (off)")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->capture_default_str();
   }
 
   void apply(MultigridOptions& options) const {
@@ -56,6 +62,7 @@ struct MultigridFlags {
     if (coarsest_dofs > 0) options.coarsest_dofs = static_cast<size_t>(coarsest_dofs);
     options.fine_level = parse_multigrid_fine_level(fine_level);
     options.fine_level_float = fine_float == "on";
+    options.float_cycle = float_cycle == "on";
   }
 };
 

@@ -534,5 +534,12 @@ __kernel void snh_narrow(__global const real* in, const int n, __global float* o
   const int i = get_global_id(0);
   if (i < n) out[i] = (float)in[i];
 }
+
+/* out = (double)in over n values: a float V-cycle's result for a double
+ * solve's CG (solver/multigrid.h). */
+__kernel void snh_widen(__global const float* in, const int n, __global real* out) {
+  const int i = get_global_id(0);
+  if (i < n) out[i] = (real)in[i];
+}
 #endif
 #endif /* !SNH_MIXED */

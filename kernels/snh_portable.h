@@ -15,8 +15,10 @@
 /* SNH_MIXED = 1 (OpenCL only): a double solve's Hessian products in float
  * (ElasticModel::set_float_products). The math, the linearization cache and
  * the rest data are float (SNH_DOUBLE becomes 0); the solver's vectors that
- * the kernels read and write (vector_real below) stay double. */
-#if SNH_MIXED
+ * the kernels read and write (vector_real below) stay double.
+ * SNH_FLOAT = 1 (OpenCL only): a float build in a double context, vectors
+ * included (the multigrid's float V-cycle, MultigridOptions::float_cycle). */
+#if SNH_MIXED || SNH_FLOAT
 #undef SNH_DOUBLE
 #define SNH_DOUBLE 0
 #endif

@@ -315,12 +315,14 @@ struct DeviceCase {
   }
 };
 
-// DeviceCase's built-fine-level multigrid options (coarsest level at 50 DOFs).
-MultigridOptions built_fine_level(bool fine_level_float) {
+// DeviceCase's built-fine-level multigrid options (coarsest level at 50 DOFs),
+// the V-cycle in double unless float_cycle.
+MultigridOptions built_fine_level(bool fine_level_float, bool float_cycle = false) {
   MultigridOptions options;
   options.coarsest_dofs = 50;
   options.fine_level = MultigridFineLevel::built;
   options.fine_level_float = fine_level_float;
+  options.float_cycle = float_cycle;
   return options;
 }
 
@@ -542,43 +544,51 @@ TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
                                      Smoothing{3, ChebyshevKind::first, MultigridFineLevel::built},
                                      Smoothing{2, ChebyshevKind::fourth, MultigridFineLevel::built},
                                      Smoothing{3, ChebyshevKind::optimized_fourth, MultigridFineLevel::built},
-                                     Smoothing{2, ChebyshevKind::optimized_fourth, MultigridFineLevel::current}}) {
-    const int degree = smoothing.degree;
-    SCOPED_TRACE(std::string(to_string(smoothing.kind)) + " " + to_string(smoothing.fine));
-    MultigridOptions options;
-    options.coarsest_dofs = 50;
-    options.smoother_degree = degree;
-    options.chebyshev_kind = smoothing.kind;
-    options.fine_level = smoothing.fine;
-    solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
-    model.linearize(upload(c.x), true);
-    model.setup_preconditioner();
-    mg.setup();
-    std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    std::vector<double> a(mask.size()), b(mask.size());
-    for (size_t i = 0; i < mask.size(); ++i) {
-      a[i] = mask[i] * u(rng);
-      b[i] = mask[i] * u(rng);
-    }
-    viennacl::vector<double> ma = upload(a), mb = upload(b);
-    mg.apply(ma);
-    mg.apply(mb);
-    const std::vector<double> za = download(ma), zb = download(mb);
-    double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
-    for (size_t i = 0; i < mask.size(); ++i) {
-      ab += a[i] * zb[i];
-      ba += b[i] * za[i];
-      aa += a[i] * za[i];
-      scale += std::abs(a[i] * zb[i]);
-      if (mask[i] == 0.0) {
-        EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
-        EXPECT_EQ(zb[i], 0.0) << "constrained DOF " << i;
+                                     Smoothing{2, ChebyshevKind::optimized_fourth, MultigridFineLevel::current}})
+    for (bool float_cycle : {false, true}) {
+      const int degree = smoothing.degree;
+      SCOPED_TRACE(std::string(to_string(smoothing.kind)) + " " + to_string(smoothing.fine) +
+                   (float_cycle ? " float cycle" : ""));
+      MultigridOptions options;
+      options.coarsest_dofs = 50;
+      options.smoother_degree = degree;
+      options.chebyshev_kind = smoothing.kind;
+      options.fine_level = smoothing.fine;
+      options.float_cycle = float_cycle;
+      solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
+      // A float cycle needs a built fine level; a current one keeps double.
+      ASSERT_EQ(mg.float_cycle(), float_cycle && smoothing.fine == MultigridFineLevel::built);
+      model.linearize(upload(c.x), true);
+      model.setup_preconditioner();
+      mg.setup();
+      std::mt19937_64 rng(7);
+      std::uniform_real_distribution<double> u(-1.0, 1.0);
+      std::vector<double> a(mask.size()), b(mask.size());
+      for (size_t i = 0; i < mask.size(); ++i) {
+        a[i] = mask[i] * u(rng);
+        b[i] = mask[i] * u(rng);
       }
+      viennacl::vector<double> ma = upload(a), mb = upload(b);
+      mg.apply(ma);
+      mg.apply(mb);
+      const std::vector<double> za = download(ma), zb = download(mb);
+      double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
+      for (size_t i = 0; i < mask.size(); ++i) {
+        ab += a[i] * zb[i];
+        ba += b[i] * za[i];
+        aa += a[i] * za[i];
+        scale += std::abs(a[i] * zb[i]);
+        if (mask[i] == 0.0) {
+          EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
+          EXPECT_EQ(zb[i], 0.0) << "constrained DOF " << i;
+        }
+      }
+      // Double: exactly symmetric to the sums' rounding. A float cycle: to
+      // float's rounding of its vectors and stencils (measured 3e-8).
+      const double bound = mg.float_cycle() ? 1e-6 : 1e-12;
+      EXPECT_LT(std::abs(ab - ba), bound * scale) << "degree " << degree << ": a.Mb " << ab << " b.Ma " << ba;
+      EXPECT_GT(aa, 0.0);
     }
-    EXPECT_LT(std::abs(ab - ba), 1e-12 * scale) << "degree " << degree << ": a.Mb " << ab << " b.Ma " << ba;
-    EXPECT_GT(aa, 0.0);
-  }
 }
 
 // MultigridOptions::fine_level: right after a build, the V-cycle over the
@@ -664,8 +674,8 @@ TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
     solver::ElasticModel<double> model(device_for(Precision::double_), *mesh, rest, uniform_material(*mesh, c.material),
                                        ProductVariant::cached);
     model.set_mask(std::vector<double>(mask.begin(), mask.end()));
-    for (bool narrow : {false, true}) {
-      MultigridOptions options = built_fine_level(narrow);
+    for (const auto& [narrow, float_cycle] : {std::pair{false, false}, {true, false}, {true, true}}) {
+      MultigridOptions options = built_fine_level(narrow, float_cycle);
       options.coarsest_dofs = 1;
       solver::MultigridPreconditioner<double> mg(model, *mesh, mask, options);
       ASSERT_GE(mg.levels(), 3);
@@ -688,12 +698,14 @@ TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
         viennacl::vector<double> y(n);
         mg.level_product(l, upload(p), y);
         // Double: rounding only. Float fine level: the float rounding of the
-        // assembled blocks (the cells' are float already).
-        const double bound = l == 0 && narrow ? 1e-6 : 1e-14;
-        EXPECT_LT(relative_difference(download(y), expected), bound) << "level " << l << " float " << narrow;
+        // assembled blocks (the cells' are float already). Float cycle: every
+        // level's blocks and products in float.
+        const double bound = (l == 0 && narrow) || float_cycle ? 1e-6 : 1e-14;
+        EXPECT_LT(relative_difference(download(y), expected), bound)
+            << "level " << l << " float " << narrow << " cycle " << float_cycle;
         if (l > 0 || !narrow) continue;
         // Exact symmetry: a.(A b) and b.(A a) on the free DOFs agree to the
-        // products' rounding in double.
+        // products' rounding in double (a float cycle: in float).
         std::vector<double> a(n), b(n);
         for (size_t i = 0; i < n; ++i) {
           a[i] = level.mask[i] * u(rng);
@@ -709,7 +721,7 @@ TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
           ba += b[i] * aa[i];
           scale += std::abs(a[i] * bb[i]);
         }
-        EXPECT_LT(std::abs(ab - ba), 1e-14 * scale);
+        EXPECT_LT(std::abs(ab - ba), (float_cycle ? 1e-6 : 1e-14) * scale);
       }
     }
   }
@@ -752,6 +764,47 @@ TEST(Multigrid, FloatFineLevelHalvesItsMatricesAndStaysClose) {
   const double vcycle = relative_difference(download(zs), download(zf));
   EXPECT_LT(vcycle, 1e-5);
   std::printf("float fine level: coarse cells %.2e, V-cycle %.2e relative to double\n", coarse, vcycle);
+}
+
+// MultigridOptions::float_cycle (the default in double with a built fine
+// level): the V-cycle's vectors, stencils, inverse blocks and transfer
+// weights in float, its builds in double. It must give the double cycle's
+// result to float's rounding (within 1e-5 relative, the bound of the float
+// fine level above), keep constrained DOFs exactly zero, take less device
+// memory, and leave the coarse cell matrices (double builds) bitwise those
+// of the double cycle. Symmetry: VCycleIsSymmetricPositive... above.
+TEST(Multigrid, FloatCycleIsTheDoubleCycleToFloatRounding) {
+  DeviceCase c;
+  const std::unique_ptr<solver::ElasticModel<double>> owned = masked_model(c);
+  solver::ElasticModel<double>& model = *owned;
+  const std::vector<double> mask(c.mask.begin(), c.mask.end());
+  MultigridOptions options = built_fine_level(true, true);
+  options.fine_level = MultigridFineLevel::automatic;
+  solver::MultigridPreconditioner<double> single(model, c.mesh, c.mask, options);
+  options.float_cycle = false;
+  solver::MultigridPreconditioner<double> full(model, c.mesh, c.mask, options);
+  ASSERT_TRUE(single.float_cycle());
+  ASSERT_FALSE(full.float_cycle());
+  EXPECT_LT(single.memory_bytes(), full.memory_bytes());
+  model.linearize(upload(c.x), true);
+  model.setup_preconditioner();
+  single.setup();
+  full.setup();
+  for (int l = 1; l < single.levels(); ++l) EXPECT_EQ(single.level_matrices(l), full.level_matrices(l)) << l;
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> a(mask.size());
+  for (size_t i = 0; i < mask.size(); ++i) a[i] = mask[i] * u(rng);
+  viennacl::vector<double> zs = upload(a), zf = upload(a);
+  single.apply(zs);
+  full.apply(zf);
+  const std::vector<double> in_float = download(zs);
+  for (size_t i = 0; i < mask.size(); ++i)
+    if (mask[i] == 0.0) EXPECT_EQ(in_float[i], 0.0) << "constrained DOF " << i;
+  const double vcycle = relative_difference(in_float, download(zf));
+  EXPECT_LT(vcycle, 1e-5);
+  EXPECT_GT(vcycle, 0.0) << "the cycle ran in float";
+  std::printf("float cycle: V-cycle %.2e relative to double\n", vcycle);
 }
 
 // Boundary vertices follow x = A X + b; the equilibrium of any homogeneous

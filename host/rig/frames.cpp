@@ -63,6 +63,7 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     record.product_precision = r.product_precision;
     record.multigrid_smoother_degree = r.multigrid_smoother_degree;
     record.multigrid_chebyshev = r.multigrid_chebyshev;
+    record.multigrid_float_cycle = r.multigrid_float_cycle;
     record.kernel_specialization = r.kernel_specialization;
     record.device_memory_bytes = r.device_memory_bytes;
     records.push_back(record);

@@ -46,6 +46,7 @@ class DeviceProblem {
   // The multigrid's options as it resolved them (the smoothing chosen from
   // the mesh and materials); null without multigrid.
   const MultigridOptions* multigrid_options() const { return multigrid_ ? &multigrid_->options() : nullptr; }
+  bool multigrid_float_cycle() const { return multigrid_ && multigrid_->float_cycle(); }
   // Device memory at the solve's peak: the model's buffers, the
   // preconditioner's, and the vectors of a Newton iteration (x and the
   // driver's r, p, trial, r_trial, far, r_far) with those of ViennaCL's CG

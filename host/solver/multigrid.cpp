@@ -1,9 +1,11 @@
 #include "solver/multigrid.h"
 
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
@@ -26,35 +28,159 @@ constexpr int kCellMatrix = 24 * 24;
 // 1.30 -> 1.04 s with the same Newton and CG counts.
 constexpr int kPowerIterations = 10, kWarmPowerIterations = 2;
 
+// Whether the options and the model's terms give a built fine level.
+template <typename Real>
+bool builds_fine_level(const ElasticModel<Real>& model, const MultigridOptions& options) {
+  const bool vertex_terms = model.terms().inertia || model.terms().obstacles > 0;
+  return options.fine_level == MultigridFineLevel::built ||
+         (options.fine_level == MultigridFineLevel::automatic && !vertex_terms);
+}
+
 }  // namespace
 
+// What MultigridPreconditioner forwards to: the levels in one precision.
 template <typename Real>
-struct MultigridPreconditioner<Real>::Level {
+class MultigridPreconditioner<Real>::Cycle {
+ public:
+  using WideBase = viennacl::vector_base<Real>;
+  virtual ~Cycle() = default;
+  virtual void setup() = 0;
+  virtual void update_fine_bound() = 0;
+  virtual bool fine_level_built() const = 0;
+  virtual bool float_cycle() const = 0;
+  virtual void apply(WideBase& z) const = 0;
+  virtual const LatticeHierarchy& hierarchy() const = 0;
+  virtual const MultigridOptions& options() const = 0;
+  virtual int levels() const = 0;
+  virtual std::vector<Real> level_matrices(int level) const = 0;
+  virtual void level_product(int level, const WideBase& p, WideBase& y) const = 0;
+  virtual std::vector<double> eigenvalue_estimates() const = 0;
+  virtual size_t memory_bytes() const = 0;
+};
+
+namespace {
+
+// The hierarchy of a solve in precision Real whose V-cycle runs in C: Real
+// itself, or float in a double solve (MultigridOptions::float_cycle). The
+// builds (Galerkin products, block-Jacobi inversions, the coarsest factor)
+// run in Real, or read the fine level's float matrices; what the V-cycle
+// reads at each application (stencils, inverse blocks, masks, transfer
+// weights, its vectors) is stored in C.
+template <typename Real, typename C>
+class Levels final : public MultigridPreconditioner<Real>::Cycle {
+ public:
+  using VectorBase = viennacl::vector_base<C>;
+  using WideBase = viennacl::vector_base<Real>;
+  static constexpr bool kNarrow = !std::is_same_v<Real, C>;
+
+  Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::vector<char>& mask, const MultigridOptions& options);
+
+  void setup() override;
+  void update_fine_bound() override;
+  bool fine_level_built() const override { return fine_built_; }
+  bool float_cycle() const override { return kNarrow; }
+  void apply(WideBase& z) const override;
+  const LatticeHierarchy& hierarchy() const override { return hierarchy_; }
+  const MultigridOptions& options() const override { return options_; }
+  int levels() const override { return static_cast<int>(hierarchy_.levels.size()); }
+  std::vector<Real> level_matrices(int level) const override;
+  void level_product(int level, const WideBase& p, WideBase& y) const override;
+  std::vector<double> eigenvalue_estimates() const override;
+  size_t memory_bytes() const override;
+
+ private:
+  struct Level;
+  void product(int level, const VectorBase& p, VectorBase& y) const;
+  void inverse_diagonal(int level, VectorBase& z) const;  // z <- D^-1 z
+  // Chebyshev smoothing of A x = b at `level`; r holds b - A x on entry, or
+  // with `from` x = 0 and r = *from are taken as the entry values (neither
+  // read); r holds the residual on return if want_residual.
+  void chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual, const VectorBase* from = nullptr) const;
+  void vcycle(int level) const;
+  void coarse_solve() const;
+  void factor_coarsest();
+  void estimate_bound(size_t level);  // lambda_max(D^-1 A) by power iteration
+  void block_jacobi(Level& level);    // level.inverse from level.blocks
+  void assemble_stencil(int level);   // the level's stencil from its matrices
+  // r <- base - A p at an assembled level (base may be r).
+  void residual(int level, const VectorBase& p, const VectorBase& base, VectorBase& r) const;
+  // to <- from in the other precision (kNarrow only): snh_narrow, snh_widen.
+  void convert(const device::Kernel& k, cl_mem from, size_t values, cl_mem to) const;
+
+  ElasticModel<Real>& model_;
+  device::OpenClContext& cl_;
+  MultigridOptions options_;
+  LatticeHierarchy hierarchy_;
+  std::vector<std::unique_ptr<Level>> levels_;
+
+  // Builds in Real: Galerkin products, block-Jacobi inversions. The
+  // V-cycle's kernels in C.
+  device::Kernel galerkin_cache_k_, galerkin_matrices_k_, jacobi_setup_k_;
+  device::Kernel prolong_k_, restrict_k_, chebyshev_start_k_, jacobi_apply_k_;
+  device::Kernel narrow_k_, widen_k_;  // kNarrow
+  // The assembled levels' kernels (they read the level's stencil): the
+  // assembly in the build's precision (float matrices on a float fine
+  // level), the others in C.
+  struct StencilKernels {
+    device::Kernel assemble, product, residual, step;
+  };
+  // Each level's, built for its width (stencil_width_define) and, on a
+  // float fine level, its float matrices.
+  const StencilKernels& stencil_kernels(int level) const;
+  // Inertia or obstacle contact in the fine operator: added to the first
+  // coarse level's cell matrices (snh_galerkin_vertex_terms) with each
+  // vertex's share 1 / (cells around it).
+  bool vertex_terms_ = false;
+  bool fine_built_ = false;
+  // The built fine level's matrices in float (double builds).
+  bool fine_float_ = false;
+  device::Kernel fine_float_galerkin_k_;
+  device::Kernel galerkin_vertex_k_;
+  device::Buffer vertex_share_;
+  device::Buffer octant_weights_;  // lattice_hierarchy.h's octant_weights()
+  // kNarrow: block-Jacobi's inverse blocks in Real, narrowed into a level's
+  // (the largest level's size, shared).
+  device::Buffer wide_inverse_;
+  size_t table_bytes_ = 0;  // its device memory
+  // The coarsest level's assembled matrix (its pattern fixed at
+  // construction), where each of its cell matrices' entries and each DOF's
+  // diagonal sit among its values, and its factor.
+  Eigen::SparseMatrix<double> coarsest_matrix_;
+  std::vector<int> coarsest_slots_, coarsest_diagonal_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
+  bool coarsest_ok_ = false;
+  mutable std::vector<C> host_rhs_;
+};
+
+template <typename Real, typename C>
+struct Levels<Real, C>::Level {
   size_t cells = 0, vertices = 0;
   cl_mem element_handle = nullptr;  // the level's elements (the model's at level 0)
-  device::Buffer elements, offsets, adjacency, mask, matrices, blocks, inverse, children;
+  // mask: the builds' (Real); cycle_mask: the V-cycle's (C; with kNarrow
+  // only, else mask serves).
+  device::Buffer elements, offsets, adjacency, mask, cycle_mask, matrices, blocks, inverse, children;
+  cl_mem cycle_mask_handle() const { return kNarrow ? cycle_mask.get() : mask.get(); }
   // The operator's blocks per vertex (snh_stencil_assemble), whose they are
   // and what they add up.
   device::Buffer neighbours, part_offsets, parts, stencil;
   int width = 0;
   StencilKernels stencil_kernels;  // built for this level's width and matrices
   device::Buffer prolong_vertices, prolong_weights, restrict_offsets, restrict_vertices, restrict_weights;
-  viennacl::vector<Real> b, x, r, d, t, d_next;
-  viennacl::vector<Real> eigenvector;  // of D^-1 A, the last power iteration's
+  viennacl::vector<C> b, x, r, d, t, d_next;
+  viennacl::vector<C> eigenvector;  // of D^-1 A, the last power iteration's
   double lambda = 1.0;
   ChebyshevSteps steps;  // the smoothing's coefficients for lambda (estimate_bound)
   size_t bytes = 0;
 };
 
-template <typename Real>
-const typename MultigridPreconditioner<Real>::StencilKernels& MultigridPreconditioner<Real>::stencil_kernels(
-    int level) const {
+template <typename Real, typename C>
+const typename Levels<Real, C>::StencilKernels& Levels<Real, C>::stencil_kernels(int level) const {
   return levels_[level]->stencil_kernels;
 }
 
-template <typename Real>
-MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model, const Mesh& mesh,
-                                                       const std::vector<char>& mask, const MultigridOptions& options)
+template <typename Real, typename C>
+Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::vector<char>& mask,
+                        const MultigridOptions& options)
     : model_(model),
       cl_(model.context()),
       options_(resolved_smoothing(options, 3 * mesh.vertex_count(), model.max_poisson_ratio())) {
@@ -80,23 +206,25 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   const std::string defines = model.specialization(), coarse = model.elastic_specialization();
   galerkin_cache_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_cache");
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
-  prolong_k_ = cl_.kernel("multigrid.cl", coarse, "snh_prolong_add");
-  restrict_k_ = cl_.kernel("multigrid.cl", coarse, "snh_restrict");
-  auto stencil_kernels_of = [&](const std::string& build) {
-    return StencilKernels{
-        cl_.kernel("stencil.cl", build, "snh_stencil_assemble"), cl_.kernel("stencil.cl", build, "snh_stencil_product"),
-        cl_.kernel("stencil.cl", build, "snh_stencil_residual"), cl_.kernel("stencil.cl", build, "snh_chebyshev_step")};
-  };
-  chebyshev_start_k_ = cl_.kernel("multigrid.cl", coarse, "snh_chebyshev_start");
+  // The V-cycle's builds: a float cycle's are the same switches compiled in
+  // float (SNH_FLOAT, kernels/snh_portable.h).
+  const std::string cycle = kNarrow ? coarse + " -DSNH_FLOAT=1" : coarse;
+  prolong_k_ = cl_.kernel("multigrid.cl", cycle, "snh_prolong_add");
+  restrict_k_ = cl_.kernel("multigrid.cl", cycle, "snh_restrict");
+  chebyshev_start_k_ = cl_.kernel("multigrid.cl", cycle, "snh_chebyshev_start");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
-  jacobi_apply_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_apply");
+  jacobi_apply_k_ = cl_.kernel("fem.cl", cycle, "snh_block_jacobi_apply");
+  if constexpr (kNarrow) {
+    narrow_k_ = cl_.kernel("fem.cl", coarse, "snh_narrow");
+    widen_k_ = cl_.kernel("fem.cl", coarse, "snh_widen");
+  }
   vertex_terms_ = model.terms().inertia || model.terms().obstacles > 0;
   if (options.fine_level == MultigridFineLevel::built && vertex_terms_)
     throw Error(
         "multigrid: fine_level built does not carry the inertia or obstacle contact blocks (use automatic or "
         "current)");
-  fine_built_ = options.fine_level == MultigridFineLevel::built ||
-                (options.fine_level == MultigridFineLevel::automatic && !vertex_terms_);
+  fine_built_ = builds_fine_level(model, options);
+  if (kNarrow && !fine_built_) throw Error("multigrid: a float V-cycle needs a built fine level");
   fine_float_ = fine_built_ && options.fine_level_float && sizeof(Real) > sizeof(float);
   if (fine_float_)
     fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", coarse + " -DSNH_MATRIX_FLOAT=1", "snh_galerkin_from_matrices");
@@ -116,11 +244,14 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     bytes += v.size() * sizeof(int);
     return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(v.size(), 1) * sizeof(int), v.empty() ? nullptr : v.data());
   };
-  auto upload_real = [&](const auto& v, size_t& bytes) {
-    const std::vector<Real> r(v.begin(), v.end());
-    bytes += r.size() * sizeof(Real);
-    return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(r.size(), 1) * sizeof(Real), r.empty() ? nullptr : r.data());
+  auto upload_as = [&](auto zero, const auto& v, size_t& bytes) {
+    using T = decltype(zero);
+    const std::vector<T> r(v.begin(), v.end());
+    bytes += r.size() * sizeof(T);
+    return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(r.size(), 1) * sizeof(T), r.empty() ? nullptr : r.data());
   };
+  auto upload_real = [&](const auto& v, size_t& bytes) { return upload_as(Real(0), v, bytes); };
+  auto upload_cycle = [&](const auto& v, size_t& bytes) { return upload_as(C(0), v, bytes); };
   octant_weights_ = upload_real(octant_weights(), table_bytes_);
   for (size_t l = 0; l < hierarchy_.levels.size(); ++l) {
     const LatticeLevel& h = hierarchy_.levels[l];
@@ -130,6 +261,7 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
     L.vertices = h.vertex_count;
     const size_t n = 3 * L.vertices;
     L.mask = upload_real(h.mask, L.bytes);
+    if (kNarrow) L.cycle_mask = upload_cycle(h.mask, L.bytes);
     if (l == 0) {
       L.element_handle = model.elements_buffer();
     } else {
@@ -144,30 +276,43 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
       const size_t tile = model.stencil_tile();
       const StencilTables stencil = device_stencil_tables(h.elements, L.vertices, 8, slots, tile);
       L.width = stencil.width;
-      L.stencil_kernels = stencil_kernels_of(coarse + (l == 0 && fine_float_ ? " -DSNH_MATRIX_FLOAT=1" : "") +
-                                             stencil_width_define(L.width, tile, stencil.lower));
+      // Float matrices at a float fine level: assembled from float
+      // (SNH_MATRIX_FLOAT), and in a Real cycle read by mixed kernels.
+      const std::string float_matrices = l == 0 && fine_float_ ? " -DSNH_MATRIX_FLOAT=1" : "";
+      const std::string width = stencil_width_define(L.width, tile, stencil.lower);
+      const std::string assembly = coarse + float_matrices + width,
+                        apply = cycle + (kNarrow ? "" : float_matrices) + width;
+      L.stencil_kernels = StencilKernels{cl_.kernel("stencil.cl", assembly, "snh_stencil_assemble"),
+                                         cl_.kernel("stencil.cl", apply, "snh_stencil_product"),
+                                         cl_.kernel("stencil.cl", apply, "snh_stencil_residual"),
+                                         cl_.kernel("stencil.cl", apply, "snh_chebyshev_step")};
       L.neighbours = upload_int(tiled_neighbours(stencil, L.vertices, tile), L.bytes);
       L.part_offsets = upload_int(stencil.part_offsets, L.bytes);
       L.parts = upload_int(stencil.parts, L.bytes);
       const size_t entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(Real);
+      const size_t stencil_entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(C);
       const size_t matrix_bytes = L.cells * kCellMatrix * entry,
-                   stencil_bytes = stencil_entries(stencil, L.vertices, tile) * entry;
+                   stencil_bytes = stencil_entries(stencil, L.vertices, tile) * stencil_entry;
       L.matrices = cl_.buffer(CL_MEM_READ_WRITE, matrix_bytes);
       L.stencil = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_bytes, 1));
       L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
-      L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(Real));
-      L.bytes += matrix_bytes + stencil_bytes + L.cells * 72 * sizeof(Real) + L.vertices * 9 * sizeof(Real);
+      L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(C));
+      L.bytes += matrix_bytes + stencil_bytes + L.cells * 72 * sizeof(Real) + L.vertices * 9 * sizeof(C);
+      if (kNarrow && !wide_inverse_) {  // level 0 comes first: the largest
+        wide_inverse_ = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(Real));
+        table_bytes_ += L.vertices * 9 * sizeof(Real);
+      }
     }
     if (l + 1 < hierarchy_.levels.size()) {
       L.prolong_vertices = upload_int(h.prolongation_vertices, L.bytes);
-      L.prolong_weights = upload_real(h.prolongation_weights, L.bytes);
+      L.prolong_weights = upload_cycle(h.prolongation_weights, L.bytes);
       L.restrict_offsets = upload_int(h.restriction_offsets, L.bytes);
       L.restrict_vertices = upload_int(h.restriction_vertices, L.bytes);
-      L.restrict_weights = upload_real(h.restriction_weights, L.bytes);
+      L.restrict_weights = upload_cycle(h.restriction_weights, L.bytes);
     }
     for (auto* v : {&L.b, &L.x, &L.r, &L.d, &L.t, &L.d_next})
-      *v = viennacl::vector<Real>(viennacl::scalar_vector<Real>(n, Real(0)));
-    L.bytes += 6 * n * sizeof(Real);
+      *v = viennacl::vector<C>(viennacl::scalar_vector<C>(n, C(0)));
+    L.bytes += 6 * n * sizeof(C);
     levels_.push_back(std::move(level));
   }
   if (hierarchy_.levels.size() > 1) {
@@ -203,13 +348,10 @@ MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model
   }
 }
 
-template <typename Real>
-MultigridPreconditioner<Real>::~MultigridPreconditioner() = default;
-
-template <typename Real>
-void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, VectorBase& y) const {
-  if (level == 0 && !fine_built_) {
-    model_.product(p, y);
+template <typename Real, typename C>
+void Levels<Real, C>::product(int level, const VectorBase& p, VectorBase& y) const {
+  if (level == 0 && !fine_built_) {  // C is Real: a float cycle has a built fine level
+    if constexpr (!kNarrow) model_.product(p, y);
     return;
   }
   const Level& L = *levels_[level];
@@ -218,22 +360,21 @@ void MultigridPreconditioner<Real>::product(int level, const VectorBase& p, Vect
   set_arg(k, 0, mem(p));
   set_arg(k, 1, L.neighbours.get());
   set_arg(k, 2, L.stencil.get());
-  set_arg(k, 3, L.mask.get());
+  set_arg(k, 3, L.cycle_mask_handle());
   set_arg(k, 4, vertices);
   set_arg(k, 5, L.width);
   set_arg(k, 6, mem(y));
   cl_.run(k, L.vertices);
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::residual(int level, const VectorBase& p, const VectorBase& base,
-                                             VectorBase& r) const {
+template <typename Real, typename C>
+void Levels<Real, C>::residual(int level, const VectorBase& p, const VectorBase& base, VectorBase& r) const {
   const Level& L = *levels_[level];
   cl_kernel k = stencil_kernels(level).residual.get();
   set_arg(k, 0, mem(p));
   set_arg(k, 1, L.neighbours.get());
   set_arg(k, 2, L.stencil.get());
-  set_arg(k, 3, L.mask.get());
+  set_arg(k, 3, L.cycle_mask_handle());
   set_arg(k, 4, static_cast<int>(L.vertices));
   set_arg(k, 5, L.width);
   set_arg(k, 6, mem(base));
@@ -241,8 +382,8 @@ void MultigridPreconditioner<Real>::residual(int level, const VectorBase& p, con
   cl_.run(k, L.vertices);
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::assemble_stencil(int level) {
+template <typename Real, typename C>
+void Levels<Real, C>::assemble_stencil(int level) {
   const Level& L = *levels_[level];
   cl_kernel k = stencil_kernels(level).assemble.get();
   const int vertices = static_cast<int>(L.vertices);
@@ -252,15 +393,18 @@ void MultigridPreconditioner<Real>::assemble_stencil(int level) {
   set_arg(k, 2, L.parts.get());
   set_arg(k, 3, blocks);
   set_arg(k, 4, L.width);
-  set_arg(k, 5, L.stencil.get());
-  set_arg(k, 6, cl_mem{nullptr});
+  // The fine level's float matrices give a float stencil (matrix_real); in
+  // a float cycle the coarse levels' Real sums are stored narrowed.
+  const bool narrowed = kNarrow && !(level == 0 && fine_float_);
+  set_arg(k, 5, narrowed ? cl_mem{nullptr} : L.stencil.get());
+  set_arg(k, 6, narrowed ? L.stencil.get() : cl_mem{nullptr});
   cl_.run(k, static_cast<size_t>(blocks));
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::inverse_diagonal(int level, VectorBase& z) const {
+template <typename Real, typename C>
+void Levels<Real, C>::inverse_diagonal(int level, VectorBase& z) const {
   if (level == 0 && !fine_built_) {
-    model_.apply_preconditioner(z);
+    if constexpr (!kNarrow) model_.apply_preconditioner(z);
     return;
   }
   const Level& L = *levels_[level];
@@ -273,8 +417,8 @@ void MultigridPreconditioner<Real>::inverse_diagonal(int level, VectorBase& z) c
   cl_.run(k, L.vertices);
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::setup() {
+template <typename Real, typename C>
+void Levels<Real, C>::setup() {
   if (fine_built_) {
     Level& L = *levels_[0];
     model_.element_matrices_into(L.matrices.get(), L.blocks.get(), fine_float_);
@@ -339,8 +483,8 @@ void MultigridPreconditioner<Real>::setup() {
   for (size_t l = 0; l < smoothed; ++l) estimate_bound(l);
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::block_jacobi(Level& L) {
+template <typename Real, typename C>
+void Levels<Real, C>::block_jacobi(Level& L) {
   cl_kernel s = jacobi_setup_k_.get();
   const int vertices = static_cast<int>(L.vertices);
   set_arg(s, 0, L.blocks.get());
@@ -348,52 +492,62 @@ void MultigridPreconditioner<Real>::block_jacobi(Level& L) {
   set_arg(s, 2, L.adjacency.get());
   set_arg(s, 3, L.mask.get());
   set_arg(s, 4, vertices);
-  set_arg(s, 5, L.inverse.get());
+  set_arg(s, 5, kNarrow ? wide_inverse_.get() : L.inverse.get());
   cl_.run(s, L.vertices);
+  if (kNarrow) convert(narrow_k_, wide_inverse_.get(), 9 * L.vertices, L.inverse.get());
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::update_fine_bound() {
+template <typename Real, typename C>
+void Levels<Real, C>::convert(const device::Kernel& k, cl_mem from, size_t values, cl_mem to) const {
+  cl_kernel c = k.get();
+  set_arg(c, 0, from);
+  set_arg(c, 1, static_cast<int>(values));
+  set_arg(c, 2, to);
+  cl_.run(c, values);
+}
+
+template <typename Real, typename C>
+void Levels<Real, C>::update_fine_bound() {
   if (!fine_built_) estimate_bound(0);
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::estimate_bound(size_t l) {
+template <typename Real, typename C>
+void Levels<Real, C>::estimate_bound(size_t l) {
   Level& L = *levels_[l];
   const bool warm = L.eigenvector.size() == 3 * L.vertices;
   if (!warm) {
     const LatticeLevel& h = hierarchy_.levels[l];
-    std::vector<Real> start(3 * L.vertices);
+    std::vector<C> start(3 * L.vertices);
     uint32_t state = 12345u;
     for (size_t i = 0; i < start.size(); ++i) {
       state = state * 1664525u + 1013904223u;
-      start[i] = h.mask[i] ? Real(0.5 + static_cast<double>(state >> 8) / 16777216.0) : Real(0);
+      start[i] = h.mask[i] ? C(0.5 + static_cast<double>(state >> 8) / 16777216.0) : C(0);
     }
-    L.eigenvector = viennacl::vector<Real>(3 * L.vertices);
+    L.eigenvector = viennacl::vector<C>(3 * L.vertices);
     viennacl::copy(start.begin(), start.end(), L.eigenvector.begin());
-    L.bytes += 3 * L.vertices * sizeof(Real);
+    L.bytes += 3 * L.vertices * sizeof(C);
   }
   double lambda = 0.0;
   const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
   for (int it = 0; it < iterations; ++it) {
     const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
     if (!(norm > 0.0) || !std::isfinite(norm)) break;
-    L.eigenvector *= Real(1.0 / norm);
+    L.eigenvector *= C(1.0 / norm);
     product(static_cast<int>(l), L.eigenvector, L.t);
     inverse_diagonal(static_cast<int>(l), L.t);
     lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
     L.eigenvector.fast_swap(L.t);
   }
   if (!(std::isfinite(lambda) && lambda > 0.0)) {  // start again next time
-    L.eigenvector = viennacl::vector<Real>();
+    L.eigenvector = viennacl::vector<C>();
     lambda = 1.0;
   }
   L.lambda = lambda;
   L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::factor_coarsest() {
+template <typename Real, typename C>
+void Levels<Real, C>::factor_coarsest() {
   coarsest_ok_ = false;
   if (levels_.size() < 2) return;
   const Level& L = *levels_.back();
@@ -409,8 +563,8 @@ void MultigridPreconditioner<Real>::factor_coarsest() {
   coarsest_ok_ = coarsest_.info() == Eigen::Success && coarsest_.vectorD().minCoeff() > 0.0;
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::coarse_solve() const {
+template <typename Real, typename C>
+void Levels<Real, C>::coarse_solve() const {
   Level& L = *levels_.back();
   if (!coarsest_ok_) {  // a singular coarsest operator: smooth instead
     chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b);
@@ -422,13 +576,13 @@ void MultigridPreconditioner<Real>::coarse_solve() const {
   for (size_t i = 0; i < host_rhs_.size(); ++i) rhs[i] = static_cast<double>(host_rhs_[i]);
   const Eigen::VectorXd solution = coarsest_.solve(rhs);
   const LatticeLevel& h = hierarchy_.levels.back();
-  for (size_t i = 0; i < host_rhs_.size(); ++i) host_rhs_[i] = h.mask[i] ? static_cast<Real>(solution[i]) : Real(0);
+  for (size_t i = 0; i < host_rhs_.size(); ++i) host_rhs_[i] = h.mask[i] ? static_cast<C>(solution[i]) : C(0);
   viennacl::copy(host_rhs_.begin(), host_rhs_.end(), L.x.begin());
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual,
-                                              const VectorBase* from) const {
+template <typename Real, typename C>
+void Levels<Real, C>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual,
+                                const VectorBase* from) const {
   Level& L = *levels_[level];
   const int degree = options_.smoother_degree;
   const ChebyshevSteps& steps = L.steps;
@@ -444,8 +598,8 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
       const int accumulate = from ? 0 : 1;
       set_arg(k, 0, L.inverse.get());
       set_arg(k, 1, mem(start));
-      set_arg(k, 2, static_cast<Real>(steps.c_z[0]));
-      set_arg(k, 3, static_cast<Real>(steps.beta[0]));
+      set_arg(k, 2, static_cast<C>(steps.c_z[0]));
+      set_arg(k, 3, static_cast<C>(steps.beta[0]));
       set_arg(k, 4, count);
       set_arg(k, 5, accumulate);
       set_arg(k, 6, mem(L.d));
@@ -457,13 +611,13 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
       set_arg(s, 0, mem(L.d));
       set_arg(s, 1, L.neighbours.get());
       set_arg(s, 2, L.stencil.get());
-      set_arg(s, 3, L.mask.get());
+      set_arg(s, 3, L.cycle_mask_handle());
       set_arg(s, 4, L.inverse.get());
       set_arg(s, 5, count);
       set_arg(s, 6, L.width);
-      set_arg(s, 7, static_cast<Real>(steps.c_d[i]));
-      set_arg(s, 8, static_cast<Real>(steps.c_z[i]));
-      set_arg(s, 9, static_cast<Real>(steps.beta[i]));
+      set_arg(s, 7, static_cast<C>(steps.c_d[i]));
+      set_arg(s, 8, static_cast<C>(steps.c_z[i]));
+      set_arg(s, 9, static_cast<C>(steps.beta[i]));
       set_arg(s, 10, mem(i == 1 ? start : r));
       set_arg(s, 11, mem(r));
       set_arg(s, 12, mem(x));
@@ -485,9 +639,9 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
   }
   L.d = r;
   inverse_diagonal(level, L.d);
-  L.d *= Real(steps.c_z[0]);
+  L.d *= C(steps.c_z[0]);
   for (int i = 1; i <= degree; ++i) {
-    x += Real(steps.beta[i - 1]) * L.d;
+    x += C(steps.beta[i - 1]) * L.d;
     if (i == degree && !want_residual) break;
     if (i == degree && weighted) {
       product(level, x, L.t);
@@ -499,12 +653,12 @@ void MultigridPreconditioner<Real>::chebyshev(int level, VectorBase& x, VectorBa
     if (i == degree) break;
     L.t = r;
     inverse_diagonal(level, L.t);
-    L.d = Real(steps.c_d[i]) * L.d + Real(steps.c_z[i]) * L.t;
+    L.d = C(steps.c_d[i]) * L.d + C(steps.c_z[i]) * L.t;
   }
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::vcycle(int level) const {
+template <typename Real, typename C>
+void Levels<Real, C>::vcycle(int level) const {
   Level& L = *levels_[level];
   if (level + 1 == static_cast<int>(levels_.size())) {
     if (level == 0) {  // a single level: one symmetric Chebyshev smoothing
@@ -514,29 +668,29 @@ void MultigridPreconditioner<Real>::vcycle(int level) const {
     }
     return;
   }
-  Level& C = *levels_[level + 1];
+  Level& K = *levels_[level + 1];
   chebyshev(level, L.x, L.r, true, &L.b);
   {
     cl_kernel k = restrict_k_.get();
-    const int count = static_cast<int>(C.vertices);
+    const int count = static_cast<int>(K.vertices);
     set_arg(k, 0, mem(L.r));
-    set_arg(k, 1, L.mask.get());
+    set_arg(k, 1, L.cycle_mask_handle());
     set_arg(k, 2, L.restrict_offsets.get());
     set_arg(k, 3, L.restrict_vertices.get());
     set_arg(k, 4, L.restrict_weights.get());
-    set_arg(k, 5, C.mask.get());
+    set_arg(k, 5, K.cycle_mask_handle());
     set_arg(k, 6, count);
-    set_arg(k, 7, mem(C.b));
-    cl_.run(k, C.vertices);
+    set_arg(k, 7, mem(K.b));
+    cl_.run(k, K.vertices);
   }
   vcycle(level + 1);
   {
     cl_kernel k = prolong_k_.get();
     const int count = static_cast<int>(L.vertices);
-    set_arg(k, 0, mem(C.x));
+    set_arg(k, 0, mem(K.x));
     set_arg(k, 1, L.prolong_vertices.get());
     set_arg(k, 2, L.prolong_weights.get());
-    set_arg(k, 3, L.mask.get());
+    set_arg(k, 3, L.cycle_mask_handle());
     set_arg(k, 4, count);
     set_arg(k, 5, mem(L.x));
     cl_.run(k, L.vertices);
@@ -550,16 +704,34 @@ void MultigridPreconditioner<Real>::vcycle(int level) const {
   chebyshev(level, L.x, L.r, false);
 }
 
-template <typename Real>
-void MultigridPreconditioner<Real>::apply(VectorBase& z) const {
+template <typename Real, typename C>
+void Levels<Real, C>::apply(WideBase& z) const {
   Level& fine = *levels_[0];
-  fine.b = z;
-  vcycle(0);
-  z = fine.x;
+  if constexpr (kNarrow) {
+    convert(narrow_k_, mem(z), z.size(), mem(fine.b));
+    vcycle(0);
+    convert(widen_k_, mem(fine.x), z.size(), mem(z));
+  } else {
+    fine.b = z;
+    vcycle(0);
+    z = fine.x;
+  }
 }
 
-template <typename Real>
-std::vector<Real> MultigridPreconditioner<Real>::level_matrices(int level) const {
+template <typename Real, typename C>
+void Levels<Real, C>::level_product(int level, const WideBase& p, WideBase& y) const {
+  if constexpr (kNarrow) {
+    viennacl::vector<C> narrow_p(p.size()), narrow_y(p.size());
+    convert(narrow_k_, mem(p), p.size(), mem(narrow_p));
+    product(level, narrow_p, narrow_y);
+    convert(widen_k_, mem(narrow_y), p.size(), mem(y));
+  } else {
+    product(level, p, y);
+  }
+}
+
+template <typename Real, typename C>
+std::vector<Real> Levels<Real, C>::level_matrices(int level) const {
   if (level < (fine_built_ ? 0 : 1) || level >= levels())
     throw Error("multigrid: no matrices at level " + std::to_string(level));
   const Level& L = *levels_[level];
@@ -573,18 +745,84 @@ std::vector<Real> MultigridPreconditioner<Real>::level_matrices(int level) const
   return out;
 }
 
-template <typename Real>
-std::vector<double> MultigridPreconditioner<Real>::eigenvalue_estimates() const {
+template <typename Real, typename C>
+std::vector<double> Levels<Real, C>::eigenvalue_estimates() const {
   std::vector<double> out;
   for (const auto& L : levels_) out.push_back(L->lambda);
   return out;
 }
 
-template <typename Real>
-size_t MultigridPreconditioner<Real>::memory_bytes() const {
+template <typename Real, typename C>
+size_t Levels<Real, C>::memory_bytes() const {
   size_t bytes = table_bytes_;
   for (const auto& L : levels_) bytes += L->bytes;
   return bytes;
+}
+
+}  // namespace
+
+template <typename Real>
+MultigridPreconditioner<Real>::MultigridPreconditioner(ElasticModel<Real>& model, const Mesh& mesh,
+                                                       const std::vector<char>& mask, const MultigridOptions& options) {
+  if constexpr (sizeof(Real) > sizeof(float)) {
+    if (options.float_cycle && builds_fine_level(model, options)) {
+      cycle_ = std::make_unique<Levels<Real, float>>(model, mesh, mask, options);
+      return;
+    }
+  }
+  cycle_ = std::make_unique<Levels<Real, Real>>(model, mesh, mask, options);
+}
+
+template <typename Real>
+MultigridPreconditioner<Real>::~MultigridPreconditioner() = default;
+
+template <typename Real>
+void MultigridPreconditioner<Real>::setup() {
+  cycle_->setup();
+}
+template <typename Real>
+void MultigridPreconditioner<Real>::update_fine_bound() {
+  cycle_->update_fine_bound();
+}
+template <typename Real>
+bool MultigridPreconditioner<Real>::fine_level_built() const {
+  return cycle_->fine_level_built();
+}
+template <typename Real>
+bool MultigridPreconditioner<Real>::float_cycle() const {
+  return cycle_->float_cycle();
+}
+template <typename Real>
+void MultigridPreconditioner<Real>::apply(VectorBase& z) const {
+  cycle_->apply(z);
+}
+template <typename Real>
+const LatticeHierarchy& MultigridPreconditioner<Real>::hierarchy() const {
+  return cycle_->hierarchy();
+}
+template <typename Real>
+const MultigridOptions& MultigridPreconditioner<Real>::options() const {
+  return cycle_->options();
+}
+template <typename Real>
+int MultigridPreconditioner<Real>::levels() const {
+  return cycle_->levels();
+}
+template <typename Real>
+std::vector<Real> MultigridPreconditioner<Real>::level_matrices(int level) const {
+  return cycle_->level_matrices(level);
+}
+template <typename Real>
+void MultigridPreconditioner<Real>::level_product(int level, const VectorBase& p, VectorBase& y) const {
+  cycle_->level_product(level, p, y);
+}
+template <typename Real>
+std::vector<double> MultigridPreconditioner<Real>::eigenvalue_estimates() const {
+  return cycle_->eigenvalue_estimates();
+}
+template <typename Real>
+size_t MultigridPreconditioner<Real>::memory_bytes() const {
+  return cycle_->memory_bytes();
 }
 
 template class MultigridPreconditioner<float>;

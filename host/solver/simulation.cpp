@@ -503,6 +503,8 @@ struct Simulation::Impl {
             single ? single->problem->multigrid_options() : dual->problem->multigrid_options()) {
       result.multigrid_smoother_degree = used->smoother_degree;
       result.multigrid_chebyshev = used->chebyshev_kind;
+      result.multigrid_float_cycle =
+          single ? single->problem->multigrid_float_cycle() : dual->problem->multigrid_float_cycle();
     }
     result.tolerance = tolerance;
     result.kernel_specialization = (single ? single->model->specialization() : dual->model->specialization()) +

@@ -36,6 +36,7 @@ struct FrameRecord {
   Precision product_precision = Precision::double_;
   int multigrid_smoother_degree = 0;
   ChebyshevKind multigrid_chebyshev = ChebyshevKind::automatic;
+  bool multigrid_float_cycle = false;
   std::string kernel_specialization;
   size_t device_memory_bytes = 0;
 };

@@ -183,6 +183,16 @@ struct MultigridOptions {
   // effect in float or with fine_level current (README, "Multigrid on hex8
   // lattices").
   bool fine_level_float = true;
+  // Double precision with a built fine level: the V-cycle itself in float,
+  // its vectors, its stencils (every level's operator blocks), block-Jacobi
+  // inverses and transfer weights, converted at its entry and exit. The
+  // builds (Galerkin products, block-Jacobi inversions, the coarsest
+  // factorization) stay double, and so do CG's vectors, operator and
+  // tolerances: the preconditioner is applied to float rounding, which CG
+  // tolerates as it does any fixed preconditioner close to symmetric.
+  // false: the V-cycle in the working precision. No effect in float or with
+  // fine_level current (README, "Multigrid on hex8 lattices").
+  bool float_cycle = true;
 };
 
 // `options` with smoother_degree and chebyshev_kind resolved (see above) for
@@ -484,6 +494,9 @@ struct SolveResult {
   // 0 and automatic otherwise.
   int multigrid_smoother_degree = 0;
   ChebyshevKind multigrid_chebyshev = ChebyshevKind::automatic;
+  // With multigrid: whether its V-cycle ran in float
+  // (MultigridOptions::float_cycle as used).
+  bool multigrid_float_cycle = false;
   std::vector<std::string> warnings;  // e.g. unused vertices (they stay where they are)
 };
 
