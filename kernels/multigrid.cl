@@ -270,6 +270,8 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
  * stencil.cl's, built with the stencil's width as the other stencil kernels
  * are, so that this program is built once. */
 
+/* Also z = Dinv z for the power iterations (c = beta = 1, accumulate 0, x
+ * and r the same buffer: each work-item reads its r before writing). */
 __kernel void snh_chebyshev_start(__global const real* inverse, __global const real* r, const real c, const real beta,
                                   const int count, const int accumulate, __global real* d, __global real* x) {
   const int v = get_global_id(0);

@@ -116,7 +116,7 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   // Builds in Real: Galerkin products, block-Jacobi inversions. The
   // V-cycle's kernels in C.
   device::Kernel galerkin_cache_k_, galerkin_matrices_k_, jacobi_setup_k_;
-  device::Kernel prolong_k_, restrict_k_, chebyshev_start_k_, jacobi_apply_k_;
+  device::Kernel prolong_k_, restrict_k_, chebyshev_start_k_;
   device::Kernel narrow_k_, widen_k_;  // kNarrow
   // The assembled levels' kernels (they read the level's stencil): the
   // assembly in the build's precision (float matrices on a float fine
@@ -213,7 +213,6 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
   restrict_k_ = cl_.kernel("multigrid.cl", cycle, "snh_restrict");
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", cycle, "snh_chebyshev_start");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
-  jacobi_apply_k_ = cl_.kernel("fem.cl", cycle, "snh_block_jacobi_apply");
   if constexpr (kNarrow) {
     narrow_k_ = cl_.kernel("fem.cl", coarse, "snh_narrow");
     widen_k_ = cl_.kernel("fem.cl", coarse, "snh_widen");
@@ -407,13 +406,19 @@ void Levels<Real, C>::inverse_diagonal(int level, VectorBase& z) const {
     if constexpr (!kNarrow) model_.apply_preconditioner(z);
     return;
   }
-  const Level& L = *levels_[level];
-  const int vertices = static_cast<int>(L.vertices);
-  cl_kernel k = jacobi_apply_k_.get();
+  // As the smoothing's first step with c = beta = 1 from x = 0 (x = d =
+  // D^-1 r; r and x may alias): the V-cycle's own program, so that a float
+  // cycle builds no float fem.cl.
+  Level& L = *levels_[level];
+  cl_kernel k = chebyshev_start_k_.get();
   set_arg(k, 0, L.inverse.get());
   set_arg(k, 1, mem(z));
-  set_arg(k, 2, vertices);
-  set_arg(k, 3, mem(z));
+  set_arg(k, 2, C(1));
+  set_arg(k, 3, C(1));
+  set_arg(k, 4, static_cast<int>(L.vertices));
+  set_arg(k, 5, 0);
+  set_arg(k, 6, mem(L.d));
+  set_arg(k, 7, mem(z));
   cl_.run(k, L.vertices);
 }
 
