@@ -530,6 +530,27 @@ TEST(Multigrid, ContactSetChangeRebuildsTheHierarchy) {
   }
 }
 
+// za = M a and zb = M b for a preconditioner M: a.(M b) = b.(M a) within
+// bound * sum_i |a_i (M b)_i|, a.(M a) > 0, and both exactly 0 on the
+// constrained DOFs (mask 0).
+void expect_symmetric_positive(const std::vector<double>& mask, const std::vector<double>& a,
+                               const std::vector<double>& b, const std::vector<double>& za,
+                               const std::vector<double>& zb, double bound) {
+  double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    ab += a[i] * zb[i];
+    ba += b[i] * za[i];
+    aa += a[i] * za[i];
+    scale += std::abs(a[i] * zb[i]);
+    if (mask[i] == 0.0) {
+      EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
+      EXPECT_EQ(zb[i], 0.0) << "constrained DOF " << i;
+    }
+  }
+  EXPECT_LT(std::abs(ab - ba), bound * scale) << "a.Mb " << ab << " b.Ma " << ba;
+  EXPECT_GT(aa, 0.0);
+}
+
 TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
   DeviceCase c;
   const std::unique_ptr<solver::ElasticModel<double>> owned = masked_model(c);
@@ -571,23 +592,10 @@ TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
       viennacl::vector<double> ma = upload(a), mb = upload(b);
       mg.apply(ma);
       mg.apply(mb);
-      const std::vector<double> za = download(ma), zb = download(mb);
-      double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
-      for (size_t i = 0; i < mask.size(); ++i) {
-        ab += a[i] * zb[i];
-        ba += b[i] * za[i];
-        aa += a[i] * za[i];
-        scale += std::abs(a[i] * zb[i]);
-        if (mask[i] == 0.0) {
-          EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
-          EXPECT_EQ(zb[i], 0.0) << "constrained DOF " << i;
-        }
-      }
+      SCOPED_TRACE("degree " + std::to_string(degree));
       // Double: exactly symmetric to the sums' rounding. A float cycle: to
       // float's rounding of its vectors and stencils (measured 3e-8).
-      const double bound = mg.float_cycle() ? 1e-6 : 1e-12;
-      EXPECT_LT(std::abs(ab - ba), bound * scale) << "degree " << degree << ": a.Mb " << ab << " b.Ma " << ba;
-      EXPECT_GT(aa, 0.0);
+      expect_symmetric_positive(mask, a, b, download(ma), download(mb), mg.float_cycle() ? 1e-6 : 1e-12);
     }
 }
 
@@ -634,19 +642,7 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
   current.update_fine_bound();
   EXPECT_EQ(apply(built, a), built_a);
   EXPECT_GT(relative_difference(apply(current, a), current_a), 1e-3);
-  const std::vector<double> za = apply(built, a), zb = apply(built, b);
-  double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
-  for (size_t i = 0; i < mask.size(); ++i) {
-    ab += a[i] * zb[i];
-    ba += b[i] * za[i];
-    aa += a[i] * za[i];
-    scale += std::abs(a[i] * zb[i]);
-    if (mask[i] == 0.0) {
-      EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
-    }
-  }
-  EXPECT_LT(std::abs(ab - ba), 1e-12 * scale);
-  EXPECT_GT(aa, 0.0);
+  expect_symmetric_positive(mask, a, b, apply(built, a), apply(built, b), 1e-12);
 
   // A true-Hessian linearization (adaptive mode) keeps it too.
   model.linearize(upload(moved), false);
@@ -727,6 +723,20 @@ TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
   }
 }
 
+// Two preconditioners applied to one vector, random on the free DOFs.
+std::pair<std::vector<double>, std::vector<double>> apply_both(const solver::MultigridPreconditioner<double>& first,
+                                                               const solver::MultigridPreconditioner<double>& second,
+                                                               const std::vector<double>& mask, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> a(mask.size());
+  for (size_t i = 0; i < mask.size(); ++i) a[i] = mask[i] * u(rng);
+  viennacl::vector<double> z1 = upload(a), z2 = upload(a);
+  first.apply(z1);
+  second.apply(z2);
+  return {download(z1), download(z2)};
+}
+
 // MultigridOptions::fine_level_float (the default in double): the built fine
 // level's matrices in float are half the bytes, exactly symmetric (so the
 // V-cycle stays symmetric: VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero
@@ -754,14 +764,8 @@ TEST(Multigrid, FloatFineLevelHalvesItsMatricesAndStaysClose) {
   const double coarse = relative_difference(single.level_matrices(1), full.level_matrices(1));
   EXPECT_LT(coarse, 1e-6);
   EXPECT_GT(coarse, 0.0) << "the float matrices reached the coarse level";
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> a(mask.size());
-  for (size_t i = 0; i < mask.size(); ++i) a[i] = mask[i] * u(rng);
-  viennacl::vector<double> zs = upload(a), zf = upload(a);
-  single.apply(zs);
-  full.apply(zf);
-  const double vcycle = relative_difference(download(zs), download(zf));
+  const auto [in_single, in_full] = apply_both(single, full, mask, 5);
+  const double vcycle = relative_difference(in_single, in_full);
   EXPECT_LT(vcycle, 1e-5);
   std::printf("float fine level: coarse cells %.2e, V-cycle %.2e relative to double\n", coarse, vcycle);
 }
@@ -791,17 +795,13 @@ TEST(Multigrid, FloatCycleIsTheDoubleCycleToFloatRounding) {
   single.setup();
   full.setup();
   for (int l = 1; l < single.levels(); ++l) EXPECT_EQ(single.level_matrices(l), full.level_matrices(l)) << l;
-  std::mt19937_64 rng(9);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> a(mask.size());
-  for (size_t i = 0; i < mask.size(); ++i) a[i] = mask[i] * u(rng);
-  viennacl::vector<double> zs = upload(a), zf = upload(a);
-  single.apply(zs);
-  full.apply(zf);
-  const std::vector<double> in_float = download(zs);
-  for (size_t i = 0; i < mask.size(); ++i)
-    if (mask[i] == 0.0) EXPECT_EQ(in_float[i], 0.0) << "constrained DOF " << i;
-  const double vcycle = relative_difference(in_float, download(zf));
+  const auto [in_float, in_double] = apply_both(single, full, mask, 9);
+  for (size_t i = 0; i < mask.size(); ++i) {
+    if (mask[i] == 0.0) {
+      EXPECT_EQ(in_float[i], 0.0) << "constrained DOF " << i;
+    }
+  }
+  const double vcycle = relative_difference(in_float, in_double);
   EXPECT_LT(vcycle, 1e-5);
   EXPECT_GT(vcycle, 0.0) << "the cycle ran in float";
   std::printf("float cycle: V-cycle %.2e relative to double\n", vcycle);
