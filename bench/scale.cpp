@@ -102,9 +102,11 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
     r.status = stop_status(result.steps);
     r.product = to_string(result.product);
     r.product_precision = to_string(result.product_precision);
-    if (result.preconditioner == Preconditioner::multigrid)
+    if (result.preconditioner == Preconditioner::multigrid) {
       r.smoother =
           std::string(to_string(result.multigrid_chebyshev)) + " " + std::to_string(result.multigrid_smoother_degree);
+      r.float_cycle = result.multigrid_float_cycle;
+    }
     r.device = result.device.platform + " / " + result.device.name;
     r.profile = result.profile;
   } catch (const Error& e) {
@@ -174,7 +176,10 @@ json record_json(const ScaleRecord& r) {
   j["status"] = r.status;
   j["product"] = r.product;
   j["product_precision"] = r.product_precision;
-  if (!r.smoother.empty()) j["smoother"] = r.smoother;
+  if (!r.smoother.empty()) {
+    j["smoother"] = r.smoother;
+    j["multigrid_float_cycle"] = r.float_cycle;
+  }
   j["device"] = r.device;
   j["profile"] = profile_json(r.profile);
   return j;

@@ -53,7 +53,8 @@ struct ScaleRecord {
   std::string status;  // per-step statuses, e.g. "converged" or "converged x7, stagnated x1"
   std::string product;
   std::string product_precision;  // the precision CG's products ran in (SolveResult::product_precision)
-  std::string smoother;  // multigrid: its smoothing as used, e.g. "optimized-fourth 1" (SolveResult); else empty
+  std::string smoother;      // multigrid: its smoothing as used, e.g. "optimized-fourth 1" (SolveResult); else empty
+  bool float_cycle = false;  // multigrid: whether its V-cycle ran in float (SolveResult::multigrid_float_cycle)
   std::string device;
   SolveProfile profile;
 };

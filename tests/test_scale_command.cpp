@@ -122,6 +122,12 @@ void expect_records(const nlohmann::json& records, std::set<std::string>& ran) {
     EXPECT_GT(r["cg_per_newton"].get<double>(), 0.0) << what;
     EXPECT_GT(r["seconds_per_step"].get<double>(), 0.0) << what;
     EXPECT_GT(r["device_memory_bytes"].get<double>(), 0.0) << what;
+    // The smoothing as used; double lattices' V-cycles run in float
+    // (MultigridOptions::float_cycle's default, a built fine level).
+    if (r["preconditioner"] == "multigrid") {
+      EXPECT_FALSE(r["smoother"].get<std::string>().empty()) << what;
+      EXPECT_TRUE(r["multigrid_float_cycle"].get<bool>()) << what;
+    }
     expect_profile(r["profile"], what);
     EXPECT_GT(r["profile"]["products"].get<double>(), 0.0) << what;
   }

@@ -415,6 +415,7 @@ TEST(SceneFiles, RiggedSceneCommandWritesTheSurfacePerFrameAndAPvd) {
   EXPECT_EQ(run["product_precision"], "double");
   EXPECT_TRUE(run["product"].is_string());
   EXPECT_GT(run["multigrid_smoother_degree"].get<int>(), 0);
+  EXPECT_TRUE(run["multigrid_float_cycle"].get<bool>());  // double, quasistatic: a built fine level
   EXPECT_EQ(run["hessian"], "adaptive");
   EXPECT_GT(run["device_memory_bytes"].get<size_t>(), 0u);
   fs::remove_all(dir);
