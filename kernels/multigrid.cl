@@ -259,7 +259,7 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
  * are in the upper layout (kernels/fem/block_stencil.h): 14 stored a
  * vertex on a box, the other 13 read as their mirrors' transposes. */
 
-/* Chebyshev smoothing over block-Jacobi (MultigridPreconditioner::chebyshev,
+/* Chebyshev smoothing over block-Jacobi (Levels::chebyshev in host/solver/multigrid.cpp,
  * the recurrence of solver/chebyshev.h) in one pass per degree on the
  * assembled levels. Start: d = c Dinv r, x += beta d (x = beta d with
  * accumulate 0: smoothing from x = 0, r = b, reading b for r). Step:

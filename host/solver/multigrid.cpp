@@ -28,12 +28,17 @@ constexpr int kCellMatrix = 24 * 24;
 // 1.30 -> 1.04 s with the same Newton and CG counts.
 constexpr int kPowerIterations = 10, kWarmPowerIterations = 2;
 
+// Inertia or obstacle contact: per-vertex terms in the fine operator.
+template <typename Real>
+bool has_vertex_terms(const ElasticModel<Real>& model) {
+  return model.terms().inertia || model.terms().obstacles > 0;
+}
+
 // Whether the options and the model's terms give a built fine level.
 template <typename Real>
 bool builds_fine_level(const ElasticModel<Real>& model, const MultigridOptions& options) {
-  const bool vertex_terms = model.terms().inertia || model.terms().obstacles > 0;
   return options.fine_level == MultigridFineLevel::built ||
-         (options.fine_level == MultigridFineLevel::automatic && !vertex_terms);
+         (options.fine_level == MultigridFineLevel::automatic && !has_vertex_terms(model));
 }
 
 }  // namespace
@@ -217,7 +222,7 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
     narrow_k_ = cl_.kernel("fem.cl", coarse, "snh_narrow");
     widen_k_ = cl_.kernel("fem.cl", coarse, "snh_widen");
   }
-  vertex_terms_ = model.terms().inertia || model.terms().obstacles > 0;
+  vertex_terms_ = has_vertex_terms(model);
   if (options.fine_level == MultigridFineLevel::built && vertex_terms_)
     throw Error(
         "multigrid: fine_level built does not carry the inertia or obstacle contact blocks (use automatic or "
@@ -252,6 +257,11 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
   auto upload_real = [&](const auto& v, size_t& bytes) { return upload_as(Real(0), v, bytes); };
   auto upload_cycle = [&](const auto& v, size_t& bytes) { return upload_as(C(0), v, bytes); };
   octant_weights_ = upload_real(octant_weights(), table_bytes_);
+  if (kNarrow) {  // the fine level's size (a float cycle's is built), the largest
+    const size_t bytes = hierarchy_.levels[0].vertex_count * 9 * sizeof(Real);
+    wide_inverse_ = cl_.buffer(CL_MEM_READ_WRITE, bytes);
+    table_bytes_ += bytes;
+  }
   for (size_t l = 0; l < hierarchy_.levels.size(); ++l) {
     const LatticeLevel& h = hierarchy_.levels[l];
     auto level = std::make_unique<Level>();
@@ -297,10 +307,6 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
       L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
       L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(C));
       L.bytes += matrix_bytes + stencil_bytes + L.cells * 72 * sizeof(Real) + L.vertices * 9 * sizeof(C);
-      if (kNarrow && !wide_inverse_) {  // level 0 comes first: the largest
-        wide_inverse_ = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(Real));
-        table_bytes_ += L.vertices * 9 * sizeof(Real);
-      }
     }
     if (l + 1 < hierarchy_.levels.size()) {
       L.prolong_vertices = upload_int(h.prolongation_vertices, L.bytes);
