@@ -29,6 +29,14 @@
 #define SNH_IS_OPENCL 0
 #endif
 
+/* SNH_GPU = 1 (set by the host, OpenClContext::program): the device is a
+ * GPU, whose work-items may run data-dependent loops at the cost of their
+ * warp's slowest; pocl vectorizes a CPU kernel across work-items only
+ * without them. */
+#ifndef SNH_GPU
+#define SNH_GPU 0
+#endif
+
 /* Clang (pocl) warns, once per call site, that 8-wide double vectors passed
  * to or returned from a function use another calling convention on x86
  * without AVX-512 (-Wpsabi): 157 warnings for the lanes program on an AVX2

@@ -179,8 +179,12 @@ cl_program OpenClContext::program(const std::string& file, const std::string& de
   cl_int status = CL_SUCCESS;
   Program program(clCreateProgramWithSource(context_, 1, &text, &length, &status));
   check(status, "clCreateProgramWithSource");
+  // SNH_GPU: a work-item's data-dependent loops cost a GPU nothing beyond
+  // its warp's slowest point, where pocl's CPU kernels vectorize across
+  // work-items only without them (kernels/snh_portable.h).
   const std::string flags = std::string("-cl-std=CL1.2 -DSNH_DOUBLE=") +
-                            (precision_ == Precision::double_ ? "1" : "0") + (defines.empty() ? "" : " " + defines);
+                            (precision_ == Precision::double_ ? "1" : "0") + (info_.is_gpu ? " -DSNH_GPU=1" : "") +
+                            (defines.empty() ? "" : " " + defines);
   status = clBuildProgram(program.get(), 1, &device_, flags.c_str(), nullptr, nullptr);
   if (status != CL_SUCCESS) {
     size_t size = 0;

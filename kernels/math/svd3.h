@@ -90,6 +90,22 @@ SNH_FN void svd3_apply_givens(mat3* b, mat3* q, int p, int qq, real c, real s) {
   }
 }
 
+/* Whether the Jacobi rotation of columns p, q of B rotates: |gamma| > eps
+ * sqrt(alpha beta) for the pair's [alpha gamma; gamma beta] of B^T B, without
+ * the square root: squared, on alpha, beta and gamma scaled by the power of
+ * two that brings max(alpha, beta) into [1, 2), so that gamma^2 and alpha
+ * beta neither under- nor overflow where it matters (unscaled, float's
+ * reconstruction error reached 0.7 on the extreme spectra). */
+SNH_FN snh_mask svd3_pair_rotates(real alpha, real beta, real gamma) {
+  const real kn = snh_pow2_inverse(fmax(alpha, beta));
+  const real an = alpha * kn, bn = beta * kn, gn = gamma * kn;
+  return gn * gn > (SNH_EPS * SNH_EPS) * (an * bn) && fabs(gamma) > SNH_REAL_MIN;
+}
+
+SNH_FN real svd3_column_dot(mat3 m, int p, int q) {
+  return M3(m, 0, p) * M3(m, 0, q) + M3(m, 1, p) * M3(m, 1, q) + M3(m, 2, p) * M3(m, 2, q);
+}
+
 /* One Jacobi rotation of columns p, q of B (and V) that zeroes the (p, q)
  * entry of B^T B, [alpha gamma; gamma beta]; the identity when that entry is
  * already negligible. The angle is Rutishauser's, t = sign(zeta) / (|zeta| +
@@ -107,15 +123,8 @@ SNH_FN void svd3_apply_givens(mat3* b, mat3* q, int p, int qq, real c, real s) {
 SNH_FN void svd3_jacobi_pair(mat3* b, mat3* v, int p, int q) {
   const real alpha = svd3_column_norm2(*b, p);
   const real beta = svd3_column_norm2(*b, q);
-  const real gamma = M3(*b, 0, p) * M3(*b, 0, q) + M3(*b, 1, p) * M3(*b, 1, q) + M3(*b, 2, p) * M3(*b, 2, q);
-  /* |gamma| > eps sqrt(alpha beta) without the square root: squared, on
-   * alpha, beta and gamma scaled by the power of two that brings
-   * max(alpha, beta) into [1, 2), so that gamma^2 and alpha beta neither
-   * under- nor overflow where it matters (unscaled, float's reconstruction
-   * error reached 0.7 on the extreme spectra). */
-  const real kn = snh_pow2_inverse(fmax(alpha, beta));
-  const real an = alpha * kn, bn = beta * kn, gn = gamma * kn;
-  const snh_mask rotate = gn * gn > (SNH_EPS * SNH_EPS) * (an * bn) && fabs(gamma) > SNH_REAL_MIN;
+  const real gamma = svd3_column_dot(*b, p, q);
+  const snh_mask rotate = svd3_pair_rotates(alpha, beta, gamma);
   const real d = beta - alpha, g = SNH_R(2) * gamma;
   /* Scaled by a power of two (exact): m >= 2 SNH_REAL_MIN is normal where
    * rotating. */
@@ -131,6 +140,41 @@ SNH_FN void svd3_jacobi_pair(mat3* b, mat3* v, int p, int q) {
   svd3_rotate_columns(v, p, q, rotate ? c : SNH_R(1), rotate ? s : SNH_R(0));
 }
 
+/* Whether a sweep over B would change it: rotate a pair (as it rotates
+ * none, it sees the same B at each pair), or spread a non-finite entry
+ * (0 times it is NaN), which the sweeps do for a non-finite F. */
+SNH_FN snh_mask svd3_sweep_changes(mat3 b) {
+  const real n0 = svd3_column_norm2(b, 0), n1 = svd3_column_norm2(b, 1), n2 = svd3_column_norm2(b, 2);
+  return !isfinite(n0 + n1 + n2) || svd3_pair_rotates(n0, n1, svd3_column_dot(b, 0, 1)) ||
+         svd3_pair_rotates(n0, n2, svd3_column_dot(b, 0, 2)) || svd3_pair_rotates(n1, n2, svd3_column_dot(b, 1, 2));
+}
+
+/* SNH_SVD_EARLY_EXIT = 1: before each sweep after the first, stop if it
+ * would change nothing (in any lane): it and every later one would see the
+ * same B and leave B and V as they are, an identity rotation (c = 1, s = 0)
+ * keeping each value (only a zero's sign may differ: -0 - (-0) is +0), so
+ * U, sigma and V are the values of the SNH_SVD_SWEEPS sweeps
+ * (tests/test_svd_sweeps.cpp). In float, where most points converge in two
+ * or three sweeps, on the host, in the lanes programs (one work-item's 8 or
+ * 16 points stop together) and on GPUs (a warp's, likewise; SNH_GPU), not
+ * in pocl's scalar kernels, which it vectorizes across work-items only
+ * without data-dependent loops. Not in double, where 16 points seldom all
+ * converge before the fifth sweep: the tests cost more than they saved
+ * (throughput's linearization, hex8 at 48^3: 57 -> 59-62 ms;
+ * README, "Session 29"). */
+#ifndef SNH_SVD_EARLY_EXIT
+#if !SNH_DOUBLE && (SNH_LANES > 1 || !SNH_IS_OPENCL || SNH_GPU)
+#define SNH_SVD_EARLY_EXIT 1
+#else
+#define SNH_SVD_EARLY_EXIT 0
+#endif
+#endif
+#if SNH_LANES > 1
+#define svd3_any(mask) any(mask)
+#else
+#define svd3_any(mask) ((mask) != 0)
+#endif
+
 SNH_FN_LARGE void svd3_rv(mat3 f, mat3* u, vec3* sigma, mat3* v) {
   mat3 b = f;
   *v = mat3_identity();
@@ -138,6 +182,9 @@ SNH_FN_LARGE void svd3_rv(mat3 f, mat3* u, vec3* sigma, mat3* v) {
   /* One-sided Jacobi: orthogonalize the column pairs of B = F V. */
   SNH_UNROLL
   for (int sweep = 0; sweep < SNH_SVD_SWEEPS; ++sweep) {
+#if SNH_SVD_EARLY_EXIT
+    if (sweep > 0 && !svd3_any(svd3_sweep_changes(b))) break;
+#endif
     svd3_jacobi_pair(&b, v, 0, 1);
     svd3_jacobi_pair(&b, v, 0, 2);
     svd3_jacobi_pair(&b, v, 1, 2);
