@@ -154,14 +154,14 @@ SNH_FN snh_mask svd3_sweep_changes(mat3 b) {
  * same B and leave B and V as they are, an identity rotation (c = 1, s = 0)
  * keeping each value (only a zero's sign may differ: -0 - (-0) is +0), so
  * U, sigma and V are the values of the SNH_SVD_SWEEPS sweeps
- * (tests/test_svd_sweeps.cpp). In float, where most points converge in two
- * or three sweeps, on the host, in the lanes programs (one work-item's 8 or
- * 16 points stop together) and on GPUs (a warp's, likewise; SNH_GPU), not
- * in pocl's scalar kernels, which it vectorizes across work-items only
- * without data-dependent loops. Not in double, where 16 points seldom all
- * converge before the fifth sweep: the tests cost more than they saved
- * (throughput's linearization, hex8 at 48^3: 57 -> 59-62 ms;
- * README, "Session 29"). */
+ * (tests/test_svd_sweeps.cpp). In float, where it pays (throughput's
+ * recompute product 1.14-1.28x faster on pocl, 1.09x on an H200): on the
+ * host, in the lanes programs (one work-item's 8 or 16 points stop
+ * together) and on GPUs (a warp's, likewise; SNH_GPU), not in pocl's scalar
+ * kernels, which it vectorizes across work-items only without
+ * data-dependent loops. Not in double, where the tests cost more than they
+ * saved (throughput's hex8 linearization at 48^3: 57 -> 59-62 ms; README,
+ * "Session 29"). */
 #ifndef SNH_SVD_EARLY_EXIT
 #if !SNH_DOUBLE && (SNH_LANES > 1 || !SNH_IS_OPENCL || SNH_GPU)
 #define SNH_SVD_EARLY_EXIT 1
