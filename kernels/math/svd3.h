@@ -149,25 +149,30 @@ SNH_FN snh_mask svd3_sweep_changes(mat3 b) {
          svd3_pair_rotates(n0, n2, svd3_column_dot(b, 0, 2)) || svd3_pair_rotates(n1, n2, svd3_column_dot(b, 1, 2));
 }
 
-/* SNH_SVD_EARLY_EXIT = 1: before each sweep after the first, stop if it
- * would change nothing (in any lane): it and every later one would see the
- * same B and leave B and V as they are, an identity rotation (c = 1, s = 0)
- * keeping each value (only a zero's sign may differ: -0 - (-0) is +0), so
- * U, sigma and V are the values of the SNH_SVD_SWEEPS sweeps
- * (tests/test_svd_sweeps.cpp). In float, where it pays (throughput's
- * recompute product 1.14-1.28x faster on pocl, 1.09x on an H200): on the
- * host, in the lanes programs (one work-item's 8 or 16 points stop
- * together) and on GPUs (a warp's, likewise; SNH_GPU), not in pocl's scalar
+/* SNH_SVD_EARLY_EXIT = 1: before each sweep from SNH_SVD_EARLY_EXIT_FROM
+ * on, stop if it would change nothing (in any lane): it and every later
+ * one would see the same B and leave B and V as they are, an identity
+ * rotation (c = 1, s = 0) keeping each value (only a zero's sign may
+ * differ: -0 - (-0) is +0), so U, sigma and V are the values of the
+ * SNH_SVD_SWEEPS sweeps (tests/svd_sweeps_test.inc). On the host, in the
+ * lanes programs (one work-item's 8 or 16 points stop together) and, in
+ * float, on GPUs (a warp's, likewise; SNH_GPU); not in pocl's scalar
  * kernels, which it vectorizes across work-items only without
- * data-dependent loops. Not in double, where the tests cost more than they
- * saved (throughput's hex8 linearization at 48^3: 57 -> 59-62 ms; README,
- * "Session 29"). */
+ * data-dependent loops. A test costs less than a sweep but not nothing:
+ * the first is before the second sweep in float and before the fourth in
+ * double (throughput's hex8 linearization at 48^3 on pocl: 57 ms without
+ * the stop, 57-60 with tests before every sweep or every one from the
+ * second, 43-46 before the fourth and fifth only). Double on GPUs is
+ * not yet measured (README, "Session 29"). */
 #ifndef SNH_SVD_EARLY_EXIT
-#if !SNH_DOUBLE && (SNH_LANES > 1 || !SNH_IS_OPENCL || SNH_GPU)
+#if SNH_LANES > 1 || !SNH_IS_OPENCL || (SNH_GPU && !SNH_DOUBLE)
 #define SNH_SVD_EARLY_EXIT 1
 #else
 #define SNH_SVD_EARLY_EXIT 0
 #endif
+#endif
+#ifndef SNH_SVD_EARLY_EXIT_FROM
+#define SNH_SVD_EARLY_EXIT_FROM (SNH_DOUBLE ? 3 : 1)
 #endif
 #if SNH_LANES > 1
 #define svd3_any(mask) any(mask)
@@ -183,7 +188,7 @@ SNH_FN_LARGE void svd3_rv(mat3 f, mat3* u, vec3* sigma, mat3* v) {
   SNH_UNROLL
   for (int sweep = 0; sweep < SNH_SVD_SWEEPS; ++sweep) {
 #if SNH_SVD_EARLY_EXIT
-    if (sweep > 0 && !svd3_any(svd3_sweep_changes(b))) break;
+    if (sweep >= SNH_SVD_EARLY_EXIT_FROM && !svd3_any(svd3_sweep_changes(b))) break;
 #endif
     svd3_jacobi_pair(&b, v, 0, 1);
     svd3_jacobi_pair(&b, v, 0, 2);
