@@ -33,7 +33,10 @@
  * values 1.04e-15 (double; float 8.5e-7, 1.23e-6, 5.1e-7) to 2.09e-15,
  * 2.71e-15 and 1.2e-15 (float 1.05e-6, 1.37e-6, 5.6e-7), inside the test's
  * bounds; throughput's recompute product 12-16% faster in double, 8% in
- * float. A non-finite F gives non-finite sigma. */
+ * float. Where a data-dependent loop costs nothing in vectorization (the
+ * host, the lanes programs, GPUs in float), the sweeps stop once converged
+ * with the same values (SNH_SVD_EARLY_EXIT below, session 29). A non-finite
+ * F gives non-finite sigma. */
 #ifndef SNH_SVD3_H
 #define SNH_SVD3_H
 
