@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Does an algebraic multigrid pay for the engine's tet4 systems? (issue 10, item 1)
+"""Does an algebraic multigrid pay for the engine's tet4 systems?
 
 Exports the engine's own linear systems with `snh-gpu-bench hessian` (the
 PSD-projected stiffness on the free DOFs at a Newton iterate of the twist
@@ -304,7 +304,7 @@ def fmt(v, digits=1):
 
 
 def write_markdown(path, records, command, environment, lagged=()):
-    lines = ["# Algebraic multigrid for the engine's systems (issue 10, item 1)", "",
+    lines = ["# Algebraic multigrid for the engine's systems", "",
              f"Made by `{command}` on {environment}.", "",
              "Systems: `snh-gpu-bench hessian twist` (projected stiffness on the free DOFs after "
              f"{records[0]['newton_iterations_before']} Newton updates of load step 1, right-hand side its residual). "

@@ -1,6 +1,6 @@
 // The material options shared by subcommands: --E/--nu or --mu/--lambda
 // (Lame moduli), --barrier, --model and its settings, --alpha / --lambda-model /
-// --alpha-lambda (seed 004), --precision, --device.
+// --alpha-lambda (Chen and Barbic 2024), --precision, --device.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -17,7 +17,7 @@ inline const std::vector<std::string> kModelNames = {
     "snh", "fung", "arruda-boyce", "corotational", "fixed-corotational", "stvk-kikuuwe", "neohookean"};
 
 // A material written "MODEL", "MODEL alpha=A" or "MU_MODEL+lambda:LAMBDA_MODEL"
-// (seed 004 Eqs. 16, 19; both may combine): its model, with alpha and the
+// (Chen and Barbic 2024, Eqs. 16, 19; both may combine): its model, with alpha and the
 // lambda part's model set in `options`.
 inline MaterialModel parse_material_label(const std::string& text, snh::MaterialOptions& options) {
   std::string name = text;
@@ -75,12 +75,12 @@ struct MaterialOptions {
         ->capture_default_str();
     command
         .add_option("--alpha", model_options.alpha,
-                    "nonlinearity (seed 004 Eq. 16): psi(sigma^alpha) / alpha^2, same small-strain E, nu; "
+                    "nonlinearity (Chen and Barbic 2024, Eq. 16): psi(sigma^alpha) / alpha^2, same small-strain E, nu; "
                     "< 1 softer, > 1 stiffer at large strain")
         ->capture_default_str();
     command.add_option("--lambda-model", lambda_model,
                        "take the lambda_Lame (volume) part from this model, the mu_Lame part stays --model's "
-                       "(seed 004 Eq. 19)");
+                       "(Chen and Barbic 2024, Eq. 19)");
     command.add_option("--alpha-lambda", alpha_lambda,
                        "nonlinearity of the lambda_Lame part (Eq. 20; default --alpha)");
     command.add_option("--precision", precision, "float or double")

@@ -25,11 +25,11 @@ struct MaterialsOptions {
   std::vector<std::string> models{"snh",          "fung",      "arruda-boyce", "corotational", "fixed-corotational",
                                   "stvk-kikuuwe", "neohookean"};
   std::vector<double> poisson{0.2, 0.3, 0.4, 0.49};
-  // Seed 004 rows of the stretch table: Stable Neo-Hookean at these alphas,
+  // Alpha and mixing rows of the stretch table: Stable Neo-Hookean at these alphas,
   // and these mixtures (MU_MODEL+lambda:LAMBDA_MODEL, Eq. 19).
   std::vector<double> alphas{0.5, 2.0};
   std::vector<std::string> mixes{"corotational+lambda:neohookean", "stvk-kikuuwe+lambda:snh"};
-  // Alphas of the per-model uniaxial curves (seed 004 Fig. 3).
+  // Alphas of the per-model uniaxial curves (Chen and Barbic 2024, Fig. 3).
   std::vector<double> curve_alphas{0.5, 0.75, 1.0, 1.5, 2.0};
   int resolution = 4;
   std::string precision = "double";
@@ -167,7 +167,7 @@ int run_materials(const MaterialsOptions& o) {
       curves << '"' << c.label << "\"," << s << ',' << stress << ',' << t << '\n';
     }
   curves.close();
-  // Seed 004 Fig. 3: each model's curve per alpha (same slope at stretch 1).
+  // Chen and Barbic 2024, Fig. 3: each model's curve per alpha (same slope at stretch 1).
   std::ofstream alpha_curves(o.out + "/materials_alpha.csv");
   alpha_curves << "model,alpha,stretch,nominal_stress,lateral_stretch\n";
   for (const std::string& name : o.models)
@@ -185,7 +185,7 @@ int run_materials(const MaterialsOptions& o) {
   std::ofstream(o.out + "/materials.json") << report.dump(2) << '\n';
   std::ofstream(o.out + "/materials.md") << md.str() << "\nUniaxial force-stretch curves (E = 1, nu = 0.45): "
                                          << "materials_uniaxial.csv, materials_uniaxial.png; per model and "
-                                         << "nonlinearity alpha (seed 004 Fig. 3): materials_alpha.csv, "
+                                         << "nonlinearity alpha (Chen and Barbic 2024, Fig. 3): materials_alpha.csv, "
                                          << "materials_alpha.png.\n";
   std::cout << md.str();
   if (o.plots) {
@@ -209,10 +209,12 @@ void add_materials_command(CLI::App& app, int& exit_code) {
       "materials", "Stretch comparison of every material model over Poisson's ratios, and uniaxial curves");
   cmd->add_option("--models", o->models, "models (comma list)")->delimiter(',')->capture_default_str();
   cmd->add_option("--nu", o->poisson, "Poisson's ratios (comma list)")->delimiter(',')->capture_default_str();
-  cmd->add_option("--alphas", o->alphas, "alphas of the Stable Neo-Hookean rows (seed 004 Eq. 16; comma list)")
+  cmd->add_option("--alphas", o->alphas,
+                  "alphas of the Stable Neo-Hookean rows (Chen and Barbic 2024, Eq. 16; comma list)")
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_option("--mixes", o->mixes, "mixture rows MU_MODEL+lambda:LAMBDA_MODEL (seed 004 Eq. 19; comma list)")
+  cmd->add_option("--mixes", o->mixes,
+                  "mixture rows MU_MODEL+lambda:LAMBDA_MODEL (Chen and Barbic 2024, Eq. 19; comma list)")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--curve-alphas", o->curve_alphas, "alphas of the per-model uniaxial curves (comma list)")

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The arm example's surface at rest and flexed, side by side (README).
+"""The arm example's surface at rest and flexed, side by side (docs/user-guide.md).
 
     /usr/bin/python3 bench/plot_arm.py REST.obj FLEXED.obj OUT.png [MID.obj]
 

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The drop scene seen along the cylinders' axes at a few frames, and its
-shape measures over time (README "drop").
+shape measures over time (docs/validation.md).
 
     /usr/bin/python3 bench/plot_drop.py VTU_DIR SCENE.json OUT.png [FRAMES]
 

@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def plot_alpha(path, out):
-    """One panel per model, one curve per nonlinearity alpha (seed 004 Fig. 3)."""
+    """One panel per model, one curve per nonlinearity alpha (Chen and Barbic 2024, Fig. 3)."""
     models = {}
     with open(path) as f:
         for row in csv.DictReader(f):
@@ -32,7 +32,7 @@ def plot_alpha(path, out):
         ax.legend(fontsize=7)
     for ax in list(axes.flat)[n:]:
         ax.axis("off")
-    fig.suptitle("uniaxial stretch per nonlinearity alpha, seed 004 Eq. 16 (E = 1, nu = 0.45)")
+    fig.suptitle("uniaxial stretch per nonlinearity alpha, Chen and Barbic 2024, Eq. 16 (E = 1, nu = 0.45)")
     fig.tight_layout()
     fig.savefig(out, dpi=100)
 

@@ -82,10 +82,9 @@ const char* const kSceneBuildingFlags[] = {
 const char* const kSolverFlags[] = {"--precision", "--variant", "--preconditioner", "--hessian",    "--steps",
                                     "--rtol",      "--atol",    "--max-newton",     "--forcing-max"};
 
-// Per step, how far the body is from its rest shape (README "Dynamics and
-// obstacles", drop): volume, smallest J, and the RMS vertex distance after
-// the best rigid fit (snh/shape.h), absolute and relative to the rest
-// radius of gyration. Undefined for a non-finite state.
+// Per step, how far the body is from its rest shape (docs/design.md, drop): volume, smallest J, and the RMS vertex
+// distance after the best rigid fit (snh/shape.h), absolute and relative to the rest radius of gyration. Undefined for
+// a non-finite state.
 struct StepShape {
   bool defined = false;
   double volume_ratio = 0.0, min_j = 0.0, rigid_fit_rms = 0.0, rigid_fit_rms_relative = 0.0;
@@ -460,11 +459,12 @@ void add_scene_command(CLI::App& app, int& exit_code) {
                   "(normalized to the same small-strain E, nu; model settings at their defaults)")
       ->check(CLI::IsMember(kModelNames))
       ->capture_default_str();
-  cmd->add_option("--alpha", o->alpha,
-                  "nonlinearity (seed 004 Eq. 16): psi(sigma^alpha) / alpha^2 at the same small-strain E, nu")
+  cmd->add_option(
+         "--alpha", o->alpha,
+         "nonlinearity (Chen and Barbic 2024, Eq. 16): psi(sigma^alpha) / alpha^2 at the same small-strain E, nu")
       ->capture_default_str();
   cmd->add_option("--lambda-model", o->lambda_model,
-                  "take the lambda_Lame (volume) part from this model (seed 004 Eq. 19)")
+                  "take the lambda_Lame (volume) part from this model (Chen and Barbic 2024, Eq. 19)")
       ->check(CLI::IsMember(kModelNames));
   cmd->add_option("--alpha-lambda", o->alpha_lambda, "nonlinearity of the lambda_Lame part (Eq. 20; default --alpha)");
   cmd->add_option("--barrier", o->barrier, "origin barrier: on, off, auto")

@@ -5,7 +5,7 @@
 // bones and its animation, body force, solver options, output.
 // Unknown keys and wrong types are errors naming the key's path.
 //
-// Dynamics and obstacles (README "Dynamics and obstacles"):
+// Dynamics and obstacles (docs/design.md):
 //   "dynamics": {"time_step": s, "density": kg/m^3,
 //                "damping": {"mass": a, "stiffness": b}, "substeps": n}
 //       implicit Euler (snh::DynamicsOptions); absent: quasistatic.

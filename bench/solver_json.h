@@ -17,7 +17,7 @@ void add_solver_json(nlohmann::ordered_json& j, const SolveOptions& options, con
   j["product_precision"] = to_string(r.product_precision);
   j["preconditioner"] = to_string(r.preconditioner);
   if (r.preconditioner == Preconditioner::multigrid) {
-    j["multigrid_fine_level"] = to_string(options.multigrid.fine_level);  // as requested (automatic: README)
+    j["multigrid_fine_level"] = to_string(options.multigrid.fine_level);  // as requested (automatic: docs/design.md)
     j["multigrid_fine_float"] = options.multigrid.fine_level_float;
     j["multigrid_float_cycle"] = r.multigrid_float_cycle;          // as used
     j["multigrid_smoother_degree"] = r.multigrid_smoother_degree;  // as used (automatic resolved)

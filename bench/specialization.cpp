@@ -62,10 +62,10 @@ int run(const SpecializationOptions& o, json& report, std::ostringstream& md) {
   report["size"] = o.size;
   md << "# Kernel specialization\n\nDevice: " << cl.info().platform << " / " << cl.info().name << "; " << o.precision
      << "; box lattice " << o.size << "^3, deformed (x 0.9, 0.9, 1.3 plus noise); best of repeats over "
-     << o.min_seconds << " s per operation. Builds: specialized (the engine's default: model, barrier, seed 004 "
+     << o.min_seconds << " s per operation. Builds: specialized (the engine's default: model, barrier, alpha/mixing "
      << "path and, on lattices, the shared rest shape fixed at build time), general material (model, barrier and "
      << "path read at run time), fully general (that and per-element rest data), all terms (specialized to the "
-     << "model but always through the seed 004 parts, as a kernel carrying every term computes). Gains are "
+     << "model but always through the alpha/mixing parts, as a kernel carrying every term computes). Gains are "
      << "time(build) / time(specialized): above 1 the specialization wins.\n\n"
      << "| element | material | op | specialized ms | general material ms | fully general ms | all terms ms | "
         "gain (material) | gain (all) | gain (terms) |\n|---|---|---|---|---|---|---|---|---|---|\n";
@@ -108,7 +108,7 @@ int run(const SpecializationOptions& o, json& report, std::ostringstream& md) {
         viennacl::copy(y.begin(), y.end(), results[b].begin() + static_cast<long>(xh.size()));
       }
       // The run-time builds evaluate the same expressions (no contraction):
-      // bitwise equal on one device. The all-terms build sums the seed 004
+      // bitwise equal on one device. The all-terms build sums the alpha/mixing
       // parts instead, equal up to rounding.
       const bool same = results[0] == results[1] && results[0] == results[2];
       double diff = 0.0, scale = 0.0;

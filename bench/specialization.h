@@ -1,11 +1,11 @@
 // `snh-gpu-bench specialization`: what leaving unused terms out of the
-// kernels buys. Every material (and seed 004 settings) runs the engine's
+// kernels buys. Every material (and alpha and mixing settings) runs the engine's
 // element kernels three ways on the same deformed lattice: specialized (the
 // engine's default: model, barrier, alpha/mixing path and the lattice's
 // shared rest shape fixed at build time), with the material read at run time
 // (one kernel for every material), and fully general (material at run time
 // and per-element rest data), and specialized to the model but always through
-// the seed 004 parts (what a kernel carrying every term computes). Reports
+// the alpha/mixing parts (what a kernel carrying every term computes). Reports
 // time per call and the ratios.
 #pragma once
 

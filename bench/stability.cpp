@@ -78,15 +78,14 @@ Scene crush(const std::string& shape, int res, Precision precision) {
 // edges of their contact layers a tenth of the thickness away), the lid
 // closes from just above to `height` (a fraction of the body's height,
 // kDefaultSquashHeight = 0.1) and opens again, then the body is left to
-// recover (README "Stability"). The walls keep it from
+// recover (docs/validation.md). The walls keep it from
 // spreading sideways, so the squash takes its volume to about `height`
 // whatever nu is (a laterally free body at nu -> 1/2 would keep its volume
 // and only get thinner). squash_nu*: frictionless planes; squash_rough_nu*:
 // the floor and the lid grip the body with Coulomb friction (walls
-// frictionless, a lubricated die). At height 0.05 each meets a limit (README
-// "Stability"): between frictionless planes the squashed state at nu = 0.499
-// is a saddle whose shear mode the body takes, and the rough body at
-// nu = 0.46 folds through itself (no self-contact here).
+// frictionless, a lubricated die). At height 0.05 each meets a limit (docs/validation.md): between frictionless planes
+// the squashed state at nu = 0.499 is a saddle whose shear mode the body takes, and the rough body at nu = 0.46 folds
+// through itself (no self-contact here).
 constexpr double kSquashThickness = 0.01, kSquashGap = 0.001, kSquashStiffness = 1.0e4, kSquashFriction = 0.5;
 
 Scene squash(double nu, int res, Precision precision, double friction, double height) {
@@ -113,7 +112,7 @@ Scene squash(double nu, int res, Precision precision, double friction, double he
   // The floor and the walls stand kSquashGap clear of the body's faces: a
   // vertex resting exactly at a layer's edge sits on the penalty's kink (its
   // Hessian jumps from 0 to k there), where Newton stagnated at residuals of
-  // 2e-6 to 5e-5 once the body was back at rest (README "Stability").
+  // 2e-6 to 5e-5 once the body was back at rest (docs/validation.md).
   const double g = d + kSquashGap;
   s.options.obstacles = {plane({0, 0, -g}, {0, 0, 1}),     plane({-g, 0, 0}, {1, 0, 0}),
                          plane({1 + g, 0, 0}, {-1, 0, 0}), plane({0, -g, 0}, {0, 1, 0}),
@@ -500,7 +499,7 @@ void add_stability_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", o->out_dir, "folder for stability.{json,csv,md}")->capture_default_str();
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
   cmd->add_option("--squash-height", o->squash_height,
-                  "the squash cases' lid height, a fraction of the body's (0.05: README's limits)")
+                  "the squash cases' lid height, a fraction of the body's (0.05: docs/validation.md)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--cases", o->cases,

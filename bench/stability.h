@@ -29,9 +29,8 @@ std::vector<std::string> stability_case_names();
 
 // The squash cases' lid closes to this fraction of the body's height (and,
 // with the walls holding its sides, of its volume): `stability
-// --squash-height` sets it. Below it the cases meet the limits README
-// "Stability" describes (at 0.05: the saddle between frictionless planes at
-// nu = 0.499, the rough body folding through itself at nu = 0.46).
+// --squash-height` sets it. Below it the cases meet the limits docs/validation.md describes (at 0.05: the saddle
+// between frictionless planes at nu = 0.499, the rough body folding through itself at nu = 0.46).
 constexpr double kDefaultSquashHeight = 0.1;
 
 // Case `name` as a scene ready to solve in `precision` (float stops at a

@@ -140,15 +140,15 @@ constexpr double kActionFlops = 219;
 // three copies of the body): 1,595 multiplies, adds and subtracts per point
 // in double (vmulpd, vaddpd, vsubpd on zmm registers: 4,785 / 3), less F's
 // 144; selects and the FP contraction that the kernels do not use are not
-// counted. (Until session 15 a hand count of 576, from the data-dependent
-// SVD and the acos/cos eigensolver that sessions 6 and 11 replaced; 1,331
-// until session 24's Jacobi rotations, math/svd3.h, which take 8 more
+// counted. (Earlier a hand count of 576, from the data-dependent
+// SVD and the acos/cos eigensolver since replaced; then 1,331
+// until the closed-form Jacobi rotations of math/svd3.h, which take 8 more
 // multiplies and adds each and fewer square roots and divisions.)
 constexpr double kLinearizationFlops = 1451;
 // Square roots and divisions per point of the same kernel (vsqrtpd and
 // vdivpd per lane; float has one Newton step of the cubic less): Jacobi
 // and Givens rotations, eigenvector normalizations, the cubic's steps.
-// Before session 24: 53 and 71 (float 70).
+// Before the closed-form rotations: 53 and 71 (float 70).
 constexpr double kSqrtPerPoint = 38;
 double divisions_per_point(int real_bytes) { return real_bytes == 8 ? 41 : 40; }
 

@@ -3,7 +3,7 @@
  *   SNH_HEX8          element type (1: hex8, 0: tet4)
  *   SNH_MODEL         material model (materials/material.h ids)
  *   SNH_BARRIER       Stable Neo-Hookean origin barrier (Eq. 14) or not (Eq. 13)
- *   SNH_NONLINEAR     seed 004 alpha / mixing path (1) or the model as written (0)
+ *   SNH_NONLINEAR     Chen and Barbic 2024 alpha / mixing path (1) or the model as written (0)
  *   SNH_LAMBDA_MODEL  model of the lambda part when mixing (-1: the same)
  *   SNH_UNIFORM_REST  every element shares element 0's rest gradients (lattices)
  *   SNH_REGIONS       per-element materials from a table (kernel_args.h)

@@ -14,7 +14,7 @@
  * at 16 and are built at 8). pocl's
  * work-item vectorizer leaves the scalar kernels' per-point math scalar (its
  * program build SLP-vectorizes the straight-line SVD into 2-wide pieces the
- * loop vectorizer cannot widen; README, throughput), so on a CPU these
+ * loop vectorizer cannot widen; docs/performance.md), so on a CPU these
  * kernels vectorize the math by construction instead. The math is the same
  * source as the scalar kernels and the host reference; with FP_CONTRACT off
  * and correctly rounded division and sqrt, each lane computes bit for bit

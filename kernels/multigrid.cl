@@ -112,7 +112,7 @@ typedef float8 corners8;
  * node-corner pairs), the same in every lane; missing children and
  * constrained DOFs multiply by 0. Per fine node a the first product's three
  * rows are formed, in three named vectors, and at once spread by the second
- * (session 26: the same sums in the same order as forming a column's 24
+ * (the same sums in the same order as forming a column's 24
  * rows first into an indexed array, which pocl kept in memory with a load
  * and a store per term; twist res 32, 12 builds: 0.30 -> 0.19 s).
  * Twist res 32, 14 builds: 0.26 s, against

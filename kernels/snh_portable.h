@@ -58,7 +58,7 @@
 #define SNH_FN static inline
 #endif
 /* The SVD and the eigensystem: left to the compiler's inlining. They do not
- * vectorize across work-items on pocl 3.1 either way (README, throughput),
+ * vectorize across work-items on pocl 3.1 either way (docs/performance.md),
  * and forcing them inline at every call site of every material more than
  * doubled the kernels' build time. */
 #define SNH_FN_LARGE static inline
@@ -93,7 +93,7 @@
  * a vector of 8 or 16 values, one per lane (a hex8 element's 8 quadrature
  * points, or two elements'),
  * so the per-point math below runs as SIMD on CPU devices, where
- * pocl's work-item vectorizer does not widen it (README, throughput).
+ * pocl's work-item vectorizer does not widen it (docs/performance.md).
  * scalar_real is the element type (buffers, material parameters) and
  * snh_mask what a comparison of two reals gives: int per point, or one
  * all-ones / zero integer per lane that ?: blends lane by lane. So the math

@@ -297,7 +297,7 @@ TEST(Dynamics, OptionsAreChecked) {
   EXPECT_NE(message(with([](SolveOptions& o) { o.dynamics->substeps = 0; })).find("substeps"), std::string::npos);
   EXPECT_NE(message(with([](SolveOptions& o) { o.initial_velocities = {1.0}; })).find("initial_velocities"),
             std::string::npos);
-  // Multigrid carries the inertia on its coarse levels (since session 8),
+  // Multigrid carries the inertia on its coarse levels,
   // not the self-contact springs.
   EXPECT_EQ(message(with([](SolveOptions& o) { o.preconditioner = Preconditioner::multigrid; })), "");
   EXPECT_NE(message(with([](SolveOptions& o) {

@@ -1,4 +1,4 @@
-// E, nu -> Lame -> the energy's (mu, lambda) (sec. 3.4, seed 004 Table 1),
+// E, nu -> Lame -> the energy's (mu, lambda) (sec. 3.4, Chen and Barbic 2024, Table 1),
 // and clear errors outside the admissible range.
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Every material model: derivatives against finite differences, the
 // closed-form eigensystem against a numerical one, the projected Hessian
 // against the numerical eigen-clamp, rest stability and linear elasticity
-// after normalization by (E, nu) (seed 004 Eqs. 3-4, 15), no NaN where the
+// after normalization by (E, nu) (Chen and Barbic 2024, Eqs. 3-4, 15), no NaN where the
 // model is defined, and the device kernels against the host reference.
 #include <gtest/gtest.h>
 
@@ -41,7 +41,7 @@ std::vector<ModelCase> model_cases() {
   return out;
 }
 
-// Seed 004: every model with a softening and a stiffening alpha (Eq. 16), and
+// Chen and Barbic 2024: every model with a softening and a stiffening alpha (Eq. 16), and
 // mixed lambda/mu parts with two alphas (Eqs. 19-20).
 std::vector<ModelCase> adjusted_cases() {
   std::vector<ModelCase> out;
@@ -119,7 +119,7 @@ std::vector<NamedDeformation> smooth_deformations(const ModelCase& m) {
   std::vector<NamedDeformation> out;
   for (const NamedDeformation& d : hard_deformations()) {
     if (has_corotational_part(m.material) && min_pair_sum(d.F) < 1e-2) continue;
-    // The seed 004 map is C1 (not C2) at |sigma| = tau (nonlinearity.h):
+    // The alpha map is C1 (not C2) at |sigma| = tau (nonlinearity.h):
     // finite differences straddling it are not a Hessian check.
     if (m.material.adjusted() && near_tau(d.F)) continue;
     out.push_back(d);
@@ -207,7 +207,7 @@ TEST(Materials, RestStableAndLinearElasticityAfterNormalization) {
       const auto identity = to_array<double>(Eigen::Matrix3d::Identity());
       EXPECT_NEAR(reference::material_energy<double>(identity, spec), 0.0, 1e-14 * target.lambda);
       EXPECT_LE(to_eigen(reference::material_pk1<double>(identity, spec)).norm(), 1e-13 * target.lambda);
-      // Seed 004, Eqs. 3-4: Lame parameters from the second derivatives of
+      // Chen and Barbic 2024, Eqs. 3-4: Lame parameters from the second derivatives of
       // psi(sigma) at (1, 1, 1), taken as central differences of its gradient
       // (P11 = dpsi/dsigma_0 for diagonal F): accurate for every model,
       // including the Kikuuwe penalty, cubic on the compressed side.
@@ -341,7 +341,7 @@ TEST(Materials, NonlinearityMatchesSeed004Definition) {
   EXPECT_EQ(checked, 7 * 4 * 6);
 }
 
-// Seed 004 sec. 5: the Seth-Hill family is alpha applied to the linear
+// Chen and Barbic 2024, sec. 5: the Seth-Hill family is alpha applied to the linear
 // co-rotational material, and alpha = 2 gives StVK. Compared with our StVK
 // (Kikuuwe penalty off), energy, stress and the whole Hessian eigensystem,
 // for positive stretches (the odd extension differs from StVK's sigma^2 on
@@ -466,7 +466,7 @@ TEST(Materials, SolverRejectsInvertedStartForLogNeoHookeanWithoutHandling) {
   }
 }
 
-// Float on the device against the double host reference for the seed 004
+// Float on the device against the double host reference for the alpha/mixing
 // path. Float's SVD is backward stable (F known to ~FLT_EPSILON |F|), so a
 // stress is only as accurate as |dP/dF| |F| allows (the stiffness, lambda
 // included, is in |H|):
@@ -515,7 +515,8 @@ TEST(Materials, AdjustedFloatDeviceWithinDocumentedBound) {
     }
   }
   EXPECT_GT(checked, 20 * 25);
-  std::printf("[ measured ] float seed 004 path: worst %.3g FLT_EPSILON (conditioned), at %s\n", worst, where.c_str());
+  std::printf("[ measured ] float alpha/mixing path: worst %.3g FLT_EPSILON (conditioned), at %s\n", worst,
+              where.c_str());
 }
 
 TEST(Materials, NamesAndOutOfRangeOptions) {

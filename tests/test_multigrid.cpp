@@ -474,7 +474,7 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
 
 // With obstacles a hierarchy is not reused across a change of the set of
 // vertices in contact (whose contact blocks it lacks: a squash then crawled,
-// README "Multigrid"), nor, with friction, into a new step (its normal forces
+// docs/performance.md), nor, with friction, into a new step (its normal forces
 // are re-lagged); with the set unchanged it is.
 TEST(Multigrid, ContactSetChangeRebuildsTheHierarchy) {
   DeviceCase c;

@@ -11,7 +11,7 @@
 // differently at some arguments; the point's SVD frame, eigensystem and
 // product carry that to its other entries (largest difference seen: 5.6e-17
 // with entries of order 1), so there the bound is 1e-14 of the largest
-// entry. For every model, the seed 004 path, materials per region and
+// entry. For every model, the alpha/mixing path, materials per region and
 // the run-time material kernel, at projected and true-Hessian
 // linearizations, on lattices of an odd element count with jittered rest
 // shapes (no shared rest data) and a uniform one and on tet4 boxes whose
@@ -259,7 +259,7 @@ Maps every_model(const Mesh& mesh) {
                           MaterialModel::corotational, MaterialModel::fixed_corotational, MaterialModel::stvk_kikuuwe,
                           MaterialModel::neohookean})
     maps.push_back({to_string(m), uniform_material(mesh, with(m))});
-  // Seed 004: alpha below and above 1, and mixed parts with two alphas.
+  // Chen and Barbic 2024: alpha below and above 1, and mixed parts with two alphas.
   maps.push_back({"snh alpha 0.5", uniform_material(mesh, with(MaterialModel::stable_neo_hookean, 0.5))});
   maps.push_back({"fung alpha 2.5", uniform_material(mesh, with(MaterialModel::fung, 2.5))});
   maps.push_back({"neohookean 1.2 + fung lambda 3.0",
@@ -300,7 +300,7 @@ TEST(PointLanes, RunTimeMaterialKernelMatchesDouble) {
 
 TEST(PointLanes, FloatMatchesTheScalarKernels) {
   // The premise (correctly rounded float division and square root) holds on
-  // pocl; on the H200 (session 17) NVIDIA's OpenCL rounded the two programs'
+  // pocl; on an NVIDIA H200 NVIDIA's OpenCL rounded the two programs'
   // float a few ulps apart, and GPUs run the scalar kernels by default.
   if (device_for(Precision::single).info().is_gpu)
     GTEST_SKIP() << "float lanes against the scalar kernels bit for bit: CPU (pocl) devices only";

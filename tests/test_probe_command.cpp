@@ -99,7 +99,7 @@ TEST(ProbeCommand, RejectsOutOfRangeMaterial) {
   EXPECT_NE(run_bench("probe --lambda-model rubber", "").status, 0);
 }
 
-// --alpha (seed 004 Eq. 16) on the device: the co-rotational energy with
+// --alpha (Chen and Barbic 2024, Eq. 16) on the device: the co-rotational energy with
 // alpha = 2 is the Seth-Hill / StVK energy mu/4 sum (s^2 - 1)^2 +
 // lambda/8 (sum s^2 - 3)^2, written out here; --lambda-model swaps the
 // volume term (co-rotational mu part + (J - 1)^2 / 2 is fixed co-rotational).
@@ -224,7 +224,7 @@ TEST(SceneCommand, WritesJsonSummaryAndParaViewSeries) {
     EXPECT_TRUE(std::filesystem::exists(dir / "vtu" / file)) << file;
 }
 
-// The seed 004 options reach the engine: the kernels are built for them
+// The alpha and mixing options reach the engine: the kernels are built for them
 // and the JSON names the material.
 TEST(SceneCommand, AlphaAndMixedMaterial) {
   const std::filesystem::path json_path = std::filesystem::temp_directory_path() / "snh_scene_alpha.json";

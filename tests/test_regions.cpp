@@ -116,7 +116,7 @@ struct MapCase {
 // mixed-model maps (run-time model), two and three materials, on hex8
 // lattices (uniform and jittered rest shapes) and a tet4 box. The mixed
 // ones cover every field of the table: Fung's and Arruda-Boyce's c0, c1,
-// the seed 004 alphas, a lambda part of another model with its J0, the
+// the nonlinearity alphas, a lambda part of another model with its J0, the
 // barrier flag.
 const std::vector<MapCase>& map_cases() {
   static const std::vector<MapCase> all = [] {
@@ -293,7 +293,7 @@ TEST(Regions, KernelSwitchesAreOnlyWhatTheMapNeeds) {
     EXPECT_EQ(device::material_defines(make_material_map(mesh, soft, {{"other", {0}, other}})),
               "-DSNH_GENERAL_KERNEL=1 -DSNH_REGIONS=1");
   }
-  // Same seed 004 path and lambda model: still specialized.
+  // Same alpha/mixing path and lambda model: still specialized.
   const MaterialOptions o = lambda_part;
   EXPECT_EQ(
       device::material_defines(make_material_map(mesh, model(MaterialModel::corotational, 1.0, 0.3, o),

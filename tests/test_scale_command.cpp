@@ -149,7 +149,7 @@ TEST(ScaleCommand, WritesRecordsForEachSceneResolutionAndPreconditioner) {
   // negative curvature and projected Newton leaves the unstable branch only
   // slowly (res 3 and 4 measured: energy still falling after 200
   // iterations), so whether it stops on that branch within the limit
-  // depends on rounding (README, "Scale", has the figures).
+  // depends on rounding (docs/performance.md, has the figures).
   const nlohmann::json unpreconditioned = run_scale(std::filesystem::temp_directory_path() / "snh_scale_test_none",
                                                     "--scenes twist --res 2,3 --preconditioner none --no-plots");
   ASSERT_FALSE(unpreconditioned.is_null());

@@ -53,7 +53,7 @@ INSTANTIATE_TEST_SUITE_P(Stability, StabilitySmallCases,
                          });
 
 // The squash between planes (a cube of 4^3 hexes in a box whose lid closes
-// to a tenth of its height and opens; README "Stability"), frictionless and
+// to a tenth of its height and opens; docs/validation.md), frictionless and
 // with a rough floor and lid: squashed to a tenth of its volume, never a
 // vertex deeper than the contact layer, and the rest volume and J = 1
 // recovered after release, at each nu. At a lid height of 0.05 two of these

@@ -65,7 +65,7 @@ TEST(Svd, ManyRandomMatricesIncludingNearSingular) {
 // (a, a, a), (a, a, b), (a, a, -a), one tiny singular value, and F = I + 1e-6 X.
 // Bounds: about twice the worst errors measured over 10^5 such F per family
 // with the data-dependent loop the fixed sweeps replaced (in parentheses,
-// then session 24's closed-form rotations' over 6 x 10^5 F): reconstruction
+// then the closed-form rotations' over 6 x 10^5 F): reconstruction
 // / |F| double 4e-15 (1.8e-15; 2.09e-15), float 2e-6 (9.2e-7; 1.05e-6);
 // orthogonality double 5e-15 (2.6e-15; 2.71e-15), float 2.5e-6 (1.24e-6;
 // 1.37e-6); singular values / |F| against Eigen in long double, double 2e-15

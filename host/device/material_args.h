@@ -15,10 +15,10 @@
 namespace snh::device {
 
 // How much of the material a kernel build fixes:
-//   specialized   model, barrier, seed 004 path and lambda model at build time
+//   specialized   model, barrier, alpha/mixing path and lambda model at build time
 //                 (the engine's default: only what the scene uses is compiled);
 //   runtime       one kernel for every material, all of it read at run time;
-//   all_terms     specialized to the model, but always through the seed 004
+//   all_terms     specialized to the model, but always through the alpha/mixing
 //                 parts (as a kernel that carries every term would compute).
 // The last two are the baselines of `snh-gpu-bench specialization`.
 enum class MaterialKernel { specialized, runtime, all_terms };
@@ -27,13 +27,13 @@ std::string material_defines(const Material& material, MaterialKernel build = Ma
 
 // The switches for a map. A uniform map: those of its one material, nothing
 // more. Otherwise -DSNH_REGIONS=1 (materials per element from a table) with,
-// when every material shares model, barrier, seed 004 path and lambda model,
+// when every material shares model, barrier, alpha/mixing path and lambda model,
 // the specialized switches of the first one; else the run-time material
 // (-DSNH_GENERAL_KERNEL=1).
 std::string material_defines(const MaterialMap& map, MaterialKernel build = MaterialKernel::specialized);
 
 // Whether two materials build the same specialized kernels (model, barrier,
-// seed 004 path, lambda model), so that only their parameters differ.
+// alpha/mixing path, lambda model), so that only their parameters differ.
 bool same_specialization(const Material& a, const Material& b);
 
 // The table of an SNH_REGIONS build: SNH_MATERIAL_RECORD reals per material

@@ -20,7 +20,7 @@ void use_viennacl(long id);
 // 128 work-items in all, each looping over a strided share of the vector,
 // which pocl runs as scalar code (a 10^6-entry axpy in 6.5 ms, a fifth of
 // the triad bandwidth); larger groups let pocl vectorize across work-items
-// (README, "CG's vector kernels on CPUs"). Values and their order are the
+// (docs/performance.md). Values and their order are the
 // same at any size: the kernels are element-wise. Inner products keep
 // ViennaCL's sizes. Returns the local size set (1: ViennaCL's default).
 template <typename Real>

@@ -1,6 +1,6 @@
 // Building each material model from (E, nu) so that all share the same
-// small-strain stiffness (seed 004, Eq. 15 and Table 1), and their Lame
-// parameters in closed form (seed 004 Eqs. 3-4, worked out per model; the
+// small-strain stiffness (Chen and Barbic 2024, Eq. 15 and Table 1), and their Lame
+// parameters in closed form (Chen and Barbic 2024, Eqs. 3-4, worked out per model; the
 // tests check them against finite differences of psi(sigma)).
 #include <cmath>
 #include <sstream>

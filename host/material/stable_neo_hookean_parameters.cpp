@@ -1,5 +1,5 @@
 // Lame moduli <-> Stable Neo-Hookean energy parameters (Smith et al. 2018,
-// sec. 3.4; seed 004 Table 1) and the admissible ranges.
+// sec. 3.4; Chen and Barbic 2024, Table 1) and the admissible ranges.
 #include <cmath>
 #include <sstream>
 
@@ -67,7 +67,7 @@ StableNeoHookean StableNeoHookean::from_lame(const LameParameters& l, Barrier ba
                   " is outside the stable range [-0.851, 0.5) of the Stable Neo-Hookean energy (lambda/mu = " +
                   number(m.lambda / m.mu) + " < 0.1526)");
   } else {
-    // Eq. 13 (seed 004, Table 1): lambda_Lame = lambda - mu, mu_Lame = mu.
+    // Eq. 13 (Chen and Barbic 2024, Table 1): lambda_Lame = lambda - mu, mu_Lame = mu.
     if (!(nu >= kMinPoissonWithoutBarrier))
       throw Error("material: the origin barrier may only be left out for nu >= 0.4 (paper App. D), got nu = " +
                   number(nu));

@@ -74,7 +74,7 @@ struct MaterialSpec {
   int model = 0;
   bool barrier = true;
   double mu = 0.0, lambda = 0.0, c0 = 0.0, c1 = 0.0;
-  // Seed 004 path (see snh::Material): lambda part's model (-1: model) and
+  // Alpha/mixing path (see snh::Material): lambda part's model (-1: model) and
   // parameter, nonlinearity of each part.
   int lambda_model = -1;
   double lambda_c0 = 0.0, alpha_lambda = 1.0, alpha_mu = 1.0;

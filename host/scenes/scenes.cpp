@@ -149,7 +149,7 @@ Scene elbow(const SceneParameters& p) {
   // at 140 degrees keeps samples within the thickness 0.1 h (hex8: 0.0133
   // deepest for 0.025). The tet4 split of the same lattice locks at
   // nu = 0.49 and presses harder: with 80 E h its deepest sample reached
-  // 0.0267, with 120 E h 0.0185, with 160 E h 0.0128 (README), so tet4
+  // 0.0267, with 120 E h 0.0185, with 160 E h 0.0128 (docs/performance.md), so tet4
   // gets 160 E h.
   s.options.contact.self = true;
   s.options.contact.stiffness = (p.element_type == ElementType::tet4 ? 160.0 : 80.0) * p.youngs_modulus * h;
@@ -158,7 +158,7 @@ Scene elbow(const SceneParameters& p) {
   return s;
 }
 
-// "drop" (README "Dynamics and obstacles"), SI units. The keyframes of the
+// "drop" (docs/design.md), SI units. The keyframes of the
 // squashing cylinder, on the load parameter t in [0, 1] over the scene's 2 s:
 // waiting above while the body falls and settles (to t = 0.2), down to a gap
 // of 6 mm above the middle lower cylinder (t = 0.45), held

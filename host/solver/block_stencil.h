@@ -23,7 +23,7 @@ namespace snh::solver {
 // kernel reads transposed, so that a vertex's blocks come from its own
 // nodes' columns, contiguous (exactly block (a, b): element matrices and
 // the multigrid's Galerkin cell matrices are stored exactly symmetric;
-// session 26: twist res 32 block-Jacobi's
+// twist res 32 block-Jacobi's
 // assemblies 1.56 -> 1.15 s, against block (a, b) read across the columns
 // of every node b); between part_offsets[width v + s] and the next, in
 // increasing element order (deterministic sums, exactly transposed blocks
@@ -55,7 +55,7 @@ StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_cou
 // The same operator in the upper layout (above), for per-vertex blocks (tile
 // 1, CPUs: the assembled variant and the multigrid's levels): its parts
 // list those of the full layout's blocks it keeps. On pocl, twist res 32
-// with multigrid (session 27): the V-cycle's stencil passes 0.94-1.12 ->
+// with multigrid: the V-cycle's stencil passes 0.94-1.12 ->
 // 0.83-0.86 s, the assemblies 0.19 -> 0.13 s.
 StencilTables upper_stencil_tables(const StencilTables& full, size_t vertex_count);
 

@@ -3,7 +3,7 @@
 // the host then adds in index order: deterministic, accumulated in double as
 // before, and only the partials cross to the host. Measured on an H100 at
 // 969,111 DOF: reading whole vectors and per-element energies back for the
-// Newton loop's norms, dots and energies was 3.8 of 16.4 s (README, GPU).
+// Newton loop's norms, dots and energies was 3.8 of 16.4 s (docs/performance.md).
 // Without fp64 on the device (a float-only device) every entry is read back
 // and summed on the host, as before. Internal to the library.
 #pragma once

@@ -180,8 +180,7 @@ void ElasticModel<Real>::set_point_lanes(bool on) {
   // cache value-major per element: one vector load per value); tet4 in
   // double keeps the scalar kernel, which pocl vectorizes across
   // work-items: the lanes version, gathering each element's 30 cached
-  // values into 8-wide vectors, measured 1.8x slower (README, "Per-point
-  // lanes").
+  // values into 8-wide vectors, measured 1.8x slower (docs/performance.md).
   cached_lanes_ = on && (sizeof(Real) == sizeof(float) || nodes_ == 8);
   product_cached_k_ = cached_lanes_ ? point_kernel("snh_element_product_cached")
                                     : cl_.kernel("fem.cl", defines_, "snh_element_product_cached");
@@ -264,7 +263,7 @@ void ElasticModel<Real>::prepare_float_products() {
 // lanes where the double cached product does: hex8 (value-major cache), not
 // tet4, whose lanes gather 8 elements' double p into vectors (measured
 // slower than the scalar kernel, as in double: `throughput --element tet4
-// --size 48 --variant cached-float-products`, README "Mixed precision").
+// --size 48 --variant cached-float-products`, docs/performance.md).
 template <typename Real>
 bool ElasticModel<Real>::float_product_lanes() const {
   return point_lanes_ && nodes_ == 8;

@@ -22,7 +22,7 @@ using device::set_arg;
 constexpr int kCellMatrix = 24 * 24;
 // Power iterations for lambda_max(D^-1 A): from the fixed start, and warm
 // from the last estimate, whose operator changed by a Newton step or two.
-// Warm 2 against 4 (session 26, same machine, alternating): twist res 32
+// Warm 2 against 4 (same machine, alternating): twist res 32
 // 3.79 -> 3.64 s (176 -> 170 CG), at nu = 0.499 7.76 -> 7.21 s (304 -> 291),
 // drop_block (a current fine level, re-estimated at every linearization)
 // 1.30 -> 1.04 s with the same Newton and CG counts.

@@ -30,14 +30,14 @@ ProductVariant parse_product_variant(const std::string& text) {
 
 // Measured with `snh-gpu-bench throughput --element hex8,tet4 --size
 // 8,12,24,48 --variant cached,element-matrices,assembled` on pocl, 2 CPU
-// cores (session 14, README), scored as setup + 50 products per Newton
+// cores (docs/performance.md), scored as setup + 50 products per Newton
 // iteration: the assembled block stencil (kernels/stencil.cl) wins every
 // case, hex8 and tet4, float and double, e.g. hex8 double 12^3 0.055 ms per
 // product + 2.4 ms setup against 0.107 + 2.0 element matrices and 0.123 +
 // 0.84 cached; 48^3 4.2 + 215 against 12.6 + 143 and 17.2 + 52; tet4 double
 // 48^3 2.9 + 234 against 23.8 + 148 and 13.2 + 69. (Before it, with a ViennaCL
 // compressed_matrix assembled on the host, element matrices won for hex8.)
-// On an NVIDIA H100 (NVIDIA's OpenCL, session 8,
+// On an NVIDIA H100 (NVIDIA's OpenCL,
 // `throughput --size 48,96`) the cached linearization wins every hex8 and
 // tet4 double case so scored (hex8 double 48^3: 0.196 ms + 0.59 ms setup,
 // against 0.363 + 4.5 element matrices, 0.186 + 482 assembled; tet4 double
@@ -50,10 +50,10 @@ ProductVariant default_product_variant(ElementType, Precision, bool gpu) {
 }
 
 // Measured with `snh-gpu-bench scene twist --res 32 --preconditioner
-// multigrid --variant V` (pocl, 2 CPU cores, double, nu = 0.49; README):
+// multigrid --variant V` (pocl, 2 CPU cores, double, nu = 0.49; docs/performance.md):
 // element matrices rebuilt at every linearization 24.4 s, cached 24.7 s; with
 // the hierarchy reused (rebuild_every 4) element matrices 22.7 s (their
-// per-Newton build and product stay), cached 19.2-19.9 s. Session 14, the
+// per-Newton build and product stay), cached 19.2-19.9 s. The
 // block stencil against cached, alternating: 6.77 / 6.49 s against 5.48 /
 // 5.35 s (products 0.37 against 0.97 s, but element matrices and their
 // assembly at every linearization 2.5 against 0.58 s).

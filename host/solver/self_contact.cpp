@@ -133,7 +133,7 @@ SelfContactDetector::SelfContactDetector(const Mesh& mesh)
       // (`scene elbow --element tet4`): with one ring steps 22 and 23
       // stagnated and a sample ended 0.197 deep; with two, step 21 stagnates
       // and the deepest is 0.081 (thickness 0.025): better, not resolved
-      // (README "Self-collision").
+      // (docs/design.md).
       const std::vector<int> first = near;
       for (int v : first)
         for (int e : incident[v])

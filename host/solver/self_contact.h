@@ -5,7 +5,7 @@
 // and a spring pulls the sample to Y's deformed position,
 //   E_c = k/2 |x_s - sum_j w_j x_j|^2,
 // w the barycentric weights of Y on its rest triangle, frozen for a Newton
-// iteration (README "Self-collision"). With a = [1, -w0, -w1, -w2] over
+// iteration (docs/design.md). With a = [1, -w0, -w1, -w2] over
 // (s, j0, j1, j2): dE/dx_i = k a_i d, d = sum_i a_i x_i, and the Hessian
 // k (a a^T) (x) I3 is PSD. E_c is C^1 across activation: a sample entering
 // an element through the surface has X on that surface, so Y = X and d = 0.

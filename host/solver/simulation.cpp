@@ -210,7 +210,7 @@ struct Simulation::Impl {
     // self-contact springs, which couple vertices of different cells: with
     // self-contact `automatic` is block-Jacobi. With dynamics and obstacles
     // it follows the mesh as without (measured: the drop_block scene at
-    // 16^3 and 24^3 hexes, README).
+    // 16^3 and 24^3 hexes, docs/performance.md).
     if (options.contact.self && options.preconditioner == Preconditioner::multigrid)
       throw Error(
           "preconditioner multigrid: its coarse levels do not carry the self-contact springs; use block-jacobi (or "

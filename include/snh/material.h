@@ -72,11 +72,12 @@ struct MaterialOptions {
   double kikuuwe_kappa = 10.0;  // kappa / mu_Lame
   double neohookean_j0 = 0.1;   // inversion handling below J0; 0: none (J <= 0 is an error)
 
-  // Seed 004 sec. 5: nonlinearity alpha > 0 (Eq. 16: psi(sigma^alpha) / alpha^2;
+  // Chen and Barbic, "Tuning Nonlinear Elastic Materials under Small and Large
+  // Deformations", 2024 (arXiv:2412.18631), sec. 5: nonlinearity alpha > 0 (Eq. 16: psi(sigma^alpha) / alpha^2;
   // < 1 softens, > 1 stiffens at large strain; 1: the model as written). It
   // keeps the small-strain moduli.
   double alpha = 1.0;
-  // Seed 004 sec. 6 (Eqs. 19-20): take the lambda_Lame part from another
+  // Chen and Barbic 2024, sec. 6 (Eqs. 19-20): take the lambda_Lame part from another
   // model (the mu_Lame part stays this model's), with its own alpha (default:
   // `alpha`).
   std::optional<MaterialModel> lambda_model;
@@ -92,7 +93,7 @@ struct Material {
   double c0 = 0.0;
   double c1 = 0.0;
   bool barrier = true;
-  // Seed 004 extensions: psi = lambda_L / a1^2 psi_lambda^A(sigma^a1) +
+  // Extensions of Chen and Barbic 2024: psi = lambda_L / a1^2 psi_lambda^A(sigma^a1) +
   // mu_L / a2^2 psi_mu^B(sigma^a2), B = model, A = lambda_model (when set)
   // with its parameter lambda_c0 (Neo-Hookean J0), a1 = alpha_lambda,
   // a2 = alpha_mu. Defaults: the model as written.
@@ -104,7 +105,7 @@ struct Material {
   Material() = default;
   Material(const StableNeoHookean& snh);  // NOLINT: implicit, every SNH is a Material
 
-  // Normalized by (E, nu) (seed 004, Eq. 15 and Table 1): every model gets the
+  // Normalized by (E, nu) (Chen and Barbic 2024, Eq. 15 and Table 1): every model gets the
   // same small-deformation Lame moduli. Throws snh::Error for out-of-range
   // values (E <= 0, nu outside the model's admissible range, bad options).
   static Material from_lame(MaterialModel model, const LameParameters& lame, const MaterialOptions& options = {});
@@ -120,7 +121,7 @@ struct Material {
   // True where the energy is defined for every F (false: Neo-Hookean without
   // inversion handling, undefined for J <= 0).
   bool defined_for_inversion() const;
-  // True where the seed 004 path (alpha or mixing) is in use.
+  // True where the alpha/mixing path (alpha or mixing) is in use.
   bool adjusted() const;
   // "snh", or e.g. "snh alpha=1.5" / "corotational+lambda:neohookean".
   std::string description() const;

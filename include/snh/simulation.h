@@ -68,7 +68,7 @@ const char* to_string(ProductVariant v);
 ProductVariant parse_product_variant(const std::string& text);  // the names above
 
 // The variant `automatic` resolves to, from snh-gpu-bench throughput
-// measurements (README); device classes not measured get `cached`.
+// measurements (docs/performance.md); device classes not measured get `cached`.
 ProductVariant default_product_variant(ElementType type, Precision precision, bool gpu);
 
 // The preconditioner of the conjugate gradient solves.
@@ -82,14 +82,13 @@ enum class Preconditioner {
 const char* to_string(Preconditioner p);                       // "automatic", "none", "block-jacobi", "multigrid"
 Preconditioner parse_preconditioner(const std::string& text);  // the names above
 
-// What `automatic` resolves to for this mesh (README, `snh-gpu-bench scale`).
+// What `automatic` resolves to for this mesh (docs/performance.md).
 Preconditioner default_preconditioner(const Mesh& mesh);
 
 // The variant `automatic` resolves to with this preconditioner: as above,
 // except multigrid on CPU devices, which reuses its hierarchy between
 // linearizations (MultigridOptions::rebuild_every) and so needs no element
-// matrices there: the cached linearization (README "Multigrid on hex8
-// lattices").
+// matrices there: the cached linearization (docs/performance.md).
 ProductVariant default_product_variant(ElementType type, Precision precision, bool gpu, Preconditioner preconditioner);
 
 // The multigrid preconditioner's settings: a symmetric V-cycle whose levels
@@ -148,7 +147,7 @@ struct MultigridOptions {
   // former measured 4-30% faster from 10^5 to 5.5 * 10^5 DOFs at nu = 0.49
   // (twist res 32, 40 and 48, stretch res 32, 40 and 48), as fast at nu = 0.495,
   // and 10-26% slower at nu = 0.499 and on the 969,111-DOF cylinder
-  // (README, "Multigrid on hex8 lattices", sessions 12, 13 and 18). Set one
+  // (docs/performance.md). Set one
   // of the two and the other, left automatic, takes the fixed default:
   // degree 2, the first kind.
   int smoother_degree = 0;
@@ -166,22 +165,21 @@ struct MultigridOptions {
   // says what of the fine level follows each linearization). 1: rebuild at
   // every linearization; 0 (default): 2 when each load step rebuilds
   // (quasistatic), 4 when the hierarchy is carried across time steps
-  // (dynamics), as measured (README, "Multigrid on hex8 lattices").
+  // (dynamics), as measured (docs/performance.md).
   int rebuild_every = 0;
   double rebuild_growth = 2.0;
   // Whether each load step's first linearization rebuilds; unset: yes for
   // quasistatic load steps, no under dynamics (SolveOptions::dynamics),
   // whose time steps move the operator little and take one to three Newton
   // iterations each, so the hierarchy is carried across them and rebuilt
-  // by the rules above only (README, "Multigrid on hex8 lattices").
+  // by the rules above only (docs/performance.md).
   std::optional<bool> rebuild_each_load_step;
   MultigridFineLevel fine_level = MultigridFineLevel::automatic;
   // Double precision with a built fine level: its element matrices stored in
   // float (exactly symmetric), which halves what the smoother reads at every
   // V-cycle; the fine blocks, the vectors and the coarse levels stay double
   // and CG's own operator is untouched. false: the working precision. No
-  // effect in float or with fine_level current (README, "Multigrid on hex8
-  // lattices").
+  // effect in float or with fine_level current (docs/performance.md).
   bool fine_level_float = true;
   // Double precision with a built fine level: the V-cycle itself in float,
   // its vectors, its stencils (every level's operator blocks), block-Jacobi
@@ -191,7 +189,7 @@ struct MultigridOptions {
   // tolerances: the preconditioner is applied to float rounding, which CG
   // tolerates as it does any fixed preconditioner close to symmetric.
   // false: the V-cycle in the working precision. No effect in float or with
-  // fine_level current (README, "Multigrid on hex8 lattices").
+  // fine_level current (docs/performance.md).
   bool float_cycle = true;
 };
 
@@ -237,8 +235,8 @@ const char* to_string(HessianMode m);                     // "projected", "adapt
 HessianMode parse_hessian_mode(const std::string& text);  // the names above
 
 // Implicit (backward) Euler time stepping, each step the minimization of the
-// incremental potential (Simulation::solve with dynamics; README "Dynamics
-// and obstacles"): with h = time_step / substeps, x~ = x_n + h v_n,
+// incremental potential (Simulation::solve with dynamics; docs/design.md): with h = time_step / substeps, x~ = x_n + h
+// v_n,
 //   E(x) = 1/(2 h^2) |x - x~|^2_M + a/(2 h) |x - x_n|^2_M
 //        + Psi(x) + b/h [Psi(x) - Psi(x_n) - grad Psi(x_n)^T (x - x_n)] - f^T x,
 // M the lumped mass (row-sum lumping of rho with each element's quadrature,
@@ -257,10 +255,9 @@ struct DynamicsOptions {
   int substeps = 1;  // backward Euler steps of time_step / substeps per time step (>= 1)
 };
 
-// A kinematic obstacle the body cannot enter (README "Dynamics and
-// obstacles"). Its placement at load parameter t (as ConstraintSet::motion:
-// step s of n has t = s / n) is motion(t) applied to the one given here;
-// without a motion it stays.
+// A kinematic obstacle the body cannot enter (docs/design.md). Its placement at load parameter t (as
+// ConstraintSet::motion: step s of n has t = s / n) is motion(t) applied to the one given here; without a motion it
+// stays.
 enum class ObstacleType { plane, sphere, cylinder };
 const char* to_string(ObstacleType type);  // "plane", "sphere", "cylinder"
 
@@ -287,7 +284,7 @@ struct Obstacle {
 // into the layer.
 //
 // self: self-collision by the reference-map penalty (Smith et al. 2018
-// sec. 6; README "Self-collision"): a surface vertex found inside a deformed
+// sec. 6; docs/design.md): a surface vertex found inside a deformed
 // element not adjacent to it is pulled by a spring of self_stiffness (0: the
 // same as stiffness; force per length, like stiffness) to the deformed
 // position of the closest rest-surface point of where it sits in rest space,
@@ -367,8 +364,7 @@ struct SolveOptions {
   // preconditioners stay double, so Newton converges to double's
   // tolerance; element_matrices and recompute keep double. Unset: float,
   // as measured (the products' time halved for cached hex8, 1.5x faster for
-  // assembled; twist and stretch res 32 5-16% faster in all; README,
-  // "Multigrid on hex8 lattices", sessions 20 and 21). Ignored in float.
+  // assembled; twist and stretch res 32 5-16% faster in all; docs/performance.md). Ignored in float.
   // Reported in SolveResult::product_precision.
   std::optional<Precision> product_precision;
   HessianMode hessian = HessianMode::adaptive;
@@ -434,7 +430,7 @@ struct StepResult {
   double residual_norm = 0.0;
   // "converged", "max_newton_iterations", "line_search_failed", "stagnated"
   // (no 1% residual decrease in 8 iterations: the precision floor, or a
-  // vertex resting exactly at a contact layer's edge, README "Stability"),
+  // vertex resting exactly at a contact layer's edge, docs/validation.md),
   // "non_finite_state", "cancelled" (the progress callback returned false)
   std::string status;
   double seconds = 0.0;

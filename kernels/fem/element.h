@@ -30,14 +30,14 @@
  *   points as one vector;
  * - point-major (tet4 on CPU devices; hex8 with SNH_POINT_MAJOR): value k of
  *   point P = SNH_QUADRATURE e + q at 30 P + k (grouping 8 tet4 elements
- *   value-major measured slower in double, README "Per-point lanes");
+ *   value-major measured slower in double, docs/performance.md);
  * - tiled (GPUs, SNH_CACHE_TILE = T > 1, with SNH_POINT_MAJOR for hex8):
  *   elements in tiles of T, value k of point q of element e at
  *   30 SNH_QUADRATURE T (e / T) + T (30 q + k) + e % T, so that the
  *   consecutive work-items of the scalar kernels (a work-item per element)
  *   read each value from consecutive words: with point-major, the layout
- *   of sessions 8 to 21, they read words 30 SNH_QUADRATURE apart (README "On
- *   a GPU: NVIDIA H200"). The lanes program reads the first two only.
+ *   used before, they read words 30 SNH_QUADRATURE apart (docs/performance.md,
+ *   NVIDIA H200). The lanes program reads the first two only.
  * SNH_CACHE_AT(cache, e, q) is point q of element e, its values
  * SNH_CACHE_STRIDE apart; an element's 30 SNH_QUADRATURE values, in the
  * order (q, k), are SNH_CACHE_TILE apart from SNH_CACHE_AT(cache, e, 0) in

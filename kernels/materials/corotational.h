@@ -1,4 +1,4 @@
-/* Co-rotational elasticity (Smith et al. 2018, Eq. 3; seed 004 Table 1,
+/* Co-rotational elasticity (Smith et al. 2018, Eq. 3; Chen and Barbic 2024, Table 1,
  * "Linear Corotational"): psi = mu ||F - R||^2 + lambda/2 tr^2(S - I), in
  * principal stretches mu sum (sigma_i - 1)^2 + lambda/2 (sum sigma_i - 3)^2
  * with the rotation-variant SVD (R = U V^T). Lame parameters (mu, lambda).
@@ -43,7 +43,7 @@ SNH_FN principal_hessian corotational_principal_hessian(mat3 u, vec3 s, mat3 v, 
   return h;
 }
 
-/* Seed 004 Eq. 19, parts with unit Lame moduli: lambda part (I1 - 3)^2 / 2;
+/* Chen and Barbic 2024, Eq. 19, parts with unit Lame moduli: lambda part (I1 - 3)^2 / 2;
  * mu part sum (s_i - 1)^2 = (I2 - 3) - 2 (I1 - 3) (shared by the fixed
  * co-rotational model). */
 SNH_FN stretch_terms corotational_lambda_part(stretch_invariants v) { return stretch_half_square(0, v.i1 - SNH_R(3)); }

@@ -9,7 +9,7 @@
 
 /* Material arguments of every kernel that evaluates the material. A
  * specialized build (the default) fixes the model, the barrier, the lambda
- * part's model and whether the seed 004 path is taken (SNH_MODEL,
+ * part's model and whether the alpha/mixing path is taken (SNH_MODEL,
  * SNH_BARRIER, SNH_LAMBDA_MODEL, SNH_NONLINEAR) and ignores the int
  * arguments; SNH_GENERAL_KERNEL = 1 builds one kernel for every material,
  * reading them at run time (the baseline the benchmark measures the
@@ -37,7 +37,7 @@
  * snh::MaterialMap) reads them from two buffers instead of the scalar
  * arguments: the table of SNH_MATERIAL_RECORD reals per material of the map
  * (material_record.h) and each element's index into it. A specialized
- * regions build still fixes the model, barrier, seed 004 path and lambda
+ * regions build still fixes the model, barrier, alpha/mixing path and lambda
  * model (all materials of the map share them) and reads only the parameters
  * per element; with SNH_GENERAL_KERNEL = 1 (materials of different models)
  * the model, barrier and lambda model come from the table too. Without

@@ -6,7 +6,7 @@
  * Parameters: mu, lambda (the model's own), c0, c1 (model-specific: Fung
  * gamma, mu1; Arruda-Boyce beta1, beta2; StVK kappa; Neo-Hookean J0).
  *
- * Seed 004 extensions (the "general path"): the nonlinearity alpha (Eq. 16)
+ * Extensions of Chen and Barbic 2024 (the "general path"): the nonlinearity alpha (Eq. 16)
  * and mixing the lambda_Lame part of one model with the mu_Lame part of
  * another, each with its own alpha (Eqs. 19-20):
  *   psi = lambda_L / a1^2 psi_lambda^A(m(sigma; a1)) + mu_L / a2^2 psi_mu^B(m(sigma; a2)),
@@ -62,7 +62,7 @@ SNH_FN material_params material_make(scalar_real mu, scalar_real lambda, scalar_
 
 SNH_FN int material_lambda_model(int model, material_params m) { return m.lambda_model < 0 ? model : m.lambda_model; }
 
-/* Whether the seed 004 path is taken (fixed at build time in specialized
+/* Whether the alpha/mixing path is taken (fixed at build time in specialized
  * kernels). */
 SNH_FN int material_general(int model, material_params m) {
 #if defined(SNH_NONLINEAR) && SNH_NONLINEAR >= 0
@@ -100,7 +100,7 @@ SNH_FN real material_ic_energy(int model, int barrier, real ic, material_params 
   return snh_ic_energy(ic, m.mu, barrier);
 }
 
-/* Small-strain Lame moduli of a model from its own parameters (seed 004
+/* Small-strain Lame moduli of a model from its own parameters (Chen and Barbic 2024
  * Eqs. 3-4): for psi = f(I_C) + lambda/2 (J - alpha)^2 with P(I) = 0,
  * mu_L = gamma_I(rest) = 2 f'(3) and lambda_L = lambda + gamma_F(rest) - mu_L;
  * the principal-stretch models carry them directly. */
@@ -115,7 +115,7 @@ SNH_FN void material_lame(int model, int barrier, material_params m, real* mu_l,
   *lambda_l = m.lambda;
 }
 
-/* Seed 004 Eq. 19: the part of unit lambda_Lame of model `model` (c: its
+/* Chen and Barbic 2024, Eq. 19: the part of unit lambda_Lame of model `model` (c: its
  * Neo-Hookean J0). */
 SNH_FN stretch_terms material_lambda_part(int model, stretch_invariants v, real c) {
   if (model == SNH_MODEL_COROTATIONAL) return corotational_lambda_part(v);

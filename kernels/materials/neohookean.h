@@ -1,4 +1,4 @@
-/* The standard Neo-Hookean energy (Smith et al. 2018, Eq. 5; seed 004 Table 1):
+/* The standard Neo-Hookean energy (Smith et al. 2018, Eq. 5; Chen and Barbic 2024, Table 1):
  *   psi = mu/2 (I_C - 3) - mu log J + lambda/2 (log J)^2,
  * undefined for J <= 0. Inversion handling, as its literature extends it:
  * below J0 > 0, log J is replaced by its second-order Taylor expansion at J0,
@@ -39,7 +39,7 @@ SNH_FN real neohookean_energy(mat3 f, real mu, real lambda, real j0) {
   return SNH_R(0.5) * mu * (mat3_ddot(f, f) - SNH_R(3)) - mu * l + SNH_R(0.5) * lambda * l * l;
 }
 
-/* Seed 004 Eq. 19, parts with unit Lame moduli: lambda part l(J)^2 / 2;
+/* Chen and Barbic 2024, Eq. 19, parts with unit Lame moduli: lambda part l(J)^2 / 2;
  * mu part (I_C - 3)/2 - l(J). */
 SNH_FN stretch_terms neohookean_lambda_part(stretch_invariants v, real j0) {
   stretch_terms t = stretch_terms_zero();

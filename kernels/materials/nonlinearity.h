@@ -1,4 +1,4 @@
-/* Adjusting a material's nonlinearity (Chen, Barbic et al., seed 004 sec. 5,
+/* Adjusting a material's nonlinearity (Chen and Barbic 2024, sec. 5,
  * Eqs. 16-18): psi_alpha(sigma) = psi(m(sigma_0), m(sigma_1), m(sigma_2)) / alpha^2
  * with m(x) = x^alpha. It keeps the rest Hessian (m(1) = 1, m'(1) = alpha) and
  * softens (alpha < 1) or stiffens (alpha > 1) the material at large strain.
@@ -11,7 +11,7 @@
  * a x + b x^3 that matches its value and slope at tau:
  *   a = tau^(alpha-1) (3 - alpha) / 2,  b = (alpha - 1) tau^(alpha-3) / 2,
  * monotone (m' >= alpha tau^(alpha-1) > 0 there) and C1. Beyond tau (every
- * stretch of practical interest, and all of seed 004's figures) m is the
+ * stretch of practical interest, and all of the figures of Chen and Barbic 2024) m is the
  * paper's. The Hessian's twist and flip eigenvalues need the divided
  * differences (m(x) - m(y)) / (x - y) and (m'(x) - m'(y)) / (x - y); they
  * are computed without cancellation (expm1/log1p for two powers of one sign,

@@ -2,7 +2,7 @@
  * invariants (Smith, de Goes, Kim 2019 use the same I1..I3):
  *   I1 = sum s_i,  I2 = sum s_i^2 (= I_C),  I3 = s0 s1 s2 (= J),  I4 = sum s_i^4,
  *   phi(s) = sum_a phi_a(I_a).
- * A material part (seed 004 Eq. 19: the lambda_Lame or mu_Lame part of a
+ * A material part (Chen and Barbic 2024, Eq. 19: the lambda_Lame or mu_Lame part of a
  * model) fills phi_a', phi_a'' per invariant, and this file gives its
  * gradient, its 3x3 Hessian block in s and the twist and flip eigenvalues of
  * each pair (i, j), k the third axis, in closed form:

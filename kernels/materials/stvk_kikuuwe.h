@@ -1,4 +1,4 @@
-/* St. Venant-Kirchhoff (Smith et al. 2018, Eq. 50; seed 004 Table 1) with
+/* St. Venant-Kirchhoff (Smith et al. 2018, Eq. 50; Chen and Barbic 2024, Table 1) with
  * the Kikuuwe et al. 2009 compression penalty (Eq. 51):
  *   psi = mu ||E||^2 + lambda/2 tr^2(E) + K(J),  E = (F^T F - I)/2,
  *   K(J) = kappa/12 (1 - J)^3 for J < 1, 0 otherwise.
@@ -70,7 +70,7 @@ SNH_FN principal_hessian stvk_kikuuwe_principal_hessian(mat3 u, vec3 s, mat3 v, 
   return h;
 }
 
-/* Seed 004 Eq. 19, parts with unit Lame moduli: lambda part (I2 - 3)^2 / 8;
+/* Chen and Barbic 2024, Eq. 19, parts with unit Lame moduli: lambda part (I2 - 3)^2 / 8;
  * mu part sum (s_i^2 - 1)^2 / 4 = (I4 - 3)/4 - (I2 - 3)/2 plus the Kikuuwe
  * penalty K(J) / mu (kappa is a multiple of mu, see snh::MaterialOptions). */
 SNH_FN stretch_terms stvk_kikuuwe_lambda_part(stretch_invariants v) {

@@ -26,7 +26,7 @@
  * most 4.4e-16 |F|) and all but 203 in float, those by at most 3e-6 in U, V of nearly
  * repeated tiny singular values, and the worst reconstruction, orthogonality
  * and singular-value errors are the old loop's (tests/test_svd.cpp,
- * FixedSweepsOnExtremeSpectra, keeps them). Session 24 computes each
+ * FixedSweepsOnExtremeSpectra, keeps them). svd3_jacobi_pair computes each
  * rotation's c and s in closed form (svd3_jacobi_pair) with fewer square
  * roots and divisions: over 10^5 F per family of that test the worst errors
  * moved from reconstruction 1.68e-15, orthogonality 2.51e-15 and singular
@@ -35,7 +35,7 @@
  * bounds; throughput's recompute product 12-16% faster in double, 8% in
  * float. Where a data-dependent loop costs nothing in vectorization (the
  * host, the lanes programs, GPUs in float), the sweeps stop once converged
- * with the same values (SNH_SVD_EARLY_EXIT below, session 29). A non-finite
+ * with the same values (SNH_SVD_EARLY_EXIT below). A non-finite
  * F gives non-finite sigma. */
 #ifndef SNH_SVD3_H
 #define SNH_SVD3_H
@@ -121,8 +121,7 @@ SNH_FN real svd3_column_dot(mat3 m, int p, int q) {
  * c = u / h and s = sign(zeta) g' / h with h = sqrt(2 r u). Two square roots
  * and one division per rotation, all on its chain of dependent operations,
  * where zeta, t, c and the negligibility test took three square roots and
- * three divisions (that chain is what bounds the SVD: README, "Session
- * 21"). */
+ * three divisions (that chain is what bounds the SVD: docs/performance.md). */
 SNH_FN void svd3_jacobi_pair(mat3* b, mat3* v, int p, int q) {
   const real alpha = svd3_column_norm2(*b, p);
   const real beta = svd3_column_norm2(*b, q);
@@ -166,7 +165,7 @@ SNH_FN snh_mask svd3_sweep_changes(mat3 b) {
  * double (throughput's hex8 linearization at 48^3 on pocl: 57 ms without
  * the stop, 57-60 with tests before every sweep or every one from the
  * second, 43-46 before the fourth and fifth only). Double on GPUs is
- * not yet measured (README, "Session 29"). */
+ * not yet measured (docs/performance.md). */
 #ifndef SNH_SVD_EARLY_EXIT
 #if SNH_LANES > 1 || !SNH_IS_OPENCL || (SNH_GPU && !SNH_DOUBLE)
 #define SNH_SVD_EARLY_EXIT 1
