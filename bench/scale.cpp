@@ -17,7 +17,7 @@
 
 #include "commands.h"
 #include "product_precision_flag.h"
-#include "profile_json.h"
+#include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 
@@ -27,6 +27,9 @@
 
 namespace snh::bench {
 namespace {
+
+using scene_io::profile_json;
+using scene_io::profile_parts;
 
 using json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
