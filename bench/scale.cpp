@@ -64,7 +64,7 @@ SolveOptions solve_options(const Scene& scene, const ScaleOptions& o, Preconditi
   options.precision = parse_precision(o.precision);
   options.device.match = o.device;
   options.preconditioner = preconditioner;
-  apply_product_precision(o.product_precision, options);
+  cli::apply_product_precision(o.product_precision, options);
   o.multigrid.apply(options.multigrid);
   return options;
 }
@@ -415,7 +415,7 @@ void add_scale_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--precision", o->precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  add_product_precision_option(cmd, o->product_precision);
+  cli::add_product_precision_option(cmd, o->product_precision);
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");
   o->multigrid.add_to(cmd);
   cmd->add_option("--out", o->out_dir, "folder for scale.csv, scale.json, scale.md and scale.png")

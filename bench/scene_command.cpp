@@ -1,6 +1,6 @@
 // `snh-gpu-bench scene NAME`: one of the paper's scenes through the library,
 // with a JSON summary and ParaView output on request; `scene --file F` runs
-// a scene file through the library (scene_run.h).
+// a scene file as `snh run F` does (cli/scene_run.h).
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -33,8 +33,8 @@ struct SceneOptions {
   std::string file;
   std::string device;
   double strain_tolerance = 0.0;
-  SolverFlags solver;           // with --file, those given override the file's "solver"
-  SceneOutputs outputs;         // --json, --vtu, --surface, --frames
+  cli::SolverFlags solver;      // with --file, those given override the file's "solver"
+  cli::SceneOutputs outputs;    // --json, --vtu, --surface, --frames
   std::set<std::string> given;  // the scene-building flags on the command line
 };
 
@@ -58,14 +58,14 @@ int run_scene(const SceneOptions& given) {
       if (o.given.count(flag))
         throw Error(std::string("scene: ") + flag + " builds a named scene; with --file set it in the file");
     o.solver.apply_to_file(f, options);
-    return run_scene_file(f, options, o.outputs);
+    return cli::run_scene_file(f, options, o.outputs);
   }
   if (!o.outputs.surface_prefix.empty()) throw Error("scene: --surface needs a scene file with \"embed\"");
   // The material the scene is meant to run with unless --E / --nu say otherwise.
   const SceneParameters defaults = scene_defaults(o.name);
   if (std::isnan(o.youngs_modulus)) o.youngs_modulus = defaults.youngs_modulus;
   if (std::isnan(o.poisson_ratio)) o.poisson_ratio = defaults.poisson_ratio;
-  const SolverFlags& flags = o.solver;
+  const cli::SolverFlags& flags = o.solver;
   SceneParameters p;
   p.resolution = o.resolution;
   p.youngs_modulus = o.youngs_modulus;
@@ -82,7 +82,7 @@ int run_scene(const SceneOptions& given) {
   options.precision = parse_precision(flags.precision);
   options.device.match = o.device;
   options.product = parse_product_variant(flags.variant);
-  apply_product_precision(flags.product_precision, options);
+  cli::apply_product_precision(flags.product_precision, options);
   options.preconditioner = parse_preconditioner(flags.preconditioner);
   flags.multigrid.apply(options.multigrid);
   flags.apply_limits(options);
@@ -95,7 +95,7 @@ int run_scene(const SceneOptions& given) {
   f.material =
       Material::from_youngs_modulus(parse_material_model(o.model), o.youngs_modulus, o.poisson_ratio, material_options);
   f.materials = uniform_material(f.scene.mesh, f.material);
-  return run_scene_file(f, options, o.outputs);
+  return cli::run_scene_file(f, options, o.outputs);
 }
 
 }  // namespace
@@ -120,7 +120,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--model", o->model,
                   "material: snh, fung, arruda-boyce, corotational, fixed-corotational, stvk-kikuuwe, neohookean "
                   "(normalized to the same small-strain E, nu; model settings at their defaults)")
-      ->check(CLI::IsMember(kModelNames))
+      ->check(CLI::IsMember(cli::kModelNames))
       ->capture_default_str();
   cmd->add_option(
          "--alpha", o->alpha,
@@ -128,14 +128,14 @@ void add_scene_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--lambda-model", o->lambda_model,
                   "take the lambda_Lame (volume) part from this model (Chen and Barbic 2024, Eq. 19)")
-      ->check(CLI::IsMember(kModelNames));
+      ->check(CLI::IsMember(cli::kModelNames));
   cmd->add_option("--alpha-lambda", o->alpha_lambda, "nonlinearity of the lambda_Lame part (Eq. 20; default --alpha)");
   cmd->add_option("--barrier", o->barrier, "origin barrier: on, off, auto")
       ->check(CLI::IsMember({"on", "off", "auto"}))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "random seed (scramble)")->capture_default_str();
   o->solver.add_to(cmd, "load steps (0: scene default; drop: frames over its 2 s, default 60)");
-  add_output_options(cmd, o->outputs);
+  cli::add_output_options(cmd, o->outputs);
   cmd->add_flag("--quiet,-q", o->outputs.quiet, "no progress lines on stderr");
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
   cmd->add_option(

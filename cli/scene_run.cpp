@@ -7,7 +7,7 @@
 #include "product_precision_flag.h"
 #include "snh/error.h"
 
-namespace snh::bench {
+namespace snh::cli {
 namespace {
 
 // The flags whose presence (not value) decides whether they override a file.
@@ -201,4 +201,4 @@ int run_scene_file(const SceneFile& file, const SolveOptions& options, const Sce
   return run.converged ? 0 : 3;
 }
 
-}  // namespace snh::bench
+}  // namespace snh::cli

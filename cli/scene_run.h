@@ -1,7 +1,7 @@
-// A scene file run from the command line (`snh-gpu-bench scene --file
-// FILE`): the solver flags that override the file's settings, progress per
-// load step or frame on stderr, a table on stdout, and the outputs the file
-// or the flags name.
+// A scene file run from the command line, as `snh run FILE` and
+// `snh-gpu-bench scene --file FILE` do: the solver flags that override the
+// file's settings, progress per load step or frame on stderr, a table on
+// stdout, and the outputs the file or the flags name.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -11,7 +11,7 @@
 #include "multigrid_flags.h"
 #include "snh/scene.h"
 
-namespace snh::bench {
+namespace snh::cli {
 
 struct SolverFlags {
   std::string precision = "double";
@@ -54,4 +54,4 @@ void add_output_options(CLI::App* cmd, SceneOutputs& outputs);
 // prints the table. Returns 0 when every step or frame converged, else 3.
 int run_scene_file(const SceneFile& file, const SolveOptions& options, const SceneOutputs& outputs);
 
-}  // namespace snh::bench
+}  // namespace snh::cli
