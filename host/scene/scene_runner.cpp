@@ -76,8 +76,10 @@ SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const
 
 SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run) {
   const Scene& scene = file.scene;
+  // The embedded surface, only for writers to write.
   const auto surface_of = [&](const Mesh& mesh, const std::vector<double>& x) {
-    return file.embedded ? embedded_positions(file.embedded->embedding, mesh, x) : std::vector<double>{};
+    return file.embedded && !run.writers.empty() ? embedded_positions(file.embedded->embedding, mesh, x)
+                                                 : std::vector<double>{};
   };
   const std::vector<double>& x0 = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
   write_all(run, 0, 0.0, x0, surface_of(scene.mesh, x0));

@@ -167,7 +167,8 @@ SceneRun run_scene(const SceneFile& file, const SolveOptions& options, const Sce
 // A .vtu per step or frame into `folder` (<scene>_NNNN.vtu: displacement and
 // the element fields of snh/fields.h), the obstacles as surfaces
 // (<scene>_obstacles_NNNN.vtu, part 1) or a rig's embedded surface
-// (<scene>_surface_NNNN.vtu, part 1), and <scene>.pvd on finish().
+// (<scene>_surface_NNNN.vtu, part 1), and <scene>.pvd on finish(). `file`
+// must outlive the series.
 class SceneVtuSeries {
  public:
   SceneVtuSeries(std::string folder, const SceneFile& file, const SolveOptions& options);
@@ -185,7 +186,8 @@ class SceneVtuSeries {
   std::vector<std::string> warnings_;
 };
 
-// The embedded surface per step or frame as OBJ (surface_obj_path).
+// The embedded surface per step or frame as OBJ (surface_obj_path); `file`
+// must outlive the writer. Throws snh::Error for a file without "embed".
 SceneStepWriter surface_obj_writer(const std::string& prefix, const SceneFile& file);
 
 // The run's JSON summary ("output.json"): the scene, device, material and
