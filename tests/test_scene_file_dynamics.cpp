@@ -1,5 +1,5 @@
 // Scene-file keys of dynamics and obstacles ("dynamics", "obstacles",
-// "contact"; bench/scene_file.h): what they fill in, the errors naming the
+// "contact"; snh/scene.h): what they fill in, the errors naming the
 // key, and the per-step "contacts" / "max_penetration" / "time" of the
 // scene command's JSON.
 #include <gtest/gtest.h>

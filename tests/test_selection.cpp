@@ -1,7 +1,7 @@
 // Selections (snh/selection.h) on lattices with known counts, groups and
 // arrays; body-force lumping (snh/loads.h) against the rest volume and its
 // first moment computed here with a finer rule; and the scene-file
-// selectors (bench/scene_selection.h) with errors naming the key.
+// selectors (host/scene/scene_selectors.h) with errors naming the key.
 #include <gtest/gtest.h>
 
 #include <algorithm>
