@@ -172,8 +172,8 @@ SceneRun run_scene(const SceneFile& file, const SolveOptions& options, const Sce
 class SceneVtuSeries {
  public:
   SceneVtuSeries(std::string folder, const SceneFile& file, const SolveOptions& options);
-  SceneStepWriter writer();
-  void finish();  // writes the .pvd
+  SceneStepWriter writer();  // refers to this series: keep it alive and in place while the writer runs
+  void finish();             // writes the .pvd
   const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:
