@@ -1,4 +1,5 @@
-// The subcommands of snh-gpu-bench, each in its own file.
+// The subcommands of snh-gpu-bench, each in its own file (probe, voxelize
+// and hessian are snh's too: cli/cli_commands.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -8,11 +9,8 @@ namespace snh::bench {
 
 // Registers the subcommand on `app`; the callback it installs runs it and
 // stores the process exit code in `exit_code`.
-void add_probe_command(CLI::App& app, int& exit_code);
 void add_scene_command(CLI::App& app, int& exit_code);
 void add_errtime_command(CLI::App& app, int& exit_code);  // errtime.h: run_errtime for the suite
-void add_voxelize_command(CLI::App& app, int& exit_code);
-void add_hessian_command(CLI::App& app, int& exit_code);  // hessian_export.h
 void add_scale_command(CLI::App& app, int& exit_code);    // scale.h: run_scale for the suite
 
 // The default suite, run when no subcommand is given: the element check,

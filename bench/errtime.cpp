@@ -23,7 +23,7 @@
 
 #include "commands.h"
 #include "host_baseline.h"
-#include "profile_json.h"
+#include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
@@ -34,6 +34,9 @@
 
 namespace snh::bench {
 namespace {
+
+using scene_io::profile_json;
+using scene_io::profile_parts;
 
 using json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;

@@ -2,6 +2,7 @@
 #include <iostream>
 #include <string>
 
+#include "cli_commands.h"
 #include "commands.h"
 #include "materials_report.h"
 #include "snh/error.h"
@@ -15,15 +16,15 @@ int main(int argc, char** argv) {
       "With no subcommand, runs the default suite on the default device and writes bench-results/."};
   app.require_subcommand(0, 1);
   int exit_code = 0;
-  snh::bench::add_probe_command(app, exit_code);
+  snh::cli::add_probe_command(app, exit_code);
   snh::bench::add_scene_command(app, exit_code);
   snh::bench::add_errtime_command(app, exit_code);
   snh::bench::add_throughput_command(app, exit_code);
   snh::bench::add_materials_command(app, exit_code);
   snh::bench::add_specialization_command(app, exit_code);
   snh::bench::add_stability_command(app, exit_code);
-  snh::bench::add_voxelize_command(app, exit_code);
-  snh::bench::add_hessian_command(app, exit_code);
+  snh::cli::add_voxelize_command(app, exit_code);
+  snh::cli::add_hessian_command(app, exit_code);
   snh::bench::add_scale_command(app, exit_code);
   std::string out_dir = "bench-results";
   int samples = 20000;

@@ -90,7 +90,7 @@ int run_materials(const MaterialsOptions& o) {
     if (mix.find("+lambda:") == std::string::npos)
       throw Error("materials: a mix reads MU_MODEL+lambda:LAMBDA_MODEL, got '" + mix + "'");
     snh::MaterialOptions mo;
-    const MaterialModel model = parse_material_label(mix, mo);
+    const MaterialModel model = cli::parse_material_label(mix, mo);
     rows.push_back({mix, model, mo});
   }
   for (const Row& row : rows) {

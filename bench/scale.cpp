@@ -17,7 +17,7 @@
 
 #include "commands.h"
 #include "product_precision_flag.h"
-#include "profile_json.h"
+#include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 
@@ -27,6 +27,9 @@
 
 namespace snh::bench {
 namespace {
+
+using scene_io::profile_json;
+using scene_io::profile_parts;
 
 using json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
@@ -61,7 +64,7 @@ SolveOptions solve_options(const Scene& scene, const ScaleOptions& o, Preconditi
   options.precision = parse_precision(o.precision);
   options.device.match = o.device;
   options.preconditioner = preconditioner;
-  apply_product_precision(o.product_precision, options);
+  cli::apply_product_precision(o.product_precision, options);
   o.multigrid.apply(options.multigrid);
   return options;
 }
@@ -412,7 +415,7 @@ void add_scale_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--precision", o->precision, "float or double")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  add_product_precision_option(cmd, o->product_precision);
+  cli::add_product_precision_option(cmd, o->product_precision);
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");
   o->multigrid.add_to(cmd);
   cmd->add_option("--out", o->out_dir, "folder for scale.csv, scale.json, scale.md and scale.png")

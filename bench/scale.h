@@ -28,7 +28,7 @@ struct ScaleOptions {
   std::string precision = "double";             // float or double
   std::string product_precision = "automatic";  // SolveOptions::product_precision: float, double or automatic (unset)
   std::string device;                           // substring of "<platform> / <device>"
-  MultigridFlags multigrid;                     // --multigrid-* (multigrid_flags.h)
+  cli::MultigridFlags multigrid;                // --multigrid-* (multigrid_flags.h)
   std::string out_dir = "bench-results";        // scale.* written here
   bool plots = true;                            // run bench/plot_scale.py
 };

@@ -30,7 +30,7 @@ using json = nlohmann::ordered_json;
 
 Material parse_material(const std::string& text) {
   snh::MaterialOptions o;
-  const MaterialModel model = parse_material_label(text, o);
+  const MaterialModel model = cli::parse_material_label(text, o);
   return Material::from_youngs_modulus(model, 1.0, 0.45, o);
 }
 

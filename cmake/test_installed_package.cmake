@@ -1,11 +1,13 @@
 # Installs snh into a scratch prefix, builds examples/host_app,
-# examples/flex_frames and examples/arm_rig against it with find_package(snh),
-# and runs them: the install tree works for a host application.
+# examples/flex_frames, examples/arm_rig and examples/scene_file against it
+# with find_package(snh), and runs them: the install tree works for a host
+# application.
 set(prefix ${BINARY_DIR}/install-test)
 set(app_build ${BINARY_DIR}/host-app-build)
 set(frames_build ${BINARY_DIR}/flex-frames-build)
 set(rig_build ${BINARY_DIR}/arm-rig-build)
-file(REMOVE_RECURSE ${prefix} ${app_build} ${frames_build} ${rig_build})
+set(scene_build ${BINARY_DIR}/scene-file-build)
+file(REMOVE_RECURSE ${prefix} ${app_build} ${frames_build} ${rig_build} ${scene_build})
 foreach(step
     "${CMAKE_COMMAND};--install;${BINARY_DIR};--prefix;${prefix}"
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/host_app;-B;${app_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
@@ -16,7 +18,10 @@ foreach(step
     "${rig_build}/arm_rig;${SOURCE_DIR}/data/arm;6;${rig_build}/out"
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/flex_frames;-B;${frames_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
     "${CMAKE_COMMAND};--build;${frames_build}"
-    "${frames_build}/flex_frames;${frames_build}/out")
+    "${frames_build}/flex_frames;${frames_build}/out"
+    "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/scene_file;-B;${scene_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
+    "${CMAKE_COMMAND};--build;${scene_build}"
+    "${scene_build}/scene_file;${SOURCE_DIR}/data/scenes/soft_stiff_bar.json;${scene_build}/summary.json")
   execute_process(COMMAND ${step} RESULT_VARIABLE status)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "failed (${status}): ${step}")

@@ -14,10 +14,10 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
-#include "obstacle_surface.h"
-#include "scene_file.h"
+#include "scene/obstacle_surface.h"
 #include "snh/loads.h"
 #include "snh/mesh_io.h"
+#include "snh/scene.h"
 #include "snh/scenes.h"
 #include "snh/shape.h"
 #include "snh/simulation.h"
@@ -65,7 +65,7 @@ TEST(Drop, ShapeDeviationIgnoresRigidMotion) {
 }
 
 TEST(Drop, BuiltInSceneMatchesTheSceneFile) {
-  const bench::SceneFile f = bench::load_scene_file(kData + "/scenes/drop.json");
+  const SceneFile f = load_scene(kData + "/scenes/drop.json");
   const Scene built = make_scene("drop", scene_defaults("drop"));
   EXPECT_EQ(f.scene.mesh.elements, built.mesh.elements);
   EXPECT_EQ(f.scene.mesh.positions, built.mesh.positions);
@@ -126,7 +126,7 @@ TEST(Drop, ObstacleSurfaceFollowsTheMotion) {
   for (size_t k = 0; k < scene.options.obstacles.size(); ++k) {
     SCOPED_TRACE(k);
     const Obstacle& o = scene.options.obstacles[k];
-    const TriangleSurface s = bench::obstacle_surface({o}, 0.5, {0.0, 0.0, 0.0}, 0.2);
+    const TriangleSurface s = scene_io::obstacle_surface({o}, 0.5, {0.0, 0.0, 0.0}, 0.2);
     ASSERT_GT(s.triangle_count(), 0u);
     const std::array<double, 3> p = o.motion ? o.motion(0.5).apply(o.point) : o.point;
     // Signed distance of x from the placed obstacle and its outward normal

@@ -1,4 +1,4 @@
-// `snh-gpu-bench hessian` (bench/hessian_export.h): the exported system is
+// `snh hessian` and `snh-gpu-bench hessian` (cli/hessian_export.h): the exported system is
 // the engine's. On a tiny twisted tet4 box after one Newton update, the
 // matrix read back from the Matrix Market file times a vector on the free
 // DOFs equals the device's masked product (solver::ElasticModel, every
@@ -62,15 +62,15 @@ TEST(HessianExport, MatrixTimesVectorIsTheEngineProductOnFreeDofs) {
   p.poisson_ratio = 0.45;
   const Scene scene = make_scene("twist", p);
   const MaterialMap materials = uniform_material(scene.mesh, scene.material);
-  const bench::ExportedSystem s = bench::export_scene_system(scene, materials, 1);
+  const cli::ExportedSystem s = cli::export_scene_system(scene, materials, 1);
   EXPECT_EQ(s.newton_iterations, 1);
   // Twist fixes the bottom and top faces: (res + 1)^2 vertices each.
   const size_t n = scene.mesh.vertex_count();
   ASSERT_EQ(s.free_dofs.size(), 3 * (n - 2 * 16));
 
   const std::string prefix = (std::filesystem::temp_directory_path() / "snh_hessian_export_test").string();
-  bench::write_exported_system(prefix, scene.mesh, s);
-  const Eigen::SparseMatrix<double> a = bench::read_matrix_market(prefix + ".mtx");
+  cli::write_exported_system(prefix, scene.mesh, s);
+  const Eigen::SparseMatrix<double> a = cli::read_matrix_market(prefix + ".mtx");
   ASSERT_EQ(size_t(a.rows()), s.free_dofs.size());
   EXPECT_EQ((Eigen::SparseMatrix<double>(a.transpose()) - a).norm(), 0.0);
   const std::vector<double> rhs = read_rhs(prefix + "_rhs.mtx");
@@ -136,7 +136,7 @@ TEST(HessianExport, FreeDofsHonourPerComponentConstraints) {
   const Mesh mesh = make_tet_box(1, 1, 1, 1.0);
   ConstraintSet slide{"slide", {0, 1}, {}, {}, {false, false, true}};
   ConstraintSet fixed{"fixed", {2}, {}, {}, {true, true, true}};
-  const std::vector<int64_t> free = bench::free_dofs(mesh, {slide, fixed});
+  const std::vector<int64_t> free = cli::free_dofs(mesh, {slide, fixed});
   EXPECT_EQ(free.size(), 3 * mesh.vertex_count() - 2 - 3);
   for (int64_t d : {int64_t(2), int64_t(5), int64_t(6), int64_t(7), int64_t(8)})
     EXPECT_TRUE(std::find(free.begin(), free.end(), d) == free.end()) << d;

@@ -33,11 +33,11 @@
 #include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "reference/fem_reference.h"
-#include "scene_file.h"
 #include "snh/error.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
 #include "snh/regions.h"
+#include "snh/scene.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
 #include "vector_compare.h"
@@ -518,7 +518,7 @@ std::string scene_error(const std::string& text) {
   const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_regions_bad_scene.json";
   std::ofstream(path) << text;
   try {
-    bench::load_scene_file(path.string());
+    load_scene(path.string());
   } catch (const Error& e) {
     return e.what();
   }
@@ -533,7 +533,7 @@ TEST(RegionsSceneFile, SelectsByBoxAndIdsWithTheirOwnMaterials) {
       {"name": "muscle", "select": {"box": {"min": [2, -1, -1], "max": [4, 2, 2]}}, "material": {"E": 9.0, "nu": 0.3}},
       {"name": "skin", "select": {"ids": [0]},
        "material": {"model": "corotational", "E": 5.0, "nu": 0.2, "alpha": 1.5}}]})";
-  const bench::SceneFile f = bench::load_scene_file(path.string());
+  const SceneFile f = load_scene(path.string());
   EXPECT_EQ(f.materials.names, (std::vector<std::string>{"base", "muscle", "skin"}));
   EXPECT_EQ(f.materials.element_material, (std::vector<int32_t>{2, 0, 1, 1}));  // centroids x = 0.5 .. 3.5
   EXPECT_EQ(f.materials.materials[0].mu, f.material.mu);
@@ -572,7 +572,7 @@ TEST(RegionsSceneFile, BadRegionsNameTheKey) {
 // half's) and the large strain move it, so the check is a band around 4
 // that excludes 1 (one material) by far.
 TEST(RegionsSceneFile, ShippedSoftStiffBarStretchesTheSoftHalfMore) {
-  const bench::SceneFile f = bench::load_scene_file(kScenes + "soft_stiff_bar.json");
+  const SceneFile f = load_scene(kScenes + "soft_stiff_bar.json");
   ASSERT_EQ(f.materials.materials.size(), 2u);
   EXPECT_EQ(std::count(f.materials.element_material.begin(), f.materials.element_material.end(), 1),
             static_cast<long>(f.scene.mesh.element_count() / 2));

@@ -1,5 +1,5 @@
 // Scene-file keys of dynamics and obstacles ("dynamics", "obstacles",
-// "contact"; bench/scene_file.h): what they fill in, the errors naming the
+// "contact"; snh/scene.h): what they fill in, the errors naming the
 // key, and the per-step "contacts" / "max_penetration" / "time" of the
 // scene command's JSON.
 #include <gtest/gtest.h>
@@ -11,8 +11,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "scene_file.h"
 #include "snh/error.h"
+#include "snh/scene.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
 
@@ -27,7 +27,7 @@ std::filesystem::path write_scene(const std::string& name, const std::string& te
 
 std::string error_of(const std::string& text) {
   try {
-    bench::load_scene_file(write_scene("snh_bad_dynamics_scene.json", text).string());
+    load_scene(write_scene("snh_bad_dynamics_scene.json", text).string());
   } catch (const Error& e) {
     return e.what();
   }
@@ -37,7 +37,7 @@ std::string error_of(const std::string& text) {
 const std::string kMesh = R"("mesh": {"generator": "box", "cells": [1, 1, 1], "size": 0.1})";
 
 TEST(SceneFileDynamics, KeysFillTheOptions) {
-  const bench::SceneFile f = bench::load_scene_file(write_scene("snh_dynamics_scene.json", "{" + kMesh + R"(,
+  const SceneFile f = load_scene(write_scene("snh_dynamics_scene.json", "{" + kMesh + R"(,
     "dynamics": {"time_step": 0.02, "density": 950, "damping": {"mass": 0.5, "stiffness": 0.01}, "substeps": 3},
     "obstacles": [
       {"type": "plane", "point": [0, 0, -0.1], "normal": [0, 0, 2]},
@@ -48,7 +48,7 @@ TEST(SceneFileDynamics, KeysFillTheOptions) {
                      "keys": [{"t": 0}, {"t": 1, "angle": 1.0}]}}],
     "contact": {"stiffness": 500, "thickness": 0.01, "self": false},
     "solver": {"steps": 7}})")
-                                                        .string());
+                                     .string());
   const SolveOptions& o = f.scene.options;
   ASSERT_TRUE(o.dynamics.has_value());
   EXPECT_EQ(o.dynamics->time_step, 0.02);
@@ -76,8 +76,7 @@ TEST(SceneFileDynamics, KeysFillTheOptions) {
   EXPECT_EQ(o.contact.thickness, 0.01);
 
   // Absent keys: quasistatic, no obstacles, as before.
-  const bench::SceneFile plain =
-      bench::load_scene_file(write_scene("snh_plain_scene.json", "{" + kMesh + "}").string());
+  const SceneFile plain = load_scene(write_scene("snh_plain_scene.json", "{" + kMesh + "}").string());
   EXPECT_FALSE(plain.scene.options.dynamics.has_value());
   EXPECT_TRUE(plain.scene.options.obstacles.empty());
 }
@@ -151,7 +150,7 @@ TEST(SceneFileDynamics, KeysNameTheirErrors) {
 }
 
 TEST(SceneFileDynamics, ShippedElbowLoadsWithSelfContact) {
-  const bench::SceneFile f = bench::load_scene_file(std::string(SNH_DATA_DIR) + "/scenes/elbow.json");
+  const SceneFile f = load_scene(std::string(SNH_DATA_DIR) + "/scenes/elbow.json");
   EXPECT_TRUE(f.scene.options.contact.self);
   EXPECT_EQ(f.scene.options.contact.stiffness, 20.0);
   EXPECT_EQ(f.scene.options.contact.thickness, 0.025);
@@ -164,7 +163,7 @@ TEST(SceneFileDynamics, ShippedElbowLoadsWithSelfContact) {
 }
 
 TEST(SceneFileDynamics, ShippedDropBlockLoads) {
-  const bench::SceneFile f = bench::load_scene_file(std::string(SNH_DATA_DIR) + "/scenes/drop_block.json");
+  const SceneFile f = load_scene(std::string(SNH_DATA_DIR) + "/scenes/drop_block.json");
   ASSERT_TRUE(f.scene.options.dynamics.has_value());
   EXPECT_EQ(f.scene.options.dynamics->substeps, 4);
   ASSERT_EQ(f.scene.options.obstacles.size(), 1u);

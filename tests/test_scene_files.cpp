@@ -12,11 +12,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "scene_file.h"
 #include "snh/error.h"
 #include "snh/frames.h"
 #include "snh/regions.h"
 #include "snh/rig.h"
+#include "snh/scene.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
 
@@ -28,7 +28,7 @@ const std::string kScenes = std::string(SNH_DATA_DIR) + "/scenes/";
 TEST(SceneFiles, ShippedBuiltInScenesMatchMakeScene) {
   for (const std::string name : {"twist", "stretch", "scramble", "flex"}) {
     SCOPED_TRACE(name);
-    const bench::SceneFile f = bench::load_scene_file(kScenes + name + ".json");
+    const SceneFile f = load_scene(kScenes + name + ".json");
     const Scene built = make_scene(name, {});
     EXPECT_GT(f.scene.mesh.element_count(), 100u);
     EXPECT_EQ(f.scene.mesh.elements, built.mesh.elements);
@@ -50,7 +50,7 @@ TEST(SceneFiles, ShippedBuiltInScenesMatchMakeScene) {
 }
 
 TEST(SceneFiles, GmshMeshWithPinnedWallAndGravitySags) {
-  const bench::SceneFile f = bench::load_scene_file(kScenes + "gravity_tet.json");
+  const SceneFile f = load_scene(kScenes + "gravity_tet.json");
   EXPECT_EQ(f.scene.mesh.type, ElementType::tet4);
   ASSERT_FALSE(f.scene.options.external_force.empty());
   double total = 0.0;
@@ -85,9 +85,9 @@ TEST(SceneFiles, StrainToleranceFollowsTheLibrarysRule) {
                    "material": {"model": "snh", "E": 1.0, "nu": 0.45}}],
       "constraints": [{"name": "left", "select": {"plane": {"axis": "x", "value": 0.0, "tolerance": 1e-9}}}],
       "solver": )" + solver + "}";
-    return bench::load_scene_file(path.string());
+    return load_scene(path.string());
   };
-  const bench::SceneFile plain = load("{}");
+  const SceneFile plain = load("{}");
   ASSERT_TRUE(plain.scene.options.strain_tolerance.has_value());
   EXPECT_EQ(*plain.scene.options.strain_tolerance, 1e-6);
   EXPECT_EQ(plain.scene.options.absolute_tolerance, 0.0);
@@ -96,10 +96,10 @@ TEST(SceneFiles, StrainToleranceFollowsTheLibrarysRule) {
   const double n = static_cast<double>(plain.scene.mesh.vertex_count());
   EXPECT_NEAR(residual_tolerance(plain.scene.mesh, plain.materials, plain.scene.options),
               1e-6 * 1.0 * h * h * std::sqrt(n), 1e-15);
-  const bench::SceneFile given = load(R"({"strain_tolerance": 1e-5, "precision": "float"})");
+  const SceneFile given = load(R"({"strain_tolerance": 1e-5, "precision": "float"})");
   EXPECT_NEAR(residual_tolerance(given.scene.mesh, given.materials, given.scene.options), 1e-5 * h * h * std::sqrt(n),
               1e-15);
-  const bench::SceneFile absolute = load(R"({"absolute_tolerance": 1e-3})");
+  const SceneFile absolute = load(R"({"absolute_tolerance": 1e-3})");
   EXPECT_FALSE(absolute.scene.options.strain_tolerance.has_value());
   EXPECT_EQ(residual_tolerance(absolute.scene.mesh, absolute.materials, absolute.scene.options), 1e-3);
   std::filesystem::remove(path);
@@ -112,7 +112,7 @@ std::string error_of(const std::string& text) {
       (std::string("snh_bad_scene_") + ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".json");
   std::ofstream(path) << text;
   try {
-    bench::load_scene_file(path.string());
+    load_scene(path.string());
   } catch (const Error& e) {
     return e.what();
   }
@@ -143,7 +143,7 @@ TEST(SceneFiles, SeedFourMaterialKeys) {
   std::ofstream(path) << R"({"mesh": {"generator": "box", "cells": [2, 2, 2], "size": 0.5},
     "material": {"model": "corotational", "nu": 0.45, "alpha": 1.5, "lambda_model": "neohookean",
                  "alpha_lambda": 0.75}})";
-  const bench::SceneFile f = bench::load_scene_file(path.string());
+  const SceneFile f = load_scene(path.string());
   EXPECT_EQ(f.material.model, MaterialModel::corotational);
   EXPECT_EQ(f.material.lambda_model, MaterialModel::neohookean);
   EXPECT_EQ(f.material.alpha_mu, 1.5);
@@ -160,9 +160,9 @@ TEST(SceneFiles, ProductPrecisionKey) {
   const std::string mesh = R"("mesh": {"generator": "box", "cells": [2, 2, 2], "size": 0.5})";
   const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_product_precision.json";
   std::ofstream(path) << "{" + mesh + R"(, "solver": {"product_precision": "double"}})";
-  EXPECT_EQ(bench::load_scene_file(path.string()).scene.options.product_precision, Precision::double_);
+  EXPECT_EQ(load_scene(path.string()).scene.options.product_precision, Precision::double_);
   std::ofstream(path) << "{" + mesh + "}";
-  EXPECT_FALSE(bench::load_scene_file(path.string()).scene.options.product_precision.has_value());
+  EXPECT_FALSE(load_scene(path.string()).scene.options.product_precision.has_value());
   EXPECT_NE(error_of("{" + mesh + R"(, "solver": {"product_precision": "half"}})").find("solver.product_precision"),
             std::string::npos);
 }
@@ -179,7 +179,7 @@ TEST(SceneFiles, ArmExampleFlexesTheEmbeddedSurface) {
   doc.erase("output");
   const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_arm_coarse.json";
   std::ofstream(path) << doc.dump();
-  const bench::SceneFile f = bench::load_scene_file(path.string());
+  const SceneFile f = load_scene(path.string());
   ASSERT_TRUE(f.embedded && f.rig);
   EXPECT_EQ(f.scene.mesh.element_count(), 137u);
   ASSERT_EQ(f.scene.constraints.size(), 2u);
@@ -290,7 +290,7 @@ TEST(SceneFiles, SurfaceFileBonesHoldTheVerticesInsideAndFollowTheirFrames) {
       "rig": {"bones": [{"name": "root", "surface": "root_bone.obj"}, {"name": "tip", "surface": "tip_bone.stl"}],
               "animation": "bend.json"}})";
   }
-  const bench::SceneFile f = bench::load_scene_file((dir / "scene.json").string());
+  const SceneFile f = load_scene((dir / "scene.json").string());
   ASSERT_TRUE(f.rig);
   const Mesh& mesh = f.scene.mesh;
   ASSERT_EQ(mesh.element_count(), 192u);
@@ -384,7 +384,7 @@ TEST(SceneFiles, RiggedSceneCommandWritesTheSurfacePerFrameAndAPvd) {
   EXPECT_NE(log.str().find("frame 3/3"), std::string::npos) << log.str();  // progress per frame
   const TriangleSurface rest = read_surface(kScenes + "../arm/arm.obj");
   for (int f = 0; f < 3; ++f) {
-    const TriangleSurface s = read_surface(bench::surface_obj_path((dir / "obj/").string(), "arm", f));
+    const TriangleSurface s = read_surface(surface_obj_path((dir / "obj/").string(), "arm", f));
     EXPECT_EQ(s.triangles, rest.triangles);
     if (f == 0) {
       for (size_t i = 0; i < s.positions.size(); ++i) EXPECT_NEAR(s.positions[i], rest.positions[i], 1e-9);
@@ -479,7 +479,7 @@ TEST(SceneFiles, RigKeysNameTheirErrors) {
   {
     const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_arm_cover.json";
     std::ofstream(path) << covered + "true}}";
-    const bench::SceneFile f = bench::load_scene_file(path.string());
+    const SceneFile f = load_scene(path.string());
     EXPECT_GT(f.scene.mesh.element_count(), 137u);  // the centre-inside lattice of the arm at 0.25 has 137
     for (double w : f.embedded->embedding.weights) EXPECT_GE(w, -1e-9);  // no surface vertex outside its cell
   }
@@ -498,8 +498,8 @@ TEST(SceneFiles, RigKeysNameTheirErrors) {
             std::string::npos);
   EXPECT_NE(error_of("{" + mesh + R"(, "output": {"surface": "out/"}})").find("output.surface: needs \"embed\""),
             std::string::npos);
-  EXPECT_EQ(bench::surface_obj_path("out/arm", "arm", 7), "out/arm_0007.obj");
-  EXPECT_EQ(bench::surface_obj_path("out/", "arm", 12), "out/arm_0012.obj");
+  EXPECT_EQ(surface_obj_path("out/arm", "arm", 7), "out/arm_0007.obj");
+  EXPECT_EQ(surface_obj_path("out/", "arm", 12), "out/arm_0012.obj");
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Selections (snh/selection.h) on lattices with known counts, groups and
 // arrays; body-force lumping (snh/loads.h) against the rest volume and its
 // first moment computed here with a finer rule; and the scene-file
-// selectors (bench/scene_selection.h) with errors naming the key.
+// selectors (host/scene/scene_selectors.h) with errors naming the key.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "scene_file.h"
-#include "scene_selection.h"
+#include "scene/scene_selectors.h"
 #include "snh/error.h"
 #include "snh/loads.h"
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
+#include "snh/scene.h"
 #include "snh/selection.h"
 
 namespace snh {
@@ -323,10 +323,10 @@ TEST(Selection, BodyForceOfALatticeInteriorVertexIsBH3) {
 using nlohmann::json;
 
 std::vector<int32_t> scene_vertices(const Mesh& m, const std::string& selector) {
-  return bench::parse_vertex_selection(bench::SceneJson{"test.json"}, json::parse(selector), "select", m);
+  return scene_io::parse_vertex_selection(scene_io::SceneJson{"test.json"}, json::parse(selector), "select", m);
 }
 std::vector<int32_t> scene_elements(const Mesh& m, const std::string& selector) {
-  return bench::parse_element_selection(bench::SceneJson{"test.json"}, json::parse(selector), "region", m);
+  return scene_io::parse_element_selection(scene_io::SceneJson{"test.json"}, json::parse(selector), "region", m);
 }
 std::string scene_vertices_error(const Mesh& m, const std::string& selector) {
   return error_of([&] { scene_vertices(m, selector); });
@@ -399,7 +399,7 @@ TEST(SelectionSceneFile, ConstraintsFromAGmshGroup) {
     "constraints": [{"name": "wall", "select": {"group": "fixed"}},
                     {"name": "end", "select": {"group": 7, "dimension": 2}}],
     "body_force": [0, 0, -1]})";
-  const bench::SceneFile f = bench::load_scene_file(path.string());
+  const SceneFile f = load_scene(path.string());
   ASSERT_EQ(f.scene.constraints.size(), 2u);
   const Mesh& m = f.scene.mesh;
   EXPECT_EQ(f.scene.constraints[0].vertices, vertices_on_plane(m, {0, 0, 0}, {1, 0, 0}));
@@ -407,7 +407,7 @@ TEST(SelectionSceneFile, ConstraintsFromAGmshGroup) {
   EXPECT_EQ(f.scene.options.external_force, lump_body_force(m, {0, 0, -1}));
   std::ofstream(path) << R"({"mesh": {"file": ")" << kMeshes << R"(box_groups.msh41.msh"},
     "constraints": [{"select": {"group": "wall"}}]})";
-  const std::string e = error_of([&] { bench::load_scene_file(path.string()); });
+  const std::string e = error_of([&] { load_scene(path.string()); });
   EXPECT_TRUE(contains(e, "constraints[0].select.group: vertices_in_group: the mesh has no group 'wall'")) << e;
   EXPECT_TRUE(contains(e, "'fixed' (surface, tag 1)")) << e;
 }

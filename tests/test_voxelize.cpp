@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "scene_file.h"
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
+#include "snh/scene.h"
 #include "snh/surface.h"
 #include "surface_shapes.h"
 
@@ -348,11 +348,10 @@ TEST(Voxelize, SlitLatticeReadsBackWithCoincidentVerticesAllowed) {
     std::ofstream(file) << R"({"mesh": {"file": "slit.vtu")" << extra << "}}";
     return file.string();
   };
-  EXPECT_EQ(bench::load_scene_file(scene(R"(, "allow_coincident_vertices": true)")).scene.mesh.elements,
-            v.lattice.elements);
-  EXPECT_NE(error_of([&] { bench::load_scene_file(scene("")); }).find("duplicates vertex"), std::string::npos);
+  EXPECT_EQ(load_scene(scene(R"(, "allow_coincident_vertices": true)")).scene.mesh.elements, v.lattice.elements);
+  EXPECT_NE(error_of([&] { load_scene(scene("")); }).find("duplicates vertex"), std::string::npos);
   EXPECT_NE(error_of([&] {
-              bench::load_scene_file(scene(R"(, "allow_coincident_vertices": 1)"));
+              load_scene(scene(R"(, "allow_coincident_vertices": 1)"));
             }).find("mesh.allow_coincident_vertices: expected true or false"),
             std::string::npos);
   fs::remove_all(dir);

@@ -10,7 +10,7 @@
 #include "snh/error.h"
 #include "snh/simulation.h"
 
-namespace snh::bench {
+namespace snh::cli {
 
 std::vector<int64_t> free_dofs(const Mesh& mesh, const std::vector<ConstraintSet>& constraints) {
   const size_t n = mesh.vertex_count();
@@ -157,4 +157,4 @@ Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
   return a;
 }
 
-}  // namespace snh::bench
+}  // namespace snh::cli

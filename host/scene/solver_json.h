@@ -9,7 +9,7 @@
 
 #include "snh/simulation.h"
 
-namespace snh::bench {
+namespace snh::scene_io {
 
 template <class Ran>  // SolveResult or FrameRecord
 void add_solver_json(nlohmann::ordered_json& j, const SolveOptions& options, const Ran& r) {
@@ -26,4 +26,4 @@ void add_solver_json(nlohmann::ordered_json& j, const SolveOptions& options, con
   j["hessian"] = to_string(options.hessian);
 }
 
-}  // namespace snh::bench
+}  // namespace snh::scene_io

@@ -1,4 +1,4 @@
-// `snh-gpu-bench voxelize SURFACE --cell H --out LATTICE`: a closed surface
+// `snh voxelize SURFACE --cell H --out LATTICE` (also `snh-gpu-bench voxelize`): a closed surface
 // (.obj, .ply, .stl) to a hex8 lattice (voxelize in surface.h), written by
 // write_mesh in the format --out's extension names (.msh, .vtk, .vtu, .mesh;
 // .vtk and .vtu with each element's grid cell as a cell array), and what
@@ -12,12 +12,12 @@
 #include <memory>
 #include <string>
 
-#include "commands.h"
+#include "cli_commands.h"
 #include "snh/error.h"
 #include "snh/mesh_io.h"
 #include "snh/surface.h"
 
-namespace snh::bench {
+namespace snh::cli {
 namespace {
 
 struct VoxelizeCommand {
@@ -104,4 +104,4 @@ void add_voxelize_command(CLI::App& app, int& exit_code) {
   cmd->callback([o, &exit_code] { exit_code = run_voxelize(*o); });
 }
 
-}  // namespace snh::bench
+}  // namespace snh::cli

@@ -7,18 +7,22 @@
 #include <set>
 #include <string>
 
+#include "scene/scene_schema.h"
 #include "snh/error.h"
 
-namespace snh::bench {
+namespace snh::scene_io {
 
 struct SceneJson {
   std::string file;
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
     throw Error(file + ": " + key + ": " + what);
   }
-  // Rejects keys outside `allowed`.
-  void keys(const nlohmann::json& object, const std::string& key, const std::set<std::string>& allowed) const {
+  // Rejects keys the schema does not list for the object at `key` (its
+  // schema path: the key path without indices, unless given; scene_schema.h).
+  void keys(const nlohmann::json& object, const std::string& key, const std::string& schema = "",
+            const std::string& variant = "") const {
     if (!object.is_object()) fail(key, "expected an object");
+    const std::set<std::string>& allowed = allowed_keys(schema.empty() ? schema_path(key) : schema, variant);
     for (const auto& item : object.items())
       if (!allowed.count(item.key())) fail(key + "." + item.key(), "unknown key");
   }
@@ -62,4 +66,4 @@ struct SceneJson {
   }
 };
 
-}  // namespace snh::bench
+}  // namespace snh::scene_io

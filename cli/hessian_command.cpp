@@ -1,6 +1,6 @@
-// `snh-gpu-bench hessian SCENE --out PREFIX`: the engine's linear system at
+// `snh hessian SCENE --out PREFIX` (also `snh-gpu-bench hessian`): the engine's linear system at
 // a Newton iterate of a built-in scene, written for study outside the engine
-// (bench/hessian_export.h; bench/amg_study.py reads it).
+// (cli/hessian_export.h; bench/amg_study.py reads it).
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -9,12 +9,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "commands.h"
+#include "cli_commands.h"
 #include "hessian_export.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 
-namespace snh::bench {
+namespace snh::cli {
 namespace {
 
 struct HessianCommand {
@@ -95,4 +95,4 @@ void add_hessian_command(CLI::App& app, int& exit_code) {
   cmd->callback([o, &exit_code] { exit_code = run_hessian(*o); });
 }
 
-}  // namespace snh::bench
+}  // namespace snh::cli

@@ -7,7 +7,7 @@
 
 #include "snh/simulation.h"
 
-namespace snh::bench {
+namespace snh::cli {
 
 struct MultigridFlags {
   int rebuild_every = 0;                 // > 0: MultigridOptions::rebuild_every
@@ -66,4 +66,4 @@ struct MultigridFlags {
   }
 };
 
-}  // namespace snh::bench
+}  // namespace snh::cli

@@ -1,32 +1,51 @@
-#include "scene_file.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
 
-#include "product_precision_flag.h"
-#include "scene_json.h"
-#include "scene_selection.h"
+#include "scene/scene_json.h"
+#include "scene/scene_selectors.h"
 #include "snh/error.h"
 #include "snh/loads.h"
 #include "snh/mesh_io.h"
 #include "snh/rig.h"
+#include "snh/scene.h"
 #include "solver/obstacles.h"
 
-namespace snh::bench {
+namespace snh {
 namespace {
 
 using nlohmann::json;
 
-using Reader = SceneJson;
+using Reader = scene_io::SceneJson;
+using scene_io::parse_element_selection;
+using scene_io::parse_vertex_selection;
+
+// A file the scene refers to, relative to the scene file's folder, read by
+// `read`; its errors (which name the resolved path) get the key in front.
+template <class Read>
+auto read_referenced(const Reader& r, const std::string& key, const std::filesystem::path& folder,
+                     const std::string& file, Read read) {
+  const std::string resolved = (folder / file).string();
+  try {
+    return read(resolved);
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    r.fail(key, what.find(resolved) == std::string::npos ? resolved + ": " + what : what);
+  }
+}
+
+// SolveOptions::product_precision; "automatic" leaves it unset.
+void apply_product_precision(const std::string& value, SolveOptions& options) {
+  if (value != "automatic") options.product_precision = parse_precision(value);
+}
 
 Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path& folder) {
-  r.keys(m, "mesh", {"file", "generator", "cells", "size", "radius", "length", "element", "allow_coincident_vertices"});
+  r.keys(m, "mesh");
   if (m.contains("allow_coincident_vertices") && !m["allow_coincident_vertices"].is_boolean())
     r.fail("mesh.allow_coincident_vertices", "expected true or false");
   if (m.contains("allow_coincident_vertices") && !m.contains("file"))
@@ -36,7 +55,8 @@ Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path
     const std::string file = r.text(m, "mesh", "file", "");
     MeshReadOptions options;
     options.allow_coincident_vertices = m.value("allow_coincident_vertices", false);
-    mesh = read_mesh((folder / file).string(), options);
+    mesh = read_referenced(r, "mesh.file", folder, file,
+                           [&](const std::string& resolved) { return read_mesh(resolved, options); });
   } else {
     const std::string generator = r.text(m, "mesh", "generator", "box");
     const double h = r.number(m, "mesh", "size", 0.1);
@@ -66,9 +86,7 @@ Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path
 // A material's keys ("material" and each region's), defaults as in
 // snh::MaterialOptions; E defaults to 1 and nu to 0.45.
 Material read_material(const Reader& r, const json& material, const std::string& key) {
-  r.keys(material, key,
-         {"model", "E", "nu", "barrier", "fung_gamma", "fung_mu1", "ab_beta1", "ab_beta2", "kappa", "j0", "alpha",
-          "lambda_model", "alpha_lambda"});
+  r.keys(material, key);
   MaterialOptions mo;
   const std::string barrier = r.text(material, key, "barrier", "auto");
   mo.fung_gamma = r.number(material, key, "fung_gamma", mo.fung_gamma);
@@ -99,7 +117,7 @@ MaterialMap read_regions(const Reader& r, const json& doc, const Mesh& mesh, con
     for (size_t i = 0; i < doc["regions"].size(); ++i) {
       const std::string key = "regions[" + std::to_string(i) + "]";
       const json& g = doc["regions"][i];
-      r.keys(g, key, {"name", "select", "material"});
+      r.keys(g, key);
       MaterialRegion region;
       region.name = r.text(g, key, "name", key);
       if (!g.contains("select")) r.fail(key + ".select", "missing");
@@ -122,8 +140,11 @@ struct RigidKey {
   std::array<double, 3> translation{0, 0, 0};
 };
 
-std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m, const std::string& key) {
-  r.keys(m, key, {"type", "axis", "angle", "center", "translation", "keys"});
+// `keys_schema`: the schema path of the keys' entries where the keys are not
+// at <key>.keys[] in the file (an obstacle's "keyframes" array).
+std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m, const std::string& key,
+                                                  const std::string& keys_schema = "") {
+  r.keys(m, key);
   const std::string type = r.text(m, key, "type", "rigid");
   const auto axis = r.vec3(m, key, "axis", {0, 0, 1});
   const auto center = r.vec3(m, key, "center", {0, 0, 0});
@@ -137,7 +158,7 @@ std::function<RigidTransform(double)> read_motion(const Reader& r, const json& m
       r.fail(key + ".keys", "expected a non-empty array of {t, angle, translation}");
     for (size_t i = 0; i < m["keys"].size(); ++i) {
       const std::string k = key + ".keys[" + std::to_string(i) + "]";
-      r.keys(m["keys"][i], k, {"t", "angle", "translation"});
+      r.keys(m["keys"][i], k, keys_schema);
       keys.push_back({r.number(m["keys"][i], k, "t", 0.0), r.number(m["keys"][i], k, "angle", 0.0),
                       r.vec3(m["keys"][i], k, "translation", {0, 0, 0})});
       if (i > 0 && !(keys[i].t > keys[i - 1].t)) r.fail(k + ".t", "key times must increase");
@@ -175,17 +196,17 @@ std::vector<Obstacle> read_obstacles(const Reader& r, const json& list) {
     Obstacle obstacle;
     const std::string type = r.text(o, key, "type", "");
     if (type == "plane") {
-      r.keys(o, key, {"type", "point", "normal", "keyframes", "friction"});
+      r.keys(o, key, "", type);
       obstacle.type = ObstacleType::plane;
       obstacle.point = r.required_vec3(o, key, "point");
       obstacle.direction = r.required_vec3(o, key, "normal");
     } else if (type == "sphere") {
-      r.keys(o, key, {"type", "center", "radius", "keyframes", "friction"});
+      r.keys(o, key, "", type);
       obstacle.type = ObstacleType::sphere;
       obstacle.point = r.required_vec3(o, key, "center");
       obstacle.radius = r.required_number(o, key, "radius");
     } else if (type == "cylinder") {
-      r.keys(o, key, {"type", "point", "axis", "radius", "keyframes", "friction"});
+      r.keys(o, key, "", type);
       obstacle.type = ObstacleType::cylinder;
       obstacle.point = r.required_vec3(o, key, "point");
       obstacle.direction = r.required_vec3(o, key, "axis");
@@ -201,7 +222,8 @@ std::vector<Obstacle> read_obstacles(const Reader& r, const json& list) {
     if (o.contains("keyframes")) {
       const json& k = o["keyframes"];
       if (k.is_array())
-        obstacle.motion = read_motion(r, json{{"type", "keyframes"}, {"keys", k}}, key + ".keyframes");
+        obstacle.motion =
+            read_motion(r, json{{"type", "keyframes"}, {"keys", k}}, key + ".keyframes", "obstacles[].keyframes[]");
       else
         obstacle.motion = read_motion(r, k, key + ".keyframes");
     }
@@ -211,10 +233,10 @@ std::vector<Obstacle> read_obstacles(const Reader& r, const json& list) {
 }
 
 SceneFile::Embedded read_embed(const Reader& r, const json& e, const std::filesystem::path& folder) {
-  r.keys(e, "embed", {"surface", "cell", "cover_surface"});
+  r.keys(e, "embed");
   if (!e.contains("surface")) r.fail("embed.surface", "missing (a closed surface: .obj, .ply or .stl)");
   SceneFile::Embedded out;
-  out.surface = read_surface((folder / r.text(e, "embed", "surface", "")).string());
+  out.surface = read_referenced(r, "embed.surface", folder, r.text(e, "embed", "surface", ""), read_surface);
   const double cell = r.required_number(e, "embed", "cell");
   if (!(cell > 0.0)) r.fail("embed.cell", "expected a cube side > 0");
   VoxelizeOptions options;
@@ -234,7 +256,7 @@ std::vector<Bone> read_bones(const Reader& r, const json& rig, const std::filesy
   for (size_t i = 0; i < rig["bones"].size(); ++i) {
     const std::string key = "rig.bones[" + std::to_string(i) + "]";
     const json& b = rig["bones"][i];
-    r.keys(b, key, {"name", "capsule", "surface"});
+    r.keys(b, key);
     Bone bone;
     if (!b.contains("name")) r.fail(key + ".name", "missing");
     bone.name = r.text(b, key, "name", "");
@@ -242,11 +264,11 @@ std::vector<Bone> read_bones(const Reader& r, const json& rig, const std::filesy
     if (b.contains("capsule")) {
       const json& c = b["capsule"];
       const std::string ck = key + ".capsule";
-      r.keys(c, ck, {"a", "b", "radius"});
+      r.keys(c, ck);
       bone.shape =
           Capsule{r.required_vec3(c, ck, "a"), r.required_vec3(c, ck, "b"), r.required_number(c, ck, "radius")};
     } else {
-      bone.shape = read_surface((folder / r.text(b, key, "surface", "")).string());
+      bone.shape = read_referenced(r, key + ".surface", folder, r.text(b, key, "surface", ""), read_surface);
     }
     bones.push_back(std::move(bone));
   }
@@ -255,15 +277,7 @@ std::vector<Bone> read_bones(const Reader& r, const json& rig, const std::filesy
 
 }  // namespace
 
-std::string surface_obj_path(const std::string& prefix, const std::string& scene, int index) {
-  char number[16];
-  std::snprintf(number, sizeof number, "_%04d.obj", index);
-  if (!prefix.empty() && (prefix.back() == '/' || std::filesystem::is_directory(prefix)))
-    return (std::filesystem::path(prefix) / (scene + number)).string();
-  return prefix + number;
-}
-
-SceneFile load_scene_file(const std::string& path) {
+SceneFile load_scene(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open the scene file");
   json doc;
@@ -273,9 +287,7 @@ SceneFile load_scene_file(const std::string& path) {
     throw Error(path + ": not valid JSON (" + e.what() + ")");
   }
   const Reader r{path};
-  r.keys(doc, "scene",
-         {"name", "description", "mesh", "embed", "material", "regions", "constraints", "rig", "body_force", "initial",
-          "dynamics", "obstacles", "contact", "solver", "output"});
+  r.keys(doc, "scene");
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   SceneFile out;
   Scene& s = out.scene;
@@ -299,7 +311,7 @@ SceneFile load_scene_file(const std::string& path) {
     for (size_t i = 0; i < doc["constraints"].size(); ++i) {
       const std::string key = "constraints[" + std::to_string(i) + "]";
       const json& c = doc["constraints"][i];
-      r.keys(c, key, {"name", "select", "motion"});
+      r.keys(c, key);
       ConstraintSet set;
       set.name = r.text(c, key, "name", key);
       if (!c.contains("select")) r.fail(key + ".select", "missing");
@@ -311,7 +323,7 @@ SceneFile load_scene_file(const std::string& path) {
   }
   if (doc.contains("rig")) {
     const json& rig = doc["rig"];
-    r.keys(rig, "rig", {"bones", "animation"});
+    r.keys(rig, "rig");
     SceneFile::Rig out_rig;
     out_rig.bones = read_bones(r, rig, folder);
     try {
@@ -320,7 +332,8 @@ SceneFile load_scene_file(const std::string& path) {
       r.fail("rig.bones", error.what());
     }
     if (!rig.contains("animation")) r.fail("rig.animation", "missing (a .json or .csv animation file)");
-    out_rig.animation = read_animation((folder / r.text(rig, "rig", "animation", "")).string());
+    out_rig.animation =
+        read_referenced(r, "rig.animation", folder, r.text(rig, "rig", "animation", ""), read_animation);
     for (const std::string& bone : out_rig.animation.bones)
       if (std::none_of(out_rig.bones.begin(), out_rig.bones.end(), [&](const Bone& b) { return b.name == bone; }))
         r.fail("rig.animation", "the animation moves bone '" + bone + "', which is not in rig.bones");
@@ -330,7 +343,7 @@ SceneFile load_scene_file(const std::string& path) {
     s.options.external_force = lump_body_force(s.mesh, r.vec3(doc, "scene", "body_force", {0, 0, 0}));
   if (doc.contains("initial")) {
     const json& init = doc["initial"];
-    r.keys(init, "initial", {"scramble_volume_factor", "seed"});
+    r.keys(init, "initial");
     const double factor = r.number(init, "initial", "scramble_volume_factor", 2.0);
     std::mt19937_64 rng(static_cast<unsigned>(r.integer(init, "initial", "seed", 1)));
     std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
@@ -349,12 +362,12 @@ SceneFile load_scene_file(const std::string& path) {
   }
   if (doc.contains("dynamics")) {
     const json& d = doc["dynamics"];
-    r.keys(d, "dynamics", {"time_step", "density", "damping", "substeps"});
+    r.keys(d, "dynamics");
     DynamicsOptions dynamics;
     dynamics.time_step = r.required_number(d, "dynamics", "time_step");
     dynamics.density = r.required_number(d, "dynamics", "density");
     if (d.contains("damping")) {
-      r.keys(d["damping"], "dynamics.damping", {"mass", "stiffness"});
+      r.keys(d["damping"], "dynamics.damping");
       dynamics.damping.mass = r.number(d["damping"], "dynamics.damping", "mass", 0.0);
       dynamics.damping.stiffness = r.number(d["damping"], "dynamics.damping", "stiffness", 0.0);
     }
@@ -370,7 +383,7 @@ SceneFile load_scene_file(const std::string& path) {
   if (doc.contains("obstacles")) s.options.obstacles = read_obstacles(r, doc["obstacles"]);
   if (doc.contains("contact")) {
     const json& c = doc["contact"];
-    r.keys(c, "contact", {"stiffness", "thickness", "self", "self_stiffness", "friction", "friction_slip"});
+    r.keys(c, "contact");
     s.options.contact.friction = r.number(c, "contact", "friction", 0.0);
     s.options.contact.friction_slip = r.number(c, "contact", "friction_slip", 0.0);
     if (!(s.options.contact.friction >= 0.0)) r.fail("contact.friction", "must be >= 0");
@@ -396,9 +409,7 @@ SceneFile load_scene_file(const std::string& path) {
     r.fail("obstacles", error.what());
   }
   const json solver = doc.value("solver", json::object());
-  r.keys(solver, "solver",
-         {"steps", "precision", "strain_tolerance", "absolute_tolerance", "max_newton_iterations", "preconditioner",
-          "hessian", "product_precision"});
+  r.keys(solver, "solver");
   s.options.load_steps = r.integer(solver, "solver", "steps", 1);
   s.options.precision = parse_precision(r.text(solver, "solver", "precision", "double"));
   s.options.max_newton_iterations = r.integer(solver, "solver", "max_newton_iterations", 200);
@@ -430,7 +441,7 @@ SceneFile load_scene_file(const std::string& path) {
     s.options.strain_tolerance =
         r.number(solver, "solver", "strain_tolerance", strain_tolerance_default(s.options.precision));
   const json output = doc.value("output", json::object());
-  r.keys(output, "output", {"vtu", "json", "surface"});
+  r.keys(output, "output");
   out.vtu_dir = r.text(output, "output", "vtu", "");
   out.json_path = r.text(output, "output", "json", "");
   out.surface_prefix = r.text(output, "output", "surface", "");
@@ -438,4 +449,4 @@ SceneFile load_scene_file(const std::string& path) {
   return out;
 }
 
-}  // namespace snh::bench
+}  // namespace snh

@@ -16,7 +16,7 @@
 #include "snh/regions.h"
 #include "snh/scenes.h"
 
-namespace snh::bench {
+namespace snh::cli {
 
 struct ExportedSystem {
   // Full DOF index (3 vertex + component) of each free DOF, ascending.
@@ -56,4 +56,4 @@ void write_exported_system(const std::string& prefix, const Mesh& mesh, const Ex
 // Market file (the tests read back what write_exported_system wrote).
 Eigen::SparseMatrix<double> read_matrix_market(const std::string& path);
 
-}  // namespace snh::bench
+}  // namespace snh::cli

@@ -7,7 +7,7 @@
 
 #include "snh/simulation.h"
 
-namespace snh::bench {
+namespace snh::cli {
 
 inline void add_product_precision_option(CLI::App* cmd, std::string& value) {
   cmd->add_option("--product-precision", value,
@@ -22,4 +22,4 @@ inline void apply_product_precision(const std::string& value, SolveOptions& opti
   if (value != "automatic") options.product_precision = parse_precision(value);
 }
 
-}  // namespace snh::bench
+}  // namespace snh::cli

@@ -11,7 +11,7 @@
 
 #include "snh/simulation.h"
 
-namespace snh::bench {
+namespace snh::scene_io {
 
 // (key, seconds) in the order the reports show them; `total` last.
 inline std::vector<std::pair<std::string, double>> profile_parts(const SolveProfile& p) {
@@ -51,4 +51,4 @@ inline nlohmann::ordered_json history_json(const std::vector<NewtonIteration>& h
   return out;
 }
 
-}  // namespace snh::bench
+}  // namespace snh::scene_io

@@ -1,18 +1,19 @@
-// `snh-gpu-bench probe`: the material on the OpenCL device, one JSON line in
+// `snh probe` (also `snh-gpu-bench probe`): the material on the OpenCL device, one JSON line in
 // ({"F": [[row0], [row1], [row2]]}), one JSON line out per input line.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "commands.h"
+#include "cli_commands.h"
 #include "fem/rest_state.h"
 #include "material_options.h"
 #include "snh/error.h"
 #include "snh/probe.h"
 
-namespace snh::bench {
+namespace snh::cli {
 namespace {
 
 using json = nlohmann::ordered_json;
@@ -51,7 +52,8 @@ json rows(const double* column_major, int n) {
   return out;
 }
 
-int run_probe(const MaterialOptions& options) {
+// `program`: the executable's name, for its messages.
+int run_probe(const MaterialOptions& options, const std::string& program) {
   const Material material = options.material();
   MaterialProbe probe(material, parse_precision(options.precision), DeviceOptions{options.device});
 
@@ -85,7 +87,7 @@ int run_probe(const MaterialOptions& options) {
       ++failures;
       out["line"] = line.number;
       out["error"] = "line " + std::to_string(line.number) + ": " + line.error;
-      std::cerr << "snh-gpu-bench probe: line " << line.number << ": " << line.error << '\n';
+      std::cerr << program << " probe: line " << line.number << ": " << line.error << '\n';
     } else {
       const ProbeResult& r = results[line.index];
       out["line"] = line.number;
@@ -111,7 +113,9 @@ void add_probe_command(CLI::App& app, int& exit_code) {
       "(nine, unprojected, ascending), sigma. A malformed line gets {\"line\": N, \"error\": ...}; exit status 2 "
       "then.");
   options->add_to(*cmd);
-  cmd->callback([options, &exit_code] { exit_code = run_probe(*options); });
+  cmd->callback([options, cmd, &exit_code] {
+    exit_code = run_probe(*options, std::filesystem::path(cmd->get_parent()->get_name()).filename().string());
+  });
 }
 
-}  // namespace snh::bench
+}  // namespace snh::cli

@@ -10,7 +10,7 @@
 #include "snh/device.h"
 #include "snh/material.h"
 
-namespace snh::bench {
+namespace snh::cli {
 
 // The --model / --lambda-model choices (snh::parse_material_model's names).
 inline const std::vector<std::string> kModelNames = {
@@ -107,4 +107,4 @@ struct MaterialOptions {
   CLI::Option* alpha_lambda_given_ = nullptr;
 };
 
-}  // namespace snh::bench
+}  // namespace snh::cli

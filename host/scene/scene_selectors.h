@@ -12,6 +12,7 @@
 //             {"group": "left"} or {"group": 3} (volume groups),
 //             {"cell_array": {"name": "material", "value": 2}} or {..., "min", "max"}
 //
+// Their keys are those of the schema (scene_schema.h) at the selector's path.
 // Errors name the file and the key's path. An empty selection is returned
 // empty; the caller says whether that is an error.
 #pragma once
@@ -21,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "scene_json.h"
+#include "scene/scene_json.h"
 #include "snh/mesh.h"
 
-namespace snh::bench {
+namespace snh::scene_io {
 
 std::vector<int32_t> parse_vertex_selection(const SceneJson& r, const nlohmann::json& selector, const std::string& key,
                                             const Mesh& mesh);
@@ -32,4 +33,4 @@ std::vector<int32_t> parse_vertex_selection(const SceneJson& r, const nlohmann::
 std::vector<int32_t> parse_element_selection(const SceneJson& r, const nlohmann::json& selector, const std::string& key,
                                              const Mesh& mesh);
 
-}  // namespace snh::bench
+}  // namespace snh::scene_io

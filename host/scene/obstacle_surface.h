@@ -8,7 +8,7 @@
 #include "snh/simulation.h"
 #include "snh/surface.h"
 
-namespace snh::bench {
+namespace snh::scene_io {
 
 // Every obstacle placed at load parameter t (its motion, as the solver
 // places it), as one surface: a plane as a square of side 2 extent and a
@@ -17,4 +17,4 @@ namespace snh::bench {
 TriangleSurface obstacle_surface(const std::vector<Obstacle>& obstacles, double t, const std::array<double, 3>& center,
                                  double extent);
 
-}  // namespace snh::bench
+}  // namespace snh::scene_io

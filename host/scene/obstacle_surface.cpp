@@ -1,8 +1,8 @@
-#include "obstacle_surface.h"
+#include "scene/obstacle_surface.h"
 
 #include <cmath>
 
-namespace snh::bench {
+namespace snh::scene_io {
 namespace {
 
 using Vec = std::array<double, 3>;
@@ -96,4 +96,4 @@ TriangleSurface obstacle_surface(const std::vector<Obstacle>& obstacles, double 
   return s;
 }
 
-}  // namespace snh::bench
+}  // namespace snh::scene_io

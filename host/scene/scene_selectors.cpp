@@ -1,17 +1,18 @@
-#include "scene_selection.h"
+#include "scene/scene_selectors.h"
 
 #include <algorithm>
 
 #include "snh/selection.h"
 
-namespace snh::bench {
+namespace snh::scene_io {
 namespace {
 
 using nlohmann::json;
 
-// The one selector key of `s` among `kinds`.
-std::string selector_kind(const SceneJson& r, const json& s, const std::string& key,
-                          const std::vector<std::string>& kinds, const std::set<std::string>& modifiers) {
+// The one selector key of `s` among `kinds`; the schema's other keys at
+// `key` modify it ("dimension").
+std::string selector_kind(const SceneJson& r, const json& s, const std::string& key, const std::string& schema,
+                          const std::vector<std::string>& kinds) {
   if (!s.is_object()) r.fail(key, "expected an object");
   std::string found, all;
   for (const std::string& k : kinds) {
@@ -20,9 +21,9 @@ std::string selector_kind(const SceneJson& r, const json& s, const std::string& 
     if (!found.empty()) r.fail(key, "give one selector, found both " + found + " and " + k);
     found = k;
   }
+  const std::set<std::string>& allowed = allowed_keys(schema);
   for (const auto& item : s.items())
-    if (std::find(kinds.begin(), kinds.end(), item.key()) == kinds.end() && !modifiers.count(item.key()))
-      r.fail(key + "." + item.key(), "unknown key (selectors: " + all + ")");
+    if (!allowed.count(item.key())) r.fail(key + "." + item.key(), "unknown key (selectors: " + all + ")");
   if (found.empty()) r.fail(key, "expected one of " + all);
   return found;
 }
@@ -59,8 +60,8 @@ struct Box {
   std::array<double, 3> lo, hi;
 };
 
-Box box(const SceneJson& r, const json& b, const std::string& key) {
-  r.keys(b, key, {"min", "max"});
+Box box(const SceneJson& r, const json& b, const std::string& key, const std::string& schema) {
+  r.keys(b, key, schema);
   return {r.required_vec3(b, key, "min"), r.required_vec3(b, key, "max")};
 }
 
@@ -69,8 +70,8 @@ struct Sphere {
   double radius;
 };
 
-Sphere sphere(const SceneJson& r, const json& b, const std::string& key) {
-  r.keys(b, key, {"center", "radius"});
+Sphere sphere(const SceneJson& r, const json& b, const std::string& key, const std::string& schema) {
+  r.keys(b, key, schema);
   return {r.required_vec3(b, key, "center"), r.required_number(b, key, "radius")};
 }
 
@@ -84,9 +85,9 @@ std::vector<int32_t> group(const SceneJson& r, const json& g, const std::string&
 
 // {"name": ..., "value": v} or {"name": ..., "min": lo, "max": hi}.
 template <class Equal, class Within>
-std::vector<int32_t> array_value(const SceneJson& r, const json& a, const std::string& key, Equal equal,
-                                 Within within) {
-  r.keys(a, key, {"name", "value", "min", "max"});
+std::vector<int32_t> array_value(const SceneJson& r, const json& a, const std::string& key, const std::string& schema,
+                                 Equal equal, Within within) {
+  r.keys(a, key, schema);
   if (!a.contains("name")) r.fail(key + ".name", "missing (the array's name)");
   const std::string name = r.text(a, key, "name", "");
   const bool range = a.contains("min") || a.contains("max");
@@ -99,22 +100,27 @@ std::vector<int32_t> array_value(const SceneJson& r, const json& a, const std::s
   return at_key(r, key, [&] { return within(name, lo, hi); });
 }
 
+// Selectors take the same keys wherever they appear: the schema's entries
+// for the constraints' (vertices) and the regions' (elements).
+const std::string kVertexSelector = "constraints[].select";
+const std::string kElementSelector = "regions[].select";
+
 }  // namespace
 
 std::vector<int32_t> parse_vertex_selection(const SceneJson& r, const json& s, const std::string& key,
                                             const Mesh& mesh) {
   const std::string kind =
-      selector_kind(r, s, key, {"ids", "box", "plane", "sphere", "group", "point_array"}, {"dimension"});
+      selector_kind(r, s, key, kVertexSelector, {"ids", "box", "plane", "sphere", "group", "point_array"});
   const std::string at = key + "." + kind;
   if (s.contains("dimension") && kind != "group") r.fail(key + ".dimension", "only a group selector takes one");
   const json& v = s[kind];
   if (kind == "ids") return ids(r, v, at, mesh.vertex_count(), "vertex");
   if (kind == "box") {
-    const Box b = box(r, v, at);
+    const Box b = box(r, v, at, kVertexSelector + ".box");
     return at_key(r, at, [&] { return vertices_in_box(mesh, b.lo, b.hi); });
   }
   if (kind == "plane") {
-    r.keys(v, at, {"axis", "value", "point", "normal", "tolerance"});
+    r.keys(v, at, kVertexSelector + ".plane");
     const double tolerance = r.number(v, at, "tolerance", 1e-9);
     std::array<double, 3> point{0, 0, 0}, normal{0, 0, 0};
     if (v.contains("normal") || v.contains("point")) {
@@ -131,7 +137,7 @@ std::vector<int32_t> parse_vertex_selection(const SceneJson& r, const json& s, c
     return at_key(r, at, [&] { return vertices_on_plane(mesh, point, normal, tolerance); });
   }
   if (kind == "sphere") {
-    const Sphere b = sphere(r, v, at);
+    const Sphere b = sphere(r, v, at, kVertexSelector + ".sphere");
     return at_key(r, at, [&] { return vertices_in_sphere(mesh, b.center, b.radius); });
   }
   if (kind == "group") {
@@ -141,22 +147,23 @@ std::vector<int32_t> parse_vertex_selection(const SceneJson& r, const json& s, c
         [&](int tag) { return vertices_in_group(mesh, tag, dimension); });
   }
   return array_value(
-      r, v, at, [&](const std::string& name, double value) { return vertices_with_value(mesh, name, value); },
+      r, v, at, kVertexSelector + ".point_array",
+      [&](const std::string& name, double value) { return vertices_with_value(mesh, name, value); },
       [&](const std::string& name, double lo, double hi) { return vertices_with_value_in(mesh, name, lo, hi); });
 }
 
 std::vector<int32_t> parse_element_selection(const SceneJson& r, const json& s, const std::string& key,
                                              const Mesh& mesh) {
-  const std::string kind = selector_kind(r, s, key, {"ids", "box", "sphere", "group", "cell_array"}, {});
+  const std::string kind = selector_kind(r, s, key, kElementSelector, {"ids", "box", "sphere", "group", "cell_array"});
   const std::string at = key + "." + kind;
   const json& v = s[kind];
   if (kind == "ids") return ids(r, v, at, mesh.element_count(), "element");
   if (kind == "box") {
-    const Box b = box(r, v, at);
+    const Box b = box(r, v, at, kElementSelector + ".box");
     return at_key(r, at, [&] { return elements_in_box(mesh, b.lo, b.hi); });
   }
   if (kind == "sphere") {
-    const Sphere b = sphere(r, v, at);
+    const Sphere b = sphere(r, v, at, kElementSelector + ".sphere");
     return at_key(r, at, [&] { return elements_in_sphere(mesh, b.center, b.radius); });
   }
   if (kind == "group")
@@ -164,8 +171,9 @@ std::vector<int32_t> parse_element_selection(const SceneJson& r, const json& s, 
         r, v, at, [&](const std::string& name) { return elements_in_group(mesh, name); },
         [&](int tag) { return elements_in_group(mesh, tag); });
   return array_value(
-      r, v, at, [&](const std::string& name, double value) { return elements_with_value(mesh, name, value); },
+      r, v, at, kElementSelector + ".cell_array",
+      [&](const std::string& name, double value) { return elements_with_value(mesh, name, value); },
       [&](const std::string& name, double lo, double hi) { return elements_with_value_in(mesh, name, lo, hi); });
 }
 
-}  // namespace snh::bench
+}  // namespace snh::scene_io

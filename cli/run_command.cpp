@@ -1,0 +1,43 @@
+// `snh run SCENE.json`: a scene file (docs/scene-files.md) with its outputs;
+// the solver flags override the file's settings.
+#include <memory>
+#include <string>
+
+#include "cli_commands.h"
+#include "scene_run.h"
+
+namespace snh::cli {
+namespace {
+
+struct RunCommand {
+  std::string file;
+  std::string device;
+  SolverFlags solver;
+  SceneOutputs outputs;
+};
+
+}  // namespace
+
+void add_run_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<RunCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "run",
+      "Run a scene file: mesh (file or generator) or embed (a surface voxelized), materials and regions, constraints, "
+      "rig (bones and an animation: run frame by frame), body_force, initial, dynamics, obstacles, contact, solver, "
+      "output (docs/scene-files.md; examples in data/scenes/)");
+  cmd->add_option("scene", o->file, "the scene file (JSON)")->required();
+  add_output_options(cmd, o->outputs);
+  cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
+  o->solver.add_to(cmd, "load steps (per frame with a rig; time steps with dynamics; 0: the file's solver.steps)");
+  cmd->add_flag("--quiet,-q", o->outputs.quiet, "no progress lines on stderr");
+  cmd->callback([o, cmd, &exit_code] {
+    o->solver.note_given(cmd);
+    const SceneFile file = load_scene(o->file);
+    SolveOptions options = file.scene.options;
+    options.device.match = o->device;
+    o->solver.apply_to_file(file, options);
+    exit_code = run_scene_file(file, options, o->outputs);
+  });
+}
+
+}  // namespace snh::cli

@@ -1,0 +1,159 @@
+// Running a loaded scene: its load steps (or time steps) on one solve, or a
+// rig's animation frame by frame (snh/frames.h), each step or frame handed
+// to the writers. A rig's targets are absolute per frame, solved from the
+// previous frame, so frames do not fit one solve's load parameter.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "snh/error.h"
+#include "snh/scene.h"
+#include "snh/shape.h"
+#include "solver/self_contact.h"
+
+namespace snh {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+StepShape step_shape(const Mesh& mesh, const std::vector<double>& x) {
+  StepShape s;
+  for (double v : x)
+    if (!std::isfinite(v)) return s;
+  const DeformationStatistics d = deformation_statistics(mesh, x);
+  const ShapeDeviation fit = shape_deviation(mesh, x);
+  s.defined = true;
+  s.volume_ratio = d.volume_ratio;
+  s.min_j = d.min_j;
+  s.rigid_fit_rms = fit.rms_distance;
+  s.rigid_fit_rms_relative = fit.relative();
+  return s;
+}
+
+void write_all(const SceneRunOptions& run, int index, double time, const std::vector<double>& x,
+               const std::vector<double>& surface) {
+  for (const SceneStepWriter& w : run.writers)
+    if (w) w(index, time, x, surface);
+}
+
+SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run) {
+  Animation animation = file.rig->animation;
+  if (run.max_frames > 0 && static_cast<size_t>(run.max_frames) < animation.frame_count()) {
+    animation.times.resize(run.max_frames);
+    animation.transforms.resize(run.max_frames);
+  }
+  const Embedding* embedding = file.embedded ? &file.embedded->embedding : nullptr;
+  Simulation simulation(file.scene.mesh, file.materials, file.scene.constraints, options);
+  SceneRun out;
+  out.options = options;
+  out.device = simulation.device();
+  FrameOptions frame_options;
+  frame_options.load_steps = options.load_steps;
+  const int frames = static_cast<int>(animation.frame_count());
+  out.frames = run_frames(simulation, animation, embedding, frame_options,
+                          [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>& surface) {
+                            if (run.progress) {
+                              SceneProgress p;
+                              p.frame = true;
+                              p.index = r.frame + 1;
+                              p.count = frames;
+                              p.newton_iterations = r.newton_iterations;
+                              p.cg_iterations = r.cg_iterations;
+                              p.residual_norm = r.residual_norm;
+                              p.status = r.status;
+                              p.seconds = r.seconds;
+                              p.time = r.time;
+                              p.min_j = r.min_j;
+                              run.progress(p);
+                            }
+                            write_all(run, r.frame, r.time, x, surface);
+                            return true;
+                          });
+  out.converged = std::all_of(out.frames.begin(), out.frames.end(), [](const FrameRecord& r) { return r.converged; });
+  return out;
+}
+
+SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run) {
+  const Scene& scene = file.scene;
+  // The embedded surface, only for writers to write.
+  const auto surface_of = [&](const Mesh& mesh, const std::vector<double>& x) {
+    return file.embedded && !run.writers.empty() ? embedded_positions(file.embedded->embedding, mesh, x)
+                                                 : std::vector<double>{};
+  };
+  const std::vector<double>& x0 = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
+  write_all(run, 0, 0.0, x0, surface_of(scene.mesh, x0));
+
+  QuasistaticSolver solver(scene.mesh, file.materials, scene.constraints, options);
+  const Mesh& mesh = solver.mesh();
+  SceneRun out;
+  out.options = options;
+  // Each step's positions and applied force (ramped with the load), for the
+  // reactions computed after the solve (so that they do not count in its
+  // time).
+  std::vector<std::vector<double>> step_positions, step_forces;
+  // A scene with a contact stiffness but self-contact off: the same detector
+  // measures, after each step, the self-penetration the penalty would see
+  // (reported, not resisted; outside the solve's time).
+  std::unique_ptr<solver::SelfContactDetector> unresolved;
+  if (!options.contact.self && options.contact.stiffness > 0.0)
+    unresolved = std::make_unique<solver::SelfContactDetector>(mesh);
+  // The progress of the step under way, from its Newton iterations.
+  SceneProgress progress;
+  progress.count = options.load_steps;
+  auto step_start = Clock::now();
+  const auto on_newton = [&](const NewtonIteration& it) {
+    ++progress.newton_iterations;
+    progress.cg_iterations += it.cg_iterations;
+    progress.residual_norm = it.residual_norm;
+    return true;
+  };
+  out.result = solver.solve(
+      [&](int step, const std::vector<double>& x) {
+        SceneStep record;
+        record.shape = step_shape(mesh, x);
+        if (unresolved) {
+          record.self_contact_measured = true;
+          const auto pairs = unresolved->detect(x);
+          record.unresolved_self_contacts = static_cast<int>(pairs.size());
+          for (const auto& c : pairs)
+            record.max_self_penetration = std::max(record.max_self_penetration, solver::self_contact_length(c, x));
+        }
+        out.steps.push_back(std::move(record));
+        if (run.reactions) {
+          step_positions.push_back(x);
+          step_forces.push_back(solver.simulation().applied_force());
+        }
+        const double time = options.dynamics ? solver.simulation().time() : static_cast<double>(step);
+        if (run.progress) {
+          progress.index = step;
+          progress.seconds = std::chrono::duration<double>(Clock::now() - step_start).count();
+          progress.time = options.dynamics ? time : 0.0;
+          run.progress(progress);
+        }
+        write_all(run, step, time, x, surface_of(mesh, x));
+        progress.newton_iterations = progress.cg_iterations = 0;
+        step_start = Clock::now();
+      },
+      on_newton);
+  // A step without defined forces (a non-finite state) keeps its record
+  // without reactions.
+  for (size_t i = 0; i < step_positions.size() && i < out.steps.size(); ++i) {
+    try {
+      out.steps[i].reactions =
+          constraint_reactions(mesh, file.materials, scene.constraints, step_positions[i], step_forces[i]);
+    } catch (const Error& e) {
+      out.warnings.push_back("step " + std::to_string(i + 1) + " has no reactions: " + e.what());
+    }
+  }
+  out.converged = out.result.converged;
+  return out;
+}
+
+}  // namespace
+
+SceneRun run_scene(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run) {
+  return file.rig ? run_frames_of(file, options, run) : run_load_steps(file, options, run);
+}
+
+}  // namespace snh

@@ -1,0 +1,198 @@
+// Scene files: a simulation described in JSON (docs/scene-files.md lists
+// every key). A scene gives a mesh (a file or a generator) or a closed
+// surface to voxelize and embed, the materials and their regions,
+// constraint vertex sets with rigid or keyframed motions, a rig of bones and
+// its animation, body force, dynamics, obstacles and contact, solver
+// settings and outputs.
+//
+// load_scene reads a file into a SceneFile; a program may change its solve
+// options (a command line's overrides) and hand it to run_scene, which runs
+// its load steps (or time steps), or its animation frame by frame for a rig,
+// and returns a record per step or frame. The writers below turn a run into
+// the files "output" names: a .vtu series with a .pvd, a JSON summary, and
+// the embedded surface as OBJ per step or frame.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "snh/animation.h"
+#include "snh/fields.h"
+#include "snh/frames.h"
+#include "snh/io.h"
+#include "snh/regions.h"
+#include "snh/rig.h"
+#include "snh/scenes.h"
+#include "snh/simulation.h"
+#include "snh/surface.h"
+
+namespace snh {
+
+struct SceneFile {
+  Scene scene;
+  Material material;      // the base material ("material")
+  MaterialMap materials;  // every element's: the base and the "regions"
+  // "output.vtu": a folder for a .vtu per step (displacement and the element
+  // fields of snh/fields.h) and a .pvd; empty for none.
+  std::string vtu_dir;
+  // "output.json": the run's JSON summary, each step with its constraint
+  // sets' reactions; empty for none.
+  std::string json_path;
+  // "output.surface": where the embedded surface goes per step or frame as
+  // OBJ: a folder (ending in '/', or an existing folder) for
+  // <folder>/<scene>_NNNN.obj, else a prefix for <prefix>_NNNN.obj; empty
+  // for none. Needs "embed".
+  std::string surface_prefix;
+
+  // "embed": the surface, the lattice's grid (scene.mesh is its lattice) and
+  // the surface's embedding in it.
+  struct Embedded {
+    TriangleSurface surface;
+    Voxelization voxels;
+    Embedding embedding;
+  };
+  std::optional<Embedded> embedded;
+
+  // "rig": the bones (their sets are the last entries of scene.constraints)
+  // and the animation. The scene then runs frame by frame, solver.steps load
+  // steps per frame.
+  struct Rig {
+    std::vector<Bone> bones;
+    Animation animation;
+  };
+  std::optional<Rig> rig;
+
+  // The file sets solver.strain_tolerance or solver.absolute_tolerance;
+  // without them the strain tolerance is the precision's default
+  // (strain_tolerance_default), set again when a program changes the
+  // precision.
+  bool tolerance_given = false;
+};
+
+// Reads a scene file. Paths inside it (meshes, surfaces, animations) are
+// relative to the file's folder. Unknown keys and wrong types are errors:
+// snh::Error "<file>: <key path>: <what>", the file as given; a referenced
+// file that cannot be read is named by its resolved path.
+SceneFile load_scene(const std::string& path);
+
+// Every key a scene file accepts, as a path from the root: dot-separated,
+// "[]" for an array's elements (e.g. "mesh.file", "regions[].select.box.min",
+// "constraints[].motion.keys[].t"), the objects' own keys included
+// ("mesh", "regions[].select"). Sorted, no duplicates.
+std::vector<std::string> scene_file_keys();
+
+// The default stopping strain for a precision: 1e-6 in double, 1e-4 in float
+// (which resolves J - alpha only to about FLT_EPSILON lambda / mu), as for the
+// named scenes.
+inline double strain_tolerance_default(Precision precision) { return precision == Precision::single ? 1e-4 : 1e-6; }
+
+// The OBJ of step or frame `index` under a surface prefix ("output.surface").
+std::string surface_obj_path(const std::string& prefix, const std::string& scene, int index);
+
+// How far the body is from its rest shape after a step: volume, smallest J,
+// and the RMS vertex distance after the best rigid fit (snh/shape.h),
+// absolute and relative to the rest radius of gyration. Undefined for a
+// non-finite state.
+struct StepShape {
+  bool defined = false;
+  double volume_ratio = 0.0, min_j = 0.0, rigid_fit_rms = 0.0, rigid_fit_rms_relative = 0.0;
+};
+
+// What a load-step run measured after each completed step, besides the
+// solver's StepResult (SceneRun::result.steps, in the same order).
+struct SceneStep {
+  StepShape shape;
+  // A contact stiffness with self-contact off: the self-penetration the
+  // penalty would see, measured (not resisted) outside the solve's time.
+  bool self_contact_measured = false;
+  int unresolved_self_contacts = 0;
+  double max_self_penetration = 0.0;
+  // Each constraint set's force and torque on the body (fields.h); absent
+  // where the forces are undefined (a non-finite state) or reactions were
+  // not asked for.
+  std::optional<std::vector<Reaction>> reactions;
+};
+
+struct SceneRun {
+  SolveOptions options;  // as run
+  // Load steps (no rig): the solve and a record per completed step.
+  SolveResult result;
+  std::vector<SceneStep> steps;
+  // A rig: a record per frame, and the device they ran on.
+  std::vector<FrameRecord> frames;
+  DeviceInfo device;
+  bool converged = false;  // every step or frame
+  // What could not be computed or written, e.g. a step without reactions.
+  std::vector<std::string> warnings;
+};
+
+// Reported after each load step or frame.
+struct SceneProgress {
+  bool frame = false;  // a rig's frame, else a load step
+  int index = 0;       // 1-based
+  int count = 0;
+  int newton_iterations = 0;
+  int cg_iterations = 0;
+  double residual_norm = 0.0;  // frames: the frame's; steps: before the last Newton update
+  std::string status;          // frames: FrameRecord::status; steps: empty (in SolveResult after the run)
+  double seconds = 0.0;
+  double time = 0.0;   // a frame's animation time or a dynamic step's simulated time
+  double min_j = 0.0;  // frames only
+};
+
+// Called with each step's or frame's lattice positions and the embedded
+// surface's (empty without "embed"), after its record; writers use it.
+using SceneStepWriter =
+    std::function<void(int index, double time, const std::vector<double>& lattice, const std::vector<double>& surface)>;
+
+struct SceneRunOptions {
+  int max_frames = 0;     // a rig: run only the first frames; 0: all
+  bool reactions = true;  // load steps: each step's constraint reactions (kept positions, computed after the solve)
+  std::function<void(const SceneProgress&)> progress;
+  std::vector<SceneStepWriter> writers;  // e.g. SceneVtuSeries::writer, surface_obj_writer
+};
+
+// Runs a loaded scene with `options` (the file's scene.options, changed as
+// the caller likes): load steps (or time steps with dynamics) on one solve,
+// or, with a rig, the animation's frames (snh/frames.h). Step 0 (the start)
+// of a load-step run goes to the writers before the solve; frames are
+// numbered from 0.
+SceneRun run_scene(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run = {});
+
+// The writers of a scene's outputs.
+//
+// A .vtu per step or frame into `folder` (<scene>_NNNN.vtu: displacement and
+// the element fields of snh/fields.h), the obstacles as surfaces
+// (<scene>_obstacles_NNNN.vtu, part 1) or a rig's embedded surface
+// (<scene>_surface_NNNN.vtu, part 1), and <scene>.pvd on finish(). `file`
+// must outlive the series.
+class SceneVtuSeries {
+ public:
+  SceneVtuSeries(std::string folder, const SceneFile& file, const SolveOptions& options);
+  SceneStepWriter writer();  // refers to this series: keep it alive and in place while the writer runs
+  void finish();             // writes the .pvd
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+ private:
+  std::string folder_;
+  const SceneFile* file_;
+  SolveOptions options_;
+  std::array<double, 3> middle_{0, 0, 0};
+  double extent_ = 0.0;
+  std::vector<PvdDataSet> written_;
+  std::vector<std::string> warnings_;
+};
+
+// The embedded surface per step or frame as OBJ (surface_obj_path); `file`
+// must outlive the writer. Throws snh::Error for a file without "embed".
+SceneStepWriter surface_obj_writer(const std::string& prefix, const SceneFile& file);
+
+// The run's JSON summary ("output.json"): the scene, device, material and
+// solver settings, each step (reactions, shape, contacts) or frame with its
+// Newton history.
+void write_scene_json(const std::string& path, const SceneFile& file, const SceneRun& run);
+
+}  // namespace snh
