@@ -120,7 +120,7 @@ int run_rig_scene(const SceneFile& file, const SolveOptions& options, const RigR
       j["frames"].push_back({{"frame", r.frame},
                              {"time", r.time},
                              {"converged", r.converged},
-                             {"status", r.status},
+                             {"status", to_string(r.status)},
                              {"newton_iterations", r.newton_iterations},
                              {"cg_iterations", r.cg_iterations},
                              {"residual", r.residual_norm},

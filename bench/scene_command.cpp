@@ -138,7 +138,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                  {"newton_iterations", s.newton_iterations},
                  {"cg_iterations", s.cg_iterations},
                  {"converged", s.converged},
-                 {"status", s.status},
+                 {"status", to_string(s.status)},
                  {"residual", s.residual_norm},
                  {"seconds", s.seconds},
                  {"contacts", s.contacts},

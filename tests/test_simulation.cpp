@@ -154,7 +154,7 @@ TEST(Simulation, ProgressCallbackCancelsAndTheNextSolveFinishes) {
   EXPECT_TRUE(cut.cancelled);
   EXPECT_FALSE(cut.converged);
   ASSERT_EQ(cut.steps.size(), 1u);  // the second load step never ran
-  EXPECT_EQ(cut.steps[0].status, "cancelled");
+  EXPECT_EQ(cut.steps[0].status, StepStatus::cancelled);
   EXPECT_EQ(cut.steps[0].newton_iterations, 2);
   EXPECT_EQ(sim.positions(), cut.positions);
   // The targets were not reached: the next solve goes on to them.

@@ -547,7 +547,7 @@ struct Simulation::Impl {
       step.preconditioner_builds = preconditioner_builds() - step_start_builds;
       result.steps.push_back(step);
       if (on_step) in_callback([&] { on_step(s, x); });
-      if (step.status == "cancelled") {
+      if (step.status == StepStatus::cancelled) {
         result.cancelled = true;
         break;
       }
@@ -600,7 +600,7 @@ struct Simulation::Impl {
       total.self_contacts = sub.self_contacts;
       total.max_self_penetration = sub.max_self_penetration;
       if (!sub.fallback.empty()) total.fallback = sub.fallback;
-      if (sub.status == "cancelled") break;
+      if (sub.status == StepStatus::cancelled) break;
     }
     total.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     total.time = time;
@@ -620,12 +620,12 @@ struct Simulation::Impl {
     StepResult step;
     if (!in_double) {
       step = solve_in(*single, s, result.history, start, progress, euler);
-      step.precision_used = to_string(options.precision);
+      step.precision_used = options.precision;
     }
-    const bool failed = !in_double && !step.converged && step.status != "cancelled";
+    const bool failed = !in_double && !step.converged && step.status != StepStatus::cancelled;
     if (may_fall_back && (fell_back || failed)) {
       if (!fell_back && !cl.info().has_fp64) {
-        result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + step.status +
+        result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + to_string(step.status) +
                                   ") and fallback_to_double was asked, but the device has no fp64");
       } else {
         std::string note;
@@ -639,18 +639,22 @@ struct Simulation::Impl {
         }
         const size_t first_record = result.history.size();
         StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress, euler);
-        redo.precision_used = "double";
+        redo.precision_used = Precision::double_;
         if (!fell_back) {
           if (first_record < result.history.size()) {
-            std::string& r = result.history[first_record].recovery;
-            r = "float " + step.status + " -> double" + (r.empty() ? "" : "; " + r);
+            Recovery fallback;
+            fallback.action = RecoveryAction::double_fallback;
+            fallback.float_status = step.status;
+            std::vector<Recovery>& r = result.history[first_record].recovery;
+            r.insert(r.begin(), fallback);
           }
           redo.newton_iterations += step.newton_iterations;
           redo.cg_iterations += step.cg_iterations;
           redo.fallback = note;
-          result.warnings.push_back("step " + std::to_string(s) + ": " + note +
-                                    (redo.converged ? " (converged)" : " (did not converge: " + redo.status + ")") +
-                                    (s < steps ? "; the remaining steps run in double" : ""));
+          result.warnings.push_back(
+              "step " + std::to_string(s) + ": " + note +
+              (redo.converged ? " (converged)" : " (did not converge: " + std::string(to_string(redo.status)) + ")") +
+              (s < steps ? "; the remaining steps run in double" : ""));
         } else {
           redo.fallback = "double (after a float failure in an earlier step)";
         }
@@ -659,7 +663,7 @@ struct Simulation::Impl {
       }
     } else if (in_double) {
       step = solve_in(*dual, s, result.history, start, progress, euler);
-      step.precision_used = "double";
+      step.precision_used = Precision::double_;
     }
     return step;
   }

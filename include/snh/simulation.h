@@ -22,6 +22,7 @@
 #include "snh/fields.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
+#include "snh/outcomes.h"
 #include "snh/regions.h"
 
 namespace snh {
@@ -209,19 +210,21 @@ struct NewtonIteration {
   double step_length = 0.0;  // line-search alpha accepted (0 if none)
   int cg_iterations = 0;
   double cg_relative_residual = 0.0;
-  std::string cg_stop;    // "converged", "max_iterations", "negative_curvature", "breakdown"
+  CgStop cg_stop = CgStop::none;
+  // CG's direction was replaced by the preconditioned steepest descent
+  // before the line search (recovery says why); printed as cg_stop's name
+  // followed by "+steepest_descent" (cg_stop_text).
+  bool steepest_descent = false;
   bool projected = true;  // whether this iteration's Hessian was the PSD projection
   double seconds = 0.0;   // wall time since the solve began, at the end of this iteration
-  // What the solver did to get past trouble in this iteration; empty if
-  // nothing. E.g. "cg_breakdown -> steepest_descent", "non_descent ->
-  // steepest_descent", "line_search_failed -> steepest_descent" (the line
-  // search along CG's direction failed and the preconditioned steepest
-  // descent was tried; "... failed" appended if that failed too),
-  // "non_finite_residual -> shorter_step" (a trial with finite energy but a
-  // non-finite residual was rejected), "float <status> -> double" (the first
-  // record of a step re-solved in double, see SolveOptions::fallback_to_double).
-  std::string recovery;
+  // What the solver did to get past trouble in this iteration, in order;
+  // empty if nothing (snh/outcomes.h; to_string joins them, e.g.
+  // "float stagnated -> double; cg_breakdown -> steepest_descent").
+  std::vector<Recovery> recovery;
 };
+
+// cg_stop's name, with "+steepest_descent" where that replaced CG's direction.
+std::string cg_stop_text(const NewtonIteration& record);
 
 enum class HessianMode {
   projected,  // always the per-element PSD projection (Smith et al. 2018, sec. 4)
@@ -428,14 +431,10 @@ struct StepResult {
   int cg_iterations = 0;
   bool converged = false;
   double residual_norm = 0.0;
-  // "converged", "max_newton_iterations", "line_search_failed", "stagnated"
-  // (no 1% residual decrease in 8 iterations: the precision floor, or a
-  // vertex resting exactly at a contact layer's edge, docs/validation.md),
-  // "non_finite_state", "cancelled" (the progress callback returned false)
-  std::string status;
+  StepStatus status = StepStatus::none;  // how the step's Newton solve ended (snh/outcomes.h)
   double seconds = 0.0;
-  // "float" or "double": the precision of the solve this result reports.
-  std::string precision_used;
+  // The precision of the solve this result reports (printed "float" or "double").
+  Precision precision_used = Precision::double_;
   // Empty, or what fallback_to_double did, e.g. "float stagnated after 12
   // Newton / 340 CG iterations (residual 3.1e-05); re-solved in double".
   // newton_iterations and cg_iterations then count both attempts.
