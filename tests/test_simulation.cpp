@@ -36,6 +36,27 @@ struct StretchedBar {
                        {}};
 };
 
+// The factories name the set, its vertices and what moves them.
+TEST(Simulation, ConstraintSetFactoriesFillTheirParts) {
+  const ConstraintSet held = ConstraintSet::fixed("held", {1, 2}, {true, false, true});
+  EXPECT_EQ(held.name, "held");
+  EXPECT_EQ(held.vertices, (std::vector<int32_t>{1, 2}));
+  EXPECT_FALSE(held.motion);
+  EXPECT_FALSE(held.targets);
+  EXPECT_EQ(held.components, (std::array<bool, 3>{true, false, true}));
+  const ConstraintSet moved = ConstraintSet::moving("moved", {3}, [](double t) {
+    return RigidTransform::translation_by({0, 0, t});
+  });
+  ASSERT_TRUE(moved.motion);
+  EXPECT_EQ(moved.motion(0.25).translation[2], 0.25);
+  EXPECT_EQ(moved.components, (std::array<bool, 3>{true, true, true}));
+  const ConstraintSet placed = ConstraintSet::targets_of("placed", {4}, [](double t, std::vector<double>& xyz) {
+    xyz = {t, t, t};
+  });
+  ASSERT_TRUE(placed.targets);
+  EXPECT_FALSE(placed.motion);
+}
+
 TEST(Simulation, DefaultStopIsScaleFreeSameShapeForAnyYoungsModulus) {
   // The same physics at E = 1e-2 ... 1e6: with the default (strain) stop
   // every solve must reach the same shape. (An absolute force tolerance

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     options.body_force = {0.0, 0.0, -1000.0 * 9.81};  // density 1000 kg/m^3 times gravity
     snh::Simulation sim(
         limb, materials,
-        {snh::ConstraintSet{"upper_bone", upper_bone, {}, {}}, snh::ConstraintSet{"lower_bone", lower_bone, {}, {}}},
+        {snh::ConstraintSet::fixed("upper_bone", upper_bone), snh::ConstraintSet::fixed("lower_bone", lower_bone)},
         options);
     std::cout << "device: " << sim.device().name << ", " << limb.element_count() << " hexes, "
               << 3 * limb.vertex_count() << " DOF\n";

@@ -55,6 +55,24 @@ struct ConstraintSet {
   std::function<RigidTransform(double t)> motion;
   std::function<void(double t, std::vector<double>& xyz)> targets;
   std::array<bool, 3> components{true, true, true};
+
+  // Vertices held at their rest positions (in `components`; the others free).
+  static ConstraintSet fixed(std::string name, std::vector<int32_t> vertices,
+                             std::array<bool, 3> components = {true, true, true}) {
+    return {std::move(name), std::move(vertices), {}, {}, components};
+  }
+  // Vertices carried by motion(t) from their rest positions.
+  static ConstraintSet moving(std::string name, std::vector<int32_t> vertices,
+                              std::function<RigidTransform(double t)> motion,
+                              std::array<bool, 3> components = {true, true, true}) {
+    return {std::move(name), std::move(vertices), std::move(motion), {}, components};
+  }
+  // Vertices placed where targets(t, xyz) puts them (xyz per vertex of the set).
+  static ConstraintSet targets_of(std::string name, std::vector<int32_t> vertices,
+                                  std::function<void(double t, std::vector<double>& xyz)> targets,
+                                  std::array<bool, 3> components = {true, true, true}) {
+    return {std::move(name), std::move(vertices), {}, std::move(targets), components};
+  }
 };
 
 enum class ProductVariant {
@@ -276,6 +294,30 @@ struct Obstacle {
   // Coulomb friction coefficient against this obstacle (>= 0); unset:
   // ContactOptions::friction.
   std::optional<double> friction;
+
+  // The obstacles by their shape (checked when a Simulation is built).
+  static Obstacle plane(const std::array<double, 3>& point, const std::array<double, 3>& normal) {
+    return {ObstacleType::plane, point, normal, 0.0, {}, {}};
+  }
+  static Obstacle sphere(const std::array<double, 3>& center, double radius) {
+    return {ObstacleType::sphere, center, {0, 0, 1}, radius, {}, {}};
+  }
+  static Obstacle cylinder(const std::array<double, 3>& point_on_axis, const std::array<double, 3>& axis,
+                           double radius) {
+    return {ObstacleType::cylinder, point_on_axis, axis, radius, {}, {}};
+  }
+  // This obstacle moving by `placement` (see motion above), or with its own
+  // friction coefficient.
+  Obstacle with_motion(std::function<RigidTransform(double t)> placement) const {
+    Obstacle o = *this;
+    o.motion = std::move(placement);
+    return o;
+  }
+  Obstacle with_friction(double coefficient) const {
+    Obstacle o = *this;
+    o.friction = coefficient;
+    return o;
+  }
 };
 
 // Contact with the obstacles as a penalty on every vertex in the depth
