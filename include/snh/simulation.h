@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -543,6 +544,52 @@ using StepCallback = std::function<void(int step, const std::vector<double>& pos
 // positions stay those of the last update, SolveResult::cancelled is set).
 using ProgressCallback = std::function<bool(const NewtonIteration&)>;
 
+// What a constraint set's vertices follow (Simulation::set_transform and
+// set_positions).
+enum class TargetKind {
+  callbacks,  // the set's own motion/targets callbacks
+  transform,  // a transform given by set_transform
+  positions,  // positions given by set_positions
+};
+
+// Everything that determines a Simulation's later results
+// (Simulation::checkpoint): restored into a simulation built from the same
+// mesh, materials, constraint sets and options on the same device, its
+// next solves give the same positions, velocities and results, bit for
+// bit, as those of the simulation it was taken from.
+struct SimulationState {
+  // The mesh it belongs to: its vertex count and mesh_fingerprint.
+  uint64_t vertex_count = 0;
+  uint64_t mesh_fingerprint = 0;
+  std::vector<double> positions;   // xyz per vertex
+  std::vector<double> velocities;  // xyz per vertex with dynamics; else empty
+  double time = 0.0;               // simulated time with dynamics
+  // Friction's anchors, xyz per vertex and obstacle (ContactOptions::friction);
+  // empty without friction.
+  std::vector<double> friction_anchors;
+  // Per constraint set, in the simulation's order.
+  struct Target {
+    std::string set;  // the set's name
+    TargetKind kind = TargetKind::callbacks;
+    // transform: the transform last reached (when known) and the one to reach.
+    RigidTransform from, to;
+    bool from_known = false;
+    std::vector<double> positions;  // positions: xyz per vertex of the set
+  };
+  std::vector<Target> targets;
+  // Loads: the lumped external force and the body force last set, and the
+  // load ramp's ends (SolveOptions::ramp_loads): the total lumped force the
+  // last solve reached, the one the next reaches, and the one applied at the
+  // last step (xyz per vertex; empty for none yet).
+  std::vector<double> external_force;
+  std::array<double, 3> body_force{0, 0, 0};
+  std::vector<double> force_from, force_to, force_applied;
+};
+
+// A hash (64-bit FNV-1a) of the mesh's element type, positions and element
+// indices, by which a checkpoint recognizes its mesh.
+uint64_t mesh_fingerprint(const Mesh& mesh);
+
 // A simulation a host application drives frame by frame. Construction
 // validates everything (snh::Error naming the input), builds the kernels and
 // uploads the mesh once. The state starts at SolveOptions::initial_positions
@@ -578,6 +625,22 @@ class Simulation {
   // Back to the start: SolveOptions::initial_positions (else rest), every set
   // following its own callbacks, no force applied yet.
   void restart();
+
+  // The full state (SimulationState), e.g. to resume from it later
+  // (restore) or in another process (write_checkpoint, snh/checkpoint.h).
+  // The preconditioner's reuse between solves (the multigrid hierarchy
+  // carried across time steps, its smoothing bounds warm-started) is not
+  // state that can be saved: taking a checkpoint makes the next solve build
+  // the preconditioner afresh, as restoring one does, so that this
+  // simulation and any restored from the checkpoint continue identically.
+  SimulationState checkpoint();
+  // Replaces the state by `state`, taken from this simulation or from one
+  // built from the same mesh, materials, constraint sets and options.
+  // Throws snh::Error, changing nothing, for a checkpoint of another mesh
+  // (vertex count or mesh_fingerprint), other constraint set names, or
+  // items whose sizes do not fit this simulation (velocities with or without
+  // dynamics, friction anchors with or without friction).
+  void restore(const SimulationState& state);
 
   // load_steps: 0 for SolveOptions::load_steps. With dynamics each step is
   // a time step: the constraint targets of step s of n (as in a quasistatic
