@@ -36,6 +36,23 @@ struct StretchedBar {
                        {}};
 };
 
+// The solver's tuning is a part of the options: set through either name,
+// it is the same setting, and a tuning kept apart can be applied whole.
+TEST(Simulation, TuningIsThePartOfTheOptionsItNames) {
+  SolveOptions options;
+  options.tuning().hessian = HessianMode::projected;
+  EXPECT_EQ(options.hessian, HessianMode::projected);
+  options.line_search_halvings = 12;
+  EXPECT_EQ(options.tuning().line_search_halvings, 12);
+  SolverTuning expert;
+  expert.preconditioner = Preconditioner::block_jacobi;
+  expert.multigrid.rebuild_every = 3;
+  options.tuning() = expert;
+  EXPECT_EQ(options.preconditioner, Preconditioner::block_jacobi);
+  EXPECT_EQ(options.multigrid.rebuild_every, 3);
+  EXPECT_EQ(options.hessian, HessianMode::adaptive);  // the tuning's default came with it
+}
+
 // The factories name the set, its vertices and what moves them.
 TEST(Simulation, ConstraintSetFactoriesFillTheirParts) {
   const ConstraintSet held = ConstraintSet::fixed("held", {1, 2}, {true, false, true});

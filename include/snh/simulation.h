@@ -361,33 +361,12 @@ struct ContactOptions {
   double friction_slip = 0.0;
 };
 
-struct SolveOptions {
-  Precision precision = Precision::double_;
-  // Set: solve() advances time steps of implicit Euler instead of load steps
-  // (load_steps then counts time steps; loads are applied in full from the
-  // first step, ramp_loads is ignored; constrained vertices follow their
-  // targets at each time step, substeps interpolating linearly).
-  std::optional<DynamicsOptions> dynamics;
-  // Kinematic obstacles and their contact penalty (SNH_OBSTACLES kernels).
-  std::vector<Obstacle> obstacles;
-  ContactOptions contact;
-  DeviceOptions device;
-  int load_steps = 1;
-  int max_newton_iterations = 50;
-  // Newton stops when the L2 norm of the free-DOF force residual is below
-  //   max(strain_tolerance * E * h^2 * sqrt(n), absolute_tolerance,
-  //       relative_tolerance * the step's initial residual norm),
-  // n the vertices in elements, h = (rest volume / n)^(1/3) their spacing and
-  // E the smallest Young's modulus of the materials: the residual of a
-  // strain error of strain_tolerance (a vertex force is about a stress times
-  // h^2), the same for the same physics at any scale of E or of the mesh.
-  // strain_tolerance unset: 1e-6 in double, 1e-4 in float (float's floor for
-  // nearly incompressible materials), unless an absolute or relative
-  // tolerance is given, which then stands alone. Each criterion is off at 0;
-  // SolveResult::tolerance reports the absolute value used.
-  std::optional<double> strain_tolerance;
-  double absolute_tolerance = 0.0;
-  double relative_tolerance = 0.0;
+// How the solver works rather than what it solves: the linear solver, its
+// preconditioner and products, the forcing terms and the line search. The
+// defaults are the measured choices (docs/performance.md); a first program
+// leaves them alone. SolveOptions carries them (it derives from this), so
+// options.hessian and options.tuning().hessian are the same setting.
+struct SolverTuning {
   int max_cg_iterations = 20000;
   // Eisenstat-Walker (choice 2) forcing terms: eta_k = gamma (|r_k| / |r_k-1|)^2,
   // capped at eta_max.
@@ -414,6 +393,38 @@ struct SolveOptions {
   // Reported in SolveResult::product_precision.
   std::optional<Precision> product_precision;
   HessianMode hessian = HessianMode::adaptive;
+};
+
+// What to solve: precision, time stepping or load steps, obstacles and
+// contact, stopping criteria, loads and the starting state; the solver's
+// expert settings in the SolverTuning it derives from.
+struct SolveOptions : SolverTuning {
+  Precision precision = Precision::double_;
+  // Set: solve() advances time steps of implicit Euler instead of load steps
+  // (load_steps then counts time steps; loads are applied in full from the
+  // first step, ramp_loads is ignored; constrained vertices follow their
+  // targets at each time step, substeps interpolating linearly).
+  std::optional<DynamicsOptions> dynamics;
+  // Kinematic obstacles and their contact penalty (SNH_OBSTACLES kernels).
+  std::vector<Obstacle> obstacles;
+  ContactOptions contact;
+  DeviceOptions device;
+  int load_steps = 1;
+  int max_newton_iterations = 50;
+  // Newton stops when the L2 norm of the free-DOF force residual is below
+  //   max(strain_tolerance * E * h^2 * sqrt(n), absolute_tolerance,
+  //       relative_tolerance * the step's initial residual norm),
+  // n the vertices in elements, h = (rest volume / n)^(1/3) their spacing and
+  // E the smallest Young's modulus of the materials: the residual of a
+  // strain error of strain_tolerance (a vertex force is about a stress times
+  // h^2), the same for the same physics at any scale of E or of the mesh.
+  // strain_tolerance unset: 1e-6 in double, 1e-4 in float (float's floor for
+  // nearly incompressible materials), unless an absolute or relative
+  // tolerance is given, which then stands alone. Each criterion is off at 0;
+  // SolveResult::tolerance reports the absolute value used.
+  std::optional<double> strain_tolerance;
+  double absolute_tolerance = 0.0;
+  double relative_tolerance = 0.0;
   // Lumped external force, xyz per vertex; empty for none.
   std::vector<double> external_force;
   // Body force per rest volume (e.g. density times gravity), lumped to the
@@ -438,6 +449,9 @@ struct SolveOptions {
   // it produced (xyz per vertex), e.g. to measure error against a reference
   // as the solve runs. Downloads the positions: leave empty when not needed.
   std::function<void(const NewtonIteration&, const std::vector<double>& positions)> on_iteration;
+
+  SolverTuning& tuning() { return *this; }
+  const SolverTuning& tuning() const { return *this; }
 };
 
 // Where a solve's time went, in seconds. Every second of the solve is
