@@ -359,7 +359,7 @@ std::string per_step(const Series& s, bool cg) {
 
 std::string stop_status(const Series& s) {
   std::map<std::string, int> counts;
-  for (const StepResult& st : s.steps) ++counts[st.status];
+  for (const StepResult& st : s.steps) ++counts[to_string(st.status)];
   std::string out;
   for (const auto& [status, n] : counts)
     out += (out.empty() ? "" : ", ") + status + (s.steps.size() > 1 ? " x" + std::to_string(n) : "");
@@ -401,7 +401,7 @@ json series_json(const Series& s, int last_step) {
     j["steps"].push_back({{"step", st.step},
                           {"newton_iterations", st.newton_iterations},
                           {"cg_iterations", st.cg_iterations},
-                          {"status", st.status},
+                          {"status", to_string(st.status)},
                           {"residual", st.residual_norm}});
   j["wall_seconds"] = s.seconds;
   json t;
@@ -433,7 +433,7 @@ json reference_json(const Reference& ref) {
   j["steps"] = json::array();
   for (size_t k = 0; k < r.steps.size(); ++k)
     j["steps"].push_back({{"step", r.steps[k].step},
-                          {"status", r.steps[k].status},
+                          {"status", to_string(r.steps[k].status)},
                           {"residual", r.steps[k].residual_norm},
                           {"reached_relative_residual", ref.reached_relative[k]},
                           {"newton_iterations", r.steps[k].newton_iterations},

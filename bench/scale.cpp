@@ -52,7 +52,7 @@ SceneParameters scene_parameters(int resolution, const ScaleOptions& o) {
 
 std::string stop_status(const std::vector<StepResult>& steps) {
   std::map<std::string, int> counts;
-  for (const StepResult& s : steps) ++counts[s.status];
+  for (const StepResult& s : steps) ++counts[to_string(s.status)];
   std::string out;
   for (const auto& [status, n] : counts)
     out += (out.empty() ? "" : ", ") + status + (steps.size() > 1 ? " x" + std::to_string(n) : "");

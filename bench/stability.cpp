@@ -455,8 +455,8 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
     for (const StepResult& step : s.steps) {
       r.newton_iterations += step.newton_iterations;
       r.cg_iterations += step.cg_iterations;
-      r.precisions_used.push_back(step.precision_used);
-      if (!step.converged && r.status == "converged") r.status = step.status;
+      r.precisions_used.push_back(to_string(step.precision_used));
+      if (!step.converged && r.status == "converged") r.status = to_string(step.status);
       if (!step.converged) {
         std::ostringstream why;
         why << "step " << step.step << ": " << step.status << " after " << step.newton_iterations
@@ -467,7 +467,7 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
     }
     if (!scene.options.obstacles.empty()) r.contact_thickness = scene.options.contact.thickness;
     for (const NewtonIteration& h : s.history) {
-      if (!h.recovery.empty()) ++r.recoveries[h.recovery];
+      if (!h.recovery.empty()) ++r.recoveries[to_string(h.recovery)];
       if (std::isnan(h.residual_norm) || std::isnan(h.energy)) ++r.nan_in_history;
     }
     for (double v : s.positions) r.non_finite_positions += std::isfinite(v) ? 0 : 1;

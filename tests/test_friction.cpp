@@ -24,12 +24,6 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
-Obstacle plane(Vec3 point, Vec3 normal) { return {ObstacleType::plane, point, normal, 0.0, {}, {}}; }
-Obstacle sphere(Vec3 center, double radius) { return {ObstacleType::sphere, center, {0, 0, 1}, radius, {}, {}}; }
-Obstacle cylinder(Vec3 point, Vec3 axis, double radius) {
-  return {ObstacleType::cylinder, point, axis, radius, {}, {}};
-}
-
 constexpr double kStiffness = 7.0, kThickness = 0.05, kMu = 0.4, kSlip = 0.01;
 
 // One obstacle moving by a rotation and a translation between t = 0 and 1.
@@ -59,9 +53,9 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-  return {{"plane", plane({0.1, -0.2, 0.3}, {1, 2, 2}), {0.1, -0.2, 0.31}},
-          {"sphere", sphere({0.2, 0.1, -0.1}, 0.5), {0.2, 0.1, 0.42}},
-          {"cylinder", cylinder({0.0, 0.0, 0.0}, {1, 1, 0}, 0.3), {0.5, 0.3, 0.28}}};
+  return {{"plane", Obstacle::plane({0.1, -0.2, 0.3}, {1, 2, 2}), {0.1, -0.2, 0.31}},
+          {"sphere", Obstacle::sphere({0.2, 0.1, -0.1}, 0.5), {0.2, 0.1, 0.42}},
+          {"cylinder", Obstacle::cylinder({0.0, 0.0, 0.0}, {1, 1, 0}, 0.3), {0.5, 0.3, 0.28}}};
 }
 
 // Positions about the carried anchor: slips below and above eps, and a
@@ -118,7 +112,7 @@ TEST(Friction, ForceIsMinusTheEnergyGradientAndTheHessianItsDerivative) {
 // (f1(y)/y -> 2/eps); beyond it the kinetic force mu lambda, lambda = k g at
 // the start; none without contact at the start.
 TEST(Friction, StaticSpringThenKineticForceAndNoneWithoutStartContact) {
-  Obstacle floor = plane({0, 0, 0}, {0, 0, 1});
+  Obstacle floor = Obstacle::plane({0, 0, 0}, {0, 0, 1});
   floor.friction = kMu;
   const std::vector<double> start = solver::obstacle_records({floor}, 0.0),
                             still = solver::friction_records({floor}, ContactOptions{}, 0.0, 1.0);
@@ -144,7 +138,7 @@ TEST(Friction, StaticSpringThenKineticForceAndNoneWithoutStartContact) {
 // along the plane's motion; a plane moving along its normal (a lid) slips
 // nothing.
 TEST(Friction, SlipIsRelativeToTheMovingObstacle) {
-  Obstacle belt = plane({0, 0, 0}, {0, 0, 1});
+  Obstacle belt = Obstacle::plane({0, 0, 0}, {0, 0, 1});
   belt.motion = [](double t) { return RigidTransform::translation_by({0.3 * t, 0.0, 0.0}); };
   ContactOptions contact;
   contact.friction = kMu;
@@ -156,7 +150,7 @@ TEST(Friction, SlipIsRelativeToTheMovingObstacle) {
   EXPECT_NEAR(carried.force[0], 0.0, 1e-15);
   const auto behind = friction_at(l, x0, x0);
   EXPECT_NEAR(behind.force[0], kMu * lambda, 1e-14);
-  Obstacle lid = plane({0, 0, 1}, {0, 0, -1});
+  Obstacle lid = Obstacle::plane({0, 0, 1}, {0, 0, -1});
   lid.motion = [](double t) { return RigidTransform::translation_by({0.0, 0.0, -0.4 * t}); };
   lid.friction = kMu;
   const Lag down{solver::obstacle_records({lid}, 0.0), solver::friction_records({lid}, contact, 0.0, 1.0)};
@@ -173,8 +167,8 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
   const Mesh mesh = make_tet_box(3, 2, 2, 0.1);
   const fem::RestState rest = fem::compute_rest_state(mesh);
   const MaterialMap map = uniform_material(mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3));
-  std::vector<Obstacle> obstacles = {plane({0, 0, 0.03}, {0, 0, 1}), sphere({0.3, 0.2, 0.25}, 0.1),
-                                     cylinder({0, 0.1, 0.1}, {1, 0, 0}, 0.06)};
+  std::vector<Obstacle> obstacles = {Obstacle::plane({0, 0, 0.03}, {0, 0, 1}), Obstacle::sphere({0.3, 0.2, 0.25}, 0.1),
+                                     Obstacle::cylinder({0, 0.1, 0.1}, {1, 0, 0}, 0.06)};
   obstacles[0].motion = [](double t) { return RigidTransform::translation_by({0.01 * t, 0.0, 0.002 * t}); };
   obstacles[1].friction = 0.0;  // no friction against the sphere
   ContactOptions contact;
@@ -253,7 +247,7 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
 // (slip <= eps), is dragged to eps behind where it slid, and is carried by
 // the obstacle's motion.
 TEST(Friction, AnchorStaysWhereItSticksAndFollowsWhereItSlides) {
-  Obstacle belt = plane({0, 0, 0}, {0, 0, 1});
+  Obstacle belt = Obstacle::plane({0, 0, 0}, {0, 0, 1});
   belt.motion = [](double t) { return RigidTransform::translation_by({0.3 * t, 0.0, 0.0}); };
   belt.friction = kMu;
   const std::vector<double> start = solver::obstacle_records({belt}, 0.0), end = solver::obstacle_records({belt}, 1.0),
@@ -295,7 +289,7 @@ Incline slide(double mu, double theta, int steps, double plane_speed = 0.0) {
   options.dynamics->density = density;
   options.body_force = {density * g * std::sin(theta), 0.0, -density * g * std::cos(theta)};
   const double resting = density * g * std::cos(theta) * 1e-3 / (4 * k);
-  Obstacle floor = plane({0, 0, -thickness + resting}, {0, 0, 1});
+  Obstacle floor = Obstacle::plane({0, 0, -thickness + resting}, {0, 0, 1});
   if (plane_speed != 0.0)
     floor.motion = [=](double t) { return RigidTransform::translation_by({plane_speed * h * steps * t, 0.0, 0.0}); };
   options.obstacles = {floor};
@@ -379,7 +373,7 @@ TEST(Friction, OptionsAreChecked) {
   };
   ContactOptions contact;
   contact.stiffness = 1.0;
-  Obstacle o = plane({0, 0, 0}, {0, 0, 1});
+  Obstacle o = Obstacle::plane({0, 0, 0}, {0, 0, 1});
   o.friction = -0.1;
   EXPECT_NE(message(o, contact).find("obstacle 0 (plane): friction must be finite and >= 0"), std::string::npos);
   o.friction = std::nan("");

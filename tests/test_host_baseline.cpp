@@ -33,7 +33,7 @@ void expect_host_matches_device(const std::string& name, const SceneParameters& 
       });
   ASSERT_TRUE(host.converged) << name;
   ASSERT_EQ(host.steps.size(), static_cast<size_t>(options.load_steps));
-  for (const StepResult& s : host.steps) EXPECT_EQ(s.status, "converged") << name;
+  for (const StepResult& s : host.steps) EXPECT_EQ(s.status, StepStatus::converged) << name;
   EXPECT_GT(host.seconds, 0.0);
   EXPECT_GT(host.assembly_seconds, 0.0);
   EXPECT_GT(host.cg_seconds, 0.0);
@@ -48,7 +48,7 @@ void expect_host_matches_device(const std::string& name, const SceneParameters& 
     if (h.step_length > 0.0) {
       ++newton;
       EXPECT_GT(h.cg_iterations, 0);
-      EXPECT_TRUE(h.cg_stop == "converged" || h.cg_stop == "max_iterations") << h.cg_stop;
+      EXPECT_TRUE(h.cg_stop == CgStop::converged || h.cg_stop == CgStop::max_iterations) << h.cg_stop;
     }
   }
   EXPECT_EQ(callbacks, newton);

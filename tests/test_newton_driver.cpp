@@ -76,7 +76,7 @@ SaddleRun run_from(double x0, double y0) {
   run.x = {x0, y0};
   run.result = newton.solve_step(1, run.x, 1e-12, run.history, std::chrono::steady_clock::now());
   for (const NewtonIteration& h : run.history)
-    if (h.recovery.find("negative_curvature -> step x") != std::string::npos) ++run.extended;
+    if (contains(h.recovery, RecoveryAction::extended_step)) ++run.extended;
   return run;
 }
 
@@ -200,7 +200,7 @@ TEST(NewtonDriver, CrawlingProjectionTriesTheTrueHessianDespiteInversion) {
   EXPECT_LT(result.newton_iterations, 10);
   int first_true = -1;
   for (const NewtonIteration& h : history)
-    if (!h.projected && h.cg_stop != "") {
+    if (!h.projected && h.cg_stop != CgStop::none) {
       first_true = h.iteration;
       break;
     }

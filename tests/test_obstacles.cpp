@@ -27,12 +27,6 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
-Obstacle plane(Vec3 point, Vec3 normal) { return {ObstacleType::plane, point, normal, 0.0, {}, {}}; }
-Obstacle sphere(Vec3 center, double radius) { return {ObstacleType::sphere, center, {0, 0, 1}, radius, {}, {}}; }
-Obstacle cylinder(Vec3 point, Vec3 axis, double radius) {
-  return {ObstacleType::cylinder, point, axis, radius, {}, {}};
-}
-
 constexpr double kStiffness = 7.0, kThickness = 0.05;
 
 reference::ObstacleContact<double> contact_at(const std::vector<double>& records, const Eigen::Vector3d& x) {
@@ -49,14 +43,39 @@ struct Case {
 
 std::vector<Case> cases() {
   return {
-      {"plane", plane({0.1, -0.2, 0.3}, {1, 2, 2}), {{0.1, -0.2, 0.31}, {0.2, -0.3, 0.2}, {0.0, 0.0, 0.2}}},
-      {"sphere", sphere({0.2, 0.1, -0.1}, 0.5), {{0.2, 0.1, 0.42}, {0.5, 0.3, 0.1}, {-0.1, 0.0, -0.3}}},
-      {"cylinder", cylinder({0.0, 0.0, 0.0}, {1, 1, 0}, 0.3), {{0.5, 0.3, 0.28}, {-1.0, -0.8, 0.1}, {0.2, 0.4, -0.25}}},
+      {"plane", Obstacle::plane({0.1, -0.2, 0.3}, {1, 2, 2}), {{0.1, -0.2, 0.31}, {0.2, -0.3, 0.2}, {0.0, 0.0, 0.2}}},
+      {"sphere", Obstacle::sphere({0.2, 0.1, -0.1}, 0.5), {{0.2, 0.1, 0.42}, {0.5, 0.3, 0.1}, {-0.1, 0.0, -0.3}}},
+      {"cylinder",
+       Obstacle::cylinder({0.0, 0.0, 0.0}, {1, 1, 0}, 0.3),
+       {{0.5, 0.3, 0.28}, {-1.0, -0.8, 0.1}, {0.2, 0.4, -0.25}}},
   };
 }
 
 // The gradient against central differences of the energy, the best relative
 // error over steps 1e-4 ... 1e-9 (as the material derivative tests do).
+// The factories fill what each shape uses and leave motion and friction
+// unset until asked.
+TEST(Obstacles, FactoriesFillTheirShape) {
+  const Obstacle p = Obstacle::plane({1, 2, 3}, {0, 1, 0});
+  EXPECT_EQ(p.type, ObstacleType::plane);
+  EXPECT_EQ(p.point, (Vec3{1, 2, 3}));
+  EXPECT_EQ(p.direction, (Vec3{0, 1, 0}));
+  EXPECT_FALSE(p.motion);
+  EXPECT_FALSE(p.friction.has_value());
+  const Obstacle s = Obstacle::sphere({0, 0, 1}, 0.5);
+  EXPECT_EQ(s.type, ObstacleType::sphere);
+  EXPECT_EQ(s.radius, 0.5);
+  const Obstacle c = Obstacle::cylinder({1, 0, 0}, {0, 0, 1}, 0.25).with_friction(0.3).with_motion([](double t) {
+    return RigidTransform::translation_by({t, 0, 0});
+  });
+  EXPECT_EQ(c.type, ObstacleType::cylinder);
+  EXPECT_EQ(c.direction, (Vec3{0, 0, 1}));
+  EXPECT_EQ(c.radius, 0.25);
+  EXPECT_EQ(c.friction, 0.3);
+  ASSERT_TRUE(c.motion);
+  EXPECT_EQ(c.motion(0.5).translation[0], 0.5);
+}
+
 TEST(Obstacles, ForceIsMinusTheEnergyGradient) {
   for (const Case& c : cases()) {
     const std::vector<double> records = solver::obstacle_records({c.obstacle}, 0.0);
@@ -121,7 +140,7 @@ TEST(Obstacles, GaussNewtonHessianIsTheTrueHessianWithoutTheCurvatureTerm) {
 }
 
 TEST(Obstacles, PenaltyIsC1AtTheLayerAndZeroOutside) {
-  const std::vector<double> records = solver::obstacle_records({plane({0, 0, 0}, {0, 0, 1})}, 0.0);
+  const std::vector<double> records = solver::obstacle_records({Obstacle::plane({0, 0, 0}, {0, 0, 1})}, 0.0);
   const auto outside = contact_at(records, {0.3, 0.2, kThickness + 1e-9});
   EXPECT_EQ(outside.energy, 0.0);
   EXPECT_EQ(outside.force[2], 0.0);
@@ -132,7 +151,7 @@ TEST(Obstacles, PenaltyIsC1AtTheLayerAndZeroOutside) {
 }
 
 TEST(Obstacles, RecordsFollowKeyframedRigidMotion) {
-  Obstacle c = cylinder({1, 0, 0}, {0, 0, 2}, 0.25);
+  Obstacle c = Obstacle::cylinder({1, 0, 0}, {0, 0, 2}, 0.25);
   c.motion = [](double t) {
     RigidTransform r = RigidTransform::rotation_about({0, 1, 0}, t * std::acos(-1.0) / 2, {0, 0, 0});
     r.translation = {0, t, 0};
@@ -155,8 +174,9 @@ TEST(Obstacles, DeviceContactTermsMatchTheHostReference) {
   const Mesh mesh = make_tet_box(3, 2, 2, 0.1);
   const fem::RestState rest = fem::compute_rest_state(mesh);
   const MaterialMap map = uniform_material(mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3));
-  const std::vector<Obstacle> obstacles = {plane({0, 0, 0.03}, {0, 0, 1}), sphere({0.3, 0.2, 0.25}, 0.1),
-                                           cylinder({0, 0.1, 0.1}, {1, 0, 0}, 0.06)};
+  const std::vector<Obstacle> obstacles = {Obstacle::plane({0, 0, 0.03}, {0, 0, 1}),
+                                           Obstacle::sphere({0.3, 0.2, 0.25}, 0.1),
+                                           Obstacle::cylinder({0, 0.1, 0.1}, {1, 0, 0}, 0.06)};
   const std::vector<double> records = solver::obstacle_records(obstacles, 0.0);
   solver::ModelTerms terms;
   terms.obstacles = 3;
@@ -209,7 +229,7 @@ TEST(Obstacles, BlockRestingOnAPlanePenetratesWeightOverStiffness) {
   // The block starts 1 mm into the layer, so the contact holds it from the
   // first Newton iteration (its vertical motion is otherwise free).
   const double plane_z = -thickness + 0.001;
-  options.obstacles = {plane({0, 0, plane_z}, {0, 0, 1})};
+  options.obstacles = {Obstacle::plane({0, 0, plane_z}, {0, 0, 1})};
   options.contact = {k, thickness};
   options.absolute_tolerance = 1e-9;
   Simulation sim(mesh, StableNeoHookean::from_youngs_modulus(1e7, 0.3), {lateral}, options);
@@ -231,7 +251,7 @@ TEST(Obstacles, BlockRestingOnAPlanePenetratesWeightOverStiffness) {
 TEST(Obstacles, MovingSpherePushesIntoABlock) {
   const Mesh mesh = make_box_lattice(4, 4, 2, 0.1);
   const ConstraintSet held{"held", on_plane(mesh, 2, 0.0), {}, {}};
-  Obstacle ball = sphere({0.2, 0.2, 0.4}, 0.15);  // 0.05 above the top
+  Obstacle ball = Obstacle::sphere({0.2, 0.2, 0.4}, 0.15);  // 0.05 above the top
   ball.motion = [](double t) { return RigidTransform::translation_by({0.0, 0.0, -0.1 * t}); };
   SolveOptions options;
   options.obstacles = {ball};
@@ -269,7 +289,7 @@ TEST(Obstacles, BlockDroppedOnAPlaneComesToRest) {
   options.dynamics->density = density;
   options.dynamics->damping.mass = 20.0;
   options.body_force = {0.0, 0.0, -density * g};
-  options.obstacles = {plane({0, 0, -thickness}, {0, 0, 1})};
+  options.obstacles = {Obstacle::plane({0, 0, -thickness}, {0, 0, 1})};
   options.contact = {k, thickness};
   options.absolute_tolerance = 1e-9;
   // E = 1e7 at a tight tolerance: the energy (0.5 J) is a small sum of
@@ -305,15 +325,16 @@ TEST(Obstacles, OptionsAreChecked) {
     }
     return std::string();
   };
-  EXPECT_NE(message({plane({0, 0, 0}, {0, 0, 1})}, {0.0, 0.0}).find("stiffness"), std::string::npos);
-  EXPECT_NE(message({plane({0, 0, 0}, {0, 0, 1})}, {1.0, -1.0}).find("thickness"), std::string::npos);
-  EXPECT_NE(message({plane({0, 0, 0}, {0, 0, 0})}, {1.0, 0.0}).find("obstacle 0 (plane): zero normal"),
+  EXPECT_NE(message({Obstacle::plane({0, 0, 0}, {0, 0, 1})}, {0.0, 0.0}).find("stiffness"), std::string::npos);
+  EXPECT_NE(message({Obstacle::plane({0, 0, 0}, {0, 0, 1})}, {1.0, -1.0}).find("thickness"), std::string::npos);
+  EXPECT_NE(message({Obstacle::plane({0, 0, 0}, {0, 0, 0})}, {1.0, 0.0}).find("obstacle 0 (plane): zero normal"),
             std::string::npos);
-  EXPECT_NE(message({plane({0, 0, 0}, {0, 0, 1}), sphere({0, 0, 0}, 0.0)}, {1.0, 0.0}).find("obstacle 1 (sphere)"),
+  EXPECT_NE(message({Obstacle::plane({0, 0, 0}, {0, 0, 1}), Obstacle::sphere({0, 0, 0}, 0.0)}, {1.0, 0.0})
+                .find("obstacle 1 (sphere)"),
             std::string::npos);
-  EXPECT_NE(message({cylinder({0, 0, 0}, {0, 0, 0}, 1.0)}, {1.0, 0.0}).find("zero axis"), std::string::npos);
-  EXPECT_NE(message({sphere({NAN, 0, 0}, 1.0)}, {1.0, 0.0}).find("non-finite"), std::string::npos);
-  EXPECT_EQ(message({sphere({0, 0, 5}, 1.0)}, {1.0, 0.0}), "");
+  EXPECT_NE(message({Obstacle::cylinder({0, 0, 0}, {0, 0, 0}, 1.0)}, {1.0, 0.0}).find("zero axis"), std::string::npos);
+  EXPECT_NE(message({Obstacle::sphere({NAN, 0, 0}, 1.0)}, {1.0, 0.0}).find("non-finite"), std::string::npos);
+  EXPECT_EQ(message({Obstacle::sphere({0, 0, 5}, 1.0)}, {1.0, 0.0}), "");
 }
 
 }  // namespace

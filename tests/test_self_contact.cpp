@@ -259,7 +259,7 @@ TEST(SelfContact, CombinesWithDynamicsAndObstacles) {
   d.density = 1000.0;
   options.dynamics = d;
   options.body_force = {0.0, 0.0, -9810.0};
-  options.obstacles = {Obstacle{ObstacleType::plane, {0, 0, -0.002}, {0, 0, 1}, 0.0, {}, {}}};
+  options.obstacles = {Obstacle::plane({0, 0, -0.002}, {0, 0, 1})};
   options.contact.stiffness = 1e4;
   options.contact.thickness = 0.005;
   options.load_steps = 5;

@@ -36,6 +36,44 @@ struct StretchedBar {
                        {}};
 };
 
+// The solver's tuning is a part of the options: set through either name,
+// it is the same setting, and a tuning kept apart can be applied whole.
+TEST(Simulation, TuningIsThePartOfTheOptionsItNames) {
+  SolveOptions options;
+  options.tuning().hessian = HessianMode::projected;
+  EXPECT_EQ(options.hessian, HessianMode::projected);
+  options.line_search_halvings = 12;
+  EXPECT_EQ(options.tuning().line_search_halvings, 12);
+  SolverTuning expert;
+  expert.preconditioner = Preconditioner::block_jacobi;
+  expert.multigrid.rebuild_every = 3;
+  options.tuning() = expert;
+  EXPECT_EQ(options.preconditioner, Preconditioner::block_jacobi);
+  EXPECT_EQ(options.multigrid.rebuild_every, 3);
+  EXPECT_EQ(options.hessian, HessianMode::adaptive);  // the tuning's default came with it
+}
+
+// The factories name the set, its vertices and what moves them.
+TEST(Simulation, ConstraintSetFactoriesFillTheirParts) {
+  const ConstraintSet held = ConstraintSet::fixed("held", {1, 2}, {true, false, true});
+  EXPECT_EQ(held.name, "held");
+  EXPECT_EQ(held.vertices, (std::vector<int32_t>{1, 2}));
+  EXPECT_FALSE(held.motion);
+  EXPECT_FALSE(held.targets);
+  EXPECT_EQ(held.components, (std::array<bool, 3>{true, false, true}));
+  const ConstraintSet moved = ConstraintSet::moving("moved", {3}, [](double t) {
+    return RigidTransform::translation_by({0, 0, t});
+  });
+  ASSERT_TRUE(moved.motion);
+  EXPECT_EQ(moved.motion(0.25).translation[2], 0.25);
+  EXPECT_EQ(moved.components, (std::array<bool, 3>{true, true, true}));
+  const ConstraintSet placed = ConstraintSet::targets_of("placed", {4}, [](double t, std::vector<double>& xyz) {
+    xyz = {t, t, t};
+  });
+  ASSERT_TRUE(placed.targets);
+  EXPECT_FALSE(placed.motion);
+}
+
 TEST(Simulation, DefaultStopIsScaleFreeSameShapeForAnyYoungsModulus) {
   // The same physics at E = 1e-2 ... 1e6: with the default (strain) stop
   // every solve must reach the same shape. (An absolute force tolerance
@@ -154,7 +192,7 @@ TEST(Simulation, ProgressCallbackCancelsAndTheNextSolveFinishes) {
   EXPECT_TRUE(cut.cancelled);
   EXPECT_FALSE(cut.converged);
   ASSERT_EQ(cut.steps.size(), 1u);  // the second load step never ran
-  EXPECT_EQ(cut.steps[0].status, "cancelled");
+  EXPECT_EQ(cut.steps[0].status, StepStatus::cancelled);
   EXPECT_EQ(cut.steps[0].newton_iterations, 2);
   EXPECT_EQ(sim.positions(), cut.positions);
   // The targets were not reached: the next solve goes on to them.

@@ -174,7 +174,8 @@ TEST(Solver, FailedLineSearchRetriesAlongSteepestDescentAndReportsIt) {
   const SolveResult r = solver.solve();
   bool retried = false;
   for (const NewtonIteration& h : r.history)
-    retried = retried || h.recovery.find("line_search_failed -> steepest_descent") != std::string::npos;
+    retried = retried || contains(h.recovery, RecoveryAction::line_search_steepest_descent) ||
+              contains(h.recovery, RecoveryAction::line_search_steepest_descent_failed);
   EXPECT_TRUE(retried);
   for (double x : r.positions) EXPECT_TRUE(std::isfinite(x));
 }

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
       converged = converged && r.converged;
       surface = snh::embedded_positions(embedding, voxels.lattice, sim.positions());
       std::printf("frame %d: %s, %zu Newton, min J %.3f; hand at (%.3f, %.3f, %.3f)\n", f,
-                  r.converged ? "converged" : r.steps.back().status.c_str(), r.history.size(), r.min_j,
+                  r.converged ? "converged" : to_string(r.steps.back().status), r.history.size(), r.min_j,
                   surface[3 * hand], surface[3 * hand + 1], surface[3 * hand + 2]);
     }
     // The hand follows the forearm bone's transform closely.

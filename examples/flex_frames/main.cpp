@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     options.body_force = {0.0, 0.0, -1000.0 * 9.81};  // density 1000 kg/m^3 times gravity
     snh::Simulation sim(
         limb, materials,
-        {snh::ConstraintSet{"upper_bone", upper_bone, {}, {}}, snh::ConstraintSet{"lower_bone", lower_bone, {}, {}}},
+        {snh::ConstraintSet::fixed("upper_bone", upper_bone), snh::ConstraintSet::fixed("lower_bone", lower_bone)},
         options);
     std::cout << "device: " << sim.device().name << ", " << limb.element_count() << " hexes, "
               << 3 * limb.vertex_count() << " DOF\n";
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
       for (size_t v = 0; v < limb.vertex_count(); ++v) weight -= sim.applied_force()[3 * v + 2];
       balanced = balanced && std::abs(carried - weight) <= 1e-3 * weight;
       std::printf("frame %d: %.0f deg, %zu Newton, %s, min J %.3f; bones carry %.3f N of %.3f N weight\n", frame,
-                  angle * 180 / M_PI, r.history.size(), r.converged ? "converged" : r.steps.back().status.c_str(),
+                  angle * 180 / M_PI, r.history.size(), r.converged ? "converged" : to_string(r.steps.back().status),
                   r.min_j, carried, weight);
       for (const snh::Reaction& b : reactions)
         std::printf("  %-10s force (%8.3f %8.3f %8.3f) N  torque (%8.4f %8.4f %8.4f) N m\n", b.name.c_str(), b.force[0],

@@ -9,16 +9,17 @@
 int main() {
   try {
     snh::Mesh bar = snh::make_box_lattice(6, 2, 2, 0.5);  // 3 x 1 x 1
-    snh::ConstraintSet held{"held", {}, {}, {}}, pulled{"pulled", {}, {}, {}};
+    std::vector<int32_t> left_end, right_end;
     for (size_t v = 0; v < bar.vertex_count(); ++v) {
-      if (bar.positions[3 * v] < 1e-9) held.vertices.push_back(static_cast<int32_t>(v));
-      if (bar.positions[3 * v] > 3.0 - 1e-9) pulled.vertices.push_back(static_cast<int32_t>(v));
+      if (bar.positions[3 * v] < 1e-9) left_end.push_back(static_cast<int32_t>(v));
+      if (bar.positions[3 * v] > 3.0 - 1e-9) right_end.push_back(static_cast<int32_t>(v));
     }
-    pulled.motion = [](double t) {
+    const auto held = snh::ConstraintSet::fixed("held", left_end);
+    const auto pulled = snh::ConstraintSet::moving("pulled", right_end, [](double t) {
       snh::RigidTransform m = snh::RigidTransform::rotation_about({1, 0, 0}, t * 0.5 * M_PI, {3.0, 0.5, 0.5});
       m.translation = {0.5 * t, 0.0, 0.0};
       return m;
-    };
+    });
     snh::SolveOptions options;
     options.load_steps = 3;
     options.relative_tolerance = 1e-6;

@@ -11,95 +11,23 @@
 #include <locale>
 #include <sstream>
 
-#include "io/writers.h"
+#include "fem/boundary_faces.h"
 #include "snh/error.h"
 #include "snh/mesh_io.h"
 
 namespace snh {
 namespace {
 
-using io::kHexFaces;
-using io::kTetFaces;
-
-struct Surface {
-  int corners = 3;                // per face
-  std::vector<int32_t> faces;     // new vertex indices, `corners` per face
-  std::vector<int32_t> vertices;  // mesh vertex of each surface vertex
-};
+using Surface = fem::BoundaryFaces;
 
 Surface boundary(const std::string& writer, const std::string& path, const Mesh& mesh, const std::vector<double>& x) {
-  const int n = nodes_per_element(mesh.type);
-  if (mesh.positions.size() % 3 != 0 || mesh.elements.size() % n != 0) {
-    std::ostringstream s;
-    s << writer << " " << path << ": the mesh is malformed (" << mesh.positions.size() << " position values, "
-      << mesh.elements.size() << " element indices for " << to_string(mesh.type) << ")";
-    throw Error(s.str());
-  }
+  Surface surface = fem::boundary_faces(mesh, writer + " " + path);
   if (x.size() != mesh.positions.size()) {
     std::ostringstream s;
     s << writer << " " << path << ": the positions have " << x.size() << " values, but the mesh has "
       << mesh.vertex_count() << " vertices (" << mesh.positions.size() << " values expected)";
     throw Error(s.str());
   }
-  for (size_t i = 0; i < mesh.elements.size(); ++i)
-    if (mesh.elements[i] < 0 || static_cast<size_t>(mesh.elements[i]) >= mesh.vertex_count()) {
-      std::ostringstream s;
-      s << writer << " " << path << ": element " << i / n << " refers to vertex " << mesh.elements[i]
-        << ", but the mesh has " << mesh.vertex_count() << " vertices";
-      throw Error(s.str());
-    }
-
-  Surface surface;
-  const bool hex = mesh.type == ElementType::hex8;
-  surface.corners = hex ? 4 : 3;
-  const int faces_per = hex ? 6 : 4;
-  const size_t elements = mesh.element_count();
-  // Every face with its sorted corners as the key; faces met once are the boundary.
-  struct Face {
-    std::array<int32_t, 4> key;
-    uint32_t face;  // local face
-    size_t element;
-  };
-  std::vector<Face> all;
-  all.reserve(elements * faces_per);
-  for (size_t e = 0; e < elements; ++e)
-    for (int f = 0; f < faces_per; ++f) {
-      Face face{{-1, -1, -1, -1}, static_cast<uint32_t>(f), e};
-      for (int c = 0; c < surface.corners; ++c)
-        face.key[c] = mesh.elements[n * e + (hex ? kHexFaces[f][c] : kTetFaces[f][c])];
-      // Insertion sort of the 3 or 4 corners (std::sort here trips GCC 12's -Warray-bounds).
-      for (int i = 1; i < surface.corners; ++i)
-        for (int j = i; j > 0 && face.key[j - 1] > face.key[j]; --j) std::swap(face.key[j - 1], face.key[j]);
-      all.push_back(face);
-    }
-  std::sort(all.begin(), all.end(), [](const Face& a, const Face& b) {
-    return a.key != b.key ? a.key < b.key : a.element != b.element ? a.element < b.element : a.face < b.face;
-  });
-  std::vector<const Face*> once;
-  for (size_t i = 0; i < all.size();) {
-    size_t j = i + 1;
-    while (j < all.size() && all[j].key == all[i].key) ++j;
-    if (j == i + 1) once.push_back(&all[i]);
-    i = j;
-  }
-  std::sort(once.begin(), once.end(), [](const Face* a, const Face* b) {
-    return a->element != b->element ? a->element < b->element : a->face < b->face;
-  });
-
-  std::vector<int32_t> index(mesh.vertex_count(), -1);
-  for (const Face* face : once)
-    for (int c = 0; c < surface.corners; ++c) index[face->key[c]] = 0;
-  for (size_t v = 0; v < index.size(); ++v)
-    if (index[v] == 0) {
-      index[v] = static_cast<int32_t>(surface.vertices.size());
-      surface.vertices.push_back(static_cast<int32_t>(v));
-    }
-  surface.faces.reserve(once.size() * surface.corners);
-  for (const Face* face : once)
-    for (int c = 0; c < surface.corners; ++c) {
-      const int local = hex ? kHexFaces[face->face][c] : kTetFaces[face->face][c];
-      surface.faces.push_back(index[mesh.elements[n * face->element + local]]);
-    }
   return surface;
 }
 

@@ -46,7 +46,7 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     record.frame = static_cast<int>(f);
     record.time = animation.times[f];
     record.converged = r.converged;
-    record.status = r.steps.empty() ? "" : r.steps.back().status;
+    record.status = r.steps.empty() ? StepStatus::none : r.steps.back().status;
     for (const StepResult& s : r.steps) {
       record.newton_iterations += s.newton_iterations;
       record.cg_iterations += s.cg_iterations;

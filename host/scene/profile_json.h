@@ -41,11 +41,16 @@ inline nlohmann::ordered_json profile_json(const SolveProfile& p) {
 inline nlohmann::ordered_json history_json(const std::vector<NewtonIteration>& history) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const NewtonIteration& h : history) {
-    nlohmann::ordered_json j = {
-        {"step", h.step},       {"iteration", h.iteration},     {"residual", h.residual_norm},
-        {"energy", h.energy},   {"step_length", h.step_length}, {"cg_iterations", h.cg_iterations},
-        {"cg_stop", h.cg_stop}, {"projected", h.projected},     {"seconds", h.seconds}};
-    if (!h.recovery.empty()) j["recovery"] = h.recovery;
+    nlohmann::ordered_json j = {{"step", h.step},
+                                {"iteration", h.iteration},
+                                {"residual", h.residual_norm},
+                                {"energy", h.energy},
+                                {"step_length", h.step_length},
+                                {"cg_iterations", h.cg_iterations},
+                                {"cg_stop", cg_stop_text(h)},
+                                {"projected", h.projected},
+                                {"seconds", h.seconds}};
+    if (!h.recovery.empty()) j["recovery"] = to_string(h.recovery);
     out.push_back(j);
   }
   return out;

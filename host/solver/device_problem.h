@@ -102,6 +102,13 @@ class DeviceProblem {
       built_contacts_ = contacts;
     }
   }
+  // The next linearization builds the multigrid hierarchy afresh, its
+  // smoothing bounds estimated from the fixed start, as a new problem's first
+  // does: what a restored checkpoint needs to continue as the original did.
+  void restart_preconditioner() {
+    rebuild_.restart();
+    if (multigrid_) multigrid_->forget_estimates();
+  }
   // Multigrid hierarchies built so far (0 without multigrid).
   int preconditioner_builds() const { return rebuild_.builds(); }
 

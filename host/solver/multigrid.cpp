@@ -51,6 +51,7 @@ class MultigridPreconditioner<Real>::Cycle {
   virtual ~Cycle() = default;
   virtual void setup() = 0;
   virtual void update_fine_bound() = 0;
+  virtual void forget_estimates() = 0;
   virtual bool fine_level_built() const = 0;
   virtual bool float_cycle() const = 0;
   virtual void apply(WideBase& z) const = 0;
@@ -82,6 +83,9 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
 
   void setup() override;
   void update_fine_bound() override;
+  void forget_estimates() override {
+    for (auto& level : levels_) level->estimated = false;
+  }
   bool fine_level_built() const override { return fine_built_; }
   bool float_cycle() const override { return kNarrow; }
   void apply(WideBase& z) const override;
@@ -173,6 +177,9 @@ struct Levels<Real, C>::Level {
   device::Buffer prolong_vertices, prolong_weights, restrict_offsets, restrict_vertices, restrict_weights;
   viennacl::vector<C> b, x, r, d, t, d_next;
   viennacl::vector<C> eigenvector;  // of D^-1 A, the last power iteration's
+  // Whether eigenvector holds an estimate to start from. (Assigning an empty
+  // ViennaCL vector to a sized one leaves it as it was: this says instead.)
+  bool estimated = false;
   double lambda = 1.0;
   ChebyshevSteps steps;  // the smoothing's coefficients for lambda (estimate_bound)
   size_t bytes = 0;
@@ -525,7 +532,7 @@ void Levels<Real, C>::update_fine_bound() {
 template <typename Real, typename C>
 void Levels<Real, C>::estimate_bound(size_t l) {
   Level& L = *levels_[l];
-  const bool warm = L.eigenvector.size() == 3 * L.vertices;
+  const bool warm = L.estimated && L.eigenvector.size() == 3 * L.vertices;
   if (!warm) {
     const LatticeLevel& h = hierarchy_.levels[l];
     std::vector<C> start(3 * L.vertices);
@@ -534,9 +541,11 @@ void Levels<Real, C>::estimate_bound(size_t l) {
       state = state * 1664525u + 1013904223u;
       start[i] = h.mask[i] ? C(0.5 + static_cast<double>(state >> 8) / 16777216.0) : C(0);
     }
-    L.eigenvector = viennacl::vector<C>(3 * L.vertices);
+    if (L.eigenvector.size() != 3 * L.vertices) {
+      L.eigenvector = viennacl::vector<C>(3 * L.vertices);
+      L.bytes += 3 * L.vertices * sizeof(C);
+    }
     viennacl::copy(start.begin(), start.end(), L.eigenvector.begin());
-    L.bytes += 3 * L.vertices * sizeof(C);
   }
   double lambda = 0.0;
   const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
@@ -549,10 +558,8 @@ void Levels<Real, C>::estimate_bound(size_t l) {
     lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
     L.eigenvector.fast_swap(L.t);
   }
-  if (!(std::isfinite(lambda) && lambda > 0.0)) {  // start again next time
-    L.eigenvector = viennacl::vector<C>();
-    lambda = 1.0;
-  }
+  L.estimated = std::isfinite(lambda) && lambda > 0.0;
+  if (!L.estimated) lambda = 1.0;  // start again next time
   L.lambda = lambda;
   L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
 }
@@ -794,6 +801,10 @@ void MultigridPreconditioner<Real>::setup() {
 template <typename Real>
 void MultigridPreconditioner<Real>::update_fine_bound() {
   cycle_->update_fine_bound();
+}
+template <typename Real>
+void MultigridPreconditioner<Real>::forget_estimates() {
+  cycle_->forget_estimates();
 }
 template <typename Real>
 bool MultigridPreconditioner<Real>::fine_level_built() const {

@@ -78,13 +78,14 @@ class MultigridRebuild {
         each_step_(options.rebuild_each_load_step.value_or(true)) {}
   // Whether a linearization (projected or true Hessian) must rebuild.
   bool due(bool projected) const {
-    if (every_ <= 1 || builds_ == 0 || (!built_projected_ && projected)) return true;
+    if (every_ <= 1 || builds_ == 0 || restart_ || (!built_projected_ && projected)) return true;
     return projected && (stale_ || uses_ >= every_);
   }
   // The linearization rebuilt the hierarchy.
   void built(bool projected) {
     built_projected_ = projected;
     stale_ = false;
+    restart_ = false;
     uses_ = 1;
     baseline_ = 0.0;
     ++builds_;
@@ -112,13 +113,15 @@ class MultigridRebuild {
   // contacts entering or leaving, friction re-lagged): rebuild at the next
   // projected linearization.
   void invalidate() { stale_ = true; }
+  // Rebuild at the next linearization, whatever it is, as the first one does.
+  void restart() { restart_ = true; }
   int builds() const { return builds_; }
 
  private:
   int every_;
   double growth_;
   bool each_step_;
-  bool built_projected_ = false, stale_ = false;
+  bool built_projected_ = false, stale_ = false, restart_ = false;
   int uses_ = 0, builds_ = 0;
   double baseline_ = 0.0;  // the rate of the first compared solve after the build (0: none yet)
 };
@@ -143,6 +146,9 @@ class MultigridPreconditioner {
   // setup(): a current fine level follows the new fine operator (its
   // Chebyshev bound re-estimated); a built one keeps the build's.
   void update_fine_bound();
+  // The next setup() estimates every smoothing bound from the fixed start
+  // vector, as the first one does, instead of from the last estimate.
+  void forget_estimates();
   // Whether the fine level is the build's element matrices (then the
   // model's block-Jacobi blocks are not used: setup() needs only
   // model.linearize()).

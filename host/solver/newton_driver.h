@@ -88,7 +88,7 @@ class NewtonDriver {
   using Vector = typename Problem::Vector;
   using Clock = std::chrono::steady_clock;
   // Called after every accepted Newton update with its record and the new x;
-  // returning false ends the step with status "cancelled". Its time is not
+  // returning false ends the step with status cancelled. Its time is not
   // counted in the records' seconds.
   using Observer = std::function<bool(const NewtonIteration&, const Vector& x)>;
 
@@ -160,19 +160,24 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     rec.iteration = it;
     rec.residual_norm = rn;
     rec.energy = energy;
-    auto note = [&rec](const std::string& what) { rec.recovery += (rec.recovery.empty() ? "" : "; ") + what; };
-    auto finish = [&](const char* status) {
+    auto note = [&rec](RecoveryAction action, int factor = 0) {
+      Recovery done;
+      done.action = action;
+      done.factor = factor;
+      rec.recovery.push_back(done);
+    };
+    auto finish = [&](StepStatus status) {
       result.status = status;
       rec.seconds = elapsed(start);
       history.push_back(rec);
     };
     if (!std::isfinite(rn) || !std::isfinite(energy)) {
-      finish("non_finite_state");
+      finish(StepStatus::non_finite_state);
       break;
     }
     if (rn <= tolerance) {
       result.converged = true;
-      finish("converged");
+      finish(StepStatus::converged);
       break;
     }
     // The working precision's floor: in the last kStagnation iterations
@@ -186,12 +191,12 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
       const double best = *std::min_element(residuals.begin() + old + 1, residuals.end());
       const double noise = 64.0 * eps * std::max(std::abs(energies[old]), energy_magnitude_of(problem_));
       if (best > 0.99 * residuals[old] && energies[old] - energy <= noise) {
-        finish("stagnated");
+        finish(StepStatus::stagnated);
         break;
       }
     }
     if (it >= options_.max_newton_iterations) {
-      finish("max_newton_iterations");
+      finish(StepStatus::max_newton_iterations);
       break;
     }
 
@@ -228,9 +233,10 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
       rec.cg_iterations += solve.iterations;
       rec.cg_relative_residual = solve.relative_residual;
       rec.projected = projected;
-      rec.cg_stop = solve.breakdown            ? "breakdown"
-                    : solve.negative_curvature ? "negative_curvature"
-                                               : (solve.relative_residual <= eta ? "converged" : "max_iterations");
+      rec.cg_stop = solve.breakdown                  ? CgStop::breakdown
+                    : solve.negative_curvature       ? CgStop::negative_curvature
+                    : solve.relative_residual <= eta ? CgStop::converged
+                                                     : CgStop::max_iterations;
       if (projected || !(solve.negative_curvature || solve.breakdown)) break;
       projection_cooldown = kProjectionCooldown;
     }
@@ -251,14 +257,13 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     };
     slope = problem_.dot(r, p);  // -dE/dalpha at alpha = 0; non-finite when p has a non-finite entry
     if (!std::isfinite(slope) || !(slope > 0.0)) {
-      rec.recovery = std::string(rec.cg_stop == "breakdown" ? "cg_breakdown"
-                                 : !std::isfinite(slope)    ? "non_finite_direction"
-                                                            : "non_descent") +
-                     " -> steepest_descent";
-      rec.cg_stop += "+steepest_descent";
+      note(rec.cg_stop == CgStop::breakdown ? RecoveryAction::cg_breakdown_steepest_descent
+           : !std::isfinite(slope)          ? RecoveryAction::non_finite_direction_steepest_descent
+                                            : RecoveryAction::non_descent_steepest_descent);
+      rec.steepest_descent = true;
       use_steepest_descent();
-    } else if (rec.cg_stop == "breakdown") {
-      rec.recovery = "cg_breakdown -> partial_cg_direction";
+    } else if (rec.cg_stop == CgStop::breakdown) {
+      note(RecoveryAction::cg_breakdown_partial_direction);
     }
 
     // Backtracking on the energy; never accept a non-finite energy or a
@@ -301,9 +306,10 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
       // Once more along the preconditioned steepest descent before giving up.
       use_steepest_descent();
       accepted = line_search();
-      note(std::string("line_search_failed -> steepest_descent") + (accepted == 0.0 ? " failed" : ""));
+      note(accepted == 0.0 ? RecoveryAction::line_search_steepest_descent_failed
+                           : RecoveryAction::line_search_steepest_descent);
     }
-    if (non_finite_residual) note("non_finite_residual -> shorter_step");
+    if (non_finite_residual) note(RecoveryAction::shorter_step);
     // Negative curvature along p (the energy still falls at alpha = 1 at
     // least as steeply as at 0, as when sliding off a saddle, which the
     // projected Hessian cannot see): extrapolate, doubling alpha while the
@@ -332,12 +338,12 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
         if (!(next_descent >= descent)) break;
         descent = next_descent;
       }
-      if (doublings > 0) note("negative_curvature -> step x" + std::to_string(1 << doublings));
+      if (doublings > 0) note(RecoveryAction::extended_step, 1 << doublings);
     }
     rec.step_length = accepted;
     if (accepted == 0.0) {
       result.cg_iterations += rec.cg_iterations;
-      finish("line_search_failed");
+      finish(StepStatus::line_search_failed);
       break;
     }
     problem_.swap(x, trial);
@@ -360,7 +366,7 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
       }
       observer_seconds_ += std::chrono::duration<double>(Clock::now() - paused).count();
       if (!go_on) {
-        result.status = "cancelled";
+        result.status = StepStatus::cancelled;
         break;
       }
     }

@@ -97,6 +97,7 @@ struct Simulation::Impl {
   };
 
   Mesh mesh;
+  uint64_t fingerprint;  // mesh_fingerprint(mesh)
   MaterialMap materials;
   std::vector<ConstraintSet> constraints;
   SolveOptions options;
@@ -189,6 +190,7 @@ struct Simulation::Impl {
 
   Impl(Mesh m, const MaterialMap& map, std::vector<ConstraintSet> c, SolveOptions o)
       : mesh(std::move(m)),
+        fingerprint(mesh_fingerprint(mesh)),
         materials(map),
         constraints(std::move(c)),
         options(std::move(o)),
@@ -314,6 +316,13 @@ struct Simulation::Impl {
     engine->newton = std::make_unique<solver::NewtonDriver<solver::DeviceProblem<Real>>>(*engine->problem, options);
     device::use_viennacl(viennacl_context_id);
     return engine;
+  }
+
+  // Every engine's next linearization builds its preconditioner afresh
+  // (Simulation::checkpoint and restore).
+  void restart_preconditioners() {
+    if (single) single->problem->restart_preconditioner();
+    if (dual) dual->problem->restart_preconditioner();
   }
 
   Engine<double>& fallback_engine() {
@@ -547,7 +556,7 @@ struct Simulation::Impl {
       step.preconditioner_builds = preconditioner_builds() - step_start_builds;
       result.steps.push_back(step);
       if (on_step) in_callback([&] { on_step(s, x); });
-      if (step.status == "cancelled") {
+      if (step.status == StepStatus::cancelled) {
         result.cancelled = true;
         break;
       }
@@ -600,7 +609,7 @@ struct Simulation::Impl {
       total.self_contacts = sub.self_contacts;
       total.max_self_penetration = sub.max_self_penetration;
       if (!sub.fallback.empty()) total.fallback = sub.fallback;
-      if (sub.status == "cancelled") break;
+      if (sub.status == StepStatus::cancelled) break;
     }
     total.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     total.time = time;
@@ -620,12 +629,12 @@ struct Simulation::Impl {
     StepResult step;
     if (!in_double) {
       step = solve_in(*single, s, result.history, start, progress, euler);
-      step.precision_used = to_string(options.precision);
+      step.precision_used = options.precision;
     }
-    const bool failed = !in_double && !step.converged && step.status != "cancelled";
+    const bool failed = !in_double && !step.converged && step.status != StepStatus::cancelled;
     if (may_fall_back && (fell_back || failed)) {
       if (!fell_back && !cl.info().has_fp64) {
-        result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + step.status +
+        result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + to_string(step.status) +
                                   ") and fallback_to_double was asked, but the device has no fp64");
       } else {
         std::string note;
@@ -639,18 +648,22 @@ struct Simulation::Impl {
         }
         const size_t first_record = result.history.size();
         StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress, euler);
-        redo.precision_used = "double";
+        redo.precision_used = Precision::double_;
         if (!fell_back) {
           if (first_record < result.history.size()) {
-            std::string& r = result.history[first_record].recovery;
-            r = "float " + step.status + " -> double" + (r.empty() ? "" : "; " + r);
+            Recovery fallback;
+            fallback.action = RecoveryAction::double_fallback;
+            fallback.float_status = step.status;
+            std::vector<Recovery>& r = result.history[first_record].recovery;
+            r.insert(r.begin(), fallback);
           }
           redo.newton_iterations += step.newton_iterations;
           redo.cg_iterations += step.cg_iterations;
           redo.fallback = note;
-          result.warnings.push_back("step " + std::to_string(s) + ": " + note +
-                                    (redo.converged ? " (converged)" : " (did not converge: " + redo.status + ")") +
-                                    (s < steps ? "; the remaining steps run in double" : ""));
+          result.warnings.push_back(
+              "step " + std::to_string(s) + ": " + note +
+              (redo.converged ? " (converged)" : " (did not converge: " + std::string(to_string(redo.status)) + ")") +
+              (s < steps ? "; the remaining steps run in double" : ""));
         } else {
           redo.fallback = "double (after a float failure in an earlier step)";
         }
@@ -659,7 +672,7 @@ struct Simulation::Impl {
       }
     } else if (in_double) {
       step = solve_in(*dual, s, result.history, start, progress, euler);
-      step.precision_used = "double";
+      step.precision_used = Precision::double_;
     }
     return step;
   }
@@ -789,6 +802,96 @@ void Simulation::restart() {
   m.force_from.assign(m.force_to.size(), 0.0);
   if (!m.options.ramp_loads || m.options.dynamics) m.force_from = m.force_to;
   m.force_applied.clear();
+}
+
+SimulationState Simulation::checkpoint() {
+  Impl& m = *impl_;
+  SimulationState s;
+  s.vertex_count = m.mesh.vertex_count();
+  s.mesh_fingerprint = m.fingerprint;
+  s.positions = m.x;
+  if (m.options.dynamics) s.velocities = m.v;
+  s.time = m.time;
+  if (m.friction) s.friction_anchors = m.friction_anchor;
+  for (size_t k = 0; k < m.constraints.size(); ++k) {
+    const Impl::Target& t = m.targets[k];
+    SimulationState::Target out;
+    out.set = m.constraints[k].name;
+    out.kind = t.kind == Impl::Target::Kind::callback    ? TargetKind::callbacks
+               : t.kind == Impl::Target::Kind::transform ? TargetKind::transform
+                                                         : TargetKind::positions;
+    out.from = t.from;
+    out.to = t.to;
+    out.from_known = t.from_known;
+    out.positions = t.xyz;
+    s.targets.push_back(out);
+  }
+  s.external_force = m.user_force;
+  s.body_force = m.body_force;
+  s.force_from = m.force_from;
+  s.force_to = m.force_to;
+  s.force_applied = m.force_applied;
+  m.restart_preconditioners();
+  return s;
+}
+
+void Simulation::restore(const SimulationState& s) {
+  Impl& m = *impl_;
+  const size_t dofs = 3 * m.mesh.vertex_count();
+  if (s.vertex_count != m.mesh.vertex_count() || s.mesh_fingerprint != m.fingerprint)
+    throw Error("restore: the checkpoint is of another mesh (" + std::to_string(s.vertex_count) +
+                " vertices, fingerprint " + std::to_string(s.mesh_fingerprint) +
+                "; this simulation's mesh: " + std::to_string(m.mesh.vertex_count()) + " vertices, fingerprint " +
+                std::to_string(m.fingerprint) + ")");
+  auto size_check = [&](const std::vector<double>& v, size_t expected, const char* item, bool may_be_empty) {
+    if (v.size() != expected && !(may_be_empty && v.empty()))
+      throw Error(std::string("restore: the checkpoint's ") + item + " has " + std::to_string(v.size()) +
+                  " values, expected " + std::to_string(expected) + (may_be_empty ? " or none" : ""));
+  };
+  size_check(s.positions, dofs, "positions", false);
+  size_check(s.velocities, m.options.dynamics ? dofs : 0, "velocities (SolveOptions::dynamics)", false);
+  size_check(s.friction_anchors, m.friction ? m.options.obstacles.size() * dofs : 0,
+             "friction anchors (one per vertex and obstacle with friction)", false);
+  size_check(s.external_force, dofs, "external force", true);
+  size_check(s.force_from, dofs, "force ramp start", false);
+  size_check(s.force_to, dofs, "force ramp end", false);
+  size_check(s.force_applied, dofs, "applied force", true);
+  if (s.targets.size() != m.constraints.size())
+    throw Error("restore: the checkpoint has " + std::to_string(s.targets.size()) +
+                " constraint sets, this simulation " + std::to_string(m.constraints.size()));
+  for (size_t k = 0; k < s.targets.size(); ++k) {
+    const SimulationState::Target& t = s.targets[k];
+    const ConstraintSet& c = m.constraints[k];
+    if (t.set != c.name)
+      throw Error("restore: the checkpoint's constraint set " + std::to_string(k) + " is '" + t.set +
+                  "', this simulation's is '" + c.name + "'");
+    if (t.kind == TargetKind::positions && t.positions.size() != 3 * c.vertices.size())
+      throw Error("restore: the checkpoint's target positions of set '" + c.name + "' have " +
+                  std::to_string(t.positions.size()) + " values, expected " + std::to_string(3 * c.vertices.size()));
+  }
+  m.x = s.positions;
+  if (m.options.dynamics) m.v = s.velocities;
+  m.time = s.time;
+  if (m.friction) m.friction_anchor = s.friction_anchors;
+  for (size_t k = 0; k < s.targets.size(); ++k) {
+    const SimulationState::Target& t = s.targets[k];
+    Impl::Target& to = m.targets[k];
+    to = Impl::Target();
+    to.kind = t.kind == TargetKind::callbacks   ? Impl::Target::Kind::callback
+              : t.kind == TargetKind::transform ? Impl::Target::Kind::transform
+                                                : Impl::Target::Kind::positions;
+    to.from = t.from;
+    to.to = t.to;
+    to.from_known = t.from_known;
+    to.xyz = t.positions;
+  }
+  m.user_force = s.external_force;
+  m.body_force = s.body_force;
+  m.update_body_force();
+  m.force_from = s.force_from;
+  m.force_to = s.force_to;
+  m.force_applied = s.force_applied;
+  m.restart_preconditioners();
 }
 
 SolveResult Simulation::solve(int load_steps, const ProgressCallback& progress, const StepCallback& on_step) {

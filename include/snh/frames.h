@@ -19,7 +19,7 @@ struct FrameRecord {
   int frame = 0;
   double time = 0.0;
   bool converged = false;
-  std::string status;  // the last load step's (StepResult::status)
+  StepStatus status = StepStatus::none;  // the last load step's (StepResult::status)
   int newton_iterations = 0;
   int cg_iterations = 0;
   double residual_norm = 0.0;

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -22,6 +23,7 @@
 #include "snh/fields.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
+#include "snh/outcomes.h"
 #include "snh/regions.h"
 
 namespace snh {
@@ -54,6 +56,24 @@ struct ConstraintSet {
   std::function<RigidTransform(double t)> motion;
   std::function<void(double t, std::vector<double>& xyz)> targets;
   std::array<bool, 3> components{true, true, true};
+
+  // Vertices held at their rest positions (in `components`; the others free).
+  static ConstraintSet fixed(std::string name, std::vector<int32_t> vertices,
+                             std::array<bool, 3> components = {true, true, true}) {
+    return {std::move(name), std::move(vertices), {}, {}, components};
+  }
+  // Vertices carried by motion(t) from their rest positions.
+  static ConstraintSet moving(std::string name, std::vector<int32_t> vertices,
+                              std::function<RigidTransform(double t)> motion,
+                              std::array<bool, 3> components = {true, true, true}) {
+    return {std::move(name), std::move(vertices), std::move(motion), {}, components};
+  }
+  // Vertices placed where targets(t, xyz) puts them (xyz per vertex of the set).
+  static ConstraintSet targets_of(std::string name, std::vector<int32_t> vertices,
+                                  std::function<void(double t, std::vector<double>& xyz)> targets,
+                                  std::array<bool, 3> components = {true, true, true}) {
+    return {std::move(name), std::move(vertices), {}, std::move(targets), components};
+  }
 };
 
 enum class ProductVariant {
@@ -209,19 +229,21 @@ struct NewtonIteration {
   double step_length = 0.0;  // line-search alpha accepted (0 if none)
   int cg_iterations = 0;
   double cg_relative_residual = 0.0;
-  std::string cg_stop;    // "converged", "max_iterations", "negative_curvature", "breakdown"
+  CgStop cg_stop = CgStop::none;
+  // CG's direction was replaced by the preconditioned steepest descent
+  // before the line search (recovery says why); printed as cg_stop's name
+  // followed by "+steepest_descent" (cg_stop_text).
+  bool steepest_descent = false;
   bool projected = true;  // whether this iteration's Hessian was the PSD projection
   double seconds = 0.0;   // wall time since the solve began, at the end of this iteration
-  // What the solver did to get past trouble in this iteration; empty if
-  // nothing. E.g. "cg_breakdown -> steepest_descent", "non_descent ->
-  // steepest_descent", "line_search_failed -> steepest_descent" (the line
-  // search along CG's direction failed and the preconditioned steepest
-  // descent was tried; "... failed" appended if that failed too),
-  // "non_finite_residual -> shorter_step" (a trial with finite energy but a
-  // non-finite residual was rejected), "float <status> -> double" (the first
-  // record of a step re-solved in double, see SolveOptions::fallback_to_double).
-  std::string recovery;
+  // What the solver did to get past trouble in this iteration, in order;
+  // empty if nothing (snh/outcomes.h; to_string joins them, e.g.
+  // "float stagnated -> double; cg_breakdown -> steepest_descent").
+  std::vector<Recovery> recovery;
 };
+
+// cg_stop's name, with "+steepest_descent" where that replaced CG's direction.
+std::string cg_stop_text(const NewtonIteration& record);
 
 enum class HessianMode {
   projected,  // always the per-element PSD projection (Smith et al. 2018, sec. 4)
@@ -273,6 +295,30 @@ struct Obstacle {
   // Coulomb friction coefficient against this obstacle (>= 0); unset:
   // ContactOptions::friction.
   std::optional<double> friction;
+
+  // The obstacles by their shape (checked when a Simulation is built).
+  static Obstacle plane(const std::array<double, 3>& point, const std::array<double, 3>& normal) {
+    return {ObstacleType::plane, point, normal, 0.0, {}, {}};
+  }
+  static Obstacle sphere(const std::array<double, 3>& center, double radius) {
+    return {ObstacleType::sphere, center, {0, 0, 1}, radius, {}, {}};
+  }
+  static Obstacle cylinder(const std::array<double, 3>& point_on_axis, const std::array<double, 3>& axis,
+                           double radius) {
+    return {ObstacleType::cylinder, point_on_axis, axis, radius, {}, {}};
+  }
+  // This obstacle moving by `placement` (see motion above), or with its own
+  // friction coefficient.
+  Obstacle with_motion(std::function<RigidTransform(double t)> placement) const {
+    Obstacle o = *this;
+    o.motion = std::move(placement);
+    return o;
+  }
+  Obstacle with_friction(double coefficient) const {
+    Obstacle o = *this;
+    o.friction = coefficient;
+    return o;
+  }
 };
 
 // Contact with the obstacles as a penalty on every vertex in the depth
@@ -315,33 +361,12 @@ struct ContactOptions {
   double friction_slip = 0.0;
 };
 
-struct SolveOptions {
-  Precision precision = Precision::double_;
-  // Set: solve() advances time steps of implicit Euler instead of load steps
-  // (load_steps then counts time steps; loads are applied in full from the
-  // first step, ramp_loads is ignored; constrained vertices follow their
-  // targets at each time step, substeps interpolating linearly).
-  std::optional<DynamicsOptions> dynamics;
-  // Kinematic obstacles and their contact penalty (SNH_OBSTACLES kernels).
-  std::vector<Obstacle> obstacles;
-  ContactOptions contact;
-  DeviceOptions device;
-  int load_steps = 1;
-  int max_newton_iterations = 50;
-  // Newton stops when the L2 norm of the free-DOF force residual is below
-  //   max(strain_tolerance * E * h^2 * sqrt(n), absolute_tolerance,
-  //       relative_tolerance * the step's initial residual norm),
-  // n the vertices in elements, h = (rest volume / n)^(1/3) their spacing and
-  // E the smallest Young's modulus of the materials: the residual of a
-  // strain error of strain_tolerance (a vertex force is about a stress times
-  // h^2), the same for the same physics at any scale of E or of the mesh.
-  // strain_tolerance unset: 1e-6 in double, 1e-4 in float (float's floor for
-  // nearly incompressible materials), unless an absolute or relative
-  // tolerance is given, which then stands alone. Each criterion is off at 0;
-  // SolveResult::tolerance reports the absolute value used.
-  std::optional<double> strain_tolerance;
-  double absolute_tolerance = 0.0;
-  double relative_tolerance = 0.0;
+// How the solver works rather than what it solves: the linear solver, its
+// preconditioner and products, the forcing terms and the line search. The
+// defaults are the measured choices (docs/performance.md); a first program
+// leaves them alone. SolveOptions carries them (it derives from this), so
+// options.hessian and options.tuning().hessian are the same setting.
+struct SolverTuning {
   int max_cg_iterations = 20000;
   // Eisenstat-Walker (choice 2) forcing terms: eta_k = gamma (|r_k| / |r_k-1|)^2,
   // capped at eta_max.
@@ -368,6 +393,38 @@ struct SolveOptions {
   // Reported in SolveResult::product_precision.
   std::optional<Precision> product_precision;
   HessianMode hessian = HessianMode::adaptive;
+};
+
+// What to solve: precision, time stepping or load steps, obstacles and
+// contact, stopping criteria, loads and the starting state; the solver's
+// expert settings in the SolverTuning it derives from.
+struct SolveOptions : SolverTuning {
+  Precision precision = Precision::double_;
+  // Set: solve() advances time steps of implicit Euler instead of load steps
+  // (load_steps then counts time steps; loads are applied in full from the
+  // first step, ramp_loads is ignored; constrained vertices follow their
+  // targets at each time step, substeps interpolating linearly).
+  std::optional<DynamicsOptions> dynamics;
+  // Kinematic obstacles and their contact penalty (SNH_OBSTACLES kernels).
+  std::vector<Obstacle> obstacles;
+  ContactOptions contact;
+  DeviceOptions device;
+  int load_steps = 1;
+  int max_newton_iterations = 50;
+  // Newton stops when the L2 norm of the free-DOF force residual is below
+  //   max(strain_tolerance * E * h^2 * sqrt(n), absolute_tolerance,
+  //       relative_tolerance * the step's initial residual norm),
+  // n the vertices in elements, h = (rest volume / n)^(1/3) their spacing and
+  // E the smallest Young's modulus of the materials: the residual of a
+  // strain error of strain_tolerance (a vertex force is about a stress times
+  // h^2), the same for the same physics at any scale of E or of the mesh.
+  // strain_tolerance unset: 1e-6 in double, 1e-4 in float (float's floor for
+  // nearly incompressible materials), unless an absolute or relative
+  // tolerance is given, which then stands alone. Each criterion is off at 0;
+  // SolveResult::tolerance reports the absolute value used.
+  std::optional<double> strain_tolerance;
+  double absolute_tolerance = 0.0;
+  double relative_tolerance = 0.0;
   // Lumped external force, xyz per vertex; empty for none.
   std::vector<double> external_force;
   // Body force per rest volume (e.g. density times gravity), lumped to the
@@ -392,6 +449,9 @@ struct SolveOptions {
   // it produced (xyz per vertex), e.g. to measure error against a reference
   // as the solve runs. Downloads the positions: leave empty when not needed.
   std::function<void(const NewtonIteration&, const std::vector<double>& positions)> on_iteration;
+
+  SolverTuning& tuning() { return *this; }
+  const SolverTuning& tuning() const { return *this; }
 };
 
 // Where a solve's time went, in seconds. Every second of the solve is
@@ -428,14 +488,10 @@ struct StepResult {
   int cg_iterations = 0;
   bool converged = false;
   double residual_norm = 0.0;
-  // "converged", "max_newton_iterations", "line_search_failed", "stagnated"
-  // (no 1% residual decrease in 8 iterations: the precision floor, or a
-  // vertex resting exactly at a contact layer's edge, docs/validation.md),
-  // "non_finite_state", "cancelled" (the progress callback returned false)
-  std::string status;
+  StepStatus status = StepStatus::none;  // how the step's Newton solve ended (snh/outcomes.h)
   double seconds = 0.0;
-  // "float" or "double": the precision of the solve this result reports.
-  std::string precision_used;
+  // The precision of the solve this result reports (printed "float" or "double").
+  Precision precision_used = Precision::double_;
   // Empty, or what fallback_to_double did, e.g. "float stagnated after 12
   // Newton / 340 CG iterations (residual 3.1e-05); re-solved in double".
   // newton_iterations and cg_iterations then count both attempts.
@@ -502,6 +558,52 @@ using StepCallback = std::function<void(int step, const std::vector<double>& pos
 // positions stay those of the last update, SolveResult::cancelled is set).
 using ProgressCallback = std::function<bool(const NewtonIteration&)>;
 
+// What a constraint set's vertices follow (Simulation::set_transform and
+// set_positions).
+enum class TargetKind {
+  callbacks,  // the set's own motion/targets callbacks
+  transform,  // a transform given by set_transform
+  positions,  // positions given by set_positions
+};
+
+// Everything that determines a Simulation's later results
+// (Simulation::checkpoint): restored into a simulation built from the same
+// mesh, materials, constraint sets and options on the same device, its
+// next solves give the same positions, velocities and results, bit for
+// bit, as those of the simulation it was taken from.
+struct SimulationState {
+  // The mesh it belongs to: its vertex count and mesh_fingerprint.
+  uint64_t vertex_count = 0;
+  uint64_t mesh_fingerprint = 0;
+  std::vector<double> positions;   // xyz per vertex
+  std::vector<double> velocities;  // xyz per vertex with dynamics; else empty
+  double time = 0.0;               // simulated time with dynamics
+  // Friction's anchors, xyz per vertex and obstacle (ContactOptions::friction);
+  // empty without friction.
+  std::vector<double> friction_anchors;
+  // Per constraint set, in the simulation's order.
+  struct Target {
+    std::string set;  // the set's name
+    TargetKind kind = TargetKind::callbacks;
+    // transform: the transform last reached (when known) and the one to reach.
+    RigidTransform from, to;
+    bool from_known = false;
+    std::vector<double> positions;  // positions: xyz per vertex of the set
+  };
+  std::vector<Target> targets;
+  // Loads: the lumped external force and the body force last set, and the
+  // load ramp's ends (SolveOptions::ramp_loads): the total lumped force the
+  // last solve reached, the one the next reaches, and the one applied at the
+  // last step (xyz per vertex; empty for none yet).
+  std::vector<double> external_force;
+  std::array<double, 3> body_force{0, 0, 0};
+  std::vector<double> force_from, force_to, force_applied;
+};
+
+// A hash (64-bit FNV-1a) of the mesh's element type, positions and element
+// indices, by which a checkpoint recognizes its mesh.
+uint64_t mesh_fingerprint(const Mesh& mesh);
+
 // A simulation a host application drives frame by frame. Construction
 // validates everything (snh::Error naming the input), builds the kernels and
 // uploads the mesh once. The state starts at SolveOptions::initial_positions
@@ -537,6 +639,22 @@ class Simulation {
   // Back to the start: SolveOptions::initial_positions (else rest), every set
   // following its own callbacks, no force applied yet.
   void restart();
+
+  // The full state (SimulationState), e.g. to resume from it later
+  // (restore) or in another process (write_checkpoint, snh/checkpoint.h).
+  // The preconditioner's reuse between solves (the multigrid hierarchy
+  // carried across time steps, its smoothing bounds warm-started) is not
+  // state that can be saved: taking a checkpoint makes the next solve build
+  // the preconditioner afresh, as restoring one does, so that this
+  // simulation and any restored from the checkpoint continue identically.
+  SimulationState checkpoint();
+  // Replaces the state by `state`, taken from this simulation or from one
+  // built from the same mesh, materials, constraint sets and options.
+  // Throws snh::Error, changing nothing, for a checkpoint of another mesh
+  // (vertex count or mesh_fingerprint), other constraint set names, or
+  // items whose sizes do not fit this simulation (velocities with or without
+  // dynamics, friction anchors with or without friction).
+  void restore(const SimulationState& state);
 
   // load_steps: 0 for SolveOptions::load_steps. With dynamics each step is
   // a time step: the constraint targets of step s of n (as in a quasistatic

@@ -128,6 +128,19 @@ struct Embedding {
 // snh::Error naming a surface vertex more than one cell from every element.
 Embedding embed(const Voxelization& voxels, const TriangleSurface& surface);
 
+// The boundary of a volume mesh as a triangle surface: the element faces
+// used by exactly one element (the faces write_obj_surface and
+// write_ply_surface write), oriented outwards, hex8 quads split into two
+// triangles (corners 0 1 2 and 0 2 3 of the face), in element order. Its
+// vertices are the mesh vertices on the boundary, in mesh order, at
+// positions x (xyz per mesh vertex; empty: the rest positions). Throws
+// snh::Error for a malformed mesh or positions of the wrong size.
+struct MeshBoundary {
+  TriangleSurface surface;
+  std::vector<int32_t> vertices;  // the mesh vertex of each surface vertex
+};
+MeshBoundary boundary_surface(const Mesh& mesh, const std::vector<double>& x = {});
+
 // The surface's vertex positions (xyz per vertex) for lattice positions x.
 std::vector<double> embedded_positions(const Embedding& embedding, const Mesh& lattice, const std::vector<double>& x);
 
