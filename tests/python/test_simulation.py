@@ -1,0 +1,126 @@
+"""Simulation: callbacks, cancelling, exceptions, options and state."""
+
+import math
+
+import numpy as np
+import pytest
+
+import snh
+
+
+def test_progress_callback_cancels(bar_problem):
+    mesh, material, sets, options = bar_problem
+    sim = snh.Simulation(mesh, material, sets, options)
+    seen = []
+
+    def progress(record):
+        seen.append(record.iteration)
+        return len(seen) < 3
+
+    result = sim.solve(progress=progress)
+    assert result.cancelled and not result.converged
+    assert len(seen) == 3
+    assert result.steps[-1].status == "cancelled"
+
+
+def test_exception_in_progress_propagates(bar_problem):
+    class Stop(Exception):
+        pass
+
+    def progress(record):
+        raise Stop("from the callback")
+
+    sim = snh.Simulation(*bar_problem)
+    with pytest.raises(Stop, match="from the callback"):
+        sim.solve(progress=progress)
+
+
+def test_exception_in_motion_propagates(bar_problem):
+    mesh, material, sets, options = bar_problem
+
+    def motion(t):
+        raise KeyError("no such frame")
+
+    sets[1].motion = motion
+    sim = snh.Simulation(mesh, material, sets, options)
+    with pytest.raises(KeyError, match="no such frame"):
+        sim.solve()
+
+
+def test_engine_errors_are_snh_errors(bar_problem):
+    mesh, material, sets, options = bar_problem
+    sim = snh.Simulation(mesh, material, sets, options)
+    with pytest.raises(snh.Error, match="no constraint set named 'nope'"):
+        sim.set_transform("nope", snh.RigidTransform())
+    with pytest.raises(RuntimeError):
+        snh.Simulation(mesh, material, [snh.ConstraintSet("a", [0]), snh.ConstraintSet("a", [1])])
+    with pytest.raises(snh.Error):
+        snh.read_mesh("/nonexistent/mesh.msh")
+
+
+def test_options_keywords_and_names():
+    options = snh.SolveOptions(precision="float", load_steps=3, preconditioner="block-jacobi")
+    assert options.precision == snh.Precision.single
+    assert options.preconditioner == snh.Preconditioner.block_jacobi
+    assert options.load_steps == 3
+    assert options.external_force is None
+    with pytest.raises(AttributeError):
+        snh.SolveOptions(no_such_option=1)
+    options.dynamics = snh.DynamicsOptions(time_step=0.01, density=1000.0, damping_mass=0.5)
+    assert options.dynamics.damping_mass == 0.5
+    options.obstacles = [snh.Obstacle.plane((0, 0, -1), (0, 0, 1))]
+    assert options.obstacles[0].type == snh.ObstacleType.plane
+
+
+def test_frame_by_frame_targets(bar_problem):
+    mesh, material, sets, options = bar_problem
+    sets[1].motion = None
+    sim = snh.Simulation(mesh, material, sets, options)
+    sim.set_transform("end", snh.RigidTransform.translation_by((0.1, 0, 0)))
+    assert sim.solve().converged
+    end = sets[1].vertices
+    assert np.allclose(sim.positions[end], mesh.positions[end] + [0.1, 0, 0])
+    target = mesh.positions[end] + [0.2, 0, 0]
+    sim.set_positions("end", target)
+    assert sim.solve(load_steps=1).converged
+    assert np.allclose(sim.positions[end], target)
+    sim.restart()
+    assert np.array_equal(sim.positions, mesh.positions)
+    sim.set_state(mesh.positions * 1.01)
+    assert np.allclose(sim.positions, mesh.positions * 1.01)
+
+
+def test_rigid_transform():
+    t = snh.RigidTransform.rotation_about((0, 0, 1), math.pi / 2, (1, 0, 0))
+    assert t.rotation.shape == (3, 3)
+    assert np.allclose(t.rotation @ [1, 0, 0], [0, 1, 0])
+    assert np.allclose(t.apply((2, 0, 0)), (1, 1, 0))
+    assert t.apply(np.zeros((5, 3))).shape == (5, 3)
+    u = snh.RigidTransform(rotation=t.rotation, translation=(1, 2, 3))
+    assert np.array_equal(u.rotation, t.rotation)
+
+
+def test_dynamics_time_and_velocities():
+    mesh = snh.make_box_lattice(2, 1, 1, 0.5)
+    held = snh.ConstraintSet("held", snh.vertices_on_plane(mesh, (0, 0, 0), (1, 0, 0)))
+    options = snh.SolveOptions(
+        dynamics=snh.DynamicsOptions(time_step=0.01, density=1000.0), body_force=(0, 0, -9810.0), load_steps=2
+    )
+    sim = snh.Simulation(mesh, snh.Material.from_youngs_modulus(1e5, 0.4), [held], options)
+    sim.solve()
+    assert sim.time == pytest.approx(0.02)
+    assert sim.velocities.shape == (mesh.vertex_count, 3)
+    assert sim.velocities[:, 2].min() < 0
+
+
+def test_regions():
+    mesh = snh.make_box_lattice(2, 1, 1, 1.0)
+    soft = snh.Material.from_youngs_modulus(1e3, 0.4)
+    stiff = snh.Material.from_youngs_modulus(1e5, 0.4, model="snh")
+    region = snh.MaterialRegion("stiff", snh.elements_in_box(mesh, (1, 0, 0), (2, 1, 1)), stiff)
+    materials = snh.make_material_map(mesh, soft, [region])
+    assert materials.names == ["base", "stiff"]
+    assert materials.element_material.tolist() == [0, 1]
+    held = snh.ConstraintSet("held", snh.vertices_on_plane(mesh, (0, 0, 0), (1, 0, 0)))
+    sim = snh.Simulation(mesh, materials, [held], snh.SolveOptions(body_force=(0, 0, -10)))
+    assert sim.solve().converged
