@@ -59,6 +59,7 @@ T from_kwargs(const py::kwargs& kwargs) {
 void bind_mesh(py::module_& m);
 void bind_material(py::module_& m);
 void bind_selection(py::module_& m);
+void bind_solver_enums(py::module_& m);
 void bind_results(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_io(py::module_& m);

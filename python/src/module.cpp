@@ -9,6 +9,7 @@ PYBIND11_MODULE(_snh, m) {
   snh_python::bind_mesh(m);
   snh_python::bind_material(m);
   snh_python::bind_selection(m);
+  snh_python::bind_solver_enums(m);
   snh_python::bind_results(m);
   snh_python::bind_simulation(m);
   snh_python::bind_io(m);

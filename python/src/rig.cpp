@@ -84,8 +84,13 @@ void bind_rig(py::module_& m) {
           },
           "Grid cell (i, j, k) per element, int32 (m, 3).")
       .def_readonly("components", &snh::Voxelization::components, "Connected pieces.");
-  m.def("voxelize", &snh::voxelize, py::arg("surface"), py::arg("cell"), py::arg("options") = snh::VoxelizeOptions{},
-        "Voxelizes a closed surface into a hex8 lattice of cubes of side cell.");
+  m.def(
+      "voxelize",
+      [](const snh::TriangleSurface& surface, double cell, std::optional<snh::VoxelizeOptions> options) {
+        return snh::voxelize(surface, cell, options.value_or(snh::VoxelizeOptions{}));
+      },
+      py::arg("surface"), py::arg("cell"), py::arg("options") = py::none(),
+      "Voxelizes a closed surface into a hex8 lattice of cubes of side cell.");
 
   py::class_<snh::Embedding>(m, "Embedding", "Each surface vertex's element and trilinear weights.")
       .def_property_readonly(
@@ -180,7 +185,8 @@ void bind_rig(py::module_& m) {
   m.def(
       "run_frames",
       [](snh::Simulation& sim, const snh::Animation& animation, const snh::Embedding* embedding,
-         const snh::FrameOptions& options, const py::object& on_frame) {
+         std::optional<snh::FrameOptions> frame_options, const py::object& on_frame) {
+        const snh::FrameOptions options = frame_options.value_or(snh::FrameOptions{});
         snh::FrameCallback callback;
         if (!on_frame.is_none()) {
           auto held = hold(on_frame);
@@ -194,8 +200,8 @@ void bind_rig(py::module_& m) {
         py::gil_scoped_release release;
         return snh::run_frames(sim, animation, embedding, options, callback);
       },
-      py::arg("simulation"), py::arg("animation"), py::arg("embedding") = nullptr,
-      py::arg("options") = snh::FrameOptions{}, py::arg("on_frame") = py::none(),
+      py::arg("simulation"), py::arg("animation"), py::arg("embedding") = nullptr, py::arg("options") = py::none(),
+      py::arg("on_frame") = py::none(),
       "Runs every frame: each bone's matrix to its constraint set, a warm-started solve. "
       "on_frame(record, lattice (n, 3), surface (k, 3) or None) returning False stops. Returns FrameRecords.");
 }

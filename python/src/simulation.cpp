@@ -64,7 +64,7 @@ const snh::ConstraintSet* find_set(const snh::Simulation& sim, const std::string
 
 }  // namespace
 
-void bind_simulation(py::module_& m) {
+void bind_solver_enums(py::module_& m) {
   py::enum_<snh::Precision>(m, "Precision", "Working precision of the device kernels.")
       .value("single", snh::Precision::single)
       .value("double", snh::Precision::double_);
@@ -91,7 +91,9 @@ void bind_simulation(py::module_& m) {
       .value("plane", snh::ObstacleType::plane)
       .value("sphere", snh::ObstacleType::sphere)
       .value("cylinder", snh::ObstacleType::cylinder);
+}
 
+void bind_simulation(py::module_& m) {
   m.def("list_devices", &snh::list_devices, "Every OpenCL device on this machine (DeviceInfo list).");
 
   py::class_<snh::RigidTransform>(m, "RigidTransform",
