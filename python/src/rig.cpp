@@ -187,16 +187,16 @@ void bind_rig(py::module_& m) {
       [](snh::Simulation& sim, const snh::Animation& animation, const snh::Embedding* embedding,
          std::optional<snh::FrameOptions> frame_options, const py::object& on_frame) {
         const snh::FrameOptions options = frame_options.value_or(snh::FrameOptions{});
-        snh::FrameCallback callback;
-        if (!on_frame.is_none()) {
-          auto held = hold(on_frame);
-          callback = [held](const snh::FrameRecord& r, const std::vector<double>& lattice,
-                            const std::vector<double>& surface) {
-            py::gil_scoped_acquire gil;
-            py::object s = surface.empty() ? py::object(py::none()) : py::object(xyz_array(surface));
-            return keep_going((*held)(r, xyz_array(lattice), s));
-          };
-        }
+        std::shared_ptr<py::object> held = on_frame.is_none() ? nullptr : hold(on_frame);
+        // Always called, so that Ctrl-C (a pending signal) stops after the frame.
+        const snh::FrameCallback callback = [held](const snh::FrameRecord& r, const std::vector<double>& lattice,
+                                                   const std::vector<double>& surface) {
+          py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+          if (!held) return true;
+          py::object s = surface.empty() ? py::object(py::none()) : py::object(xyz_array(surface));
+          return keep_going((*held)(r, xyz_array(lattice), s));
+        };
         py::gil_scoped_release release;
         return snh::run_frames(sim, animation, embedding, options, callback);
       },

@@ -360,14 +360,13 @@ void bind_simulation(py::module_& m) {
       .def(
           "solve",
           [](snh::Simulation& sim, int load_steps, const py::object& progress, const py::object& on_step) {
-            snh::ProgressCallback progress_callback;
-            if (!progress.is_none()) {
-              auto held = hold(progress);
-              progress_callback = [held](const snh::NewtonIteration& record) {
-                py::gil_scoped_acquire gil;
-                return keep_going((*held)(record));
-              };
-            }
+            // Always observed, so that Ctrl-C (a pending signal) stops a long solve.
+            std::shared_ptr<py::object> held_progress = progress.is_none() ? nullptr : hold(progress);
+            const snh::ProgressCallback progress_callback = [held_progress](const snh::NewtonIteration& record) {
+              py::gil_scoped_acquire gil;
+              if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+              return held_progress ? keep_going((*held_progress)(record)) : true;
+            };
             snh::StepCallback step_callback;
             if (!on_step.is_none()) {
               auto held = hold(on_step);

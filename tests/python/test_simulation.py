@@ -124,3 +124,41 @@ def test_regions():
     held = snh.ConstraintSet("held", snh.vertices_on_plane(mesh, (0, 0, 0), (1, 0, 0)))
     sim = snh.Simulation(mesh, materials, [held], snh.SolveOptions(body_force=(0, 0, -10)))
     assert sim.solve().converged
+
+
+def test_obstacle_contact():
+    block = snh.make_box_lattice(2, 2, 2, 0.5)
+    top = snh.ConstraintSet(
+        "top",
+        snh.vertices_on_plane(block, (0, 0, 1), (0, 0, 1)),
+        motion=lambda t: snh.RigidTransform.translation_by((0, 0, -0.3 * t)),
+    )
+    floor = snh.Obstacle.plane((0, 0, -0.1), (0, 0, 1))
+    options = snh.SolveOptions(
+        load_steps=2, obstacles=[floor], contact=snh.ContactOptions(stiffness=1e5, thickness=0.01)
+    )
+    sim = snh.Simulation(block, snh.Material.from_youngs_modulus(1e4, 0.4), [top], options)
+    result = sim.solve()
+    assert result.converged
+    assert result.steps[-1].contacts > 0
+    assert sim.positions[:, 2].min() > -0.1 - 0.05
+
+
+def test_device_is_selectable(bar_problem):
+    mesh, material, sets, options = bar_problem
+    options.device = "no such device anywhere"
+    with pytest.raises(snh.Error):
+        snh.Simulation(mesh, material, sets, options)
+    assert snh.list_devices()
+
+
+def test_interrupt_stops_a_long_solve(bar_problem):
+    import _thread
+    import threading
+
+    sim = snh.Simulation(*bar_problem)
+    timer = threading.Timer(0.2, _thread.interrupt_main)
+    with pytest.raises(KeyboardInterrupt):
+        timer.start()
+        sim.solve(load_steps=400)
+    timer.join()
