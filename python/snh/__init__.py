@@ -5,7 +5,7 @@ The engine is the snh C++ library; this package binds its public API
 """
 
 from ._snh import *  # noqa: F401,F403
-from ._snh import Error, __doc__ as _engine_doc  # noqa: F401
+from ._snh import Error  # noqa: F401
 from ._meshio import from_meshio, to_meshio, to_pyvista  # noqa: F401
 
 __version__ = "0.1.0"

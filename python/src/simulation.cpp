@@ -56,6 +56,27 @@ snh::ConstraintSet make_constraint_set(std::string name, py::handle vertices, co
   return set;
 }
 
+// Index lists and per-vertex arrays against the mesh, as ValueErrors before
+// the engine sees them.
+void check_inputs(const snh::Mesh& mesh, const std::vector<snh::ConstraintSet>& sets,
+                  const std::optional<snh::SolveOptions>& options) {
+  const size_t n = mesh.vertex_count();
+  for (const snh::ConstraintSet& set : sets)
+    for (size_t i = 0; i < set.vertices.size(); ++i)
+      if (static_cast<size_t>(set.vertices[i]) >= n)
+        throw py::value_error("constraint set '" + set.name + "': vertex " + std::to_string(set.vertices[i]) +
+                              " at position " + std::to_string(i) + " is outside [0, " + std::to_string(n) + ")");
+  if (!options) return;
+  const std::pair<const char*, const std::vector<double>*> arrays[] = {
+      {"external_force", &options->external_force},
+      {"initial_positions", &options->initial_positions},
+      {"initial_velocities", &options->initial_velocities}};
+  for (const auto& [name, values] : arrays)
+    if (!values->empty() && values->size() != 3 * n)
+      throw py::value_error(std::string("SolveOptions.") + name + ": expected shape (" + std::to_string(n) +
+                            ", 3), got (" + std::to_string(values->size() / 3) + ", 3)");
+}
+
 const snh::ConstraintSet* find_set(const snh::Simulation& sim, const std::string& name) {
   for (const snh::ConstraintSet& set : sim.constraints())
     if (set.name == name) return &set;
@@ -255,7 +276,7 @@ void bind_simulation(py::module_& m) {
           "Case-insensitive substring of '<platform> / <device>'; '' for SNH_DEVICE, else the first GPU.")
       .def_readwrite("dynamics", &snh::SolveOptions::dynamics, "DynamicsOptions, or None for quasistatics.")
       .def_readwrite("obstacles", &snh::SolveOptions::obstacles, "Obstacle list (a copy: assign a new list).")
-      .def_readwrite("contact", &snh::SolveOptions::contact, "ContactOptions (a copy: assign a new one).")
+      .def_readwrite("contact", &snh::SolveOptions::contact, "ContactOptions (its fields can be set in place).")
       .def_readwrite("load_steps", &snh::SolveOptions::load_steps, "Load (or time) steps per solve.")
       .def_readwrite("max_newton_iterations", &snh::SolveOptions::max_newton_iterations)
       .def_readwrite("strain_tolerance", &snh::SolveOptions::strain_tolerance, "None: 1e-6 double, 1e-4 float.")
@@ -310,6 +331,7 @@ void bind_simulation(py::module_& m) {
                               "then solved from its current state after new targets and loads.")
       .def(py::init([](snh::Mesh mesh, const snh::MaterialMap& materials, std::vector<snh::ConstraintSet> constraints,
                        std::optional<snh::SolveOptions> options) {
+             check_inputs(mesh, constraints, options);
              py::gil_scoped_release release;
              return std::make_unique<snh::Simulation>(std::move(mesh), materials, std::move(constraints),
                                                       options.value_or(snh::SolveOptions{}));
@@ -318,6 +340,7 @@ void bind_simulation(py::module_& m) {
            py::arg("options") = py::none(), "With a MaterialMap (one material per element).")
       .def(py::init([](snh::Mesh mesh, const snh::Material& material, std::vector<snh::ConstraintSet> constraints,
                        std::optional<snh::SolveOptions> options) {
+             check_inputs(mesh, constraints, options);
              py::gil_scoped_release release;
              return std::make_unique<snh::Simulation>(std::move(mesh), material, std::move(constraints),
                                                       options.value_or(snh::SolveOptions{}));

@@ -104,3 +104,21 @@ def test_bad_simulation_arrays_raise_value_error(bar_problem):
         snh.ConstraintSet("x", [-1])
     with pytest.raises(ValueError, match="expected shape"):
         snh.SolveOptions(initial_positions=np.zeros((n, 2)))
+
+
+def test_simulation_inputs_checked_against_the_mesh(bar_problem):
+    mesh, material, sets, options = bar_problem
+    n = mesh.vertex_count
+    with pytest.raises(ValueError, match=rf"constraint set 'far': vertex {n} at position 1 is outside \[0, {n}\)"):
+        snh.Simulation(mesh, material, [snh.ConstraintSet("far", [0, n])])
+    options.initial_positions = np.zeros((n + 1, 3))
+    with pytest.raises(ValueError, match="SolveOptions.initial_positions"):
+        snh.Simulation(mesh, material, sets, options)
+
+
+def test_nested_options_set_in_place():
+    options = snh.SolveOptions(dynamics=snh.DynamicsOptions(time_step=0.01, density=1.0))
+    options.contact.stiffness = 5.0
+    options.dynamics.substeps = 3
+    assert options.contact.stiffness == 5.0
+    assert options.dynamics.substeps == 3
