@@ -1595,7 +1595,7 @@ class SolveOptions:
     @property
     def contact(self) -> ContactOptions:
         """
-        ContactOptions (a copy: assign a new one).
+        ContactOptions (its fields can be set in place).
         """
     @contact.setter
     def contact(self, arg0: ContactOptions) -> None:
