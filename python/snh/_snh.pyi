@@ -4,7 +4,7 @@ Stable Neo-Hookean flesh simulation on OpenCL devices.
 from __future__ import annotations
 import numpy
 import typing
-__all__: list[str] = ['Animation', 'Barrier', 'Bone', 'Capsule', 'ChebyshevKind', 'ConstraintSet', 'ContactOptions', 'DeformationStatistics', 'DeviceInfo', 'DynamicsOptions', 'ElementFields', 'ElementType', 'Embedding', 'Error', 'FrameOptions', 'FrameRecord', 'HessianMode', 'LameParameters', 'Material', 'MaterialMap', 'MaterialModel', 'MaterialOptions', 'MaterialRegion', 'Mesh', 'MeshArray', 'MeshGroup', 'NewtonIteration', 'Obstacle', 'ObstacleType', 'Precision', 'Preconditioner', 'ProductVariant', 'Reaction', 'RigidTransform', 'ShapeDeviation', 'Simulation', 'SolveOptions', 'SolveProfile', 'SolveResult', 'StableNeoHookean', 'StepResult', 'TriangleSurface', 'Voxelization', 'VoxelizeOptions', 'bone_constraints', 'bone_contains', 'compute_element_fields', 'deformation_statistics', 'elastic_forces', 'element_fields_for_vtu', 'elements_in_box', 'elements_in_group', 'elements_in_sphere', 'elements_with_value', 'elements_with_value_in', 'embed', 'embedded_positions', 'enclosed_volume', 'identity_matrix4', 'list_devices', 'lump_body_force', 'lumped_mass', 'make_box_lattice', 'make_material_map', 'make_tet_box', 'make_voxel_cylinder', 'max_poisson_ratio', 'parse_animation_csv', 'parse_animation_json', 'read_animation', 'read_mesh', 'read_surface', 'run_frames', 'shape_deviation', 'split_hexes_into_tets', 'surface_area', 'to_rigid_transform', 'uniform_material', 'validate_closed_surface', 'vertex_spacing', 'vertices_in_box', 'vertices_in_group', 'vertices_in_sphere', 'vertices_on_plane', 'vertices_with_value', 'vertices_with_value_in', 'voxelize', 'write_mesh', 'write_obj', 'write_obj_surface', 'write_ply_surface', 'write_pvd', 'write_surface_vtu', 'write_vtu']
+__all__: list[str] = ['Animation', 'Barrier', 'Bone', 'Capsule', 'ChebyshevKind', 'ConstraintSet', 'ContactOptions', 'DeformationStatistics', 'DeviceInfo', 'DynamicsOptions', 'ElementFields', 'ElementType', 'Embedding', 'Error', 'FrameOptions', 'FrameRecord', 'HessianMode', 'LameParameters', 'Material', 'MaterialMap', 'MaterialModel', 'MaterialOptions', 'MaterialRegion', 'Mesh', 'MeshArray', 'MeshGroup', 'NewtonIteration', 'Obstacle', 'ObstacleType', 'Precision', 'Preconditioner', 'ProductVariant', 'Reaction', 'RigidTransform', 'Scene', 'SceneFile', 'SceneParameters', 'SceneProgress', 'SceneRun', 'SceneStep', 'ShapeDeviation', 'Simulation', 'SolveOptions', 'SolveProfile', 'SolveResult', 'StableNeoHookean', 'StepResult', 'TriangleSurface', 'Voxelization', 'VoxelizeOptions', 'bone_constraints', 'bone_contains', 'compute_element_fields', 'deformation_statistics', 'elastic_forces', 'element_fields_for_vtu', 'elements_in_box', 'elements_in_group', 'elements_in_sphere', 'elements_with_value', 'elements_with_value_in', 'embed', 'embedded_positions', 'enclosed_volume', 'identity_matrix4', 'list_devices', 'load_scene', 'lump_body_force', 'lumped_mass', 'make_box_lattice', 'make_material_map', 'make_scene', 'make_tet_box', 'make_voxel_cylinder', 'max_poisson_ratio', 'parse_animation_csv', 'parse_animation_json', 'read_animation', 'read_mesh', 'read_surface', 'run_frames', 'run_scene', 'scene_defaults', 'scene_file_keys', 'scene_names', 'shape_deviation', 'split_hexes_into_tets', 'surface_area', 'to_rigid_transform', 'uniform_material', 'validate_closed_surface', 'vertex_spacing', 'vertices_in_box', 'vertices_in_group', 'vertices_in_sphere', 'vertices_on_plane', 'vertices_with_value', 'vertices_with_value_in', 'voxelize', 'write_mesh', 'write_obj', 'write_obj_surface', 'write_ply_surface', 'write_pvd', 'write_scene_json', 'write_surface_vtu', 'write_vtu']
 class Error(RuntimeError):
     pass
 class ElementType:
@@ -1811,6 +1811,114 @@ class Simulation:
         """
         With dynamics: velocities, float64 (n, 3).
         """
+class SceneProgress:
+    """
+    A scene run's progress after a step or frame (read-only).
+    """
+    @property
+    def cg_iterations(self) -> int:
+        ...
+    @property
+    def count(self) -> int:
+        ...
+    @property
+    def frame(self) -> bool:
+        """
+        True for a rig's frame, False for a load step.
+        """
+    @property
+    def index(self) -> int:
+        """
+        1-based.
+        """
+    @property
+    def min_j(self) -> float:
+        ...
+    @property
+    def newton_iterations(self) -> int:
+        ...
+    @property
+    def residual_norm(self) -> float:
+        ...
+    @property
+    def seconds(self) -> float:
+        ...
+    @property
+    def status(self) -> str:
+        ...
+    @property
+    def time(self) -> float:
+        ...
+class SceneStep:
+    """
+    What a scene run measured after a step or frame (read-only).
+    """
+    @property
+    def max_self_penetration(self) -> float:
+        ...
+    @property
+    def min_j(self) -> float:
+        ...
+    @property
+    def reactions(self) -> list[Reaction] | None:
+        """
+        Reaction list, or None.
+        """
+    @property
+    def rigid_fit_rms(self) -> float:
+        ...
+    @property
+    def rigid_fit_rms_relative(self) -> float:
+        ...
+    @property
+    def self_contact_measured(self) -> bool:
+        ...
+    @property
+    def shape_defined(self) -> bool:
+        """
+        Whether the shape was measured.
+        """
+    @property
+    def unresolved_self_contacts(self) -> int:
+        ...
+    @property
+    def volume_ratio(self) -> float:
+        ...
+class SceneRun:
+    """
+    A scene run's outcome (read-only).
+    """
+    @property
+    def converged(self) -> bool:
+        """
+        Every step or frame converged.
+        """
+    @property
+    def device(self) -> DeviceInfo:
+        ...
+    @property
+    def frames(self) -> list[FrameRecord]:
+        """
+        FrameRecord per frame of a rig.
+        """
+    @property
+    def options(self) -> SolveOptions:
+        """
+        The SolveOptions as run.
+        """
+    @property
+    def result(self) -> SolveResult:
+        """
+        The SolveResult (load or time steps).
+        """
+    @property
+    def steps(self) -> list[SceneStep]:
+        """
+        SceneStep per step or frame.
+        """
+    @property
+    def warnings(self) -> list[str]:
+        ...
 class TriangleSurface:
     """
     A triangle surface: positions (n, 3), triangles (t, 3).
@@ -1970,6 +2078,162 @@ class FrameOptions:
     @stop_on_failure.setter
     def stop_on_failure(self, arg0: bool) -> None:
         ...
+class SceneParameters:
+    """
+    Size, material and steps of a built-in scene.
+    """
+    barrier: Barrier
+    poisson_ratio: float
+    seed: int
+    strain_tolerance: float
+    youngs_modulus: float
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword arguments set the fields of the same names.
+        """
+    @property
+    def element_type(self) -> ElementType:
+        """
+        hex8 or tet4 (each hex split in six).
+        """
+    @element_type.setter
+    def element_type(self, arg0: ElementType) -> None:
+        ...
+    @property
+    def resolution(self) -> int:
+        """
+        Cells across; 0: the scene's default.
+        """
+    @resolution.setter
+    def resolution(self, arg0: int) -> None:
+        ...
+    @property
+    def steps(self) -> int:
+        """
+        Load steps; 0: the scene's default.
+        """
+    @steps.setter
+    def steps(self, arg0: int) -> None:
+        ...
+class Scene:
+    """
+    A mesh, a material, constraints and solve options, ready to simulate.
+    """
+    description: str
+    name: str
+    def simulation(self, options: SolveOptions | None = None) -> Simulation:
+        """
+        A Simulation of the scene (options: the scene's unless given).
+        """
+    @property
+    def constraints(self) -> list[ConstraintSet]:
+        """
+        ConstraintSet list (a copy: assign a new list).
+        """
+    @constraints.setter
+    def constraints(self, arg0: list[ConstraintSet]) -> None:
+        ...
+    @property
+    def material(self) -> StableNeoHookean:
+        """
+        The StableNeoHookean material.
+        """
+    @material.setter
+    def material(self, arg0: StableNeoHookean) -> None:
+        ...
+    @property
+    def mesh(self) -> Mesh:
+        """
+        The Mesh.
+        """
+    @mesh.setter
+    def mesh(self, arg0: Mesh) -> None:
+        ...
+    @property
+    def options(self) -> SolveOptions:
+        """
+        SolveOptions (fields can be set in place).
+        """
+    @options.setter
+    def options(self, arg0: SolveOptions) -> None:
+        ...
+class SceneFile:
+    """
+    A scene file as read: the scene, its materials, rig and outputs.
+    """
+    @property
+    def animation(self) -> typing.Any:
+        """
+        The rig's Animation, or None.
+        """
+    @property
+    def bones(self) -> typing.Any:
+        """
+        The rig's Bone list, or None.
+        """
+    @property
+    def embedding(self) -> typing.Any:
+        """
+        The surface's Embedding, or None.
+        """
+    @property
+    def json_path(self) -> str:
+        """
+        Output JSON summary, or ''.
+        """
+    @json_path.setter
+    def json_path(self, arg0: str) -> None:
+        ...
+    @property
+    def material(self) -> Material:
+        """
+        The base Material.
+        """
+    @material.setter
+    def material(self, arg0: Material) -> None:
+        ...
+    @property
+    def materials(self) -> MaterialMap:
+        """
+        Every element's material (MaterialMap).
+        """
+    @materials.setter
+    def materials(self, arg0: MaterialMap) -> None:
+        ...
+    @property
+    def scene(self) -> Scene:
+        """
+        The Scene (its options are the file's).
+        """
+    @scene.setter
+    def scene(self, arg0: Scene) -> None:
+        ...
+    @property
+    def surface(self) -> typing.Any:
+        """
+        The embedded TriangleSurface, or None.
+        """
+    @property
+    def surface_prefix(self) -> str:
+        """
+        Output OBJ prefix, or ''.
+        """
+    @surface_prefix.setter
+    def surface_prefix(self, arg0: str) -> None:
+        ...
+    @property
+    def voxels(self) -> typing.Any:
+        """
+        The Voxelization of the surface, or None.
+        """
+    @property
+    def vtu_dir(self) -> str:
+        """
+        Output folder of the .vtu series, or ''.
+        """
+    @vtu_dir.setter
+    def vtu_dir(self, arg0: str) -> None:
+        ...
 def bone_constraints(lattice: Mesh, bones: list[Bone]) -> list[ConstraintSet]:
     """
     One ConstraintSet per bone of the lattice vertices inside it (first bone wins at joints).
@@ -2034,6 +2298,10 @@ def list_devices() -> list[DeviceInfo]:
     """
     Every OpenCL device on this machine (DeviceInfo list).
     """
+def load_scene(path: str) -> SceneFile:
+    """
+    Reads a scene file (docs/scene-files.md); snh.Error names the key at fault.
+    """
 def lump_body_force(mesh: Mesh, force_per_rest_volume: typing.Any) -> numpy.ndarray[numpy.float64]:
     """
     Nodal forces (n, 3) of a uniform body force per rest volume.
@@ -2049,6 +2317,10 @@ def make_box_lattice(nx: int, ny: int, nz: int, h: float, origin: list[float[3]]
 def make_material_map(mesh: Mesh, base: Material, regions: list[MaterialRegion]) -> MaterialMap:
     """
     Base material plus regions (snh.Error for an empty region, an index out of range, an element in two).
+    """
+def make_scene(name: str, parameters: SceneParameters | None = None) -> Scene:
+    """
+    A built-in scene (scene_names()) with parameters (default: scene_defaults(name)).
     """
 def make_tet_box(nx: int, ny: int, nz: int, h: float, origin: list[float[3]] = [0.0, 0.0, 0.0]) -> Mesh:
     """
@@ -2081,6 +2353,22 @@ def read_surface(path: str) -> TriangleSurface:
 def run_frames(simulation: Simulation, animation: Animation, embedding: Embedding = None, options: FrameOptions | None = None, on_frame: typing.Any = None) -> list[FrameRecord]:
     """
     Runs every frame: each bone's matrix to its constraint set, a warm-started solve. on_frame(record, lattice (n, 3), surface (k, 3) or None) returning False stops. Returns FrameRecords.
+    """
+def run_scene(file: SceneFile, options: SolveOptions | None = None, max_frames: int = 0, reactions: bool = True, progress: typing.Any = None, vtu_dir: str | None = None) -> SceneRun:
+    """
+    Runs the scene's load steps, time steps or rig frames (options: the file's unless given); progress(SceneProgress) after each step or frame; vtu_dir: write a .vtu series and .pvd there. Runs without the GIL. Returns a SceneRun.
+    """
+def scene_defaults(name: str) -> SceneParameters:
+    """
+    A built-in scene's default parameters.
+    """
+def scene_file_keys() -> list[str]:
+    """
+    Every key a scene file may hold.
+    """
+def scene_names() -> list[str]:
+    """
+    The built-in scenes' names.
     """
 def shape_deviation(mesh: Mesh, positions: typing.Any) -> ShapeDeviation:
     """
@@ -2157,6 +2445,10 @@ def write_ply_surface(path: str, mesh: Mesh, positions: typing.Any = None) -> No
 def write_pvd(path: str, steps: list[tuple[float, str]]) -> None:
     """
     A ParaView collection of (time, relative .vtu path) entries.
+    """
+def write_scene_json(path: str, file: SceneFile, run: SceneRun) -> None:
+    """
+    The run's JSON summary (docs/cli.md).
     """
 def write_surface_vtu(path: str, surface: TriangleSurface, positions: typing.Any = None) -> None:
     """

@@ -12,6 +12,8 @@ PYBIND11_MODULE(_snh, m) {
   snh_python::bind_solver_enums(m);
   snh_python::bind_results(m);
   snh_python::bind_simulation(m);
+  snh_python::bind_scene_results(m);
   snh_python::bind_io(m);
   snh_python::bind_rig(m);
+  snh_python::bind_scene(m);
 }

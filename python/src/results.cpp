@@ -4,6 +4,7 @@
 #include "common.h"
 #include "snh/fields.h"
 #include "snh/frames.h"
+#include "snh/scene.h"
 #include "snh/simulation.h"
 
 namespace snh_python {
@@ -159,6 +160,43 @@ void bind_results(py::module_& m) {
       .def_readonly("min_j", &snh::FrameRecord::min_j)
       .def_readonly("inverted_elements", &snh::FrameRecord::inverted_elements)
       .def_readonly("history", &snh::FrameRecord::history);
+}
+
+// After SolveOptions (simulation.cpp), which a SceneRun holds.
+void bind_scene_results(py::module_& m) {
+  py::class_<snh::SceneProgress>(m, "SceneProgress", "A scene run's progress after a step or frame (read-only).")
+      .def_readonly("frame", &snh::SceneProgress::frame, "True for a rig's frame, False for a load step.")
+      .def_readonly("index", &snh::SceneProgress::index, "1-based.")
+      .def_readonly("count", &snh::SceneProgress::count)
+      .def_readonly("newton_iterations", &snh::SceneProgress::newton_iterations)
+      .def_readonly("cg_iterations", &snh::SceneProgress::cg_iterations)
+      .def_readonly("residual_norm", &snh::SceneProgress::residual_norm)
+      .def_readonly("status", &snh::SceneProgress::status)
+      .def_readonly("seconds", &snh::SceneProgress::seconds)
+      .def_readonly("time", &snh::SceneProgress::time)
+      .def_readonly("min_j", &snh::SceneProgress::min_j);
+
+  py::class_<snh::SceneStep>(m, "SceneStep", "What a scene run measured after a step or frame (read-only).")
+      .def_property_readonly(
+          "shape_defined", [](const snh::SceneStep& s) { return s.shape.defined; }, "Whether the shape was measured.")
+      .def_property_readonly("volume_ratio", [](const snh::SceneStep& s) { return s.shape.volume_ratio; })
+      .def_property_readonly("min_j", [](const snh::SceneStep& s) { return s.shape.min_j; })
+      .def_property_readonly("rigid_fit_rms", [](const snh::SceneStep& s) { return s.shape.rigid_fit_rms; })
+      .def_property_readonly("rigid_fit_rms_relative",
+                             [](const snh::SceneStep& s) { return s.shape.rigid_fit_rms_relative; })
+      .def_readonly("self_contact_measured", &snh::SceneStep::self_contact_measured)
+      .def_readonly("unresolved_self_contacts", &snh::SceneStep::unresolved_self_contacts)
+      .def_readonly("max_self_penetration", &snh::SceneStep::max_self_penetration)
+      .def_readonly("reactions", &snh::SceneStep::reactions, "Reaction list, or None.");
+
+  py::class_<snh::SceneRun>(m, "SceneRun", "A scene run's outcome (read-only).")
+      .def_readonly("options", &snh::SceneRun::options, "The SolveOptions as run.")
+      .def_readonly("result", &snh::SceneRun::result, "The SolveResult (load or time steps).")
+      .def_readonly("steps", &snh::SceneRun::steps, "SceneStep per step or frame.")
+      .def_readonly("frames", &snh::SceneRun::frames, "FrameRecord per frame of a rig.")
+      .def_readonly("device", &snh::SceneRun::device)
+      .def_readonly("converged", &snh::SceneRun::converged, "Every step or frame converged.")
+      .def_readonly("warnings", &snh::SceneRun::warnings);
 }
 
 }  // namespace snh_python
