@@ -419,8 +419,11 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly(
           "applied_force", [](const snh::Simulation& sim) { return xyz_array(sim.applied_force()); },
           "The lumped external force of the last solve's final step, (n, 3).")
-      .def_property_readonly("mesh", &snh::Simulation::mesh, "The mesh (a copy).")
-      .def_property_readonly("materials", &snh::Simulation::materials, "The MaterialMap (a copy).")
+      .def_property_readonly(
+          "mesh", [](const snh::Simulation& sim) { return snh::Mesh(sim.mesh()); }, "The mesh (a copy).")
+      .def_property_readonly(
+          "materials", [](const snh::Simulation& sim) { return snh::MaterialMap(sim.materials()); },
+          "The MaterialMap (a copy).")
       .def_property_readonly("constraints", &snh::Simulation::constraints, "The constraint sets (copies).")
       .def_property_readonly("device", &snh::Simulation::device, "The OpenCL device (DeviceInfo).")
       .def_property_readonly("tolerance", &snh::Simulation::tolerance, "The absolute residual tolerance.");

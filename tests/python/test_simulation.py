@@ -162,3 +162,13 @@ def test_interrupt_stops_a_long_solve(bar_problem):
         timer.start()
         sim.solve(load_steps=400)
     timer.join()
+
+
+def test_simulation_mesh_and_materials_are_copies(bar_problem):
+    sim = snh.Simulation(*bar_problem)
+    mesh = sim.mesh
+    mesh.positions = mesh.positions + 1.0
+    assert np.array_equal(sim.mesh.positions, bar_problem[0].positions)
+    materials = sim.materials
+    materials.names = ["changed"]
+    assert sim.materials.names == ["base"]
