@@ -41,3 +41,8 @@ def crosscheck_program():
     if not path or not os.path.exists(path):
         pytest.skip("SNH_PYTHON_CROSSCHECK is not set (run through ctest)")
     return path
+
+
+def status_name(status):
+    """A step's status as its name, whether bound as a string or as an enum."""
+    return status if isinstance(status, str) else status.name
