@@ -173,3 +173,43 @@ def test_simulation_mesh_and_materials_are_copies(bar_problem):
     materials = sim.materials
     materials.names = ["changed"]
     assert sim.materials.names == ["base"]
+
+
+def test_targets_and_step_callbacks(bar_problem):
+    mesh, material, sets, options = bar_problem
+    end = sets[1].vertices
+    rest = mesh.positions[end]
+    sets[1] = snh.ConstraintSet("end", end, targets=lambda t: rest + [0.1 * t, 0, 0])
+    sim = snh.Simulation(mesh, material, sets, options)
+    steps = []
+    result = sim.solve(on_step=lambda step, x: steps.append((step, x.shape)))
+    assert result.converged
+    assert steps == [(1, (mesh.vertex_count, 3)), (2, (mesh.vertex_count, 3))]
+    assert np.allclose(sim.positions[end], rest + [0.1, 0, 0])
+
+
+def test_wrong_targets_shape_is_a_value_error(bar_problem):
+    mesh, material, sets, options = bar_problem
+    sets[1] = snh.ConstraintSet("end", sets[1].vertices, targets=lambda t: np.zeros((1, 3)))
+    sim = snh.Simulation(mesh, material, sets, options)
+    with pytest.raises(ValueError, match="targets: expected shape"):
+        sim.solve()
+
+
+def test_moving_obstacle():
+    block = snh.make_box_lattice(2, 2, 1, 0.5)
+    held = snh.ConstraintSet("held", snh.vertices_on_plane(block, (0, 0, 0.5), (0, 0, 1)))
+    calls = []
+
+    def rise(t):
+        calls.append(t)
+        return snh.RigidTransform.translation_by((0, 0, 0.15 * t))
+
+    floor = snh.Obstacle.plane((0, 0, -0.1), (0, 0, 1), motion=rise)
+    options = snh.SolveOptions(
+        load_steps=2, obstacles=[floor], contact=snh.ContactOptions(stiffness=1e5, thickness=0.01)
+    )
+    sim = snh.Simulation(block, snh.Material.from_youngs_modulus(1e4, 0.4), [held], options)
+    result = sim.solve()
+    assert result.converged and calls
+    assert result.steps[-1].contacts > 0
