@@ -136,7 +136,7 @@ struct SceneProgress {
   int count = 0;
   int newton_iterations = 0;
   int cg_iterations = 0;
-  double residual_norm = 0.0;  // frames: the frame's; steps: before the last Newton update
+  double residual_norm = 0.0;            // frames: the frame's; steps: before the last Newton update
   StepStatus status = StepStatus::none;  // frames: FrameRecord::status; steps: none (in SolveResult after the run)
   double seconds = 0.0;
   double time = 0.0;   // a frame's animation time or a dynamic step's simulated time

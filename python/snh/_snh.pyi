@@ -4,7 +4,7 @@ Stable Neo-Hookean flesh simulation on OpenCL devices.
 from __future__ import annotations
 import numpy
 import typing
-__all__: list[str] = ['Animation', 'Barrier', 'Bone', 'Capsule', 'ChebyshevKind', 'ConstraintSet', 'ContactOptions', 'DeformationStatistics', 'DeviceInfo', 'DynamicsOptions', 'ElementFields', 'ElementType', 'Embedding', 'Error', 'FrameOptions', 'FrameRecord', 'HessianMode', 'LameParameters', 'Material', 'MaterialMap', 'MaterialModel', 'MaterialOptions', 'MaterialRegion', 'Mesh', 'MeshArray', 'MeshGroup', 'NewtonIteration', 'Obstacle', 'ObstacleType', 'Precision', 'Preconditioner', 'ProductVariant', 'Reaction', 'RigidTransform', 'Scene', 'SceneFile', 'SceneParameters', 'SceneProgress', 'SceneRun', 'SceneStep', 'ShapeDeviation', 'Simulation', 'SolveOptions', 'SolveProfile', 'SolveResult', 'StableNeoHookean', 'StepResult', 'TriangleSurface', 'Voxelization', 'VoxelizeOptions', 'bone_constraints', 'bone_contains', 'compute_element_fields', 'deformation_statistics', 'elastic_forces', 'element_fields_for_vtu', 'elements_in_box', 'elements_in_group', 'elements_in_sphere', 'elements_with_value', 'elements_with_value_in', 'embed', 'embedded_positions', 'enclosed_volume', 'identity_matrix4', 'list_devices', 'load_scene', 'lump_body_force', 'lumped_mass', 'make_box_lattice', 'make_material_map', 'make_scene', 'make_tet_box', 'make_voxel_cylinder', 'max_poisson_ratio', 'parse_animation_csv', 'parse_animation_json', 'read_animation', 'read_mesh', 'read_surface', 'run_frames', 'run_scene', 'scene_defaults', 'scene_file_keys', 'scene_names', 'shape_deviation', 'split_hexes_into_tets', 'surface_area', 'to_rigid_transform', 'uniform_material', 'validate_closed_surface', 'vertex_spacing', 'vertices_in_box', 'vertices_in_group', 'vertices_in_sphere', 'vertices_on_plane', 'vertices_with_value', 'vertices_with_value_in', 'voxelize', 'write_mesh', 'write_obj', 'write_obj_surface', 'write_ply_surface', 'write_pvd', 'write_scene_json', 'write_surface_vtu', 'write_vtu']
+__all__: list[str] = ['Animation', 'Barrier', 'Bone', 'Capsule', 'CgStop', 'ChebyshevKind', 'ConstraintSet', 'ContactOptions', 'DeformationStatistics', 'DeviceInfo', 'DynamicsOptions', 'ElementFields', 'ElementType', 'Embedding', 'Error', 'FrameOptions', 'FrameRecord', 'HessianMode', 'LameParameters', 'Material', 'MaterialMap', 'MaterialModel', 'MaterialOptions', 'MaterialRegion', 'Mesh', 'MeshArray', 'MeshGroup', 'NewtonIteration', 'Obstacle', 'ObstacleType', 'Precision', 'Preconditioner', 'ProductVariant', 'Reaction', 'Recovery', 'RecoveryAction', 'RigidTransform', 'Scene', 'SceneFile', 'SceneParameters', 'SceneProgress', 'SceneRun', 'SceneStep', 'ShapeDeviation', 'Simulation', 'SimulationState', 'SolveOptions', 'SolveProfile', 'SolveResult', 'StableNeoHookean', 'StepResult', 'StepStatus', 'TriangleSurface', 'Voxelization', 'VoxelizeOptions', 'bone_constraints', 'bone_contains', 'boundary_surface', 'compute_element_fields', 'deformation_statistics', 'elastic_forces', 'element_fields_for_vtu', 'elements_in_box', 'elements_in_group', 'elements_in_sphere', 'elements_with_value', 'elements_with_value_in', 'embed', 'embedded_positions', 'enclosed_volume', 'identity_matrix4', 'list_devices', 'load_scene', 'lump_body_force', 'lumped_mass', 'make_box_lattice', 'make_material_map', 'make_scene', 'make_tet_box', 'make_voxel_cylinder', 'max_poisson_ratio', 'parse_animation_csv', 'parse_animation_json', 'read_animation', 'read_checkpoint', 'read_mesh', 'read_surface', 'run_frames', 'run_scene', 'scene_defaults', 'scene_file_keys', 'scene_names', 'shape_deviation', 'split_hexes_into_tets', 'surface_area', 'to_rigid_transform', 'uniform_material', 'validate_closed_surface', 'vertex_spacing', 'vertices_in_box', 'vertices_in_group', 'vertices_in_sphere', 'vertices_on_plane', 'vertices_with_value', 'vertices_with_value_in', 'voxelize', 'write_checkpoint', 'write_mesh', 'write_obj', 'write_obj_surface', 'write_ply_surface', 'write_pvd', 'write_scene_json', 'write_surface_vtu', 'write_vtu']
 class Error(RuntimeError):
     pass
 class ElementType:
@@ -932,6 +932,198 @@ class DeviceInfo:
         """
         OpenCL version string.
         """
+class StepStatus:
+    """
+    How a load or time step's Newton solve ended.
+    
+    Members:
+    
+      none
+    
+      converged
+    
+      max_newton_iterations
+    
+      line_search_failed
+    
+      stagnated
+    
+      non_finite_state
+    
+      cancelled
+    """
+    __members__: typing.ClassVar[dict[str, StepStatus]]
+    cancelled: typing.ClassVar[StepStatus]
+    converged: typing.ClassVar[StepStatus]
+    line_search_failed: typing.ClassVar[StepStatus]
+    max_newton_iterations: typing.ClassVar[StepStatus]
+    non_finite_state: typing.ClassVar[StepStatus]
+    none: typing.ClassVar[StepStatus]
+    stagnated: typing.ClassVar[StepStatus]
+    @staticmethod
+    def __str__(*args, **kwargs):
+        """
+        (self: snh._snh.StepStatus) -> str
+        """
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: int) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: int) -> None:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class CgStop:
+    """
+    Why a Newton iteration's conjugate gradient solve stopped.
+    
+    Members:
+    
+      none
+    
+      converged
+    
+      max_iterations
+    
+      negative_curvature
+    
+      breakdown
+    """
+    __members__: typing.ClassVar[dict[str, CgStop]]
+    breakdown: typing.ClassVar[CgStop]
+    converged: typing.ClassVar[CgStop]
+    max_iterations: typing.ClassVar[CgStop]
+    negative_curvature: typing.ClassVar[CgStop]
+    none: typing.ClassVar[CgStop]
+    @staticmethod
+    def __str__(*args, **kwargs):
+        """
+        (self: snh._snh.CgStop) -> str
+        """
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: int) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: int) -> None:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class RecoveryAction:
+    """
+    What the Newton solver did to get past trouble.
+    
+    Members:
+    
+      cg_breakdown_steepest_descent
+    
+      non_finite_direction_steepest_descent
+    
+      non_descent_steepest_descent
+    
+      cg_breakdown_partial_direction
+    
+      line_search_steepest_descent
+    
+      line_search_steepest_descent_failed
+    
+      shorter_step
+    
+      extended_step
+    
+      double_fallback
+    """
+    __members__: typing.ClassVar[dict[str, RecoveryAction]]
+    cg_breakdown_partial_direction: typing.ClassVar[RecoveryAction]
+    cg_breakdown_steepest_descent: typing.ClassVar[RecoveryAction]
+    double_fallback: typing.ClassVar[RecoveryAction]
+    extended_step: typing.ClassVar[RecoveryAction]
+    line_search_steepest_descent: typing.ClassVar[RecoveryAction]
+    line_search_steepest_descent_failed: typing.ClassVar[RecoveryAction]
+    non_descent_steepest_descent: typing.ClassVar[RecoveryAction]
+    non_finite_direction_steepest_descent: typing.ClassVar[RecoveryAction]
+    shorter_step: typing.ClassVar[RecoveryAction]
+    @staticmethod
+    def __str__(*args, **kwargs):
+        """
+        (self: snh._snh.RecoveryAction) -> str
+        """
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: int) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: int) -> None:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class Recovery:
+    """
+    One recovery of a Newton iteration (read-only).
+    """
+    def __repr__(self) -> str:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def action(self) -> RecoveryAction:
+        ...
+    @property
+    def factor(self) -> int:
+        """
+        extended_step: the step's factor.
+        """
+    @property
+    def float_status(self) -> StepStatus:
+        """
+        double_fallback: how the float solve ended.
+        """
 class NewtonIteration:
     """
     One Newton iteration's record (read-only).
@@ -949,9 +1141,9 @@ class NewtonIteration:
         CG's relative residual.
         """
     @property
-    def cg_stop(self) -> str:
+    def cg_stop(self) -> CgStop:
         """
-        Why CG stopped.
+        Why CG stopped (CgStop).
         """
     @property
     def energy(self) -> float:
@@ -969,9 +1161,14 @@ class NewtonIteration:
         Whether the Hessian was the PSD projection.
         """
     @property
-    def recovery(self) -> str:
+    def recovery(self) -> list[Recovery]:
         """
-        What the solver did to get past trouble, or ''.
+        What the solver did to get past trouble: a list of Recovery, empty if nothing.
+        """
+    @property
+    def recovery_text(self) -> str:
+        """
+        The recoveries as text (the names of the JSON output), or ''.
         """
     @property
     def residual_norm(self) -> float:
@@ -982,6 +1179,11 @@ class NewtonIteration:
     def seconds(self) -> float:
         """
         Wall time since the solve began.
+        """
+    @property
+    def steepest_descent(self) -> bool:
+        """
+        Whether the preconditioned steepest descent replaced CG's direction.
         """
     @property
     def step(self) -> int:
@@ -1061,9 +1263,9 @@ class StepResult:
     def newton_iterations(self) -> int:
         ...
     @property
-    def precision_used(self) -> str:
+    def precision_used(self) -> Precision:
         """
-        'float' or 'double'.
+        The Precision of the solve this result reports.
         """
     @property
     def preconditioner_builds(self) -> int:
@@ -1081,9 +1283,9 @@ class StepResult:
     def self_contacts(self) -> int:
         ...
     @property
-    def status(self) -> str:
+    def status(self) -> StepStatus:
         """
-        'converged', 'max_newton_iterations', 'line_search_failed', 'stagnated', 'non_finite_state' or 'cancelled'.
+        A StepStatus; str() gives its name.
         """
     @property
     def step(self) -> int:
@@ -1288,7 +1490,7 @@ class FrameRecord:
     def seconds(self) -> float:
         ...
     @property
-    def status(self) -> str:
+    def status(self) -> StepStatus:
         """
         The last load step's status.
         """
@@ -1726,6 +1928,10 @@ class Simulation:
         """
         Validates everything (snh.Error naming the input), builds the kernels and uploads the mesh.
         """
+    def checkpoint(self) -> ...:
+        """
+        The full state (SimulationState): positions, velocities, time, friction anchors, constraint targets and loads. The next solve rebuilds the preconditioner, as after restore, so that both continue identically.
+        """
     def fields(self) -> ElementFields:
         """
         Per-element F, J, stresses and energy density (ElementFields).
@@ -1737,6 +1943,10 @@ class Simulation:
     def restart(self) -> None:
         """
         Back to the initial state, callbacks and no force.
+        """
+    def restore(self, state: ...) -> None:
+        """
+        Replaces the state by a checkpoint of a simulation built from the same mesh, materials, constraint sets and options; the solves that follow give bitwise the results the original gave.
         """
     def set_body_force(self, force_per_rest_volume: typing.Any) -> None:
         """
@@ -1811,6 +2021,25 @@ class Simulation:
         """
         With dynamics: velocities, float64 (n, 3).
         """
+class SimulationState:
+    """
+    A simulation's full state (Simulation.checkpoint), to restore or to write with write_checkpoint.
+    """
+    @property
+    def positions(self) -> numpy.ndarray[numpy.float64]:
+        """
+        float64 (n, 3).
+        """
+    @property
+    def time(self) -> float:
+        """
+        Simulated time.
+        """
+    @property
+    def velocities(self) -> numpy.ndarray[numpy.float64]:
+        """
+        float64 (n, 3); empty without dynamics.
+        """
 class SceneProgress:
     """
     A scene run's progress after a step or frame (read-only).
@@ -1844,7 +2073,7 @@ class SceneProgress:
     def seconds(self) -> float:
         ...
     @property
-    def status(self) -> str:
+    def status(self) -> StepStatus:
         ...
     @property
     def time(self) -> float:
@@ -2242,6 +2471,10 @@ def bone_contains(bone: Bone, point: list[float[3]]) -> bool:
     """
     Whether the rest point is inside.
     """
+def boundary_surface(mesh: Mesh, positions: typing.Any = None) -> tuple:
+    """
+    The mesh's boundary as (TriangleSurface, vertices): outward triangles over the boundary vertices at positions (n, 3; None: rest), and the mesh vertex (int32) of each surface vertex.
+    """
 def compute_element_fields(mesh: Mesh, materials: MaterialMap, positions: typing.Any) -> ElementFields:
     """
     ElementFields at positions (n, 3).
@@ -2342,6 +2575,10 @@ def read_animation(path: str) -> Animation:
     """
     Reads a .json or .csv animation.
     """
+def read_checkpoint(path: str) -> SimulationState:
+    """
+    Reads a checkpoint file; snh.Error names the file and the item for a damaged one.
+    """
 def read_mesh(path: str, allow_coincident_vertices: bool = False) -> Mesh:
     """
     Reads .msh, .vtk, .vtu, .mesh, .node/.ele (tet4 or hex8) with groups and arrays; snh.Error names the file and line at fault.
@@ -2425,6 +2662,10 @@ def vertices_with_value_in(mesh: Mesh, array: str, lo: float, hi: float) -> nump
 def voxelize(surface: TriangleSurface, cell: float, options: VoxelizeOptions | None = None) -> Voxelization:
     """
     Voxelizes a closed surface into a hex8 lattice of cubes of side cell.
+    """
+def write_checkpoint(path: str, state: SimulationState) -> None:
+    """
+    Writes a SimulationState to a versioned binary file (doubles bit for bit).
     """
 def write_mesh(path: str, mesh: Mesh) -> None:
     """

@@ -20,6 +20,44 @@ void bind_results(py::module_& m) {
       .def_readonly("global_memory_bytes", &snh::DeviceInfo::global_memory_bytes, "Global memory in bytes.")
       .def("__repr__", [](const snh::DeviceInfo& d) { return "DeviceInfo('" + d.platform + " / " + d.name + "')"; });
 
+  auto step_status = py::enum_<snh::StepStatus>(m, "StepStatus", "How a load or time step's Newton solve ended.")
+                         .value("none", snh::StepStatus::none)
+                         .value("converged", snh::StepStatus::converged)
+                         .value("max_newton_iterations", snh::StepStatus::max_newton_iterations)
+                         .value("line_search_failed", snh::StepStatus::line_search_failed)
+                         .value("stagnated", snh::StepStatus::stagnated)
+                         .value("non_finite_state", snh::StepStatus::non_finite_state)
+                         .value("cancelled", snh::StepStatus::cancelled);
+  step_status.attr("__str__") =
+      py::cpp_function([](snh::StepStatus s) { return std::string(snh::to_string(s)); }, py::is_method(step_status));
+  auto cg_stop = py::enum_<snh::CgStop>(m, "CgStop", "Why a Newton iteration's conjugate gradient solve stopped.")
+                     .value("none", snh::CgStop::none)
+                     .value("converged", snh::CgStop::converged)
+                     .value("max_iterations", snh::CgStop::max_iterations)
+                     .value("negative_curvature", snh::CgStop::negative_curvature)
+                     .value("breakdown", snh::CgStop::breakdown);
+  cg_stop.attr("__str__") =
+      py::cpp_function([](snh::CgStop s) { return std::string(snh::to_string(s)); }, py::is_method(cg_stop));
+  auto recovery_action =
+      py::enum_<snh::RecoveryAction>(m, "RecoveryAction", "What the Newton solver did to get past trouble.")
+          .value("cg_breakdown_steepest_descent", snh::RecoveryAction::cg_breakdown_steepest_descent)
+          .value("non_finite_direction_steepest_descent", snh::RecoveryAction::non_finite_direction_steepest_descent)
+          .value("non_descent_steepest_descent", snh::RecoveryAction::non_descent_steepest_descent)
+          .value("cg_breakdown_partial_direction", snh::RecoveryAction::cg_breakdown_partial_direction)
+          .value("line_search_steepest_descent", snh::RecoveryAction::line_search_steepest_descent)
+          .value("line_search_steepest_descent_failed", snh::RecoveryAction::line_search_steepest_descent_failed)
+          .value("shorter_step", snh::RecoveryAction::shorter_step)
+          .value("extended_step", snh::RecoveryAction::extended_step)
+          .value("double_fallback", snh::RecoveryAction::double_fallback);
+  recovery_action.attr("__str__") = py::cpp_function(
+      [](snh::RecoveryAction a) { return std::string(snh::to_string(a)); }, py::is_method(recovery_action));
+  py::class_<snh::Recovery>(m, "Recovery", "One recovery of a Newton iteration (read-only).")
+      .def_readonly("action", &snh::Recovery::action)
+      .def_readonly("factor", &snh::Recovery::factor, "extended_step: the step's factor.")
+      .def_readonly("float_status", &snh::Recovery::float_status, "double_fallback: how the float solve ended.")
+      .def("__str__", [](const snh::Recovery& r) { return snh::to_string(r); })
+      .def("__repr__", [](const snh::Recovery& r) { return "Recovery('" + snh::to_string(r) + "')"; });
+
   py::class_<snh::NewtonIteration>(m, "NewtonIteration", "One Newton iteration's record (read-only).")
       .def_readonly("step", &snh::NewtonIteration::step, "Load or time step.")
       .def_readonly("iteration", &snh::NewtonIteration::iteration, "Iteration within the step.")
@@ -28,10 +66,16 @@ void bind_results(py::module_& m) {
       .def_readonly("step_length", &snh::NewtonIteration::step_length, "Line-search alpha accepted (0 if none).")
       .def_readonly("cg_iterations", &snh::NewtonIteration::cg_iterations, "CG iterations of this solve.")
       .def_readonly("cg_relative_residual", &snh::NewtonIteration::cg_relative_residual, "CG's relative residual.")
-      .def_readonly("cg_stop", &snh::NewtonIteration::cg_stop, "Why CG stopped.")
+      .def_readonly("cg_stop", &snh::NewtonIteration::cg_stop, "Why CG stopped (CgStop).")
+      .def_readonly("steepest_descent", &snh::NewtonIteration::steepest_descent,
+                    "Whether the preconditioned steepest descent replaced CG's direction.")
       .def_readonly("projected", &snh::NewtonIteration::projected, "Whether the Hessian was the PSD projection.")
       .def_readonly("seconds", &snh::NewtonIteration::seconds, "Wall time since the solve began.")
-      .def_readonly("recovery", &snh::NewtonIteration::recovery, "What the solver did to get past trouble, or ''.")
+      .def_readonly("recovery", &snh::NewtonIteration::recovery,
+                    "What the solver did to get past trouble: a list of Recovery, empty if nothing.")
+      .def_property_readonly(
+          "recovery_text", [](const snh::NewtonIteration& r) { return snh::to_string(r.recovery); },
+          "The recoveries as text (the names of the JSON output), or ''.")
       .def("__repr__", [](const snh::NewtonIteration& r) {
         return "NewtonIteration(step=" + std::to_string(r.step) + ", iteration=" + std::to_string(r.iteration) +
                ", residual_norm=" + std::to_string(r.residual_norm) + ")";
@@ -55,11 +99,10 @@ void bind_results(py::module_& m) {
       .def_readonly("cg_iterations", &snh::StepResult::cg_iterations)
       .def_readonly("converged", &snh::StepResult::converged)
       .def_readonly("residual_norm", &snh::StepResult::residual_norm)
-      .def_readonly("status", &snh::StepResult::status,
-                    "'converged', 'max_newton_iterations', 'line_search_failed', 'stagnated', 'non_finite_state' "
-                    "or 'cancelled'.")
+      .def_readonly("status", &snh::StepResult::status, "A StepStatus; str() gives its name.")
       .def_readonly("seconds", &snh::StepResult::seconds)
-      .def_readonly("precision_used", &snh::StepResult::precision_used, "'float' or 'double'.")
+      .def_readonly("precision_used", &snh::StepResult::precision_used,
+                    "The Precision of the solve this result reports.")
       .def_readonly("fallback", &snh::StepResult::fallback, "What fallback_to_double did, or ''.")
       .def_readonly("profile", &snh::StepResult::profile)
       .def_readonly("time", &snh::StepResult::time, "With dynamics: simulated time at the step's end.")
@@ -69,7 +112,7 @@ void bind_results(py::module_& m) {
       .def_readonly("max_self_penetration", &snh::StepResult::max_self_penetration)
       .def_readonly("preconditioner_builds", &snh::StepResult::preconditioner_builds)
       .def("__repr__", [](const snh::StepResult& s) {
-        return "StepResult(step=" + std::to_string(s.step) + ", status='" + s.status + "')";
+        return "StepResult(step=" + std::to_string(s.step) + ", status='" + snh::to_string(s.status) + "')";
       });
 
   py::class_<snh::SolveResult>(m, "SolveResult", "A solve's outcome (read-only).")

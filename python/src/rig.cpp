@@ -46,6 +46,18 @@ void bind_rig(py::module_& m) {
           "int32 (t, 3), outward by the right-hand rule.")
       .def_property_readonly("vertex_count", &snh::TriangleSurface::vertex_count)
       .def_property_readonly("triangle_count", &snh::TriangleSurface::triangle_count);
+
+  m.def(
+      "boundary_surface",
+      [](const snh::Mesh& mesh, py::handle x) {
+        std::vector<double> positions;
+        if (!x.is_none()) positions = to_doubles(x, "positions", 3, mesh.vertex_count());
+        snh::MeshBoundary b = snh::boundary_surface(mesh, positions);
+        return py::make_tuple(std::move(b.surface), copy_array(b.vertices, {py::ssize_t(b.vertices.size())}));
+      },
+      py::arg("mesh"), py::arg("positions") = py::none(),
+      "The mesh's boundary as (TriangleSurface, vertices): outward triangles over the boundary vertices at "
+      "positions (n, 3; None: rest), and the mesh vertex (int32) of each surface vertex.");
   m.def("read_surface", &snh::read_surface, py::arg("path"), "Reads .obj, .ply or .stl (polygons fanned).");
   m.def(
       "write_obj",

@@ -4,6 +4,7 @@
 
 #include "callbacks.h"
 #include "common.h"
+#include "snh/checkpoint.h"
 #include "snh/device.h"
 #include "snh/fields.h"
 
@@ -426,7 +427,34 @@ void bind_simulation(py::module_& m) {
           "The MaterialMap (a copy).")
       .def_property_readonly("constraints", &snh::Simulation::constraints, "The constraint sets (copies).")
       .def_property_readonly("device", &snh::Simulation::device, "The OpenCL device (DeviceInfo).")
-      .def_property_readonly("tolerance", &snh::Simulation::tolerance, "The absolute residual tolerance.");
+      .def_property_readonly("tolerance", &snh::Simulation::tolerance, "The absolute residual tolerance.")
+      .def("checkpoint", &snh::Simulation::checkpoint,
+           "The full state (SimulationState): positions, velocities, time, friction anchors, constraint targets "
+           "and loads. The next solve rebuilds the preconditioner, as after restore, so that both continue "
+           "identically.")
+      .def(
+          "restore",
+          [](snh::Simulation& sim, const snh::SimulationState& state) {
+            py::gil_scoped_release release;
+            sim.restore(state);
+          },
+          py::arg("state"),
+          "Replaces the state by a checkpoint of a simulation built from the same mesh, materials, constraint "
+          "sets and options; the solves that follow give bitwise the results the original gave.");
+
+  py::class_<snh::SimulationState>(m, "SimulationState",
+                                   "A simulation's full state (Simulation.checkpoint), to restore or to write with "
+                                   "write_checkpoint.")
+      .def_property_readonly(
+          "positions", [](const snh::SimulationState& s) { return xyz_array(s.positions); }, "float64 (n, 3).")
+      .def_property_readonly(
+          "velocities", [](const snh::SimulationState& s) { return xyz_array(s.velocities); },
+          "float64 (n, 3); empty without dynamics.")
+      .def_readonly("time", &snh::SimulationState::time, "Simulated time.");
+  m.def("write_checkpoint", &snh::write_checkpoint, py::arg("path"), py::arg("state"),
+        "Writes a SimulationState to a versioned binary file (doubles bit for bit).");
+  m.def("read_checkpoint", &snh::read_checkpoint, py::arg("path"),
+        "Reads a checkpoint file; snh.Error names the file and the item for a damaged one.");
 
   m.def(
       "deformation_statistics",

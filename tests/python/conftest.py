@@ -44,5 +44,5 @@ def crosscheck_program():
 
 
 def status_name(status):
-    """A step's status as its name, whether bound as a string or as an enum."""
-    return status if isinstance(status, str) else status.name
+    """A step's status as its name, (a StepStatus; str() gives its name)."""
+    return status if isinstance(status, str) else str(status)
