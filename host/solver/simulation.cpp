@@ -4,7 +4,6 @@
 // problem.
 #include "snh/simulation.h"
 
-#include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -19,6 +18,7 @@
 #include "solver/device_problem.h"
 #include "solver/elastic_model.h"
 #include "solver/lattice_hierarchy.h"
+#include "solver/load_stepping.h"
 #include "solver/multigrid.h"
 #include "solver/newton_driver.h"
 #include "solver/obstacles.h"
@@ -29,37 +29,6 @@ namespace snh {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// x = A X + b of a transform.
-struct Affine {
-  Eigen::Matrix3d a;
-  Eigen::Vector3d b;
-};
-
-Affine affine_of(const RigidTransform& t) {
-  Affine f;
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) f.a(r, c) = t.rotation[3 * c + r];
-  const Eigen::Vector3d center(t.center[0], t.center[1], t.center[2]);
-  f.b = center + Eigen::Vector3d(t.translation[0], t.translation[1], t.translation[2]) - f.a * center;
-  return f;
-}
-
-bool is_rotation(const Eigen::Matrix3d& a) {
-  return (a.transpose() * a - Eigen::Matrix3d::Identity()).norm() < 1e-9 && a.determinant() > 0.0;
-}
-
-// The rigid motion at fraction s from `from` to `to`, both rotations: the
-// relative rotation's angle scaled by s (slerp) about `to`'s centre, whose
-// image moves on a straight line.
-Affine interpolate(const RigidTransform& from, const RigidTransform& to, double s) {
-  const Affine f = affine_of(from), g = affine_of(to);
-  const Eigen::AngleAxisd relative(Eigen::Matrix3d(g.a * f.a.transpose()));
-  const Eigen::Matrix3d a = Eigen::AngleAxisd(s * relative.angle(), relative.axis()).toRotationMatrix() * f.a;
-  const Eigen::Vector3d c(to.center[0], to.center[1], to.center[2]);
-  const Eigen::Vector3d image = (1.0 - s) * (f.a * c + f.b) + s * (g.a * c + g.b);
-  return {a, image - a * c};
-}
 
 }  // namespace
 
@@ -78,14 +47,7 @@ SolveProfile& SolveProfile::operator+=(const SolveProfile& o) {
 }
 
 struct Simulation::Impl {
-  // Where a set's vertices go in the coming solve.
-  struct Target {
-    enum class Kind { callback, transform, positions } kind = Kind::callback;
-    RigidTransform from, to;    // transform: the last reached and the new one
-    bool from_known = false;    // `from` is a transform the set reached
-    std::vector<double> xyz;    // positions: the targets, xyz per vertex of the set
-    std::vector<double> start;  // positions of the set's vertices at the solve's start
-  };
+  using Target = solver::SetTarget;
 
   template <typename Real>
   struct Engine {
@@ -370,45 +332,9 @@ struct Simulation::Impl {
     }
   }
 
-  // Writes set k's targets at fraction s of this solve into x.
-  void place(size_t k, double s, int steps, std::vector<double>& positions) const {
-    const ConstraintSet& c = constraints[k];
-    const Target& t = targets[k];
-    auto put = [&](size_t i, const double p[3]) {
-      for (int d = 0; d < 3; ++d)
-        if (c.components[d]) positions[3 * c.vertices[i] + d] = p[d];
-    };
-    switch (t.kind) {
-      case Target::Kind::callback:
-        (void)steps;
-        solver::place_by_callback(mesh, c, s, positions);
-        break;
-      case Target::Kind::transform: {
-        const bool rigid = t.from_known && is_rotation(affine_of(t.from).a) && is_rotation(affine_of(t.to).a);
-        const Affine f = rigid ? interpolate(t.from, t.to, s) : affine_of(t.to);
-        for (size_t i = 0; i < c.vertices.size(); ++i) {
-          const auto rest_position = mesh.vertex(c.vertices[i]);
-          const Eigen::Vector3d image =
-              f.a * Eigen::Vector3d(rest_position[0], rest_position[1], rest_position[2]) + f.b;
-          double p[3];
-          for (int d = 0; d < 3; ++d) p[d] = rigid ? image[d] : (1.0 - s) * t.start[3 * i + d] + s * image[d];
-          put(i, p);
-        }
-        break;
-      }
-      case Target::Kind::positions:
-        for (size_t i = 0; i < c.vertices.size(); ++i) {
-          double p[3];
-          for (int d = 0; d < 3; ++d) p[d] = (1.0 - s) * t.start[3 * i + d] + s * t.xyz[3 * i + d];
-          put(i, p);
-        }
-        break;
-    }
-    for (size_t i = 0; i < c.vertices.size(); ++i)
-      for (int d = 0; d < 3; ++d)
-        if (!std::isfinite(positions[3 * c.vertices[i] + d]))
-          throw Error("constraint set '" + c.name + "': non-finite target position for vertex " +
-                      std::to_string(c.vertices[i]));
+  // Every set's targets at fraction s of this solve, into x.
+  void place_targets(double s) {
+    for (size_t k = 0; k < constraints.size(); ++k) solver::place_target(mesh, constraints[k], targets[k], s, x);
   }
 
   // One implicit Euler step's data (see DynamicsOptions): the start x_n, the
@@ -519,12 +445,7 @@ struct Simulation::Impl {
     result.kernel_specialization = (single ? single->model->specialization() : dual->model->specialization()) +
                                    " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
     result.warnings = warnings;
-    for (size_t k = 0; k < constraints.size(); ++k) {
-      Target& t = targets[k];
-      t.start.resize(3 * constraints[k].vertices.size());
-      for (size_t i = 0; i < constraints[k].vertices.size(); ++i)
-        for (int d = 0; d < 3; ++d) t.start[3 * i + d] = x[3 * constraints[k].vertices[i] + d];
-    }
+    for (size_t k = 0; k < constraints.size(); ++k) solver::record_start(constraints[k], x, targets[k]);
     fell_back = false;
     in_double = options.precision == Precision::double_;
     result.converged = true;
@@ -538,13 +459,11 @@ struct Simulation::Impl {
       if (options.dynamics) {
         step = time_step(s, steps, result, start, progress);
       } else {
-        const double fraction = static_cast<double>(s) / steps;
-        if (friction) lag_friction(x, static_cast<double>(s - 1) / steps, fraction);
-        for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+        const double fraction = solver::load_fraction(s, steps);
+        if (friction) lag_friction(x, solver::load_fraction(s - 1, steps), fraction);
+        place_targets(fraction);
         if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
-        force_applied.resize(force_to.size());
-        for (size_t i = 0; i < force_to.size(); ++i)
-          force_applied[i] = force_from[i] + fraction * (force_to[i] - force_from[i]);
+        solver::ramp_force(force_from, force_to, fraction, force_applied);
         step = solve_step(s, steps, result, start, progress);
       }
       result.converged = result.converged && step.converged;
@@ -593,7 +512,7 @@ struct Simulation::Impl {
         for (size_t i = 0; i < x.size(); ++i) x[i] += h * v[i];
       const double fraction = (s - 1 + static_cast<double>(j) / d.substeps) / steps;
       if (friction) lag_friction(euler.start, (s - 1 + static_cast<double>(j - 1) / d.substeps) / steps, fraction);
-      for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+      place_targets(fraction);
       if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
       const StepResult sub = solve_step(s, steps, result, start, progress, &euler);
       for (size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - euler.start[i]) / h;
