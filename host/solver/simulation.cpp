@@ -17,6 +17,7 @@
 #include "solver/constraint_checks.h"
 #include "solver/device_problem.h"
 #include "solver/elastic_model.h"
+#include "solver/implicit_euler.h"
 #include "solver/lattice_hierarchy.h"
 #include "solver/load_stepping.h"
 #include "solver/multigrid.h"
@@ -337,46 +338,12 @@ struct Simulation::Impl {
     for (size_t k = 0; k < constraints.size(); ++k) solver::place_target(mesh, constraints[k], targets[k], s, x);
   }
 
-  // One implicit Euler step's data (see DynamicsOptions): the start x_n, the
-  // inertia's per-vertex coefficient c m_v and target y, and b / h.
-  struct EulerStep {
-    std::vector<double> start, coefficient, target;
-    double stiffness_damping = 0.0;
-  };
-
-  EulerStep euler_step(double h) const {
-    const DynamicsOptions& d = *options.dynamics;
-    EulerStep e;
-    e.start = x;
-    const double ah = d.damping.mass * h, c = (1.0 + ah) / (h * h);
-    e.coefficient.resize(mass.size());
-    for (size_t i = 0; i < mass.size(); ++i) e.coefficient[i] = c * mass[i];
-    // c M (x - y) = M (x - x~) / h^2 + a M (x - x_n) / h, x~ = x_n + h v_n.
-    e.target.resize(x.size());
-    for (size_t i = 0; i < x.size(); ++i) e.target[i] = (x[i] + h * v[i] + ah * x[i]) / (1.0 + ah);
-    e.stiffness_damping = d.damping.stiffness / h;
-    return e;
-  }
-
   template <typename Real>
   StepResult solve_in(Engine<Real>& engine, int s, std::vector<NewtonIteration>& history, Clock::time_point start,
-                      const ProgressCallback& progress, const EulerStep* euler = nullptr) {
+                      const ProgressCallback& progress, const solver::EulerStep* euler = nullptr) {
     device::use_viennacl(engine.viennacl_context_id);
     if (euler) {
-      // Rayleigh stiffness damping's linear part: f + (b/h) grad Psi(x_n).
-      std::vector<double> force = force_applied;
-      if (euler->stiffness_damping > 0.0) {
-        const std::vector<Real> xs(euler->start.begin(), euler->start.end());
-        viennacl::vector<Real> xn(xs.size()), fe(xs.size());
-        viennacl::copy(xs.begin(), xs.end(), xn.begin());
-        engine.model->elastic_forces(xn, fe);
-        std::vector<Real> host(xs.size());
-        viennacl::copy(fe.begin(), fe.end(), host.begin());
-        force.resize(host.size(), 0.0);
-        for (size_t i = 0; i < host.size(); ++i) force[i] -= euler->stiffness_damping * static_cast<double>(host[i]);
-      }
-      engine.model->set_external_force(force);
-      engine.model->set_inertia(euler->coefficient, euler->target, 1.0 + euler->stiffness_damping);
+      solver::set_incremental_potential(*engine.model, *euler, force_applied);
     } else {
       engine.model->set_external_force(force_applied);
     }
@@ -490,46 +457,21 @@ struct Simulation::Impl {
     friction_table = solver::friction_records(options.obstacles, options.contact, t0, t1);
   }
 
-  // Implicit Euler time step s of n: `substeps` minimizations of the
-  // incremental potential, the constraint targets interpolated linearly
-  // within the step. Newton and CG counts summed; the last substep's status.
+  // Implicit Euler time step s of n (solver/implicit_euler.h), loads in full.
   StepResult time_step(int s, int steps, SolveResult& result, Clock::time_point start,
                        const ProgressCallback& progress) {
-    const DynamicsOptions& d = *options.dynamics;
-    const double h = d.time_step / d.substeps;
     bool defined_for_inversion = true;
     for (const Material& m : materials.materials)
       defined_for_inversion = defined_for_inversion && m.defined_for_inversion();
     force_applied = force_to;
-    StepResult total;
-    total.step = s;
-    total.converged = true;
-    for (int j = 1; j <= d.substeps; ++j) {
-      const EulerStep euler = euler_step(h);
-      // Newton starts from x~ = x_n + h v_n (from x_n where a material is
-      // undefined for inverted elements and x~ could invert one).
-      if (defined_for_inversion)
-        for (size_t i = 0; i < x.size(); ++i) x[i] += h * v[i];
-      const double fraction = (s - 1 + static_cast<double>(j) / d.substeps) / steps;
-      if (friction) lag_friction(euler.start, (s - 1 + static_cast<double>(j - 1) / d.substeps) / steps, fraction);
-      place_targets(fraction);
-      if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
-      const StepResult sub = solve_step(s, steps, result, start, progress, &euler);
-      for (size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - euler.start[i]) / h;
-      time += h;
-      total.newton_iterations += sub.newton_iterations;
-      total.cg_iterations += sub.cg_iterations;
-      total.converged = total.converged && sub.converged;
-      total.residual_norm = sub.residual_norm;
-      total.status = sub.status;
-      total.precision_used = sub.precision_used;
-      total.contacts = sub.contacts;
-      total.max_penetration = sub.max_penetration;
-      total.self_contacts = sub.self_contacts;
-      total.max_self_penetration = sub.max_self_penetration;
-      if (!sub.fallback.empty()) total.fallback = sub.fallback;
-      if (sub.status == StepStatus::cancelled) break;
-    }
+    StepResult total = solver::implicit_euler_step(
+        *options.dynamics, s, steps, defined_for_inversion, x, v, mass, time,
+        [&](const solver::EulerStep& euler, double t0, double t1) {
+          if (friction) lag_friction(euler.start, t0, t1);
+          place_targets(t1);
+          if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, t1);
+        },
+        [&](const solver::EulerStep& euler) { return solve_step(s, steps, result, start, progress, &euler); });
     total.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     total.time = time;
     return total;
@@ -540,7 +482,7 @@ struct Simulation::Impl {
   // One Newton solve from x at its step's targets and forces, with the
   // float-to-double fallback.
   StepResult solve_step(int s, int steps, SolveResult& result, Clock::time_point start,
-                        const ProgressCallback& progress, const EulerStep* euler = nullptr) {
+                        const ProgressCallback& progress, const solver::EulerStep* euler = nullptr) {
     const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
     require_defined(x, s);
     const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
