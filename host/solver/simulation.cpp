@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <sstream>
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
@@ -24,6 +23,7 @@
 #include "solver/newton_driver.h"
 #include "solver/obstacles.h"
 #include "solver/phase_profile.h"
+#include "solver/precision_fallback.h"
 
 namespace snh {
 
@@ -413,8 +413,7 @@ struct Simulation::Impl {
                                    " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
     result.warnings = warnings;
     for (size_t k = 0; k < constraints.size(); ++k) solver::record_start(constraints[k], x, targets[k]);
-    fell_back = false;
-    in_double = options.precision == Precision::double_;
+    precision_fallback.begin(options.precision);
     result.converged = true;
     for (int s = 1; s <= steps; ++s) {
       const auto step_clock = Clock::now();
@@ -477,7 +476,7 @@ struct Simulation::Impl {
     return total;
   }
 
-  bool fell_back = false, in_double = true;
+  solver::PrecisionFallback precision_fallback;
 
   // One Newton solve from x at its step's targets and forces, with the
   // float-to-double fallback.
@@ -487,55 +486,14 @@ struct Simulation::Impl {
     require_defined(x, s);
     const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
     const std::vector<double> anchor_start = may_fall_back ? friction_anchor : std::vector<double>();
-    StepResult step;
-    if (!in_double) {
-      step = solve_in(*single, s, result.history, start, progress, euler);
-      step.precision_used = options.precision;
-    }
-    const bool failed = !in_double && !step.converged && step.status != StepStatus::cancelled;
-    if (may_fall_back && (fell_back || failed)) {
-      if (!fell_back && !cl.info().has_fp64) {
-        result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + to_string(step.status) +
-                                  ") and fallback_to_double was asked, but the device has no fp64");
-      } else {
-        std::string note;
-        if (!fell_back) {
-          std::ostringstream why;
-          why << "float " << step.status << " after " << step.newton_iterations << " Newton / " << step.cg_iterations
-              << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
-          note = why.str();
+    return precision_fallback.step(
+        s, steps, options.precision, may_fall_back, cl.info().has_fp64, result,
+        [&] { return solve_in(*single, s, result.history, start, progress, euler); },
+        [&] { return solve_in(fallback_engine(), s, result.history, start, progress, euler); },
+        [&] {
           x = step_start;
           friction_anchor = anchor_start;
-        }
-        const size_t first_record = result.history.size();
-        StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress, euler);
-        redo.precision_used = Precision::double_;
-        if (!fell_back) {
-          if (first_record < result.history.size()) {
-            Recovery fallback;
-            fallback.action = RecoveryAction::double_fallback;
-            fallback.float_status = step.status;
-            std::vector<Recovery>& r = result.history[first_record].recovery;
-            r.insert(r.begin(), fallback);
-          }
-          redo.newton_iterations += step.newton_iterations;
-          redo.cg_iterations += step.cg_iterations;
-          redo.fallback = note;
-          result.warnings.push_back(
-              "step " + std::to_string(s) + ": " + note +
-              (redo.converged ? " (converged)" : " (did not converge: " + std::string(to_string(redo.status)) + ")") +
-              (s < steps ? "; the remaining steps run in double" : ""));
-        } else {
-          redo.fallback = "double (after a float failure in an earlier step)";
-        }
-        fell_back = true;
-        step = redo;
-      }
-    } else if (in_double) {
-      step = solve_in(*dual, s, result.history, start, progress, euler);
-      step.precision_used = Precision::double_;
-    }
-    return step;
+        });
   }
 
   SolveResult finish(SolveResult& result, Clock::time_point start, const solver::PhaseSeconds& solve_start) {
