@@ -24,6 +24,7 @@
 #include "solver/obstacles.h"
 #include "solver/phase_profile.h"
 #include "solver/precision_fallback.h"
+#include "solver/solve_accounting.h"
 
 namespace snh {
 
@@ -32,20 +33,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 }  // namespace
-
-SolveProfile& SolveProfile::operator+=(const SolveProfile& o) {
-  linearization += o.linearization;
-  products += o.products;
-  preconditioner_setup += o.preconditioner_setup;
-  preconditioner_apply += o.preconditioner_apply;
-  cg_vector_work += o.cg_vector_work;
-  line_search_energies += o.line_search_energies;
-  transfers += o.transfers;
-  other += o.other;
-  total += o.total;
-  for (const auto& [name, seconds] : o.kernels) kernels[name] += seconds;
-  return *this;
-}
 
 struct Simulation::Impl {
   using Target = solver::SetTarget;
@@ -99,40 +86,25 @@ struct Simulation::Impl {
   std::vector<double> user_force;
   std::array<double, 3> body_force{0, 0, 0};
   std::unique_ptr<Engine<float>> single;
-  std::unique_ptr<Engine<double>> dual;               // double: the main engine or the float fallback
-  double callback_seconds = 0.0;                      // in the caller's callbacks during the current solve
-  std::map<std::string, double> solve_start_kernels;  // kernel_seconds() when the current solve began
+  std::unique_ptr<Engine<double>> dual;  // double: the main engine or the float fallback
+  double callback_seconds = 0.0;         // in the caller's callbacks during the current solve
+  solver::Counters solve_start;          // counters() when the current solve began
 
-  // Seconds per phase so far, over the engines built so far.
-  solver::PhaseSeconds phase_seconds() const {
-    solver::PhaseSeconds s{};
-    if (single) s = solver::sum(s, single->model->profiler().seconds());
-    if (dual) s = solver::sum(s, dual->model->profiler().seconds());
-    return s;
-  }
-
-  // Seconds per kernel so far, over the contexts of the engines built so far.
-  int preconditioner_builds() const {
-    return (dual ? dual->problem->preconditioner_builds() : 0) +
-           (single ? single->problem->preconditioner_builds() : 0);
-  }
-
-  std::map<std::string, double> kernel_seconds() const {
-    std::map<std::string, double> s = cl.kernel_seconds();
-    for (const device::OpenClContext* c :
+  // The running counters over the engines built so far: seconds per phase
+  // and per kernel, preconditioner builds, and the callbacks' time.
+  solver::Counters counters() const {
+    solver::Counters c;
+    if (single) c.phases = solver::sum(c.phases, single->model->profiler().seconds());
+    if (dual) c.phases = solver::sum(c.phases, dual->model->profiler().seconds());
+    c.kernels = cl.kernel_seconds();
+    for (const device::OpenClContext* context :
          {single ? single->own_context.get() : nullptr, dual ? dual->own_context.get() : nullptr})
-      if (c)
-        for (const auto& [name, seconds] : c->kernel_seconds()) s[name] += seconds;
-    return s;
-  }
-  static std::map<std::string, double> kernel_difference(std::map<std::string, double> now,
-                                                         const std::map<std::string, double>& before) {
-    for (auto it = now.begin(); it != now.end();) {
-      const auto b = before.find(it->first);
-      if (b != before.end()) it->second -= b->second;
-      it = it->second > 0.0 ? std::next(it) : now.erase(it);  // not run since
-    }
-    return now;
+      if (context)
+        for (const auto& [name, seconds] : context->kernel_seconds()) c.kernels[name] += seconds;
+    c.preconditioner_builds =
+        (dual ? dual->problem->preconditioner_builds() : 0) + (single ? single->problem->preconditioner_builds() : 0);
+    c.callback_seconds = callback_seconds;
+    return c;
   }
 
   size_t device_memory_bytes() const {
@@ -394,8 +366,7 @@ struct Simulation::Impl {
     if (steps < 1) throw Error("solve: load_steps must be >= 1");
     const auto start = Clock::now();
     callback_seconds = 0.0;
-    const solver::PhaseSeconds solve_start = phase_seconds();
-    solve_start_kernels = kernel_seconds();
+    solve_start = counters();
     SolveResult result;
     result.device = cl.info();
     result.product = product;
@@ -417,10 +388,7 @@ struct Simulation::Impl {
     result.converged = true;
     for (int s = 1; s <= steps; ++s) {
       const auto step_clock = Clock::now();
-      const double step_callbacks = callback_seconds;
-      const solver::PhaseSeconds step_start_phases = phase_seconds();
-      const std::map<std::string, double> step_start_kernels = kernel_seconds();
-      const int step_start_builds = preconditioner_builds();
+      const solver::Counters step_start = counters();
       StepResult step;
       if (options.dynamics) {
         step = time_step(s, steps, result, start, progress);
@@ -434,11 +402,10 @@ struct Simulation::Impl {
       }
       result.converged = result.converged && step.converged;
       result.final_residual_norm = step.residual_norm;
-      step.profile = solver::make_profile(
-          solver::difference(phase_seconds(), step_start_phases),
-          std::chrono::duration<double>(Clock::now() - step_clock).count() - (callback_seconds - step_callbacks));
-      step.profile.kernels = kernel_difference(kernel_seconds(), step_start_kernels);
-      step.preconditioner_builds = preconditioner_builds() - step_start_builds;
+      const solver::Counters step_end = counters();
+      step.profile = solver::profile_between(step_start, step_end,
+                                             std::chrono::duration<double>(Clock::now() - step_clock).count());
+      step.preconditioner_builds = step_end.preconditioner_builds - step_start.preconditioner_builds;
       result.steps.push_back(step);
       if (on_step) in_callback([&] { on_step(s, x); });
       if (step.status == StepStatus::cancelled) {
@@ -446,7 +413,7 @@ struct Simulation::Impl {
         break;
       }
     }
-    return finish(result, start, solve_start);
+    return finish(result, start);
   }
 
   // Friction's lag for a step from load parameter t0 (positions `start`) to t1.
@@ -496,7 +463,7 @@ struct Simulation::Impl {
         });
   }
 
-  SolveResult finish(SolveResult& result, Clock::time_point start, const solver::PhaseSeconds& solve_start) {
+  SolveResult finish(SolveResult& result, Clock::time_point start) {
     // What this solve reached becomes where the next one starts from.
     for (size_t k = 0; k < constraints.size(); ++k) {
       Target& t = targets[k];
@@ -507,15 +474,9 @@ struct Simulation::Impl {
     }
     if (!result.cancelled) force_from = force_to;
     result.positions = x;
-    const DeformationStatistics stats = deformation_statistics(mesh, x);
-    result.volume_ratio = stats.volume_ratio;
-    result.min_j = stats.min_j;
-    result.max_j = stats.max_j;
-    result.inverted_elements = stats.inverted_elements;
+    solver::record_deformation(mesh, x, result);
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    result.profile =
-        solver::make_profile(solver::difference(phase_seconds(), solve_start), result.seconds - callback_seconds);
-    result.profile.kernels = kernel_difference(kernel_seconds(), solve_start_kernels);
+    result.profile = solver::profile_between(solve_start, counters(), result.seconds);
     result.device_memory_bytes = device_memory_bytes();
     return std::move(result);
   }
