@@ -15,7 +15,7 @@ double residual_tolerance(const Mesh& mesh, const MaterialMap& materials, const 
   const bool explicit_other = options.absolute_tolerance > 0.0 || options.relative_tolerance > 0.0;
   const double strain = options.strain_tolerance ? *options.strain_tolerance
                         : explicit_other         ? 0.0
-                                                 : (options.precision == Precision::double_ ? 1e-6 : 1e-4);
+                                                 : defaults::strain_tolerance(options.precision);
   double scale = 0.0;
   if (strain > 0.0 && mesh.element_count() > 0) {
     // The smallest Young's modulus among the materials elements use.
