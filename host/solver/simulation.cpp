@@ -24,6 +24,7 @@
 #include "solver/obstacles.h"
 #include "solver/phase_profile.h"
 #include "solver/precision_fallback.h"
+#include "solver/simulation_engine.h"
 #include "solver/solve_accounting.h"
 
 namespace snh {
@@ -38,13 +39,7 @@ struct Simulation::Impl {
   using Target = solver::SetTarget;
 
   template <typename Real>
-  struct Engine {
-    std::unique_ptr<device::OpenClContext> own_context;  // the fallback's; null for the main engine
-    long viennacl_context_id = 0;
-    std::unique_ptr<solver::ElasticModel<Real>> model;
-    std::unique_ptr<solver::DeviceProblem<Real>> problem;
-    std::unique_ptr<solver::NewtonDriver<solver::DeviceProblem<Real>>> newton;
-  };
+  using Engine = solver::SimulationEngine<Real>;
 
   Mesh mesh;
   uint64_t fingerprint;  // mesh_fingerprint(mesh)
@@ -202,21 +197,6 @@ struct Simulation::Impl {
     body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
   }
 
-  // The multigrid's options with the per-step rebuild resolved (off under
-  // dynamics unless asked for). The smoothing is resolved by the
-  // preconditioner itself, from the mesh and the model's materials
-  // (resolved_smoothing); the result reports what it used.
-  MultigridOptions multigrid_options() const {
-    MultigridOptions o = options.multigrid;
-    if (!o.rebuild_each_load_step) o.rebuild_each_load_step = !options.dynamics.has_value();
-    return o;
-  }
-  std::vector<char> free_dofs() const {
-    std::vector<char> free(prescribed.size());
-    for (size_t i = 0; i < free.size(); ++i) free[i] = prescribed[i] ? 0 : 1;
-    return free;
-  }
-
   void total_force(std::vector<double>& f) const {
     f.assign(3 * mesh.vertex_count(), 0.0);
     for (size_t i = 0; i < user_force.size(); ++i) f[i] += user_force[i];
@@ -225,32 +205,8 @@ struct Simulation::Impl {
 
   template <typename Real>
   std::unique_ptr<Engine<Real>> make_engine(std::unique_ptr<device::OpenClContext> context, ProductVariant variant) {
-    auto engine = std::make_unique<Engine<Real>>();
-    device::OpenClContext& ctx = context ? *context : cl;
-    engine->viennacl_context_id = context ? device::bind_viennacl(*context) : viennacl_context_id;
-    engine->own_context = std::move(context);
-    device::use_viennacl(engine->viennacl_context_id);
-    solver::ModelTerms terms;
-    terms.inertia = options.dynamics.has_value();
-    terms.obstacles = static_cast<int>(options.obstacles.size());
-    terms.self_contact = options.contact.self;
-    terms.friction = friction;
-    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant,
-                                                                 device::MaterialKernel::specialized, terms);
-    std::vector<Real> mask(prescribed.size());
-    for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
-    engine->model->set_mask(mask);
-    // Unset: float (the model keeps double for variants other than cached).
-    engine->model->set_float_products(options.product_precision.value_or(Precision::single) == Precision::single);
-    std::unique_ptr<solver::MultigridPreconditioner<Real>> multigrid;
-    if (preconditioner == Preconditioner::multigrid)
-      multigrid = std::make_unique<solver::MultigridPreconditioner<Real>>(*engine->model, mesh, free_dofs(),
-                                                                          multigrid_options());
-    engine->problem =
-        std::make_unique<solver::DeviceProblem<Real>>(*engine->model, preconditioner, std::move(multigrid));
-    engine->newton = std::make_unique<solver::NewtonDriver<solver::DeviceProblem<Real>>>(*engine->problem, options);
-    device::use_viennacl(viennacl_context_id);
-    return engine;
+    const solver::EngineSetup setup{mesh, rest, materials, options, prescribed, preconditioner, friction};
+    return solver::make_engine<Real>(setup, cl, viennacl_context_id, std::move(context), variant);
   }
 
   // Every engine's next linearization builds its preconditioner afresh
