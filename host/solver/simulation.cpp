@@ -25,6 +25,7 @@
 #include "solver/phase_profile.h"
 #include "solver/precision_fallback.h"
 #include "solver/simulation_engine.h"
+#include "solver/simulation_state.h"
 #include "solver/solve_accounting.h"
 
 namespace snh {
@@ -549,19 +550,8 @@ SimulationState Simulation::checkpoint() {
   if (m.options.dynamics) s.velocities = m.v;
   s.time = m.time;
   if (m.friction) s.friction_anchors = m.friction_anchor;
-  for (size_t k = 0; k < m.constraints.size(); ++k) {
-    const Impl::Target& t = m.targets[k];
-    SimulationState::Target out;
-    out.set = m.constraints[k].name;
-    out.kind = t.kind == Impl::Target::Kind::callback    ? TargetKind::callbacks
-               : t.kind == Impl::Target::Kind::transform ? TargetKind::transform
-                                                         : TargetKind::positions;
-    out.from = t.from;
-    out.to = t.to;
-    out.from_known = t.from_known;
-    out.positions = t.xyz;
-    s.targets.push_back(out);
-  }
+  for (size_t k = 0; k < m.constraints.size(); ++k)
+    s.targets.push_back(solver::state_target(m.constraints[k], m.targets[k]));
   s.external_force = m.user_force;
   s.body_force = m.body_force;
   s.force_from = m.force_from;
@@ -573,54 +563,13 @@ SimulationState Simulation::checkpoint() {
 
 void Simulation::restore(const SimulationState& s) {
   Impl& m = *impl_;
-  const size_t dofs = 3 * m.mesh.vertex_count();
-  if (s.vertex_count != m.mesh.vertex_count() || s.mesh_fingerprint != m.fingerprint)
-    throw Error("restore: the checkpoint is of another mesh (" + std::to_string(s.vertex_count) +
-                " vertices, fingerprint " + std::to_string(s.mesh_fingerprint) +
-                "; this simulation's mesh: " + std::to_string(m.mesh.vertex_count()) + " vertices, fingerprint " +
-                std::to_string(m.fingerprint) + ")");
-  auto size_check = [&](const std::vector<double>& v, size_t expected, const char* item, bool may_be_empty) {
-    if (v.size() != expected && !(may_be_empty && v.empty()))
-      throw Error(std::string("restore: the checkpoint's ") + item + " has " + std::to_string(v.size()) +
-                  " values, expected " + std::to_string(expected) + (may_be_empty ? " or none" : ""));
-  };
-  size_check(s.positions, dofs, "positions", false);
-  size_check(s.velocities, m.options.dynamics ? dofs : 0, "velocities (SolveOptions::dynamics)", false);
-  size_check(s.friction_anchors, m.friction ? m.options.obstacles.size() * dofs : 0,
-             "friction anchors (one per vertex and obstacle with friction)", false);
-  size_check(s.external_force, dofs, "external force", true);
-  size_check(s.force_from, dofs, "force ramp start", false);
-  size_check(s.force_to, dofs, "force ramp end", false);
-  size_check(s.force_applied, dofs, "applied force", true);
-  if (s.targets.size() != m.constraints.size())
-    throw Error("restore: the checkpoint has " + std::to_string(s.targets.size()) +
-                " constraint sets, this simulation " + std::to_string(m.constraints.size()));
-  for (size_t k = 0; k < s.targets.size(); ++k) {
-    const SimulationState::Target& t = s.targets[k];
-    const ConstraintSet& c = m.constraints[k];
-    if (t.set != c.name)
-      throw Error("restore: the checkpoint's constraint set " + std::to_string(k) + " is '" + t.set +
-                  "', this simulation's is '" + c.name + "'");
-    if (t.kind == TargetKind::positions && t.positions.size() != 3 * c.vertices.size())
-      throw Error("restore: the checkpoint's target positions of set '" + c.name + "' have " +
-                  std::to_string(t.positions.size()) + " values, expected " + std::to_string(3 * c.vertices.size()));
-  }
+  solver::check_restorable(s, m.mesh.vertex_count(), m.fingerprint, m.constraints, m.options.dynamics.has_value(),
+                           m.friction ? m.options.obstacles.size() : 0);
   m.x = s.positions;
   if (m.options.dynamics) m.v = s.velocities;
   m.time = s.time;
   if (m.friction) m.friction_anchor = s.friction_anchors;
-  for (size_t k = 0; k < s.targets.size(); ++k) {
-    const SimulationState::Target& t = s.targets[k];
-    Impl::Target& to = m.targets[k];
-    to = Impl::Target();
-    to.kind = t.kind == TargetKind::callbacks   ? Impl::Target::Kind::callback
-              : t.kind == TargetKind::transform ? Impl::Target::Kind::transform
-                                                : Impl::Target::Kind::positions;
-    to.from = t.from;
-    to.to = t.to;
-    to.from_known = t.from_known;
-    to.xyz = t.positions;
-  }
+  for (size_t k = 0; k < s.targets.size(); ++k) m.targets[k] = solver::set_target(s.targets[k]);
   m.user_force = s.external_force;
   m.body_force = s.body_force;
   m.update_body_force();
