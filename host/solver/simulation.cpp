@@ -1,7 +1,13 @@
-// Simulation: the per-frame driver. Constraint targets and loads per load
-// step (or per implicit Euler time step with dynamics), the float-to-double
-// fallback, and one Newton driver (solver/newton_driver.h) over the device
-// problem.
+// Simulation: the per-frame driver. It holds the state (positions,
+// velocities, targets, loads) and runs each load step (or implicit Euler
+// time step) as one Newton solve (solver/newton_driver.h) over the device
+// problem. Its parts, one concern per file:
+//   solver/load_stepping.h       constraint targets and force ramps per step
+//   solver/implicit_euler.h      the time steps under SolveOptions::dynamics
+//   solver/precision_fallback.h  float steps re-solved in double
+//   solver/simulation_engine.h   the model, problem and driver per precision
+//   solver/solve_accounting.h    profiles, kernel times, result statistics
+//   solver/simulation_state.h    checkpoint and restore
 #include "snh/simulation.h"
 
 #include <chrono>
