@@ -7,7 +7,14 @@
 #include "snh/error.h"
 #include "solver/constraint_checks.h"
 
-namespace snh::solver {
+namespace snh {
+
+void apply_constraints(const Mesh& mesh, const std::vector<ConstraintSet>& constraints, double t,
+                       std::vector<double>& x) {
+  for (const ConstraintSet& c : constraints) solver::place_by_callback(mesh, c, t, x);
+}
+
+namespace solver {
 
 namespace {
 
@@ -92,4 +99,5 @@ void ramp_force(const std::vector<double>& from, const std::vector<double>& to, 
   for (size_t i = 0; i < to.size(); ++i) out[i] = from[i] + s * (to[i] - from[i]);
 }
 
-}  // namespace snh::solver
+}  // namespace solver
+}  // namespace snh

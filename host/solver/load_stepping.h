@@ -2,7 +2,8 @@
 // solve (its callbacks, a rigid transform followed by slerp, or positions
 // reached linearly) and the external force ramped between two load states.
 // Simulation uses it for load steps and implicit Euler substeps alike; a
-// host baseline stepping the same loads can use it too.
+// host baseline stepping the same loads can use it too (apply_constraints
+// in snh/simulation.h, defined with it, places callback targets only).
 #pragma once
 
 #include <vector>

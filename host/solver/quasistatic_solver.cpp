@@ -1,13 +1,7 @@
-// QuasistaticSolver (one solve over a Simulation) and apply_constraints.
+// QuasistaticSolver: one solve over a Simulation from its start.
 #include "snh/simulation.h"
-#include "solver/constraint_checks.h"
 
 namespace snh {
-
-void apply_constraints(const Mesh& mesh, const std::vector<ConstraintSet>& constraints, double t,
-                       std::vector<double>& x) {
-  for (const ConstraintSet& c : constraints) solver::place_by_callback(mesh, c, t, x);
-}
 
 QuasistaticSolver::QuasistaticSolver(Mesh mesh, const Material& material, std::vector<ConstraintSet> constraints,
                                      SolveOptions options)
