@@ -114,7 +114,9 @@ void SolverFlags::add_to(CLI::App* cmd, const std::string& steps_help) {
   cmd->add_option("--rtol", relative_tolerance, "relative residual tolerance per step (default: none)");
   cmd->add_option("--atol", absolute_tolerance,
                   "absolute residual tolerance (overrides a strain tolerance: --strain-tol or the file's)");
-  cmd->add_option("--max-newton", max_newton, "Newton iteration limit per step");
+  cmd->add_option("--max-newton", max_newton,
+                  "Newton iteration limit per step (default: the file's solver.max_newton_iterations, else " +
+                      std::to_string(defaults::max_newton_iterations) + ")");
   cmd->add_option("--forcing-max", forcing_max, "cap of the Eisenstat-Walker forcing term (default 0.5)");
   cmd->add_option("--hessian", hessian,
                   "projected (always the PSD projection) or adaptive (true Hessian near convergence)")
@@ -140,7 +142,7 @@ void SolverFlags::apply_limits(SolveOptions& options) const {
 void SolverFlags::apply_to_file(const SceneFile& file, SolveOptions& options) const {
   if (given.count("--precision")) {
     options.precision = parse_precision(precision);
-    if (!file.tolerance_given) options.strain_tolerance = strain_tolerance_default(options.precision);
+    if (!file.tolerance_given) options.strain_tolerance = defaults::strain_tolerance(options.precision);
   }
   if (given.count("--variant")) options.product = parse_product_variant(variant);
   if (given.count("--preconditioner")) options.preconditioner = parse_preconditioner(preconditioner);

@@ -410,9 +410,10 @@ SceneFile load_scene(const std::string& path) {
   }
   const json solver = doc.value("solver", json::object());
   r.keys(solver, "solver");
-  s.options.load_steps = r.integer(solver, "solver", "steps", 1);
+  s.options.load_steps = r.integer(solver, "solver", "steps", defaults::load_steps);
   s.options.precision = parse_precision(r.text(solver, "solver", "precision", "double"));
-  s.options.max_newton_iterations = r.integer(solver, "solver", "max_newton_iterations", 200);
+  s.options.max_newton_iterations =
+      r.integer(solver, "solver", "max_newton_iterations", defaults::max_newton_iterations);
   try {
     s.options.preconditioner = parse_preconditioner(r.text(solver, "solver", "preconditioner", "automatic"));
   } catch (const Error& error) {
@@ -439,7 +440,7 @@ SceneFile load_scene(const std::string& path) {
     s.options.absolute_tolerance = r.number(solver, "solver", "absolute_tolerance", 0.0);
   else
     s.options.strain_tolerance =
-        r.number(solver, "solver", "strain_tolerance", strain_tolerance_default(s.options.precision));
+        r.number(solver, "solver", "strain_tolerance", defaults::strain_tolerance(s.options.precision));
   const json output = doc.value("output", json::object());
   r.keys(output, "output");
   out.vtu_dir = r.text(output, "output", "vtu", "");

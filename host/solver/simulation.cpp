@@ -1,14 +1,18 @@
-// Simulation: the per-frame driver. Constraint targets and loads per load
-// step (or per implicit Euler time step with dynamics), the float-to-double
-// fallback, and one Newton driver (solver/newton_driver.h) over the device
-// problem.
+// Simulation: the per-frame driver. It holds the state (positions,
+// velocities, targets, loads) and runs each load step (or implicit Euler
+// time step) as one Newton solve (solver/newton_driver.h) over the device
+// problem. Its parts, one concern per file:
+//   solver/load_stepping.h       constraint targets and force ramps per step
+//   solver/implicit_euler.h      the time steps under SolveOptions::dynamics
+//   solver/precision_fallback.h  float steps re-solved in double
+//   solver/simulation_engine.h   the model, problem and driver per precision
+//   solver/solve_accounting.h    profiles, kernel times, result statistics
+//   solver/simulation_state.h    checkpoint and restore
 #include "snh/simulation.h"
 
-#include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <sstream>
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
@@ -18,11 +22,17 @@
 #include "solver/constraint_checks.h"
 #include "solver/device_problem.h"
 #include "solver/elastic_model.h"
+#include "solver/implicit_euler.h"
 #include "solver/lattice_hierarchy.h"
+#include "solver/load_stepping.h"
 #include "solver/multigrid.h"
 #include "solver/newton_driver.h"
 #include "solver/obstacles.h"
 #include "solver/phase_profile.h"
+#include "solver/precision_fallback.h"
+#include "solver/simulation_engine.h"
+#include "solver/simulation_state.h"
+#include "solver/solve_accounting.h"
 
 namespace snh {
 
@@ -30,71 +40,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// x = A X + b of a transform.
-struct Affine {
-  Eigen::Matrix3d a;
-  Eigen::Vector3d b;
-};
-
-Affine affine_of(const RigidTransform& t) {
-  Affine f;
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) f.a(r, c) = t.rotation[3 * c + r];
-  const Eigen::Vector3d center(t.center[0], t.center[1], t.center[2]);
-  f.b = center + Eigen::Vector3d(t.translation[0], t.translation[1], t.translation[2]) - f.a * center;
-  return f;
-}
-
-bool is_rotation(const Eigen::Matrix3d& a) {
-  return (a.transpose() * a - Eigen::Matrix3d::Identity()).norm() < 1e-9 && a.determinant() > 0.0;
-}
-
-// The rigid motion at fraction s from `from` to `to`, both rotations: the
-// relative rotation's angle scaled by s (slerp) about `to`'s centre, whose
-// image moves on a straight line.
-Affine interpolate(const RigidTransform& from, const RigidTransform& to, double s) {
-  const Affine f = affine_of(from), g = affine_of(to);
-  const Eigen::AngleAxisd relative(Eigen::Matrix3d(g.a * f.a.transpose()));
-  const Eigen::Matrix3d a = Eigen::AngleAxisd(s * relative.angle(), relative.axis()).toRotationMatrix() * f.a;
-  const Eigen::Vector3d c(to.center[0], to.center[1], to.center[2]);
-  const Eigen::Vector3d image = (1.0 - s) * (f.a * c + f.b) + s * (g.a * c + g.b);
-  return {a, image - a * c};
-}
-
 }  // namespace
 
-SolveProfile& SolveProfile::operator+=(const SolveProfile& o) {
-  linearization += o.linearization;
-  products += o.products;
-  preconditioner_setup += o.preconditioner_setup;
-  preconditioner_apply += o.preconditioner_apply;
-  cg_vector_work += o.cg_vector_work;
-  line_search_energies += o.line_search_energies;
-  transfers += o.transfers;
-  other += o.other;
-  total += o.total;
-  for (const auto& [name, seconds] : o.kernels) kernels[name] += seconds;
-  return *this;
-}
-
 struct Simulation::Impl {
-  // Where a set's vertices go in the coming solve.
-  struct Target {
-    enum class Kind { callback, transform, positions } kind = Kind::callback;
-    RigidTransform from, to;    // transform: the last reached and the new one
-    bool from_known = false;    // `from` is a transform the set reached
-    std::vector<double> xyz;    // positions: the targets, xyz per vertex of the set
-    std::vector<double> start;  // positions of the set's vertices at the solve's start
-  };
+  using Target = solver::SetTarget;
 
   template <typename Real>
-  struct Engine {
-    std::unique_ptr<device::OpenClContext> own_context;  // the fallback's; null for the main engine
-    long viennacl_context_id = 0;
-    std::unique_ptr<solver::ElasticModel<Real>> model;
-    std::unique_ptr<solver::DeviceProblem<Real>> problem;
-    std::unique_ptr<solver::NewtonDriver<solver::DeviceProblem<Real>>> newton;
-  };
+  using Engine = solver::SimulationEngine<Real>;
 
   Mesh mesh;
   uint64_t fingerprint;  // mesh_fingerprint(mesh)
@@ -136,40 +88,25 @@ struct Simulation::Impl {
   std::vector<double> user_force;
   std::array<double, 3> body_force{0, 0, 0};
   std::unique_ptr<Engine<float>> single;
-  std::unique_ptr<Engine<double>> dual;               // double: the main engine or the float fallback
-  double callback_seconds = 0.0;                      // in the caller's callbacks during the current solve
-  std::map<std::string, double> solve_start_kernels;  // kernel_seconds() when the current solve began
+  std::unique_ptr<Engine<double>> dual;  // double: the main engine or the float fallback
+  double callback_seconds = 0.0;         // in the caller's callbacks during the current solve
+  solver::Counters solve_start;          // counters() when the current solve began
 
-  // Seconds per phase so far, over the engines built so far.
-  solver::PhaseSeconds phase_seconds() const {
-    solver::PhaseSeconds s{};
-    if (single) s = solver::sum(s, single->model->profiler().seconds());
-    if (dual) s = solver::sum(s, dual->model->profiler().seconds());
-    return s;
-  }
-
-  // Seconds per kernel so far, over the contexts of the engines built so far.
-  int preconditioner_builds() const {
-    return (dual ? dual->problem->preconditioner_builds() : 0) +
-           (single ? single->problem->preconditioner_builds() : 0);
-  }
-
-  std::map<std::string, double> kernel_seconds() const {
-    std::map<std::string, double> s = cl.kernel_seconds();
-    for (const device::OpenClContext* c :
+  // The running counters over the engines built so far: seconds per phase
+  // and per kernel, preconditioner builds, and the callbacks' time.
+  solver::Counters counters() const {
+    solver::Counters c;
+    if (single) c.phases = solver::sum(c.phases, single->model->profiler().seconds());
+    if (dual) c.phases = solver::sum(c.phases, dual->model->profiler().seconds());
+    c.kernels = cl.kernel_seconds();
+    for (const device::OpenClContext* context :
          {single ? single->own_context.get() : nullptr, dual ? dual->own_context.get() : nullptr})
-      if (c)
-        for (const auto& [name, seconds] : c->kernel_seconds()) s[name] += seconds;
-    return s;
-  }
-  static std::map<std::string, double> kernel_difference(std::map<std::string, double> now,
-                                                         const std::map<std::string, double>& before) {
-    for (auto it = now.begin(); it != now.end();) {
-      const auto b = before.find(it->first);
-      if (b != before.end()) it->second -= b->second;
-      it = it->second > 0.0 ? std::next(it) : now.erase(it);  // not run since
-    }
-    return now;
+      if (context)
+        for (const auto& [name, seconds] : context->kernel_seconds()) c.kernels[name] += seconds;
+    c.preconditioner_builds =
+        (dual ? dual->problem->preconditioner_builds() : 0) + (single ? single->problem->preconditioner_builds() : 0);
+    c.callback_seconds = callback_seconds;
+    return c;
   }
 
   size_t device_memory_bytes() const {
@@ -267,21 +204,6 @@ struct Simulation::Impl {
     body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
   }
 
-  // The multigrid's options with the per-step rebuild resolved (off under
-  // dynamics unless asked for). The smoothing is resolved by the
-  // preconditioner itself, from the mesh and the model's materials
-  // (resolved_smoothing); the result reports what it used.
-  MultigridOptions multigrid_options() const {
-    MultigridOptions o = options.multigrid;
-    if (!o.rebuild_each_load_step) o.rebuild_each_load_step = !options.dynamics.has_value();
-    return o;
-  }
-  std::vector<char> free_dofs() const {
-    std::vector<char> free(prescribed.size());
-    for (size_t i = 0; i < free.size(); ++i) free[i] = prescribed[i] ? 0 : 1;
-    return free;
-  }
-
   void total_force(std::vector<double>& f) const {
     f.assign(3 * mesh.vertex_count(), 0.0);
     for (size_t i = 0; i < user_force.size(); ++i) f[i] += user_force[i];
@@ -290,32 +212,8 @@ struct Simulation::Impl {
 
   template <typename Real>
   std::unique_ptr<Engine<Real>> make_engine(std::unique_ptr<device::OpenClContext> context, ProductVariant variant) {
-    auto engine = std::make_unique<Engine<Real>>();
-    device::OpenClContext& ctx = context ? *context : cl;
-    engine->viennacl_context_id = context ? device::bind_viennacl(*context) : viennacl_context_id;
-    engine->own_context = std::move(context);
-    device::use_viennacl(engine->viennacl_context_id);
-    solver::ModelTerms terms;
-    terms.inertia = options.dynamics.has_value();
-    terms.obstacles = static_cast<int>(options.obstacles.size());
-    terms.self_contact = options.contact.self;
-    terms.friction = friction;
-    engine->model = std::make_unique<solver::ElasticModel<Real>>(ctx, mesh, rest, materials, variant,
-                                                                 device::MaterialKernel::specialized, terms);
-    std::vector<Real> mask(prescribed.size());
-    for (size_t i = 0; i < mask.size(); ++i) mask[i] = prescribed[i] ? Real(0) : Real(1);
-    engine->model->set_mask(mask);
-    // Unset: float (the model keeps double for variants other than cached).
-    engine->model->set_float_products(options.product_precision.value_or(Precision::single) == Precision::single);
-    std::unique_ptr<solver::MultigridPreconditioner<Real>> multigrid;
-    if (preconditioner == Preconditioner::multigrid)
-      multigrid = std::make_unique<solver::MultigridPreconditioner<Real>>(*engine->model, mesh, free_dofs(),
-                                                                          multigrid_options());
-    engine->problem =
-        std::make_unique<solver::DeviceProblem<Real>>(*engine->model, preconditioner, std::move(multigrid));
-    engine->newton = std::make_unique<solver::NewtonDriver<solver::DeviceProblem<Real>>>(*engine->problem, options);
-    device::use_viennacl(viennacl_context_id);
-    return engine;
+    const solver::EngineSetup setup{mesh, rest, materials, options, prescribed, preconditioner, friction};
+    return solver::make_engine<Real>(setup, cl, viennacl_context_id, std::move(context), variant);
   }
 
   // Every engine's next linearization builds its preconditioner afresh
@@ -370,87 +268,17 @@ struct Simulation::Impl {
     }
   }
 
-  // Writes set k's targets at fraction s of this solve into x.
-  void place(size_t k, double s, int steps, std::vector<double>& positions) const {
-    const ConstraintSet& c = constraints[k];
-    const Target& t = targets[k];
-    auto put = [&](size_t i, const double p[3]) {
-      for (int d = 0; d < 3; ++d)
-        if (c.components[d]) positions[3 * c.vertices[i] + d] = p[d];
-    };
-    switch (t.kind) {
-      case Target::Kind::callback:
-        (void)steps;
-        solver::place_by_callback(mesh, c, s, positions);
-        break;
-      case Target::Kind::transform: {
-        const bool rigid = t.from_known && is_rotation(affine_of(t.from).a) && is_rotation(affine_of(t.to).a);
-        const Affine f = rigid ? interpolate(t.from, t.to, s) : affine_of(t.to);
-        for (size_t i = 0; i < c.vertices.size(); ++i) {
-          const auto rest_position = mesh.vertex(c.vertices[i]);
-          const Eigen::Vector3d image =
-              f.a * Eigen::Vector3d(rest_position[0], rest_position[1], rest_position[2]) + f.b;
-          double p[3];
-          for (int d = 0; d < 3; ++d) p[d] = rigid ? image[d] : (1.0 - s) * t.start[3 * i + d] + s * image[d];
-          put(i, p);
-        }
-        break;
-      }
-      case Target::Kind::positions:
-        for (size_t i = 0; i < c.vertices.size(); ++i) {
-          double p[3];
-          for (int d = 0; d < 3; ++d) p[d] = (1.0 - s) * t.start[3 * i + d] + s * t.xyz[3 * i + d];
-          put(i, p);
-        }
-        break;
-    }
-    for (size_t i = 0; i < c.vertices.size(); ++i)
-      for (int d = 0; d < 3; ++d)
-        if (!std::isfinite(positions[3 * c.vertices[i] + d]))
-          throw Error("constraint set '" + c.name + "': non-finite target position for vertex " +
-                      std::to_string(c.vertices[i]));
-  }
-
-  // One implicit Euler step's data (see DynamicsOptions): the start x_n, the
-  // inertia's per-vertex coefficient c m_v and target y, and b / h.
-  struct EulerStep {
-    std::vector<double> start, coefficient, target;
-    double stiffness_damping = 0.0;
-  };
-
-  EulerStep euler_step(double h) const {
-    const DynamicsOptions& d = *options.dynamics;
-    EulerStep e;
-    e.start = x;
-    const double ah = d.damping.mass * h, c = (1.0 + ah) / (h * h);
-    e.coefficient.resize(mass.size());
-    for (size_t i = 0; i < mass.size(); ++i) e.coefficient[i] = c * mass[i];
-    // c M (x - y) = M (x - x~) / h^2 + a M (x - x_n) / h, x~ = x_n + h v_n.
-    e.target.resize(x.size());
-    for (size_t i = 0; i < x.size(); ++i) e.target[i] = (x[i] + h * v[i] + ah * x[i]) / (1.0 + ah);
-    e.stiffness_damping = d.damping.stiffness / h;
-    return e;
+  // Every set's targets at fraction s of this solve, into x.
+  void place_targets(double s) {
+    for (size_t k = 0; k < constraints.size(); ++k) solver::place_target(mesh, constraints[k], targets[k], s, x);
   }
 
   template <typename Real>
   StepResult solve_in(Engine<Real>& engine, int s, std::vector<NewtonIteration>& history, Clock::time_point start,
-                      const ProgressCallback& progress, const EulerStep* euler = nullptr) {
+                      const ProgressCallback& progress, const solver::EulerStep* euler = nullptr) {
     device::use_viennacl(engine.viennacl_context_id);
     if (euler) {
-      // Rayleigh stiffness damping's linear part: f + (b/h) grad Psi(x_n).
-      std::vector<double> force = force_applied;
-      if (euler->stiffness_damping > 0.0) {
-        const std::vector<Real> xs(euler->start.begin(), euler->start.end());
-        viennacl::vector<Real> xn(xs.size()), fe(xs.size());
-        viennacl::copy(xs.begin(), xs.end(), xn.begin());
-        engine.model->elastic_forces(xn, fe);
-        std::vector<Real> host(xs.size());
-        viennacl::copy(fe.begin(), fe.end(), host.begin());
-        force.resize(host.size(), 0.0);
-        for (size_t i = 0; i < host.size(); ++i) force[i] -= euler->stiffness_damping * static_cast<double>(host[i]);
-      }
-      engine.model->set_external_force(force);
-      engine.model->set_inertia(euler->coefficient, euler->target, 1.0 + euler->stiffness_damping);
+      solver::set_incremental_potential(*engine.model, *euler, force_applied);
     } else {
       engine.model->set_external_force(force_applied);
     }
@@ -501,8 +329,7 @@ struct Simulation::Impl {
     if (steps < 1) throw Error("solve: load_steps must be >= 1");
     const auto start = Clock::now();
     callback_seconds = 0.0;
-    const solver::PhaseSeconds solve_start = phase_seconds();
-    solve_start_kernels = kernel_seconds();
+    solve_start = counters();
     SolveResult result;
     result.device = cl.info();
     result.product = product;
@@ -519,41 +346,29 @@ struct Simulation::Impl {
     result.kernel_specialization = (single ? single->model->specialization() : dual->model->specialization()) +
                                    " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
     result.warnings = warnings;
-    for (size_t k = 0; k < constraints.size(); ++k) {
-      Target& t = targets[k];
-      t.start.resize(3 * constraints[k].vertices.size());
-      for (size_t i = 0; i < constraints[k].vertices.size(); ++i)
-        for (int d = 0; d < 3; ++d) t.start[3 * i + d] = x[3 * constraints[k].vertices[i] + d];
-    }
-    fell_back = false;
-    in_double = options.precision == Precision::double_;
+    for (size_t k = 0; k < constraints.size(); ++k) solver::record_start(constraints[k], x, targets[k]);
+    precision_fallback.begin(options.precision);
     result.converged = true;
     for (int s = 1; s <= steps; ++s) {
       const auto step_clock = Clock::now();
-      const double step_callbacks = callback_seconds;
-      const solver::PhaseSeconds step_start_phases = phase_seconds();
-      const std::map<std::string, double> step_start_kernels = kernel_seconds();
-      const int step_start_builds = preconditioner_builds();
+      const solver::Counters step_start = counters();
       StepResult step;
       if (options.dynamics) {
         step = time_step(s, steps, result, start, progress);
       } else {
-        const double fraction = static_cast<double>(s) / steps;
-        if (friction) lag_friction(x, static_cast<double>(s - 1) / steps, fraction);
-        for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
+        const double fraction = solver::load_fraction(s, steps);
+        if (friction) lag_friction(x, solver::load_fraction(s - 1, steps), fraction);
+        place_targets(fraction);
         if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
-        force_applied.resize(force_to.size());
-        for (size_t i = 0; i < force_to.size(); ++i)
-          force_applied[i] = force_from[i] + fraction * (force_to[i] - force_from[i]);
+        solver::ramp_force(force_from, force_to, fraction, force_applied);
         step = solve_step(s, steps, result, start, progress);
       }
       result.converged = result.converged && step.converged;
       result.final_residual_norm = step.residual_norm;
-      step.profile = solver::make_profile(
-          solver::difference(phase_seconds(), step_start_phases),
-          std::chrono::duration<double>(Clock::now() - step_clock).count() - (callback_seconds - step_callbacks));
-      step.profile.kernels = kernel_difference(kernel_seconds(), step_start_kernels);
-      step.preconditioner_builds = preconditioner_builds() - step_start_builds;
+      const solver::Counters step_end = counters();
+      step.profile = solver::profile_between(step_start, step_end,
+                                             std::chrono::duration<double>(Clock::now() - step_clock).count());
+      step.preconditioner_builds = step_end.preconditioner_builds - step_start.preconditioner_builds;
       result.steps.push_back(step);
       if (on_step) in_callback([&] { on_step(s, x); });
       if (step.status == StepStatus::cancelled) {
@@ -561,7 +376,7 @@ struct Simulation::Impl {
         break;
       }
     }
-    return finish(result, start, solve_start);
+    return finish(result, start);
   }
 
   // Friction's lag for a step from load parameter t0 (positions `start`) to t1.
@@ -571,113 +386,47 @@ struct Simulation::Impl {
     friction_table = solver::friction_records(options.obstacles, options.contact, t0, t1);
   }
 
-  // Implicit Euler time step s of n: `substeps` minimizations of the
-  // incremental potential, the constraint targets interpolated linearly
-  // within the step. Newton and CG counts summed; the last substep's status.
+  // Implicit Euler time step s of n (solver/implicit_euler.h), loads in full.
   StepResult time_step(int s, int steps, SolveResult& result, Clock::time_point start,
                        const ProgressCallback& progress) {
-    const DynamicsOptions& d = *options.dynamics;
-    const double h = d.time_step / d.substeps;
     bool defined_for_inversion = true;
     for (const Material& m : materials.materials)
       defined_for_inversion = defined_for_inversion && m.defined_for_inversion();
     force_applied = force_to;
-    StepResult total;
-    total.step = s;
-    total.converged = true;
-    for (int j = 1; j <= d.substeps; ++j) {
-      const EulerStep euler = euler_step(h);
-      // Newton starts from x~ = x_n + h v_n (from x_n where a material is
-      // undefined for inverted elements and x~ could invert one).
-      if (defined_for_inversion)
-        for (size_t i = 0; i < x.size(); ++i) x[i] += h * v[i];
-      const double fraction = (s - 1 + static_cast<double>(j) / d.substeps) / steps;
-      if (friction) lag_friction(euler.start, (s - 1 + static_cast<double>(j - 1) / d.substeps) / steps, fraction);
-      for (size_t k = 0; k < constraints.size(); ++k) place(k, fraction, steps, x);
-      if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
-      const StepResult sub = solve_step(s, steps, result, start, progress, &euler);
-      for (size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - euler.start[i]) / h;
-      time += h;
-      total.newton_iterations += sub.newton_iterations;
-      total.cg_iterations += sub.cg_iterations;
-      total.converged = total.converged && sub.converged;
-      total.residual_norm = sub.residual_norm;
-      total.status = sub.status;
-      total.precision_used = sub.precision_used;
-      total.contacts = sub.contacts;
-      total.max_penetration = sub.max_penetration;
-      total.self_contacts = sub.self_contacts;
-      total.max_self_penetration = sub.max_self_penetration;
-      if (!sub.fallback.empty()) total.fallback = sub.fallback;
-      if (sub.status == StepStatus::cancelled) break;
-    }
+    StepResult total = solver::implicit_euler_step(
+        *options.dynamics, s, steps, defined_for_inversion, x, v, mass, time,
+        [&](const solver::EulerStep& euler, double t0, double t1) {
+          if (friction) lag_friction(euler.start, t0, t1);
+          place_targets(t1);
+          if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, t1);
+        },
+        [&](const solver::EulerStep& euler) { return solve_step(s, steps, result, start, progress, &euler); });
     total.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     total.time = time;
     return total;
   }
 
-  bool fell_back = false, in_double = true;
+  solver::PrecisionFallback precision_fallback;
 
   // One Newton solve from x at its step's targets and forces, with the
   // float-to-double fallback.
   StepResult solve_step(int s, int steps, SolveResult& result, Clock::time_point start,
-                        const ProgressCallback& progress, const EulerStep* euler = nullptr) {
+                        const ProgressCallback& progress, const solver::EulerStep* euler = nullptr) {
     const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
     require_defined(x, s);
     const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
     const std::vector<double> anchor_start = may_fall_back ? friction_anchor : std::vector<double>();
-    StepResult step;
-    if (!in_double) {
-      step = solve_in(*single, s, result.history, start, progress, euler);
-      step.precision_used = options.precision;
-    }
-    const bool failed = !in_double && !step.converged && step.status != StepStatus::cancelled;
-    if (may_fall_back && (fell_back || failed)) {
-      if (!fell_back && !cl.info().has_fp64) {
-        result.warnings.push_back("step " + std::to_string(s) + ": float did not converge (" + to_string(step.status) +
-                                  ") and fallback_to_double was asked, but the device has no fp64");
-      } else {
-        std::string note;
-        if (!fell_back) {
-          std::ostringstream why;
-          why << "float " << step.status << " after " << step.newton_iterations << " Newton / " << step.cg_iterations
-              << " CG iterations (residual " << step.residual_norm << "); re-solved in double";
-          note = why.str();
+    return precision_fallback.step(
+        s, steps, options.precision, may_fall_back, cl.info().has_fp64, result,
+        [&] { return solve_in(*single, s, result.history, start, progress, euler); },
+        [&] { return solve_in(fallback_engine(), s, result.history, start, progress, euler); },
+        [&] {
           x = step_start;
           friction_anchor = anchor_start;
-        }
-        const size_t first_record = result.history.size();
-        StepResult redo = solve_in(fallback_engine(), s, result.history, start, progress, euler);
-        redo.precision_used = Precision::double_;
-        if (!fell_back) {
-          if (first_record < result.history.size()) {
-            Recovery fallback;
-            fallback.action = RecoveryAction::double_fallback;
-            fallback.float_status = step.status;
-            std::vector<Recovery>& r = result.history[first_record].recovery;
-            r.insert(r.begin(), fallback);
-          }
-          redo.newton_iterations += step.newton_iterations;
-          redo.cg_iterations += step.cg_iterations;
-          redo.fallback = note;
-          result.warnings.push_back(
-              "step " + std::to_string(s) + ": " + note +
-              (redo.converged ? " (converged)" : " (did not converge: " + std::string(to_string(redo.status)) + ")") +
-              (s < steps ? "; the remaining steps run in double" : ""));
-        } else {
-          redo.fallback = "double (after a float failure in an earlier step)";
-        }
-        fell_back = true;
-        step = redo;
-      }
-    } else if (in_double) {
-      step = solve_in(*dual, s, result.history, start, progress, euler);
-      step.precision_used = Precision::double_;
-    }
-    return step;
+        });
   }
 
-  SolveResult finish(SolveResult& result, Clock::time_point start, const solver::PhaseSeconds& solve_start) {
+  SolveResult finish(SolveResult& result, Clock::time_point start) {
     // What this solve reached becomes where the next one starts from.
     for (size_t k = 0; k < constraints.size(); ++k) {
       Target& t = targets[k];
@@ -688,15 +437,9 @@ struct Simulation::Impl {
     }
     if (!result.cancelled) force_from = force_to;
     result.positions = x;
-    const DeformationStatistics stats = deformation_statistics(mesh, x);
-    result.volume_ratio = stats.volume_ratio;
-    result.min_j = stats.min_j;
-    result.max_j = stats.max_j;
-    result.inverted_elements = stats.inverted_elements;
+    solver::record_deformation(mesh, x, result);
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    result.profile =
-        solver::make_profile(solver::difference(phase_seconds(), solve_start), result.seconds - callback_seconds);
-    result.profile.kernels = kernel_difference(kernel_seconds(), solve_start_kernels);
+    result.profile = solver::profile_between(solve_start, counters(), result.seconds);
     result.device_memory_bytes = device_memory_bytes();
     return std::move(result);
   }
@@ -813,19 +556,8 @@ SimulationState Simulation::checkpoint() {
   if (m.options.dynamics) s.velocities = m.v;
   s.time = m.time;
   if (m.friction) s.friction_anchors = m.friction_anchor;
-  for (size_t k = 0; k < m.constraints.size(); ++k) {
-    const Impl::Target& t = m.targets[k];
-    SimulationState::Target out;
-    out.set = m.constraints[k].name;
-    out.kind = t.kind == Impl::Target::Kind::callback    ? TargetKind::callbacks
-               : t.kind == Impl::Target::Kind::transform ? TargetKind::transform
-                                                         : TargetKind::positions;
-    out.from = t.from;
-    out.to = t.to;
-    out.from_known = t.from_known;
-    out.positions = t.xyz;
-    s.targets.push_back(out);
-  }
+  for (size_t k = 0; k < m.constraints.size(); ++k)
+    s.targets.push_back(solver::state_target(m.constraints[k], m.targets[k]));
   s.external_force = m.user_force;
   s.body_force = m.body_force;
   s.force_from = m.force_from;
@@ -837,54 +569,13 @@ SimulationState Simulation::checkpoint() {
 
 void Simulation::restore(const SimulationState& s) {
   Impl& m = *impl_;
-  const size_t dofs = 3 * m.mesh.vertex_count();
-  if (s.vertex_count != m.mesh.vertex_count() || s.mesh_fingerprint != m.fingerprint)
-    throw Error("restore: the checkpoint is of another mesh (" + std::to_string(s.vertex_count) +
-                " vertices, fingerprint " + std::to_string(s.mesh_fingerprint) +
-                "; this simulation's mesh: " + std::to_string(m.mesh.vertex_count()) + " vertices, fingerprint " +
-                std::to_string(m.fingerprint) + ")");
-  auto size_check = [&](const std::vector<double>& v, size_t expected, const char* item, bool may_be_empty) {
-    if (v.size() != expected && !(may_be_empty && v.empty()))
-      throw Error(std::string("restore: the checkpoint's ") + item + " has " + std::to_string(v.size()) +
-                  " values, expected " + std::to_string(expected) + (may_be_empty ? " or none" : ""));
-  };
-  size_check(s.positions, dofs, "positions", false);
-  size_check(s.velocities, m.options.dynamics ? dofs : 0, "velocities (SolveOptions::dynamics)", false);
-  size_check(s.friction_anchors, m.friction ? m.options.obstacles.size() * dofs : 0,
-             "friction anchors (one per vertex and obstacle with friction)", false);
-  size_check(s.external_force, dofs, "external force", true);
-  size_check(s.force_from, dofs, "force ramp start", false);
-  size_check(s.force_to, dofs, "force ramp end", false);
-  size_check(s.force_applied, dofs, "applied force", true);
-  if (s.targets.size() != m.constraints.size())
-    throw Error("restore: the checkpoint has " + std::to_string(s.targets.size()) +
-                " constraint sets, this simulation " + std::to_string(m.constraints.size()));
-  for (size_t k = 0; k < s.targets.size(); ++k) {
-    const SimulationState::Target& t = s.targets[k];
-    const ConstraintSet& c = m.constraints[k];
-    if (t.set != c.name)
-      throw Error("restore: the checkpoint's constraint set " + std::to_string(k) + " is '" + t.set +
-                  "', this simulation's is '" + c.name + "'");
-    if (t.kind == TargetKind::positions && t.positions.size() != 3 * c.vertices.size())
-      throw Error("restore: the checkpoint's target positions of set '" + c.name + "' have " +
-                  std::to_string(t.positions.size()) + " values, expected " + std::to_string(3 * c.vertices.size()));
-  }
+  solver::check_restorable(s, m.mesh.vertex_count(), m.fingerprint, m.constraints, m.options.dynamics.has_value(),
+                           m.friction ? m.options.obstacles.size() : 0);
   m.x = s.positions;
   if (m.options.dynamics) m.v = s.velocities;
   m.time = s.time;
   if (m.friction) m.friction_anchor = s.friction_anchors;
-  for (size_t k = 0; k < s.targets.size(); ++k) {
-    const SimulationState::Target& t = s.targets[k];
-    Impl::Target& to = m.targets[k];
-    to = Impl::Target();
-    to.kind = t.kind == TargetKind::callbacks   ? Impl::Target::Kind::callback
-              : t.kind == TargetKind::transform ? Impl::Target::Kind::transform
-                                                : Impl::Target::Kind::positions;
-    to.from = t.from;
-    to.to = t.to;
-    to.from_known = t.from_known;
-    to.xyz = t.positions;
-  }
+  for (size_t k = 0; k < s.targets.size(); ++k) m.targets[k] = solver::set_target(s.targets[k]);
   m.user_force = s.external_force;
   m.body_force = s.body_force;
   m.update_body_force();

@@ -361,13 +361,37 @@ struct ContactOptions {
   double friction_slip = 0.0;
 };
 
+// The solver's defaults, written once: SolveOptions' members start from
+// them, and scene files ("solver" section) and the snh command line use them
+// for what they leave out, so a scene solves alike from a file, the command
+// line and a program.
+namespace defaults {
+// Newton iterations per load step (per implicit Euler substep with
+// dynamics) before the step ends with StepStatus::max_newton_iterations.
+// Converged steps of the shipped scenes take up to 19; steps that cannot
+// progress end earlier as `stagnated`, so the limit only cuts off slow but
+// progressing solves (scenes that converge linearly set more).
+inline constexpr int max_newton_iterations = 200;
+// CG iterations (operator applications) per Newton iteration.
+inline constexpr int max_cg_iterations = 20000;
+// Load steps (time steps with dynamics) per solve.
+inline constexpr int load_steps = 1;
+// The stopping strain (SolveOptions::strain_tolerance) in double and in
+// float; float resolves J - alpha only to about FLT_EPSILON lambda / mu.
+inline constexpr double strain_tolerance_double = 1e-6;
+inline constexpr double strain_tolerance_float = 1e-4;
+inline constexpr double strain_tolerance(Precision precision) {
+  return precision == Precision::single ? strain_tolerance_float : strain_tolerance_double;
+}
+}  // namespace defaults
+
 // How the solver works rather than what it solves: the linear solver, its
 // preconditioner and products, the forcing terms and the line search. The
 // defaults are the measured choices (docs/performance.md); a first program
 // leaves them alone. SolveOptions carries them (it derives from this), so
 // options.hessian and options.tuning().hessian are the same setting.
 struct SolverTuning {
-  int max_cg_iterations = 20000;
+  int max_cg_iterations = defaults::max_cg_iterations;
   // Eisenstat-Walker (choice 2) forcing terms: eta_k = gamma (|r_k| / |r_k-1|)^2,
   // capped at eta_max.
   double forcing_gamma = 0.9;
@@ -409,8 +433,8 @@ struct SolveOptions : SolverTuning {
   std::vector<Obstacle> obstacles;
   ContactOptions contact;
   DeviceOptions device;
-  int load_steps = 1;
-  int max_newton_iterations = 50;
+  int load_steps = defaults::load_steps;
+  int max_newton_iterations = defaults::max_newton_iterations;
   // Newton stops when the L2 norm of the free-DOF force residual is below
   //   max(strain_tolerance * E * h^2 * sqrt(n), absolute_tolerance,
   //       relative_tolerance * the step's initial residual norm),
@@ -418,8 +442,9 @@ struct SolveOptions : SolverTuning {
   // E the smallest Young's modulus of the materials: the residual of a
   // strain error of strain_tolerance (a vertex force is about a stress times
   // h^2), the same for the same physics at any scale of E or of the mesh.
-  // strain_tolerance unset: 1e-6 in double, 1e-4 in float (float's floor for
-  // nearly incompressible materials), unless an absolute or relative
+  // strain_tolerance unset: defaults::strain_tolerance(precision), 1e-6 in
+  // double, 1e-4 in float (float's floor for nearly incompressible
+  // materials), unless an absolute or relative
   // tolerance is given, which then stands alone. Each criterion is off at 0;
   // SolveResult::tolerance reports the absolute value used.
   std::optional<double> strain_tolerance;
