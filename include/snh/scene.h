@@ -87,7 +87,7 @@ std::vector<std::string> scene_file_keys();
 // The default stopping strain for a precision: 1e-6 in double, 1e-4 in float
 // (which resolves J - alpha only to about FLT_EPSILON lambda / mu), as for the
 // named scenes.
-inline double strain_tolerance_default(Precision precision) { return precision == Precision::single ? 1e-4 : 1e-6; }
+inline double strain_tolerance_default(Precision precision) { return defaults::strain_tolerance(precision); }
 
 // The OBJ of step or frame `index` under a surface prefix ("output.surface").
 std::string surface_obj_path(const std::string& prefix, const std::string& scene, int index);

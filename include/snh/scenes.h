@@ -25,7 +25,7 @@ struct SceneParameters {
   // size: |r| <= strain_tolerance * E * h^2 * sqrt(vertices), h the cell size
   // on the lattice scenes; drop (a Gmsh tet blob) passes it on as
   // SolveOptions::strain_tolerance (h its mean vertex spacing).
-  double strain_tolerance = 1e-6;
+  double strain_tolerance = defaults::strain_tolerance_double;
 };
 
 struct Scene {
