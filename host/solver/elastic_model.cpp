@@ -13,7 +13,7 @@ namespace snh::solver {
 
 namespace {
 
-using device::set_arg;
+using device::KernelArgs;
 
 const MaterialMap& validated(const Mesh& mesh, const MaterialMap& map) {
   validate_material_map(mesh, map);
@@ -141,11 +141,6 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
     elastic_magnitude_ += (std::abs(m.mu) + std::abs(m.lambda)) * volume;
   }
   set_variant(variant);
-}
-
-template <typename Real>
-cl_uint ElasticModel<Real>::set_material_args(cl_kernel k, cl_uint first) const {
-  return material_.set(k, first);
 }
 
 template <typename Real>
@@ -286,12 +281,8 @@ void ElasticModel<Real>::make_stencil_float() {
 template <typename Real>
 void ElasticModel<Real>::narrow(cl_mem from, size_t values, device::Buffer& to) {
   if (!to) to = cl_.buffer(CL_MEM_READ_WRITE, values * sizeof(float));
-  cl_kernel k = narrow_k_.get();
   const int n = static_cast<int>(values);
-  set_arg(k, 0, from);
-  set_arg(k, 1, n);
-  set_arg(k, 2, to.get());
-  cl_.run(k, values);
+  cl_.run(KernelArgs(narrow_k_.get()).add(from).add(n).add(to.get()).bind(), values);
 }
 
 template <typename Real>
@@ -388,16 +379,16 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
   if (single_precision && !float_kernel)
     float_kernel = point_kernel("snh_element_matrices",
                                 from_copies ? " -DSNH_MIXED=1 -DSNH_MATRIX_FLOAT=1" : " -DSNH_MATRIX_FLOAT=1");
-  cl_kernel k = single_precision ? float_kernel.get() : matrices_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, elements_.get());
-  set_arg(k, 1, from_copies ? gradients_float_.get() : gradients_.get());
-  set_arg(k, 2, from_copies ? weights_float_.get() : weights_.get());
-  set_arg(k, 3, count);
-  set_arg(k, 4, from_copies ? cache_float_.get() : cache_.get());
-  set_arg(k, 5, matrices);
-  set_arg(k, 6, diagonal_blocks);
-  run_point_kernel(k, point_lanes_ ? kCacheLanes : 0);
+  KernelArgs args(single_precision ? float_kernel.get() : matrices_k_.get());
+  args.add(elements_.get())
+      .add(from_copies ? gradients_float_.get() : gradients_.get())
+      .add(from_copies ? weights_float_.get() : weights_.get())
+      .add(count)
+      .add(from_copies ? cache_float_.get() : cache_.get())
+      .add(matrices)
+      .add(diagonal_blocks);
+  run_point_kernel(args.bind(), point_lanes_ ? kCacheLanes : 0);
 }
 
 template <typename Real>
@@ -434,16 +425,16 @@ void ElasticModel<Real>::assemble() {
   } else if (!stencil_) {
     stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_values(), 1) * sizeof(Real));
   }
-  cl_kernel k = stencil_assemble_k_.get();
   const int blocks = static_cast<int>(vertex_count_) * stencil_width_;
-  set_arg(k, 0, element_matrices_.get());
-  set_arg(k, 1, stencil_part_offsets_.get());
-  set_arg(k, 2, stencil_parts_.get());
-  set_arg(k, 3, blocks);
-  set_arg(k, 4, stencil_width_);
-  set_arg(k, 5, float_products() ? cl_mem{nullptr} : stencil_.get());
-  set_arg(k, 6, float_products() ? stencil_float_.get() : cl_mem{nullptr});
-  cl_.run(k, static_cast<size_t>(blocks));
+  KernelArgs args(stencil_assemble_k_.get());
+  args.add(element_matrices_.get())
+      .add(stencil_part_offsets_.get())
+      .add(stencil_parts_.get())
+      .add(blocks)
+      .add(stencil_width_)
+      .add(float_products() ? cl_mem{nullptr} : stencil_.get())
+      .add(float_products() ? stencil_float_.get() : cl_mem{nullptr});
+  cl_.run(args.bind(), static_cast<size_t>(blocks));
   cl_.finish();
   last_assembly_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -493,15 +484,11 @@ void ElasticModel<Real>::set_inertia(const std::vector<double>& coefficient, con
 
 template <typename Real>
 void ElasticModel<Real>::run_forces_kernel(const VectorBase& x) const {
-  cl_kernel k = forces_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, elements_.get());
-  set_arg(k, 2, gradients_.get());
-  set_arg(k, 3, weights_.get());
-  set_arg(k, 4, count);
-  set_arg(k, set_material_args(k, 5), element_scratch_.get());
-  run_element_kernel(k);
+  KernelArgs args(forces_k_.get());
+  args.add(mem(x)).add(elements_.get()).add(gradients_.get()).add(weights_.get()).add(count);
+  material_.add_to(args).add(element_scratch_.get());
+  run_element_kernel(args.bind());
 }
 
 template <typename Real>
@@ -546,18 +533,18 @@ void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions
 template <typename Real>
 std::vector<double> ElasticModel<Real>::next_friction_anchors(const VectorBase& x) {
   if (!terms_.friction) throw Error("solver: next_friction_anchors on a model built without friction");
-  cl_kernel k = friction_anchors_k_.get();
   const int count = static_cast<int>(vertex_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, friction_start_.get());
-  set_arg(k, 2, obstacles_.get());
-  set_arg(k, 3, friction_start_records_.get());
-  set_arg(k, 4, friction_records_.get());
-  set_arg(k, 5, static_cast<Real>(contact_thickness_));
-  set_arg(k, 6, static_cast<Real>(friction_slip_));
-  set_arg(k, 7, count);
-  set_arg(k, 8, friction_anchors_.get());
-  cl_.run(k, vertex_count_);
+  KernelArgs args(friction_anchors_k_.get());
+  args.add(mem(x))
+      .add(friction_start_.get())
+      .add(obstacles_.get())
+      .add(friction_start_records_.get())
+      .add(friction_records_.get())
+      .add(static_cast<Real>(contact_thickness_))
+      .add(static_cast<Real>(friction_slip_))
+      .add(count)
+      .add(friction_anchors_.get());
+  cl_.run(args.bind(), vertex_count_);
   std::vector<Real> a(terms_.obstacles * dofs());
   {
     PhaseScope transfer(&profiler_, Phase::transfers);
@@ -568,26 +555,25 @@ std::vector<double> ElasticModel<Real>::next_friction_anchors(const VectorBase& 
 
 template <typename Real>
 void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const {
-  cl_kernel k = contact_k_.get();
   const Real stiffness = static_cast<Real>(contact_stiffness_), thickness = static_cast<Real>(contact_thickness_);
   const int count = static_cast<int>(vertex_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, obstacles_.get());
-  set_arg(k, 2, stiffness);
-  set_arg(k, 3, thickness);
-  set_arg(k, 4, count);
-  set_arg(k, 5, contact_energy_.get());
-  set_arg(k, 6, contact_force_.get());
-  set_arg(k, 7, linearization ? contact_blocks_.get() : contact_scratch_.get());
-  set_arg(k, 8, contact_depth_.get());
-  if (terms_.friction) {
-    set_arg(k, 9, friction_start_.get());
-    set_arg(k, 10, friction_anchors_.get());
-    set_arg(k, 11, friction_start_records_.get());
-    set_arg(k, 12, friction_records_.get());
-    set_arg(k, 13, static_cast<Real>(friction_slip_));
-  }
-  cl_.run(k, vertex_count_);
+  KernelArgs args(contact_k_.get());
+  args.add(mem(x))
+      .add(obstacles_.get())
+      .add(stiffness)
+      .add(thickness)
+      .add(count)
+      .add(contact_energy_.get())
+      .add(contact_force_.get())
+      .add(linearization ? contact_blocks_.get() : contact_scratch_.get())
+      .add(contact_depth_.get());
+  if (terms_.friction)
+    args.add(friction_start_.get())
+        .add(friction_anchors_.get())
+        .add(friction_start_records_.get())
+        .add(friction_records_.get())
+        .add(static_cast<Real>(friction_slip_));
+  cl_.run(args.bind(), vertex_count_);
 }
 
 template <typename Real>
@@ -733,23 +719,18 @@ void ElasticModel<Real>::upload_self_contacts() {
 template <typename Real>
 void ElasticModel<Real>::self_differences(const VectorBase& u) const {
   if (!terms_.self_contact || self_pairs_.empty()) return;
-  cl_kernel k = self_k_.get();
   const int count = static_cast<int>(self_pairs_.size());
-  set_arg(k, 0, mem(u));
-  set_arg(k, 1, self_pairs_buf_.get());
-  set_arg(k, 2, self_weights_buf_.get());
-  set_arg(k, 3, count);
-  set_arg(k, 4, self_d_buf_.get());
-  cl_.run(k, self_pairs_.size());
+  KernelArgs args(self_k_.get());
+  args.add(mem(u)).add(self_pairs_buf_.get()).add(self_weights_buf_.get()).add(count).add(self_d_buf_.get());
+  cl_.run(args.bind(), self_pairs_.size());
 }
 
 template <typename Real>
-cl_uint ElasticModel<Real>::set_self_args(cl_kernel k, cl_uint next) const {
-  set_arg(k, next++, self_offsets_buf_.get());
-  set_arg(k, next++, self_entries_buf_.get());
-  set_arg(k, next++, self_coefficients_buf_.get());
-  set_arg(k, next++, self_d_buf_.get());
-  return next;
+void ElasticModel<Real>::add_self_args(KernelArgs& args) const {
+  args.add(self_offsets_buf_.get())
+      .add(self_entries_buf_.get())
+      .add(self_coefficients_buf_.get())
+      .add(self_d_buf_.get());
 }
 
 template <typename Real>
@@ -767,17 +748,11 @@ void ElasticModel<Real>::run_point_kernel(cl_kernel k, int lanes) const {
 template <typename Real>
 double ElasticModel<Real>::energy(const VectorBase& x) {
   PhaseScope timed(&profiler_, Phase::line_search_energies);
-  cl_kernel k = energy_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, elements_.get());
-  set_arg(k, 2, gradients_.get());
-  set_arg(k, 3, weights_.get());
-  set_arg(k, 4, count);
-  const cl_uint next = set_material_args(k, 5);
-  set_arg(k, next, energies_.get());
-  set_arg(k, next + 1, min_j_.get());
-  run_element_kernel(k);
+  KernelArgs args(energy_k_.get());
+  args.add(mem(x)).add(elements_.get()).add(gradients_.get()).add(weights_.get()).add(count);
+  material_.add_to(args).add(energies_.get()).add(min_j_.get());
+  run_element_kernel(args.bind());
   double sum = reduction_.sum(energies_.get(), element_count_) * elastic_scale_;
   last_min_j_ = reduction_.min(min_j_.get(), element_count_);
   last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
@@ -815,34 +790,24 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
 template <typename Real>
 void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase& out, bool external,
                                 const VectorBase* u, int vertex_mode, double scale) const {
-  cl_kernel k = gather_k_.get();
   const int use_external = external && has_external_ ? 1 : 0;
   const Real sign = static_cast<Real>(scale);
   const int count = static_cast<int>(vertex_count_);
-  set_arg(k, 0, element_values.get());
-  set_arg(k, 1, offsets_.get());
-  set_arg(k, 2, adjacency_.get());
-  set_arg(k, 3, mask_.get());
-  set_arg(k, 4, external_.get());
-  set_arg(k, 5, use_external);
-  set_arg(k, 6, sign);
-  set_arg(k, 7, count);
-  set_arg(k, 8, mem(out));
-  cl_uint next = 9;
-  if (vertex_terms()) {
-    set_arg(k, next++, u ? mem(*u) : mem(out));  // read only when vertex_mode > 0
-    set_arg(k, next++, u ? vertex_mode : 0);
-  }
-  if (terms_.inertia) {
-    set_arg(k, next++, inertia_mass_.get());
-    set_arg(k, next++, inertia_target_.get());
-  }
-  if (terms_.obstacles > 0) {
-    set_arg(k, next++, contact_force_.get());
-    set_arg(k, next++, contact_blocks_.get());
-  }
-  if (terms_.self_contact) next = set_self_args(k, next);
-  cl_.run(k, vertex_count_);
+  KernelArgs args(gather_k_.get());
+  args.add(element_values.get())
+      .add(offsets_.get())
+      .add(adjacency_.get())
+      .add(mask_.get())
+      .add(external_.get())
+      .add(use_external)
+      .add(sign)
+      .add(count)
+      .add(mem(out));
+  if (vertex_terms()) args.add(u ? mem(*u) : mem(out)).add(u ? vertex_mode : 0);  // u read only when vertex_mode > 0
+  if (terms_.inertia) args.add(inertia_mass_.get()).add(inertia_target_.get());
+  if (terms_.obstacles > 0) args.add(contact_force_.get()).add(contact_blocks_.get());
+  if (terms_.self_contact) add_self_args(args);
+  cl_.run(args.bind(), vertex_count_);
 }
 
 template <typename Real>
@@ -859,18 +824,13 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   PhaseScope timed(&profiler_, Phase::linearization);
   linearized_x_ = x;
   projected_ = projected ? 1 : 0;
-  cl_kernel k = linearize_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, elements_.get());
-  set_arg(k, 2, gradients_.get());
-  set_arg(k, 3, count);
-  const cl_uint next = set_material_args(k, 4);
-  set_arg(k, next, projected_);
-  set_arg(k, next + 1, cache_.get());
+  KernelArgs args(linearize_k_.get());
+  args.add(mem(x)).add(elements_.get()).add(gradients_.get()).add(count);
+  material_.add_to(args).add(projected_).add(cache_.get());
   // Double: the cache's float copy for float products (null: none).
-  if (sizeof(Real) > sizeof(float)) set_arg(k, next + 2, float_cache() ? cache_float_.get() : cl_mem{nullptr});
-  run_point_kernel(k, material_lanes_);
+  if (sizeof(Real) > sizeof(float)) args.add(float_cache() ? cache_float_.get() : cl_mem{nullptr});
+  run_point_kernel(args.bind(), material_lanes_);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
   last_assembly_seconds_ = 0.0;
   if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled) compute_element_matrices();
@@ -881,73 +841,53 @@ template <typename Real>
 void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   PhaseScope timed(&profiler_, Phase::products);
   const int count = static_cast<int>(element_count_);
-  cl_kernel k;
   if (variant_ == ProductVariant::assembled) {
     // y = mask * (K p) from the blocks (kernels/stencil.cl); the per-vertex
     // terms then as after the element products (mask * mask = mask).
     // Float products: the float blocks, with p and y in double.
     const bool narrow = float_products();
-    cl_kernel sk = narrow ? stencil_product_float_k_.get() : stencil_product_k_.get();
     const int vertices = static_cast<int>(vertex_count_);
-    set_arg(sk, 0, mem(p));
-    set_arg(sk, 1, stencil_neighbours_.get());
-    set_arg(sk, 2, narrow ? stencil_float_.get() : stencil_.get());
-    set_arg(sk, 3, mask_.get());
-    set_arg(sk, 4, vertices);
-    set_arg(sk, 5, stencil_width_);
-    set_arg(sk, 6, mem(y));
-    cl_.run(sk, vertex_count_);
+    KernelArgs stencil(narrow ? stencil_product_float_k_.get() : stencil_product_k_.get());
+    stencil.add(mem(p))
+        .add(stencil_neighbours_.get())
+        .add(narrow ? stencil_float_.get() : stencil_.get())
+        .add(mask_.get())
+        .add(vertices)
+        .add(stencil_width_)
+        .add(mem(y));
+    cl_.run(stencil.bind(), vertex_count_);
     if (!vertex_terms()) return;
-    cl_kernel mk = mask_k_.get();
     const int size = static_cast<int>(dofs());
-    set_arg(mk, 0, mask_.get());
-    set_arg(mk, 1, size);
-    set_arg(mk, 2, mem(y));
-    set_arg(mk, 3, static_cast<Real>(elastic_scale_));
-    set_arg(mk, 4, mem(p));
-    cl_uint next = 5;
-    if (terms_.inertia) set_arg(mk, next++, inertia_mass_.get());
-    if (terms_.obstacles > 0) set_arg(mk, next++, contact_blocks_.get());
+    KernelArgs terms(mask_k_.get());
+    terms.add(mask_.get()).add(size).add(mem(y)).add(static_cast<Real>(elastic_scale_)).add(mem(p));
+    if (terms_.inertia) terms.add(inertia_mass_.get());
+    if (terms_.obstacles > 0) terms.add(contact_blocks_.get());
     self_differences(p);
-    if (terms_.self_contact) next = set_self_args(mk, next);
-    cl_.run(mk, dofs());
+    if (terms_.self_contact) add_self_args(terms);
+    cl_.run(terms.bind(), dofs());
     return;
   }
   if (variant_ == ProductVariant::element_matrices) {
-    k = matrix_rows_ ? matrix_rows_k_.get() : matrix_product_k_.get();
-    set_arg(k, 0, mem(p));
-    set_arg(k, 1, elements_.get());
-    set_arg(k, 2, element_matrices_.get());
-    set_arg(k, 3, count);
-    set_arg(k, 4, element_scratch_.get());
+    KernelArgs args(matrix_rows_ ? matrix_rows_k_.get() : matrix_product_k_.get());
+    args.add(mem(p)).add(elements_.get()).add(element_matrices_.get()).add(count).add(element_scratch_.get());
+    cl_.run(args.bind(), matrix_rows_ ? element_count_ * 3 * nodes_ : element_count_);
   } else if (variant_ == ProductVariant::cached) {
     const bool narrow = float_cache();
-    k = narrow ? product_float_k_.get() : product_cached_k_.get();
-    set_arg(k, 0, mem(p));
-    set_arg(k, 1, elements_.get());
-    set_arg(k, 2, narrow ? gradients_float_.get() : gradients_.get());
-    set_arg(k, 3, narrow ? weights_float_.get() : weights_.get());
-    set_arg(k, 4, count);
-    set_arg(k, 5, narrow ? cache_float_.get() : cache_.get());
-    set_arg(k, 6, element_scratch_.get());
+    KernelArgs args(narrow ? product_float_k_.get() : product_cached_k_.get());
+    args.add(mem(p))
+        .add(elements_.get())
+        .add(narrow ? gradients_float_.get() : gradients_.get())
+        .add(narrow ? weights_float_.get() : weights_.get())
+        .add(count)
+        .add(narrow ? cache_float_.get() : cache_.get())
+        .add(element_scratch_.get());
+    run_point_kernel(args.bind(), (float_products() ? float_product_lanes() : cached_lanes_) ? kCacheLanes : 0);
   } else {
-    k = product_recompute_k_.get();
-    set_arg(k, 0, mem(p));
-    set_arg(k, 1, elements_.get());
-    set_arg(k, 2, gradients_.get());
-    set_arg(k, 3, weights_.get());
-    set_arg(k, 4, count);
-    set_arg(k, 5, mem(linearized_x_));
-    const cl_uint next = set_material_args(k, 6);
-    set_arg(k, next, projected_);
-    set_arg(k, next + 1, element_scratch_.get());
+    KernelArgs args(product_recompute_k_.get());
+    args.add(mem(p)).add(elements_.get()).add(gradients_.get()).add(weights_.get()).add(count).add(mem(linearized_x_));
+    material_.add_to(args).add(projected_).add(element_scratch_.get());
+    run_point_kernel(args.bind(), material_lanes_);
   }
-  if (variant_ == ProductVariant::element_matrices)
-    cl_.run(k, matrix_rows_ ? element_count_ * 3 * nodes_ : element_count_);
-  else
-    run_point_kernel(k, variant_ != ProductVariant::cached                           ? material_lanes_
-                        : (float_products() ? float_product_lanes() : cached_lanes_) ? kCacheLanes
-                                                                                     : 0);
   self_differences(p);
   gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }
@@ -959,41 +899,36 @@ void ElasticModel<Real>::setup_preconditioner() {
   if (!(projected_ && element_matrices_buffer())) {
     // Else the projected element matrices' kernel wrote their diagonal
     // blocks already.
-    cl_kernel k = diagonal_k_.get();
-    set_arg(k, 0, elements_.get());
-    set_arg(k, 1, gradients_.get());
-    set_arg(k, 2, weights_.get());
-    set_arg(k, 3, count);
-    set_arg(k, 4, cache_.get());
-    set_arg(k, 5, element_blocks_.get());
-    run_point_kernel(k, point_lanes_ ? kCacheLanes : 0);
+    KernelArgs args(diagonal_k_.get());
+    args.add(elements_.get())
+        .add(gradients_.get())
+        .add(weights_.get())
+        .add(count)
+        .add(cache_.get())
+        .add(element_blocks_.get());
+    run_point_kernel(args.bind(), point_lanes_ ? kCacheLanes : 0);
   }
-  cl_kernel s = setup_k_.get();
   const int vertices = static_cast<int>(vertex_count_);
-  set_arg(s, 0, element_blocks_.get());
-  set_arg(s, 1, offsets_.get());
-  set_arg(s, 2, adjacency_.get());
-  set_arg(s, 3, mask_.get());
-  set_arg(s, 4, vertices);
-  set_arg(s, 5, inverse_blocks_.get());
-  cl_uint next = 6;
-  if (vertex_terms()) set_arg(s, next++, static_cast<Real>(elastic_scale_));
-  if (terms_.inertia) set_arg(s, next++, inertia_mass_.get());
-  if (terms_.obstacles > 0) set_arg(s, next++, contact_blocks_.get());
-  if (terms_.self_contact) set_arg(s, next++, self_diagonal_buf_.get());
-  cl_.run(s, vertex_count_);
+  KernelArgs args(setup_k_.get());
+  args.add(element_blocks_.get())
+      .add(offsets_.get())
+      .add(adjacency_.get())
+      .add(mask_.get())
+      .add(vertices)
+      .add(inverse_blocks_.get());
+  if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
+  if (terms_.inertia) args.add(inertia_mass_.get());
+  if (terms_.obstacles > 0) args.add(contact_blocks_.get());
+  if (terms_.self_contact) args.add(self_diagonal_buf_.get());
+  cl_.run(args.bind(), vertex_count_);
 }
 
 template <typename Real>
 void ElasticModel<Real>::apply_preconditioner(VectorBase& z) const {
   PhaseScope timed(&profiler_, Phase::preconditioner_apply);
-  cl_kernel k = apply_k_.get();
   const int vertices = static_cast<int>(vertex_count_);
-  set_arg(k, 0, inverse_blocks_.get());
-  set_arg(k, 1, mem(z));
-  set_arg(k, 2, vertices);
-  set_arg(k, 3, mem(z));
-  cl_.run(k, vertex_count_);
+  cl_.run(KernelArgs(apply_k_.get()).add(inverse_blocks_.get()).add(mem(z)).add(vertices).add(mem(z)).bind(),
+          vertex_count_);
 }
 
 template <typename Real>

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "device/kernel_args.h"
 #include "device/material_args.h"
 #include "device/opencl_context.h"
 #include "fem/rest_state.h"
@@ -297,8 +298,6 @@ class ElasticModel {
   // Per-element elastic forces at x into element_scratch_ (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
   void compute_element_matrices();
-  // MATERIAL_ARGS from index first; returns the next index.
-  cl_uint set_material_args(cl_kernel k, cl_uint first) const;
   void assemble();
   // The assembled variant's stencil tables on the device and its kernels,
   // once: made when the variant is chosen, not in the first solve.
@@ -391,7 +390,8 @@ class ElasticModel {
   void upload_self_contacts();
   // d_c = a_c^T u for the frozen set (before a gather that uses them).
   void self_differences(const VectorBase& u) const;
-  cl_uint set_self_args(cl_kernel k, cl_uint next) const;
+  // The springs' per-vertex arguments of the gather, mask and (SNH_SELF_CONTACT) kernels.
+  void add_self_args(device::KernelArgs& args) const;
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
       setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;
