@@ -128,11 +128,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
   if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
   if (terms.friction) friction_anchors_k_ = cl_.kernel("fem.cl", defines_, "snh_friction_anchors");
-  if (terms.self_contact) {
-    detector_ = std::make_unique<SelfContactDetector>(mesh);
-    self_k_ = cl_.kernel("fem.cl", defines_, "snh_self_contact_differences");
-    upload_self_contacts();  // the empty set
-  }
+  if (terms.self_contact) self_contact_ = std::make_unique<SelfContactTerms<Real>>(cl_, mesh, defines_, &profiler_);
   elements_host_ = elements;
   for (size_t e = 0; e < element_count_; ++e) {
     const Material& m = materials.of_element(e);
@@ -593,7 +589,7 @@ ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
     std::vector<Real> xh(dofs());
     viennacl::copy(x.begin(), x.end(), xh.begin());
     const std::vector<double> xd(xh.begin(), xh.end());
-    for (const SelfContactPair& c : self_pairs_) {
+    for (const SelfContactPair& c : self_contact_->pairs()) {
       ++state.self_contacts;
       state.max_self_penetration = std::max(state.max_self_penetration, self_contact_length(c, xd));
     }
@@ -633,10 +629,7 @@ template <typename Real>
 void ElasticModel<Real>::set_self_contact_stiffness(double stiffness) {
   if (!terms_.self_contact) throw Error("solver: self-contact stiffness on a model built without self-contact");
   if (!(stiffness > 0.0) || !std::isfinite(stiffness)) throw Error("solver: self-contact stiffness not finite and > 0");
-  if (stiffness != self_stiffness_) {
-    self_stiffness_ = stiffness;
-    upload_self_contacts();
-  }
+  self_contact_->set_stiffness(stiffness);
 }
 
 template <typename Real>
@@ -647,90 +640,18 @@ bool ElasticModel<Real>::refresh_self_contact(const VectorBase& x, bool new_step
     PhaseScope transfer(&profiler_, Phase::transfers);
     viennacl::copy(x.begin(), x.end(), xh.begin());
   }
-  std::vector<SelfContactPair> pairs = detector_->detect(std::vector<double>(xh.begin(), xh.end()));
-  // Within a step a sample still in contact with the same triangle keeps its
-  // spring (weights) from when it was found; new samples, and samples whose
-  // closest triangle changed, get new ones, samples no longer inside an
-  // element lose theirs. Measured on the elbow (res 3, step
-  // 25 of 28): re-weighting every Newton iteration made Newton a fixed-point
-  // iteration in w (the residual fell from 7e-3 to 3e-3 in 30 iterations, the
-  // step stopped at 200) while the set of samples no longer changed.
-  if (!new_step) {
-    size_t k = 0;
-    for (SelfContactPair& p : pairs) {
-      while (k < self_pairs_.size() && self_pairs_[k].sample < p.sample) ++k;
-      if (k < self_pairs_.size() && self_pairs_[k].sample == p.sample && self_pairs_[k].vertex == p.vertex)
-        p = self_pairs_[k];
-    }
-  }
-  if (pairs == self_pairs_) return false;
-  self_pairs_ = std::move(pairs);
-  upload_self_contacts();
-  return true;
+  return self_contact_->refresh(std::vector<double>(xh.begin(), xh.end()), new_step);
 }
 
 template <typename Real>
-void ElasticModel<Real>::upload_self_contacts() {
-  // Per contact (s, j0, j1, j2) and w; per vertex, in contact order, the
-  // entries (contact, k a_i) and k sum a_i^2: deterministic gathers.
-  const size_t n = self_pairs_.size();
-  std::vector<int> pairs(4 * std::max<size_t>(n, 1), 0);
-  std::vector<Real> weights(3 * std::max<size_t>(n, 1), Real(0));
-  std::vector<int> offsets(vertex_count_ + 1, 0);
-  std::vector<double> diagonal(vertex_count_, 0.0);
-  for (size_t c = 0; c < n; ++c) {
-    const SelfContactPair& p = self_pairs_[c];
-    pairs[4 * c] = p.sample;
-    ++offsets[p.sample + 1];
-    diagonal[p.sample] += self_stiffness_;
-    for (int j = 0; j < 3; ++j) {
-      pairs[4 * c + 1 + j] = p.vertex[j];
-      weights[3 * c + j] = static_cast<Real>(p.weight[j]);
-      ++offsets[p.vertex[j] + 1];
-      diagonal[p.vertex[j]] += self_stiffness_ * p.weight[j] * p.weight[j];
-    }
-  }
-  for (size_t v = 0; v < vertex_count_; ++v) offsets[v + 1] += offsets[v];
-  const size_t entries = std::max<size_t>(offsets[vertex_count_], 1);
-  std::vector<int> entry(entries, 0);
-  std::vector<Real> coefficient(entries, Real(0));
-  std::vector<int> fill(offsets.begin(), offsets.end() - 1);
-  for (size_t c = 0; c < n; ++c) {
-    const SelfContactPair& p = self_pairs_[c];
-    entry[fill[p.sample]] = static_cast<int>(c);
-    coefficient[fill[p.sample]++] = static_cast<Real>(self_stiffness_);
-    for (int j = 0; j < 3; ++j) {
-      entry[fill[p.vertex[j]]] = static_cast<int>(c);
-      coefficient[fill[p.vertex[j]]++] = static_cast<Real>(-self_stiffness_ * p.weight[j]);
-    }
-  }
-  const std::vector<Real> diag(diagonal.begin(), diagonal.end());
-  PhaseScope transfer(&profiler_, Phase::transfers);
-  self_pairs_buf_ = cl_.buffer(CL_MEM_READ_ONLY, pairs.size() * sizeof(int), pairs.data());
-  self_weights_buf_ = cl_.buffer(CL_MEM_READ_ONLY, weights.size() * sizeof(Real), weights.data());
-  self_offsets_buf_ = cl_.buffer(CL_MEM_READ_ONLY, offsets.size() * sizeof(int), offsets.data());
-  self_entries_buf_ = cl_.buffer(CL_MEM_READ_ONLY, entry.size() * sizeof(int), entry.data());
-  self_coefficients_buf_ = cl_.buffer(CL_MEM_READ_ONLY, coefficient.size() * sizeof(Real), coefficient.data());
-  self_diagonal_buf_ = cl_.buffer(CL_MEM_READ_ONLY, diag.size() * sizeof(Real), diag.data());
-  const std::vector<Real> zeros(3 * std::max<size_t>(n, 1), Real(0));
-  self_d_buf_ = cl_.buffer(CL_MEM_READ_WRITE, zeros.size() * sizeof(Real), zeros.data());
+const std::vector<SelfContactPair>& ElasticModel<Real>::self_contacts() const {
+  static const std::vector<SelfContactPair> none;
+  return self_contact_ ? self_contact_->pairs() : none;
 }
 
 template <typename Real>
 void ElasticModel<Real>::self_differences(const VectorBase& u) const {
-  if (!terms_.self_contact || self_pairs_.empty()) return;
-  const int count = static_cast<int>(self_pairs_.size());
-  KernelArgs args(self_k_.get());
-  args.add(mem(u)).add(self_pairs_buf_.get()).add(self_weights_buf_.get()).add(count).add(self_d_buf_.get());
-  cl_.run(args.bind(), self_pairs_.size());
-}
-
-template <typename Real>
-void ElasticModel<Real>::add_self_args(KernelArgs& args) const {
-  args.add(self_offsets_buf_.get())
-      .add(self_entries_buf_.get())
-      .add(self_coefficients_buf_.get())
-      .add(self_d_buf_.get());
+  if (self_contact_) self_contact_->differences(mem(u));
 }
 
 template <typename Real>
@@ -776,10 +697,10 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
         const double d = static_cast<double>(xh[i]) - inertia_target_host_[i];
         sum += 0.5 * inertia_mass_host_[i / 3] * d * d;
       }
-    if (terms_.self_contact && !self_pairs_.empty()) {
+    if (terms_.self_contact && !self_contact_->pairs().empty()) {
       // The frozen springs, in contact order, in double.
-      const double springs =
-          self_contact_energy(self_pairs_, self_stiffness_, std::vector<double>(xh.begin(), xh.end()));
+      const double springs = self_contact_energy(self_contact_->pairs(), self_contact_->stiffness(),
+                                                 std::vector<double>(xh.begin(), xh.end()));
       sum += springs;
       last_energy_magnitude_ += springs;
     }
@@ -806,7 +727,7 @@ void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase
   if (vertex_terms()) args.add(u ? mem(*u) : mem(out)).add(u ? vertex_mode : 0);  // u read only when vertex_mode > 0
   if (terms_.inertia) args.add(inertia_mass_.get()).add(inertia_target_.get());
   if (terms_.obstacles > 0) args.add(contact_force_.get()).add(contact_blocks_.get());
-  if (terms_.self_contact) add_self_args(args);
+  if (terms_.self_contact) self_contact_->add_args(args);
   cl_.run(args.bind(), vertex_count_);
 }
 
@@ -863,7 +784,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     if (terms_.inertia) terms.add(inertia_mass_.get());
     if (terms_.obstacles > 0) terms.add(contact_blocks_.get());
     self_differences(p);
-    if (terms_.self_contact) add_self_args(terms);
+    if (terms_.self_contact) self_contact_->add_args(terms);
     cl_.run(terms.bind(), dofs());
     return;
   }
@@ -919,7 +840,7 @@ void ElasticModel<Real>::setup_preconditioner() {
   if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
   if (terms_.inertia) args.add(inertia_mass_.get());
   if (terms_.obstacles > 0) args.add(contact_blocks_.get());
-  if (terms_.self_contact) args.add(self_diagonal_buf_.get());
+  if (terms_.self_contact) args.add(self_contact_->diagonal());
   cl_.run(args.bind(), vertex_count_);
 }
 

@@ -21,6 +21,7 @@
 #include "solver/device_reduction.h"
 #include "solver/phase_profile.h"
 #include "solver/self_contact.h"
+#include "solver/self_contact_terms.h"
 #include "viennacl/vector.hpp"
 
 namespace snh::solver {
@@ -121,8 +122,10 @@ class ElasticModel {
   // Returns whether the set changed. contact_state(x) refreshes it at x.
   void set_self_contact_stiffness(double stiffness);
   bool refresh_self_contact(const VectorBase& x, bool new_step = false);
-  const std::vector<SelfContactPair>& self_contacts() const { return self_pairs_; }
-  const SelfContactDetector* self_contact_detector() const { return detector_.get(); }
+  const std::vector<SelfContactPair>& self_contacts() const;
+  const SelfContactDetector* self_contact_detector() const {
+    return self_contact_ ? &self_contact_->detector() : nullptr;
+  }
 
   // Total potential energy: elastic energy minus external work, summed on the
   // host in double and in element order. Non-finite when any element's is.
@@ -378,20 +381,11 @@ class ElasticModel {
   // Each vertex's contact depth g at the last contact() (> 0: in a layer), read back from the device.
   std::vector<Real> contact_depths() const;
   bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0 || terms_.self_contact; }
-  // Self-contact: detector, frozen set and its device arrays (pairs s, j0..j2
-  // and weights per contact; per-vertex CSR of (contact, k a_i); per-vertex
-  // k sum a_i^2 for block-Jacobi; the differences d_c).
-  std::unique_ptr<SelfContactDetector> detector_;
-  std::vector<SelfContactPair> self_pairs_;
-  double self_stiffness_ = 0.0;
-  device::Buffer self_pairs_buf_, self_weights_buf_, self_offsets_buf_, self_entries_buf_, self_coefficients_buf_,
-      self_d_buf_, self_diagonal_buf_;
-  device::Kernel self_k_;
-  void upload_self_contacts();
+  // Self-contact (ModelTerms::self_contact; null without): detector, frozen
+  // set and its device arrays.
+  std::unique_ptr<SelfContactTerms<Real>> self_contact_;
   // d_c = a_c^T u for the frozen set (before a gather that uses them).
   void self_differences(const VectorBase& u) const;
-  // The springs' per-vertex arguments of the gather, mask and (SNH_SELF_CONTACT) kernels.
-  void add_self_args(device::KernelArgs& args) const;
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
       setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;
