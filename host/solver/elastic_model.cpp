@@ -90,31 +90,9 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   min_j_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
-  if (terms.inertia) {
-    inertia_mass_host_.assign(vertex_count_, 0.0);
-    inertia_target_host_.assign(dofs(), 0.0);
-    const std::vector<Real> zeros(dofs(), Real(0));
-    inertia_mass_ = cl_.buffer(CL_MEM_READ_ONLY, vertex_count_ * sizeof(Real), zeros.data());
-    inertia_target_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), zeros.data());
-  }
-  if (terms.obstacles > 0) {
-    const std::vector<Real> zeros(9 * vertex_count_, Real(0));
-    obstacles_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * terms.obstacles * sizeof(Real), zeros.data());
-    contact_energy_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
-    contact_force_ = cl_.buffer(CL_MEM_READ_WRITE, dofs() * sizeof(Real), zeros.data());
-    contact_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real), zeros.data());
-    contact_scratch_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real));
-    contact_depth_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
-  }
-  if (terms.friction) {
-    // Until set_friction: coefficients of 0, no friction.
-    const std::vector<Real> zeros(std::max<size_t>(terms.obstacles * dofs(), 16 * terms.obstacles), Real(0));
-    friction_start_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), zeros.data());
-    friction_anchors_ = cl_.buffer(CL_MEM_READ_WRITE, terms.obstacles * dofs() * sizeof(Real), zeros.data());
-    friction_start_records_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * terms.obstacles * sizeof(Real), zeros.data());
-    friction_records_ = cl_.buffer(CL_MEM_READ_ONLY, 16 * terms.obstacles * sizeof(Real), zeros.data());
-    friction_slip_ = 1.0;
-  }
+  if (terms.inertia || terms.obstacles > 0)
+    vertex_terms_ = std::make_unique<VertexTerms<Real>>(cl_, vertex_count_, terms.inertia, terms.obstacles,
+                                                        terms.friction, defines_, &profiler_);
 
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
   forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
@@ -126,8 +104,6 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   matrix_rows_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product_rows");
   matrix_rows_ = cl_.info().is_gpu;
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
-  if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
-  if (terms.friction) friction_anchors_k_ = cl_.kernel("fem.cl", defines_, "snh_friction_anchors");
   if (terms.self_contact) self_contact_ = std::make_unique<SelfContactTerms<Real>>(cl_, mesh, defines_, &profiler_);
   elements_host_ = elements;
   for (size_t e = 0; e < element_count_; ++e) {
@@ -317,36 +293,11 @@ size_t ElasticModel<Real>::stencil_memory_bytes() const {
 template <typename Real>
 size_t ElasticModel<Real>::memory_bytes() const {
   size_t bytes = material_.memory_bytes() + linearized_x_.size() * sizeof(Real);
-  for (const device::Buffer* b : {&elements_,
-                                  &gradients_,
-                                  &weights_,
-                                  &offsets_,
-                                  &adjacency_,
-                                  &mask_,
-                                  &external_,
-                                  &element_scratch_,
-                                  &element_blocks_,
-                                  &cache_,
-                                  &energies_,
-                                  &min_j_,
-                                  &inverse_blocks_,
-                                  &element_matrices_,
-                                  &inertia_mass_,
-                                  &inertia_target_,
-                                  &obstacles_,
-                                  &contact_energy_,
-                                  &contact_force_,
-                                  &contact_blocks_,
-                                  &contact_scratch_,
-                                  &contact_depth_,
-                                  &friction_start_,
-                                  &friction_anchors_,
-                                  &friction_start_records_,
-                                  &friction_records_,
-                                  &cache_float_,
-                                  &gradients_float_,
-                                  &weights_float_})
+  for (const device::Buffer* b : {&elements_, &gradients_, &weights_, &offsets_, &adjacency_, &mask_, &external_,
+                                  &element_scratch_, &element_blocks_, &cache_, &energies_, &min_j_, &inverse_blocks_,
+                                  &element_matrices_, &cache_float_, &gradients_float_, &weights_float_})
     bytes += device::OpenClContext::bytes(b->get());
+  if (vertex_terms_) bytes += vertex_terms_->memory_bytes();
   return bytes + stencil_memory_bytes();
 }
 
@@ -470,12 +421,8 @@ void ElasticModel<Real>::set_inertia(const std::vector<double>& coefficient, con
   for (double y : target)
     if (!std::isfinite(y)) throw Error("solver: inertia target has a non-finite entry");
   if (!(elastic_scale > 0.0) || !std::isfinite(elastic_scale)) throw Error("solver: elastic scale not finite and > 0");
-  inertia_mass_host_ = coefficient;
-  inertia_target_host_ = target;
   elastic_scale_ = elastic_scale;
-  const std::vector<Real> c(coefficient.begin(), coefficient.end()), y(target.begin(), target.end());
-  cl_.write(inertia_mass_.get(), c.size() * sizeof(Real), c.data());
-  cl_.write(inertia_target_.get(), y.size() * sizeof(Real), y.data());
+  vertex_terms_->set_inertia(coefficient, target);
 }
 
 template <typename Real>
@@ -499,10 +446,7 @@ void ElasticModel<Real>::set_obstacles(const std::vector<double>& records, doubl
   if (records.size() != static_cast<size_t>(8 * terms_.obstacles))
     throw Error("solver: " + std::to_string(records.size()) + " obstacle record entries, expected " +
                 std::to_string(8 * terms_.obstacles));
-  const std::vector<Real> r(records.begin(), records.end());
-  cl_.write(obstacles_.get(), r.size() * sizeof(Real), r.data());
-  contact_stiffness_ = stiffness;
-  contact_thickness_ = thickness;
+  vertex_terms_->set_obstacles(records, stiffness, thickness);
 }
 
 template <typename Real>
@@ -515,68 +459,18 @@ void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions
       friction_records.size() != static_cast<size_t>(16 * terms_.obstacles))
     throw Error("solver: set_friction with arrays of the wrong size");
   if (!(slip > 0.0) || !std::isfinite(slip)) throw Error("solver: friction slip must be finite and > 0");
-  const std::vector<Real> a(anchors.begin(), anchors.end());
-  cl_.write(friction_anchors_.get(), a.size() * sizeof(Real), a.data());
-  const std::vector<Real> x0(start_positions.begin(), start_positions.end());
-  const std::vector<Real> r0(start_records.begin(), start_records.end());
-  const std::vector<Real> fr(friction_records.begin(), friction_records.end());
-  cl_.write(friction_start_.get(), x0.size() * sizeof(Real), x0.data());
-  cl_.write(friction_start_records_.get(), r0.size() * sizeof(Real), r0.data());
-  cl_.write(friction_records_.get(), fr.size() * sizeof(Real), fr.data());
-  friction_slip_ = slip;
+  vertex_terms_->set_friction(start_positions, anchors, start_records, friction_records, slip);
 }
 
 template <typename Real>
 std::vector<double> ElasticModel<Real>::next_friction_anchors(const VectorBase& x) {
   if (!terms_.friction) throw Error("solver: next_friction_anchors on a model built without friction");
-  const int count = static_cast<int>(vertex_count_);
-  KernelArgs args(friction_anchors_k_.get());
-  args.add(mem(x))
-      .add(friction_start_.get())
-      .add(obstacles_.get())
-      .add(friction_start_records_.get())
-      .add(friction_records_.get())
-      .add(static_cast<Real>(contact_thickness_))
-      .add(static_cast<Real>(friction_slip_))
-      .add(count)
-      .add(friction_anchors_.get());
-  cl_.run(args.bind(), vertex_count_);
-  std::vector<Real> a(terms_.obstacles * dofs());
-  {
-    PhaseScope transfer(&profiler_, Phase::transfers);
-    cl_.read(friction_anchors_.get(), a.size() * sizeof(Real), a.data());
-  }
-  return std::vector<double>(a.begin(), a.end());
+  return vertex_terms_->next_friction_anchors(mem(x));
 }
 
 template <typename Real>
 void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const {
-  const Real stiffness = static_cast<Real>(contact_stiffness_), thickness = static_cast<Real>(contact_thickness_);
-  const int count = static_cast<int>(vertex_count_);
-  KernelArgs args(contact_k_.get());
-  args.add(mem(x))
-      .add(obstacles_.get())
-      .add(stiffness)
-      .add(thickness)
-      .add(count)
-      .add(contact_energy_.get())
-      .add(contact_force_.get())
-      .add(linearization ? contact_blocks_.get() : contact_scratch_.get())
-      .add(contact_depth_.get());
-  if (terms_.friction)
-    args.add(friction_start_.get())
-        .add(friction_anchors_.get())
-        .add(friction_start_records_.get())
-        .add(friction_records_.get())
-        .add(static_cast<Real>(friction_slip_));
-  cl_.run(args.bind(), vertex_count_);
-}
-
-template <typename Real>
-std::vector<Real> ElasticModel<Real>::contact_depths() const {
-  std::vector<Real> depth(vertex_count_);
-  cl_.read(contact_depth_.get(), depth.size() * sizeof(Real), depth.data());
-  return depth;
+  vertex_terms_->contact(mem(x), linearization);
 }
 
 template <typename Real>
@@ -596,7 +490,7 @@ ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
   }
   if (terms_.obstacles == 0) return state;
   contact(x);
-  for (Real g : contact_depths())
+  for (Real g : vertex_terms_->contact_depths())
     if (g > Real(0)) {
       ++state.contacts;
       state.max_penetration = std::max(state.max_penetration, static_cast<double>(g));
@@ -610,7 +504,7 @@ uint64_t ElasticModel<Real>::contact_set_signature() {
   std::vector<Real> depth;
   {
     PhaseScope transfer(&profiler_, Phase::transfers);
-    depth = contact_depths();
+    depth = vertex_terms_->contact_depths();
   }
   // FNV-1a over the indices of the vertices in a layer, in vertex order.
   uint64_t hash = 0;
@@ -679,7 +573,7 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
   if (terms_.obstacles > 0) {
     contact(x);
-    sum += reduction_.sum(contact_energy_.get(), vertex_count_);
+    sum += reduction_.sum(vertex_terms_->contact_energy(), vertex_count_);
   }
   if (has_external_ || terms_.inertia || terms_.self_contact) {
     std::vector<Real> xh(dofs());
@@ -692,11 +586,7 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
         sum -= external_host_[i] * static_cast<double>(xh[i]);
         last_energy_magnitude_ += std::abs(external_host_[i] * static_cast<double>(xh[i]));
       }
-    if (terms_.inertia)
-      for (size_t i = 0; i < xh.size(); ++i) {
-        const double d = static_cast<double>(xh[i]) - inertia_target_host_[i];
-        sum += 0.5 * inertia_mass_host_[i / 3] * d * d;
-      }
+    if (terms_.inertia) vertex_terms_->add_inertia_energy(xh, sum);
     if (terms_.self_contact && !self_contact_->pairs().empty()) {
       // The frozen springs, in contact order, in double.
       const double springs = self_contact_energy(self_contact_->pairs(), self_contact_->stiffness(),
@@ -725,8 +615,7 @@ void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase
       .add(count)
       .add(mem(out));
   if (vertex_terms()) args.add(u ? mem(*u) : mem(out)).add(u ? vertex_mode : 0);  // u read only when vertex_mode > 0
-  if (terms_.inertia) args.add(inertia_mass_.get()).add(inertia_target_.get());
-  if (terms_.obstacles > 0) args.add(contact_force_.get()).add(contact_blocks_.get());
+  if (vertex_terms_) vertex_terms_->add_gather_args(args);
   if (terms_.self_contact) self_contact_->add_args(args);
   cl_.run(args.bind(), vertex_count_);
 }
@@ -781,8 +670,7 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     const int size = static_cast<int>(dofs());
     KernelArgs terms(mask_k_.get());
     terms.add(mask_.get()).add(size).add(mem(y)).add(static_cast<Real>(elastic_scale_)).add(mem(p));
-    if (terms_.inertia) terms.add(inertia_mass_.get());
-    if (terms_.obstacles > 0) terms.add(contact_blocks_.get());
+    if (vertex_terms_) vertex_terms_->add_block_args(terms);
     self_differences(p);
     if (terms_.self_contact) self_contact_->add_args(terms);
     cl_.run(terms.bind(), dofs());
@@ -838,8 +726,7 @@ void ElasticModel<Real>::setup_preconditioner() {
       .add(vertices)
       .add(inverse_blocks_.get());
   if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
-  if (terms_.inertia) args.add(inertia_mass_.get());
-  if (terms_.obstacles > 0) args.add(contact_blocks_.get());
+  if (vertex_terms_) vertex_terms_->add_block_args(args);
   if (terms_.self_contact) args.add(self_contact_->diagonal());
   cl_.run(args.bind(), vertex_count_);
 }

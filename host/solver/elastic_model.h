@@ -22,6 +22,7 @@
 #include "solver/phase_profile.h"
 #include "solver/self_contact.h"
 #include "solver/self_contact_terms.h"
+#include "solver/vertex_terms.h"
 #include "viennacl/vector.hpp"
 
 namespace snh::solver {
@@ -204,8 +205,8 @@ class ElasticModel {
   // The largest small-strain Poisson's ratio over the materials the mesh's
   // elements use (snh::max_poisson_ratio).
   double max_poisson_ratio() const { return max_poisson_ratio_; }
-  cl_mem inertia_buffer() const { return terms_.inertia ? inertia_mass_.get() : nullptr; }
-  cl_mem contact_blocks_buffer() const { return terms_.obstacles > 0 ? contact_blocks_.get() : nullptr; }
+  cl_mem inertia_buffer() const { return vertex_terms_ ? vertex_terms_->inertia_buffer() : nullptr; }
+  cl_mem contact_blocks_buffer() const { return vertex_terms_ ? vertex_terms_->contact_blocks_buffer() : nullptr; }
   ProductVariant variant() const { return variant_; }
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);
@@ -363,23 +364,13 @@ class ElasticModel {
   double last_min_j_ = 0.0;
   std::vector<double> external_host_;
   ModelTerms terms_;
-  device::Buffer inertia_mass_, inertia_target_;
-  std::vector<double> inertia_mass_host_, inertia_target_host_;
+  // Inertia, obstacles and friction (null without inertia and obstacles).
+  std::unique_ptr<VertexTerms<Real>> vertex_terms_;
   double elastic_scale_ = 1.0;
   double max_poisson_ratio_ = 0.0;
   double elastic_magnitude_ = 0.0, last_energy_magnitude_ = 0.0;
-  // contact_blocks_ holds the blocks of the last linearize(), which the
-  // products use; other evaluations write theirs to contact_scratch_.
-  device::Buffer obstacles_, contact_energy_, contact_force_, contact_blocks_, contact_scratch_, contact_depth_;
-  double contact_stiffness_ = 0.0, contact_thickness_ = 0.0;
-  device::Buffer friction_start_, friction_anchors_, friction_start_records_, friction_records_;
-  device::Kernel friction_anchors_k_;
-  double friction_slip_ = 0.0;
-  device::Kernel contact_k_;
   // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
   void contact(const VectorBase& x, bool linearization = false) const;
-  // Each vertex's contact depth g at the last contact() (> 0: in a layer), read back from the device.
-  std::vector<Real> contact_depths() const;
   bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0 || terms_.self_contact; }
   // Self-contact (ModelTerms::self_contact; null without): detector, frozen
   // set and its device arrays.
