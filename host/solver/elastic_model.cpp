@@ -89,7 +89,6 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   cache_ = cl_.buffer(CL_MEM_READ_WRITE, cache_values() * sizeof(Real));
   energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   min_j_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
-  inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
   if (terms.inertia || terms.obstacles > 0)
     vertex_terms_ = std::make_unique<VertexTerms<Real>>(cl_, vertex_count_, terms.inertia, terms.obstacles,
                                                         terms.friction, defines_, &profiler_);
@@ -98,8 +97,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
   set_point_lanes(point_lanes_available() && lanes_by_default());
   gather_k_ = cl_.kernel("fem.cl", defines_, "snh_gather_vectors");
-  setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
-  apply_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_apply");
+  block_jacobi_ = std::make_unique<BlockJacobi<Real>>(cl_, vertex_count_, defines_);
   matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
   matrix_rows_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product_rows");
   matrix_rows_ = cl_.info().is_gpu;
@@ -294,10 +292,11 @@ template <typename Real>
 size_t ElasticModel<Real>::memory_bytes() const {
   size_t bytes = material_.memory_bytes() + linearized_x_.size() * sizeof(Real);
   for (const device::Buffer* b : {&elements_, &gradients_, &weights_, &offsets_, &adjacency_, &mask_, &external_,
-                                  &element_scratch_, &element_blocks_, &cache_, &energies_, &min_j_, &inverse_blocks_,
-                                  &element_matrices_, &cache_float_, &gradients_float_, &weights_float_})
+                                  &element_scratch_, &element_blocks_, &cache_, &energies_, &min_j_, &element_matrices_,
+                                  &cache_float_, &gradients_float_, &weights_float_})
     bytes += device::OpenClContext::bytes(b->get());
   if (vertex_terms_) bytes += vertex_terms_->memory_bytes();
+  bytes += block_jacobi_->memory_bytes();
   return bytes + stencil_memory_bytes();
 }
 
@@ -717,34 +716,23 @@ void ElasticModel<Real>::setup_preconditioner() {
         .add(element_blocks_.get());
     run_point_kernel(args.bind(), point_lanes_ ? kCacheLanes : 0);
   }
-  const int vertices = static_cast<int>(vertex_count_);
-  KernelArgs args(setup_k_.get());
-  args.add(element_blocks_.get())
-      .add(offsets_.get())
-      .add(adjacency_.get())
-      .add(mask_.get())
-      .add(vertices)
-      .add(inverse_blocks_.get());
-  if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
-  if (vertex_terms_) vertex_terms_->add_block_args(args);
-  if (terms_.self_contact) args.add(self_contact_->diagonal());
-  cl_.run(args.bind(), vertex_count_);
+  block_jacobi_->setup(element_blocks_.get(), offsets_.get(), adjacency_.get(), mask_.get(), [this](KernelArgs& args) {
+    if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
+    if (vertex_terms_) vertex_terms_->add_block_args(args);
+    if (terms_.self_contact) args.add(self_contact_->diagonal());
+  });
 }
 
 template <typename Real>
 void ElasticModel<Real>::apply_preconditioner(VectorBase& z) const {
   PhaseScope timed(&profiler_, Phase::preconditioner_apply);
-  const int vertices = static_cast<int>(vertex_count_);
-  cl_.run(KernelArgs(apply_k_.get()).add(inverse_blocks_.get()).add(mem(z)).add(vertices).add(mem(z)).bind(),
-          vertex_count_);
+  block_jacobi_->apply(mem(z));
 }
 
 template <typename Real>
 std::vector<Real> ElasticModel<Real>::preconditioner_blocks() const {
-  std::vector<Real> blocks(9 * vertex_count_);
   PhaseScope transfer(&profiler_, Phase::transfers);
-  cl_.read(inverse_blocks_.get(), blocks.size() * sizeof(Real), blocks.data());
-  return blocks;
+  return block_jacobi_->blocks();
 }
 
 template class ElasticModel<float>;

@@ -17,6 +17,7 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
+#include "solver/block_jacobi.h"
 #include "solver/block_stencil.h"
 #include "solver/device_reduction.h"
 #include "solver/phase_profile.h"
@@ -340,7 +341,7 @@ class ElasticModel {
   // The cached variant's products read the float copies now.
   bool float_cache() const { return float_products() && variant_ == ProductVariant::cached; }
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
-      element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
+      element_blocks_, cache_, energies_, min_j_, element_matrices_;
   bool has_external_ = false;
   int projected_ = 1;
   double last_assembly_seconds_ = 0.0;
@@ -379,7 +380,9 @@ class ElasticModel {
   void self_differences(const VectorBase& u) const;
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
-      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;
+      matrices_k_, matrix_product_k_, mask_k_;
+  // Block-Jacobi's inverted blocks and kernels (setup_preconditioner).
+  std::unique_ptr<BlockJacobi<Real>> block_jacobi_;
 };
 
 }  // namespace snh::solver
