@@ -47,15 +47,19 @@ std::vector<Real> material_table(const MaterialMap& map) {
 }
 
 template <typename Real>
-cl_uint set_material_args(cl_kernel k, cl_uint first, const Material& m) {
+KernelArgs& add_material_args(KernelArgs& args, const Material& m) {
   const Real reals[] = {Real(m.mu),        Real(m.lambda),       Real(m.c0),      Real(m.c1),
                         Real(m.lambda_c0), Real(m.alpha_lambda), Real(m.alpha_mu)};
-  cl_uint i = first;
-  for (Real r : reals) set_arg(k, i++, r);
-  set_arg(k, i++, static_cast<int>(m.model));
-  set_arg(k, i++, m.barrier ? 1 : 0);
-  set_arg(k, i++, m.lambda_model ? static_cast<int>(*m.lambda_model) : -1);
-  return i;
+  for (Real r : reals) args.add(r);
+  return args.add(static_cast<int>(m.model))
+      .add(m.barrier ? 1 : 0)
+      .add(m.lambda_model ? static_cast<int>(*m.lambda_model) : -1);
+}
+
+template <typename Real>
+cl_uint set_material_args(cl_kernel k, cl_uint first, const Material& m) {
+  KernelArgs args(k, first);
+  return add_material_args<Real>(args, m).next();
 }
 
 template <typename Real>
@@ -69,13 +73,13 @@ MaterialArgs<Real>::MaterialArgs(OpenClContext& cl, const MaterialMap& map, Mate
 }
 
 template <typename Real>
-cl_uint MaterialArgs<Real>::set(cl_kernel k, cl_uint first) const {
-  if (!table_) return set_material_args<Real>(k, first, uniform_);
-  set_arg(k, first, table_.get());
-  set_arg(k, first + 1, element_material_.get());
-  return first + 2;
+KernelArgs& MaterialArgs<Real>::add_to(KernelArgs& args) const {
+  if (!table_) return add_material_args<Real>(args, uniform_);
+  return args.add(table_.get()).add(element_material_.get());
 }
 
+template KernelArgs& add_material_args<float>(KernelArgs&, const Material&);
+template KernelArgs& add_material_args<double>(KernelArgs&, const Material&);
 template cl_uint set_material_args<float>(cl_kernel, cl_uint, const Material&);
 template cl_uint set_material_args<double>(cl_kernel, cl_uint, const Material&);
 template std::vector<float> material_table<float>(const MaterialMap&);

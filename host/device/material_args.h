@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "device/kernel_args.h"
 #include "device/opencl_context.h"
 #include "snh/material.h"
 #include "snh/regions.h"
@@ -41,8 +42,10 @@ bool same_specialization(const Material& a, const Material& b);
 template <typename Real>
 std::vector<Real> material_table(const MaterialMap& map);
 
-// Sets MATERIAL_ARGS of a uniform build from index `first`; returns the index
-// after them.
+// Adds MATERIAL_ARGS of a uniform build to a kernel's argument list.
+template <typename Real>
+KernelArgs& add_material_args(KernelArgs& args, const Material& material);
+// The same from index `first`; returns the index after them.
 template <typename Real>
 cl_uint set_material_args(cl_kernel kernel, cl_uint first, const Material& material);
 
@@ -56,8 +59,8 @@ class MaterialArgs {
 
   const std::string& defines() const { return defines_; }
   bool per_element() const { return static_cast<bool>(table_); }
-  // Sets MATERIAL_ARGS from index `first`; returns the index after them.
-  cl_uint set(cl_kernel kernel, cl_uint first) const;
+  // Adds MATERIAL_ARGS to a kernel's argument list.
+  KernelArgs& add_to(KernelArgs& args) const;
   // Device memory of the table and per-element indices (0 for a uniform map).
   size_t memory_bytes() const {
     return OpenClContext::bytes(table_.get()) + OpenClContext::bytes(element_material_.get());

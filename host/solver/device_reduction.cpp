@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "device/kernel_args.h"
 #include "snh/error.h"
 
 namespace snh::solver {
@@ -59,13 +60,8 @@ double DeviceReduction::reduce(cl_mem a, cl_mem b, size_t n, int mode) const {
   }
   const size_t groups = partials_for(n);
   const int count = static_cast<int>(n);
-  cl_kernel k = sums_.get();
-  device::set_arg(k, 0, a);
-  device::set_arg(k, 1, b);
-  device::set_arg(k, 2, count);
-  device::set_arg(k, 3, mode);
-  device::set_arg(k, 4, partial_.get());
-  cl_.run(k, groups * kGroup);
+  cl_.run(device::KernelArgs(sums_.get()).add(a).add(b).add(count).add(mode).add(partial_.get()).bind(),
+          groups * kGroup);
   read_partials(groups);
   double s = 0.0;
   for (double p : host_) s += p;
@@ -80,11 +76,7 @@ double DeviceReduction::min(cl_mem a, size_t n) const {
   }
   const size_t groups = partials_for(n);
   const int count = static_cast<int>(n);
-  cl_kernel k = minima_.get();
-  device::set_arg(k, 0, a);
-  device::set_arg(k, 1, count);
-  device::set_arg(k, 2, partial_.get());
-  cl_.run(k, groups * kGroup);
+  cl_.run(device::KernelArgs(minima_.get()).add(a).add(count).add(partial_.get()).bind(), groups * kGroup);
   read_partials(groups);
   return *std::min_element(host_.begin(), host_.end());
 }

@@ -13,7 +13,7 @@ namespace snh::solver {
 
 namespace {
 
-using device::set_arg;
+using device::KernelArgs;
 
 const MaterialMap& validated(const Mesh& mesh, const MaterialMap& map) {
   validate_material_map(mesh, map);
@@ -89,50 +89,20 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   cache_ = cl_.buffer(CL_MEM_READ_WRITE, cache_values() * sizeof(Real));
   energies_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
   min_j_ = cl_.buffer(CL_MEM_READ_WRITE, element_count_ * sizeof(Real));
-  inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
-  if (terms.inertia) {
-    inertia_mass_host_.assign(vertex_count_, 0.0);
-    inertia_target_host_.assign(dofs(), 0.0);
-    const std::vector<Real> zeros(dofs(), Real(0));
-    inertia_mass_ = cl_.buffer(CL_MEM_READ_ONLY, vertex_count_ * sizeof(Real), zeros.data());
-    inertia_target_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), zeros.data());
-  }
-  if (terms.obstacles > 0) {
-    const std::vector<Real> zeros(9 * vertex_count_, Real(0));
-    obstacles_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * terms.obstacles * sizeof(Real), zeros.data());
-    contact_energy_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
-    contact_force_ = cl_.buffer(CL_MEM_READ_WRITE, dofs() * sizeof(Real), zeros.data());
-    contact_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real), zeros.data());
-    contact_scratch_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real));
-    contact_depth_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
-  }
-  if (terms.friction) {
-    // Until set_friction: coefficients of 0, no friction.
-    const std::vector<Real> zeros(std::max<size_t>(terms.obstacles * dofs(), 16 * terms.obstacles), Real(0));
-    friction_start_ = cl_.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real), zeros.data());
-    friction_anchors_ = cl_.buffer(CL_MEM_READ_WRITE, terms.obstacles * dofs() * sizeof(Real), zeros.data());
-    friction_start_records_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * terms.obstacles * sizeof(Real), zeros.data());
-    friction_records_ = cl_.buffer(CL_MEM_READ_ONLY, 16 * terms.obstacles * sizeof(Real), zeros.data());
-    friction_slip_ = 1.0;
-  }
+  if (terms.inertia || terms.obstacles > 0)
+    vertex_terms_ = std::make_unique<VertexTerms<Real>>(cl_, vertex_count_, terms.inertia, terms.obstacles,
+                                                        terms.friction, defines_, &profiler_);
 
   energy_k_ = cl_.kernel("fem.cl", defines_, "snh_element_energy");
   forces_k_ = cl_.kernel("fem.cl", defines_, "snh_element_forces");
   set_point_lanes(point_lanes_available() && lanes_by_default());
   gather_k_ = cl_.kernel("fem.cl", defines_, "snh_gather_vectors");
-  setup_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_setup");
-  apply_k_ = cl_.kernel("fem.cl", defines_, "snh_block_jacobi_apply");
+  block_jacobi_ = std::make_unique<BlockJacobi<Real>>(cl_, vertex_count_, defines_);
   matrix_product_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product");
   matrix_rows_k_ = cl_.kernel("fem.cl", defines_, "snh_element_matrix_product_rows");
   matrix_rows_ = cl_.info().is_gpu;
   mask_k_ = cl_.kernel("fem.cl", defines_, "snh_apply_mask");
-  if (terms.obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
-  if (terms.friction) friction_anchors_k_ = cl_.kernel("fem.cl", defines_, "snh_friction_anchors");
-  if (terms.self_contact) {
-    detector_ = std::make_unique<SelfContactDetector>(mesh);
-    self_k_ = cl_.kernel("fem.cl", defines_, "snh_self_contact_differences");
-    upload_self_contacts();  // the empty set
-  }
+  if (terms.self_contact) self_contact_ = std::make_unique<SelfContactTerms<Real>>(cl_, mesh, defines_, &profiler_);
   elements_host_ = elements;
   for (size_t e = 0; e < element_count_; ++e) {
     const Material& m = materials.of_element(e);
@@ -141,11 +111,6 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
     elastic_magnitude_ += (std::abs(m.mu) + std::abs(m.lambda)) * volume;
   }
   set_variant(variant);
-}
-
-template <typename Real>
-cl_uint ElasticModel<Real>::set_material_args(cl_kernel k, cl_uint first) const {
-  return material_.set(k, first);
 }
 
 template <typename Real>
@@ -286,12 +251,8 @@ void ElasticModel<Real>::make_stencil_float() {
 template <typename Real>
 void ElasticModel<Real>::narrow(cl_mem from, size_t values, device::Buffer& to) {
   if (!to) to = cl_.buffer(CL_MEM_READ_WRITE, values * sizeof(float));
-  cl_kernel k = narrow_k_.get();
   const int n = static_cast<int>(values);
-  set_arg(k, 0, from);
-  set_arg(k, 1, n);
-  set_arg(k, 2, to.get());
-  cl_.run(k, values);
+  cl_.run(KernelArgs(narrow_k_.get()).add(from).add(n).add(to.get()).bind(), values);
 }
 
 template <typename Real>
@@ -330,36 +291,12 @@ size_t ElasticModel<Real>::stencil_memory_bytes() const {
 template <typename Real>
 size_t ElasticModel<Real>::memory_bytes() const {
   size_t bytes = material_.memory_bytes() + linearized_x_.size() * sizeof(Real);
-  for (const device::Buffer* b : {&elements_,
-                                  &gradients_,
-                                  &weights_,
-                                  &offsets_,
-                                  &adjacency_,
-                                  &mask_,
-                                  &external_,
-                                  &element_scratch_,
-                                  &element_blocks_,
-                                  &cache_,
-                                  &energies_,
-                                  &min_j_,
-                                  &inverse_blocks_,
-                                  &element_matrices_,
-                                  &inertia_mass_,
-                                  &inertia_target_,
-                                  &obstacles_,
-                                  &contact_energy_,
-                                  &contact_force_,
-                                  &contact_blocks_,
-                                  &contact_scratch_,
-                                  &contact_depth_,
-                                  &friction_start_,
-                                  &friction_anchors_,
-                                  &friction_start_records_,
-                                  &friction_records_,
-                                  &cache_float_,
-                                  &gradients_float_,
-                                  &weights_float_})
+  for (const device::Buffer* b : {&elements_, &gradients_, &weights_, &offsets_, &adjacency_, &mask_, &external_,
+                                  &element_scratch_, &element_blocks_, &cache_, &energies_, &min_j_, &element_matrices_,
+                                  &cache_float_, &gradients_float_, &weights_float_})
     bytes += device::OpenClContext::bytes(b->get());
+  if (vertex_terms_) bytes += vertex_terms_->memory_bytes();
+  bytes += block_jacobi_->memory_bytes();
   return bytes + stencil_memory_bytes();
 }
 
@@ -388,16 +325,16 @@ void ElasticModel<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_
   if (single_precision && !float_kernel)
     float_kernel = point_kernel("snh_element_matrices",
                                 from_copies ? " -DSNH_MIXED=1 -DSNH_MATRIX_FLOAT=1" : " -DSNH_MATRIX_FLOAT=1");
-  cl_kernel k = single_precision ? float_kernel.get() : matrices_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, elements_.get());
-  set_arg(k, 1, from_copies ? gradients_float_.get() : gradients_.get());
-  set_arg(k, 2, from_copies ? weights_float_.get() : weights_.get());
-  set_arg(k, 3, count);
-  set_arg(k, 4, from_copies ? cache_float_.get() : cache_.get());
-  set_arg(k, 5, matrices);
-  set_arg(k, 6, diagonal_blocks);
-  run_point_kernel(k, point_lanes_ ? kCacheLanes : 0);
+  KernelArgs args(single_precision ? float_kernel.get() : matrices_k_.get());
+  args.add(elements_.get())
+      .add(from_copies ? gradients_float_.get() : gradients_.get())
+      .add(from_copies ? weights_float_.get() : weights_.get())
+      .add(count)
+      .add(from_copies ? cache_float_.get() : cache_.get())
+      .add(matrices)
+      .add(diagonal_blocks);
+  run_point_kernel(args.bind(), point_lanes_ ? kCacheLanes : 0);
 }
 
 template <typename Real>
@@ -434,16 +371,16 @@ void ElasticModel<Real>::assemble() {
   } else if (!stencil_) {
     stencil_ = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_values(), 1) * sizeof(Real));
   }
-  cl_kernel k = stencil_assemble_k_.get();
   const int blocks = static_cast<int>(vertex_count_) * stencil_width_;
-  set_arg(k, 0, element_matrices_.get());
-  set_arg(k, 1, stencil_part_offsets_.get());
-  set_arg(k, 2, stencil_parts_.get());
-  set_arg(k, 3, blocks);
-  set_arg(k, 4, stencil_width_);
-  set_arg(k, 5, float_products() ? cl_mem{nullptr} : stencil_.get());
-  set_arg(k, 6, float_products() ? stencil_float_.get() : cl_mem{nullptr});
-  cl_.run(k, static_cast<size_t>(blocks));
+  KernelArgs args(stencil_assemble_k_.get());
+  args.add(element_matrices_.get())
+      .add(stencil_part_offsets_.get())
+      .add(stencil_parts_.get())
+      .add(blocks)
+      .add(stencil_width_)
+      .add(float_products() ? cl_mem{nullptr} : stencil_.get())
+      .add(float_products() ? stencil_float_.get() : cl_mem{nullptr});
+  cl_.run(args.bind(), static_cast<size_t>(blocks));
   cl_.finish();
   last_assembly_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -483,25 +420,17 @@ void ElasticModel<Real>::set_inertia(const std::vector<double>& coefficient, con
   for (double y : target)
     if (!std::isfinite(y)) throw Error("solver: inertia target has a non-finite entry");
   if (!(elastic_scale > 0.0) || !std::isfinite(elastic_scale)) throw Error("solver: elastic scale not finite and > 0");
-  inertia_mass_host_ = coefficient;
-  inertia_target_host_ = target;
   elastic_scale_ = elastic_scale;
-  const std::vector<Real> c(coefficient.begin(), coefficient.end()), y(target.begin(), target.end());
-  cl_.write(inertia_mass_.get(), c.size() * sizeof(Real), c.data());
-  cl_.write(inertia_target_.get(), y.size() * sizeof(Real), y.data());
+  vertex_terms_->set_inertia(coefficient, target);
 }
 
 template <typename Real>
 void ElasticModel<Real>::run_forces_kernel(const VectorBase& x) const {
-  cl_kernel k = forces_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, elements_.get());
-  set_arg(k, 2, gradients_.get());
-  set_arg(k, 3, weights_.get());
-  set_arg(k, 4, count);
-  set_arg(k, set_material_args(k, 5), element_scratch_.get());
-  run_element_kernel(k);
+  KernelArgs args(forces_k_.get());
+  args.add(mem(x)).add(elements_.get()).add(gradients_.get()).add(weights_.get()).add(count);
+  material_.add_to(args).add(element_scratch_.get());
+  run_element_kernel(args.bind());
 }
 
 template <typename Real>
@@ -516,10 +445,7 @@ void ElasticModel<Real>::set_obstacles(const std::vector<double>& records, doubl
   if (records.size() != static_cast<size_t>(8 * terms_.obstacles))
     throw Error("solver: " + std::to_string(records.size()) + " obstacle record entries, expected " +
                 std::to_string(8 * terms_.obstacles));
-  const std::vector<Real> r(records.begin(), records.end());
-  cl_.write(obstacles_.get(), r.size() * sizeof(Real), r.data());
-  contact_stiffness_ = stiffness;
-  contact_thickness_ = thickness;
+  vertex_terms_->set_obstacles(records, stiffness, thickness);
 }
 
 template <typename Real>
@@ -532,69 +458,18 @@ void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions
       friction_records.size() != static_cast<size_t>(16 * terms_.obstacles))
     throw Error("solver: set_friction with arrays of the wrong size");
   if (!(slip > 0.0) || !std::isfinite(slip)) throw Error("solver: friction slip must be finite and > 0");
-  const std::vector<Real> a(anchors.begin(), anchors.end());
-  cl_.write(friction_anchors_.get(), a.size() * sizeof(Real), a.data());
-  const std::vector<Real> x0(start_positions.begin(), start_positions.end());
-  const std::vector<Real> r0(start_records.begin(), start_records.end());
-  const std::vector<Real> fr(friction_records.begin(), friction_records.end());
-  cl_.write(friction_start_.get(), x0.size() * sizeof(Real), x0.data());
-  cl_.write(friction_start_records_.get(), r0.size() * sizeof(Real), r0.data());
-  cl_.write(friction_records_.get(), fr.size() * sizeof(Real), fr.data());
-  friction_slip_ = slip;
+  vertex_terms_->set_friction(start_positions, anchors, start_records, friction_records, slip);
 }
 
 template <typename Real>
 std::vector<double> ElasticModel<Real>::next_friction_anchors(const VectorBase& x) {
   if (!terms_.friction) throw Error("solver: next_friction_anchors on a model built without friction");
-  cl_kernel k = friction_anchors_k_.get();
-  const int count = static_cast<int>(vertex_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, friction_start_.get());
-  set_arg(k, 2, obstacles_.get());
-  set_arg(k, 3, friction_start_records_.get());
-  set_arg(k, 4, friction_records_.get());
-  set_arg(k, 5, static_cast<Real>(contact_thickness_));
-  set_arg(k, 6, static_cast<Real>(friction_slip_));
-  set_arg(k, 7, count);
-  set_arg(k, 8, friction_anchors_.get());
-  cl_.run(k, vertex_count_);
-  std::vector<Real> a(terms_.obstacles * dofs());
-  {
-    PhaseScope transfer(&profiler_, Phase::transfers);
-    cl_.read(friction_anchors_.get(), a.size() * sizeof(Real), a.data());
-  }
-  return std::vector<double>(a.begin(), a.end());
+  return vertex_terms_->next_friction_anchors(mem(x));
 }
 
 template <typename Real>
 void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const {
-  cl_kernel k = contact_k_.get();
-  const Real stiffness = static_cast<Real>(contact_stiffness_), thickness = static_cast<Real>(contact_thickness_);
-  const int count = static_cast<int>(vertex_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, obstacles_.get());
-  set_arg(k, 2, stiffness);
-  set_arg(k, 3, thickness);
-  set_arg(k, 4, count);
-  set_arg(k, 5, contact_energy_.get());
-  set_arg(k, 6, contact_force_.get());
-  set_arg(k, 7, linearization ? contact_blocks_.get() : contact_scratch_.get());
-  set_arg(k, 8, contact_depth_.get());
-  if (terms_.friction) {
-    set_arg(k, 9, friction_start_.get());
-    set_arg(k, 10, friction_anchors_.get());
-    set_arg(k, 11, friction_start_records_.get());
-    set_arg(k, 12, friction_records_.get());
-    set_arg(k, 13, static_cast<Real>(friction_slip_));
-  }
-  cl_.run(k, vertex_count_);
-}
-
-template <typename Real>
-std::vector<Real> ElasticModel<Real>::contact_depths() const {
-  std::vector<Real> depth(vertex_count_);
-  cl_.read(contact_depth_.get(), depth.size() * sizeof(Real), depth.data());
-  return depth;
+  vertex_terms_->contact(mem(x), linearization);
 }
 
 template <typename Real>
@@ -607,14 +482,14 @@ ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
     std::vector<Real> xh(dofs());
     viennacl::copy(x.begin(), x.end(), xh.begin());
     const std::vector<double> xd(xh.begin(), xh.end());
-    for (const SelfContactPair& c : self_pairs_) {
+    for (const SelfContactPair& c : self_contact_->pairs()) {
       ++state.self_contacts;
       state.max_self_penetration = std::max(state.max_self_penetration, self_contact_length(c, xd));
     }
   }
   if (terms_.obstacles == 0) return state;
   contact(x);
-  for (Real g : contact_depths())
+  for (Real g : vertex_terms_->contact_depths())
     if (g > Real(0)) {
       ++state.contacts;
       state.max_penetration = std::max(state.max_penetration, static_cast<double>(g));
@@ -628,7 +503,7 @@ uint64_t ElasticModel<Real>::contact_set_signature() {
   std::vector<Real> depth;
   {
     PhaseScope transfer(&profiler_, Phase::transfers);
-    depth = contact_depths();
+    depth = vertex_terms_->contact_depths();
   }
   // FNV-1a over the indices of the vertices in a layer, in vertex order.
   uint64_t hash = 0;
@@ -647,10 +522,7 @@ template <typename Real>
 void ElasticModel<Real>::set_self_contact_stiffness(double stiffness) {
   if (!terms_.self_contact) throw Error("solver: self-contact stiffness on a model built without self-contact");
   if (!(stiffness > 0.0) || !std::isfinite(stiffness)) throw Error("solver: self-contact stiffness not finite and > 0");
-  if (stiffness != self_stiffness_) {
-    self_stiffness_ = stiffness;
-    upload_self_contacts();
-  }
+  self_contact_->set_stiffness(stiffness);
 }
 
 template <typename Real>
@@ -661,95 +533,18 @@ bool ElasticModel<Real>::refresh_self_contact(const VectorBase& x, bool new_step
     PhaseScope transfer(&profiler_, Phase::transfers);
     viennacl::copy(x.begin(), x.end(), xh.begin());
   }
-  std::vector<SelfContactPair> pairs = detector_->detect(std::vector<double>(xh.begin(), xh.end()));
-  // Within a step a sample still in contact with the same triangle keeps its
-  // spring (weights) from when it was found; new samples, and samples whose
-  // closest triangle changed, get new ones, samples no longer inside an
-  // element lose theirs. Measured on the elbow (res 3, step
-  // 25 of 28): re-weighting every Newton iteration made Newton a fixed-point
-  // iteration in w (the residual fell from 7e-3 to 3e-3 in 30 iterations, the
-  // step stopped at 200) while the set of samples no longer changed.
-  if (!new_step) {
-    size_t k = 0;
-    for (SelfContactPair& p : pairs) {
-      while (k < self_pairs_.size() && self_pairs_[k].sample < p.sample) ++k;
-      if (k < self_pairs_.size() && self_pairs_[k].sample == p.sample && self_pairs_[k].vertex == p.vertex)
-        p = self_pairs_[k];
-    }
-  }
-  if (pairs == self_pairs_) return false;
-  self_pairs_ = std::move(pairs);
-  upload_self_contacts();
-  return true;
+  return self_contact_->refresh(std::vector<double>(xh.begin(), xh.end()), new_step);
 }
 
 template <typename Real>
-void ElasticModel<Real>::upload_self_contacts() {
-  // Per contact (s, j0, j1, j2) and w; per vertex, in contact order, the
-  // entries (contact, k a_i) and k sum a_i^2: deterministic gathers.
-  const size_t n = self_pairs_.size();
-  std::vector<int> pairs(4 * std::max<size_t>(n, 1), 0);
-  std::vector<Real> weights(3 * std::max<size_t>(n, 1), Real(0));
-  std::vector<int> offsets(vertex_count_ + 1, 0);
-  std::vector<double> diagonal(vertex_count_, 0.0);
-  for (size_t c = 0; c < n; ++c) {
-    const SelfContactPair& p = self_pairs_[c];
-    pairs[4 * c] = p.sample;
-    ++offsets[p.sample + 1];
-    diagonal[p.sample] += self_stiffness_;
-    for (int j = 0; j < 3; ++j) {
-      pairs[4 * c + 1 + j] = p.vertex[j];
-      weights[3 * c + j] = static_cast<Real>(p.weight[j]);
-      ++offsets[p.vertex[j] + 1];
-      diagonal[p.vertex[j]] += self_stiffness_ * p.weight[j] * p.weight[j];
-    }
-  }
-  for (size_t v = 0; v < vertex_count_; ++v) offsets[v + 1] += offsets[v];
-  const size_t entries = std::max<size_t>(offsets[vertex_count_], 1);
-  std::vector<int> entry(entries, 0);
-  std::vector<Real> coefficient(entries, Real(0));
-  std::vector<int> fill(offsets.begin(), offsets.end() - 1);
-  for (size_t c = 0; c < n; ++c) {
-    const SelfContactPair& p = self_pairs_[c];
-    entry[fill[p.sample]] = static_cast<int>(c);
-    coefficient[fill[p.sample]++] = static_cast<Real>(self_stiffness_);
-    for (int j = 0; j < 3; ++j) {
-      entry[fill[p.vertex[j]]] = static_cast<int>(c);
-      coefficient[fill[p.vertex[j]]++] = static_cast<Real>(-self_stiffness_ * p.weight[j]);
-    }
-  }
-  const std::vector<Real> diag(diagonal.begin(), diagonal.end());
-  PhaseScope transfer(&profiler_, Phase::transfers);
-  self_pairs_buf_ = cl_.buffer(CL_MEM_READ_ONLY, pairs.size() * sizeof(int), pairs.data());
-  self_weights_buf_ = cl_.buffer(CL_MEM_READ_ONLY, weights.size() * sizeof(Real), weights.data());
-  self_offsets_buf_ = cl_.buffer(CL_MEM_READ_ONLY, offsets.size() * sizeof(int), offsets.data());
-  self_entries_buf_ = cl_.buffer(CL_MEM_READ_ONLY, entry.size() * sizeof(int), entry.data());
-  self_coefficients_buf_ = cl_.buffer(CL_MEM_READ_ONLY, coefficient.size() * sizeof(Real), coefficient.data());
-  self_diagonal_buf_ = cl_.buffer(CL_MEM_READ_ONLY, diag.size() * sizeof(Real), diag.data());
-  const std::vector<Real> zeros(3 * std::max<size_t>(n, 1), Real(0));
-  self_d_buf_ = cl_.buffer(CL_MEM_READ_WRITE, zeros.size() * sizeof(Real), zeros.data());
+const std::vector<SelfContactPair>& ElasticModel<Real>::self_contacts() const {
+  static const std::vector<SelfContactPair> none;
+  return self_contact_ ? self_contact_->pairs() : none;
 }
 
 template <typename Real>
 void ElasticModel<Real>::self_differences(const VectorBase& u) const {
-  if (!terms_.self_contact || self_pairs_.empty()) return;
-  cl_kernel k = self_k_.get();
-  const int count = static_cast<int>(self_pairs_.size());
-  set_arg(k, 0, mem(u));
-  set_arg(k, 1, self_pairs_buf_.get());
-  set_arg(k, 2, self_weights_buf_.get());
-  set_arg(k, 3, count);
-  set_arg(k, 4, self_d_buf_.get());
-  cl_.run(k, self_pairs_.size());
-}
-
-template <typename Real>
-cl_uint ElasticModel<Real>::set_self_args(cl_kernel k, cl_uint next) const {
-  set_arg(k, next++, self_offsets_buf_.get());
-  set_arg(k, next++, self_entries_buf_.get());
-  set_arg(k, next++, self_coefficients_buf_.get());
-  set_arg(k, next++, self_d_buf_.get());
-  return next;
+  if (self_contact_) self_contact_->differences(mem(u));
 }
 
 template <typename Real>
@@ -767,23 +562,17 @@ void ElasticModel<Real>::run_point_kernel(cl_kernel k, int lanes) const {
 template <typename Real>
 double ElasticModel<Real>::energy(const VectorBase& x) {
   PhaseScope timed(&profiler_, Phase::line_search_energies);
-  cl_kernel k = energy_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, elements_.get());
-  set_arg(k, 2, gradients_.get());
-  set_arg(k, 3, weights_.get());
-  set_arg(k, 4, count);
-  const cl_uint next = set_material_args(k, 5);
-  set_arg(k, next, energies_.get());
-  set_arg(k, next + 1, min_j_.get());
-  run_element_kernel(k);
+  KernelArgs args(energy_k_.get());
+  args.add(mem(x)).add(elements_.get()).add(gradients_.get()).add(weights_.get()).add(count);
+  material_.add_to(args).add(energies_.get()).add(min_j_.get());
+  run_element_kernel(args.bind());
   double sum = reduction_.sum(energies_.get(), element_count_) * elastic_scale_;
   last_min_j_ = reduction_.min(min_j_.get(), element_count_);
   last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
   if (terms_.obstacles > 0) {
     contact(x);
-    sum += reduction_.sum(contact_energy_.get(), vertex_count_);
+    sum += reduction_.sum(vertex_terms_->contact_energy(), vertex_count_);
   }
   if (has_external_ || terms_.inertia || terms_.self_contact) {
     std::vector<Real> xh(dofs());
@@ -796,15 +585,11 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
         sum -= external_host_[i] * static_cast<double>(xh[i]);
         last_energy_magnitude_ += std::abs(external_host_[i] * static_cast<double>(xh[i]));
       }
-    if (terms_.inertia)
-      for (size_t i = 0; i < xh.size(); ++i) {
-        const double d = static_cast<double>(xh[i]) - inertia_target_host_[i];
-        sum += 0.5 * inertia_mass_host_[i / 3] * d * d;
-      }
-    if (terms_.self_contact && !self_pairs_.empty()) {
+    if (terms_.inertia) vertex_terms_->add_inertia_energy(xh, sum);
+    if (terms_.self_contact && !self_contact_->pairs().empty()) {
       // The frozen springs, in contact order, in double.
-      const double springs =
-          self_contact_energy(self_pairs_, self_stiffness_, std::vector<double>(xh.begin(), xh.end()));
+      const double springs = self_contact_energy(self_contact_->pairs(), self_contact_->stiffness(),
+                                                 std::vector<double>(xh.begin(), xh.end()));
       sum += springs;
       last_energy_magnitude_ += springs;
     }
@@ -815,34 +600,23 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
 template <typename Real>
 void ElasticModel<Real>::gather(const device::Buffer& element_values, VectorBase& out, bool external,
                                 const VectorBase* u, int vertex_mode, double scale) const {
-  cl_kernel k = gather_k_.get();
   const int use_external = external && has_external_ ? 1 : 0;
   const Real sign = static_cast<Real>(scale);
   const int count = static_cast<int>(vertex_count_);
-  set_arg(k, 0, element_values.get());
-  set_arg(k, 1, offsets_.get());
-  set_arg(k, 2, adjacency_.get());
-  set_arg(k, 3, mask_.get());
-  set_arg(k, 4, external_.get());
-  set_arg(k, 5, use_external);
-  set_arg(k, 6, sign);
-  set_arg(k, 7, count);
-  set_arg(k, 8, mem(out));
-  cl_uint next = 9;
-  if (vertex_terms()) {
-    set_arg(k, next++, u ? mem(*u) : mem(out));  // read only when vertex_mode > 0
-    set_arg(k, next++, u ? vertex_mode : 0);
-  }
-  if (terms_.inertia) {
-    set_arg(k, next++, inertia_mass_.get());
-    set_arg(k, next++, inertia_target_.get());
-  }
-  if (terms_.obstacles > 0) {
-    set_arg(k, next++, contact_force_.get());
-    set_arg(k, next++, contact_blocks_.get());
-  }
-  if (terms_.self_contact) next = set_self_args(k, next);
-  cl_.run(k, vertex_count_);
+  KernelArgs args(gather_k_.get());
+  args.add(element_values.get())
+      .add(offsets_.get())
+      .add(adjacency_.get())
+      .add(mask_.get())
+      .add(external_.get())
+      .add(use_external)
+      .add(sign)
+      .add(count)
+      .add(mem(out));
+  if (vertex_terms()) args.add(u ? mem(*u) : mem(out)).add(u ? vertex_mode : 0);  // u read only when vertex_mode > 0
+  if (vertex_terms_) vertex_terms_->add_gather_args(args);
+  if (terms_.self_contact) self_contact_->add_args(args);
+  cl_.run(args.bind(), vertex_count_);
 }
 
 template <typename Real>
@@ -859,18 +633,13 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   PhaseScope timed(&profiler_, Phase::linearization);
   linearized_x_ = x;
   projected_ = projected ? 1 : 0;
-  cl_kernel k = linearize_k_.get();
   const int count = static_cast<int>(element_count_);
-  set_arg(k, 0, mem(x));
-  set_arg(k, 1, elements_.get());
-  set_arg(k, 2, gradients_.get());
-  set_arg(k, 3, count);
-  const cl_uint next = set_material_args(k, 4);
-  set_arg(k, next, projected_);
-  set_arg(k, next + 1, cache_.get());
+  KernelArgs args(linearize_k_.get());
+  args.add(mem(x)).add(elements_.get()).add(gradients_.get()).add(count);
+  material_.add_to(args).add(projected_).add(cache_.get());
   // Double: the cache's float copy for float products (null: none).
-  if (sizeof(Real) > sizeof(float)) set_arg(k, next + 2, float_cache() ? cache_float_.get() : cl_mem{nullptr});
-  run_point_kernel(k, material_lanes_);
+  if (sizeof(Real) > sizeof(float)) args.add(float_cache() ? cache_float_.get() : cl_mem{nullptr});
+  run_point_kernel(args.bind(), material_lanes_);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
   last_assembly_seconds_ = 0.0;
   if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled) compute_element_matrices();
@@ -881,73 +650,52 @@ template <typename Real>
 void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   PhaseScope timed(&profiler_, Phase::products);
   const int count = static_cast<int>(element_count_);
-  cl_kernel k;
   if (variant_ == ProductVariant::assembled) {
     // y = mask * (K p) from the blocks (kernels/stencil.cl); the per-vertex
     // terms then as after the element products (mask * mask = mask).
     // Float products: the float blocks, with p and y in double.
     const bool narrow = float_products();
-    cl_kernel sk = narrow ? stencil_product_float_k_.get() : stencil_product_k_.get();
     const int vertices = static_cast<int>(vertex_count_);
-    set_arg(sk, 0, mem(p));
-    set_arg(sk, 1, stencil_neighbours_.get());
-    set_arg(sk, 2, narrow ? stencil_float_.get() : stencil_.get());
-    set_arg(sk, 3, mask_.get());
-    set_arg(sk, 4, vertices);
-    set_arg(sk, 5, stencil_width_);
-    set_arg(sk, 6, mem(y));
-    cl_.run(sk, vertex_count_);
+    KernelArgs stencil(narrow ? stencil_product_float_k_.get() : stencil_product_k_.get());
+    stencil.add(mem(p))
+        .add(stencil_neighbours_.get())
+        .add(narrow ? stencil_float_.get() : stencil_.get())
+        .add(mask_.get())
+        .add(vertices)
+        .add(stencil_width_)
+        .add(mem(y));
+    cl_.run(stencil.bind(), vertex_count_);
     if (!vertex_terms()) return;
-    cl_kernel mk = mask_k_.get();
     const int size = static_cast<int>(dofs());
-    set_arg(mk, 0, mask_.get());
-    set_arg(mk, 1, size);
-    set_arg(mk, 2, mem(y));
-    set_arg(mk, 3, static_cast<Real>(elastic_scale_));
-    set_arg(mk, 4, mem(p));
-    cl_uint next = 5;
-    if (terms_.inertia) set_arg(mk, next++, inertia_mass_.get());
-    if (terms_.obstacles > 0) set_arg(mk, next++, contact_blocks_.get());
+    KernelArgs terms(mask_k_.get());
+    terms.add(mask_.get()).add(size).add(mem(y)).add(static_cast<Real>(elastic_scale_)).add(mem(p));
+    if (vertex_terms_) vertex_terms_->add_block_args(terms);
     self_differences(p);
-    if (terms_.self_contact) next = set_self_args(mk, next);
-    cl_.run(mk, dofs());
+    if (terms_.self_contact) self_contact_->add_args(terms);
+    cl_.run(terms.bind(), dofs());
     return;
   }
   if (variant_ == ProductVariant::element_matrices) {
-    k = matrix_rows_ ? matrix_rows_k_.get() : matrix_product_k_.get();
-    set_arg(k, 0, mem(p));
-    set_arg(k, 1, elements_.get());
-    set_arg(k, 2, element_matrices_.get());
-    set_arg(k, 3, count);
-    set_arg(k, 4, element_scratch_.get());
+    KernelArgs args(matrix_rows_ ? matrix_rows_k_.get() : matrix_product_k_.get());
+    args.add(mem(p)).add(elements_.get()).add(element_matrices_.get()).add(count).add(element_scratch_.get());
+    cl_.run(args.bind(), matrix_rows_ ? element_count_ * 3 * nodes_ : element_count_);
   } else if (variant_ == ProductVariant::cached) {
     const bool narrow = float_cache();
-    k = narrow ? product_float_k_.get() : product_cached_k_.get();
-    set_arg(k, 0, mem(p));
-    set_arg(k, 1, elements_.get());
-    set_arg(k, 2, narrow ? gradients_float_.get() : gradients_.get());
-    set_arg(k, 3, narrow ? weights_float_.get() : weights_.get());
-    set_arg(k, 4, count);
-    set_arg(k, 5, narrow ? cache_float_.get() : cache_.get());
-    set_arg(k, 6, element_scratch_.get());
+    KernelArgs args(narrow ? product_float_k_.get() : product_cached_k_.get());
+    args.add(mem(p))
+        .add(elements_.get())
+        .add(narrow ? gradients_float_.get() : gradients_.get())
+        .add(narrow ? weights_float_.get() : weights_.get())
+        .add(count)
+        .add(narrow ? cache_float_.get() : cache_.get())
+        .add(element_scratch_.get());
+    run_point_kernel(args.bind(), (float_products() ? float_product_lanes() : cached_lanes_) ? kCacheLanes : 0);
   } else {
-    k = product_recompute_k_.get();
-    set_arg(k, 0, mem(p));
-    set_arg(k, 1, elements_.get());
-    set_arg(k, 2, gradients_.get());
-    set_arg(k, 3, weights_.get());
-    set_arg(k, 4, count);
-    set_arg(k, 5, mem(linearized_x_));
-    const cl_uint next = set_material_args(k, 6);
-    set_arg(k, next, projected_);
-    set_arg(k, next + 1, element_scratch_.get());
+    KernelArgs args(product_recompute_k_.get());
+    args.add(mem(p)).add(elements_.get()).add(gradients_.get()).add(weights_.get()).add(count).add(mem(linearized_x_));
+    material_.add_to(args).add(projected_).add(element_scratch_.get());
+    run_point_kernel(args.bind(), material_lanes_);
   }
-  if (variant_ == ProductVariant::element_matrices)
-    cl_.run(k, matrix_rows_ ? element_count_ * 3 * nodes_ : element_count_);
-  else
-    run_point_kernel(k, variant_ != ProductVariant::cached                           ? material_lanes_
-                        : (float_products() ? float_product_lanes() : cached_lanes_) ? kCacheLanes
-                                                                                     : 0);
   self_differences(p);
   gather(element_scratch_, y, false, &p, 2, elastic_scale_);
 }
@@ -959,49 +707,32 @@ void ElasticModel<Real>::setup_preconditioner() {
   if (!(projected_ && element_matrices_buffer())) {
     // Else the projected element matrices' kernel wrote their diagonal
     // blocks already.
-    cl_kernel k = diagonal_k_.get();
-    set_arg(k, 0, elements_.get());
-    set_arg(k, 1, gradients_.get());
-    set_arg(k, 2, weights_.get());
-    set_arg(k, 3, count);
-    set_arg(k, 4, cache_.get());
-    set_arg(k, 5, element_blocks_.get());
-    run_point_kernel(k, point_lanes_ ? kCacheLanes : 0);
+    KernelArgs args(diagonal_k_.get());
+    args.add(elements_.get())
+        .add(gradients_.get())
+        .add(weights_.get())
+        .add(count)
+        .add(cache_.get())
+        .add(element_blocks_.get());
+    run_point_kernel(args.bind(), point_lanes_ ? kCacheLanes : 0);
   }
-  cl_kernel s = setup_k_.get();
-  const int vertices = static_cast<int>(vertex_count_);
-  set_arg(s, 0, element_blocks_.get());
-  set_arg(s, 1, offsets_.get());
-  set_arg(s, 2, adjacency_.get());
-  set_arg(s, 3, mask_.get());
-  set_arg(s, 4, vertices);
-  set_arg(s, 5, inverse_blocks_.get());
-  cl_uint next = 6;
-  if (vertex_terms()) set_arg(s, next++, static_cast<Real>(elastic_scale_));
-  if (terms_.inertia) set_arg(s, next++, inertia_mass_.get());
-  if (terms_.obstacles > 0) set_arg(s, next++, contact_blocks_.get());
-  if (terms_.self_contact) set_arg(s, next++, self_diagonal_buf_.get());
-  cl_.run(s, vertex_count_);
+  block_jacobi_->setup(element_blocks_.get(), offsets_.get(), adjacency_.get(), mask_.get(), [this](KernelArgs& args) {
+    if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
+    if (vertex_terms_) vertex_terms_->add_block_args(args);
+    if (terms_.self_contact) args.add(self_contact_->diagonal());
+  });
 }
 
 template <typename Real>
 void ElasticModel<Real>::apply_preconditioner(VectorBase& z) const {
   PhaseScope timed(&profiler_, Phase::preconditioner_apply);
-  cl_kernel k = apply_k_.get();
-  const int vertices = static_cast<int>(vertex_count_);
-  set_arg(k, 0, inverse_blocks_.get());
-  set_arg(k, 1, mem(z));
-  set_arg(k, 2, vertices);
-  set_arg(k, 3, mem(z));
-  cl_.run(k, vertex_count_);
+  block_jacobi_->apply(mem(z));
 }
 
 template <typename Real>
 std::vector<Real> ElasticModel<Real>::preconditioner_blocks() const {
-  std::vector<Real> blocks(9 * vertex_count_);
   PhaseScope transfer(&profiler_, Phase::transfers);
-  cl_.read(inverse_blocks_.get(), blocks.size() * sizeof(Real), blocks.data());
-  return blocks;
+  return block_jacobi_->blocks();
 }
 
 template class ElasticModel<float>;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "device/kernel_args.h"
 #include "device/material_args.h"
 #include "device/opencl_context.h"
 #include "fem/rest_state.h"
@@ -16,10 +17,13 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
+#include "solver/block_jacobi.h"
 #include "solver/block_stencil.h"
 #include "solver/device_reduction.h"
 #include "solver/phase_profile.h"
 #include "solver/self_contact.h"
+#include "solver/self_contact_terms.h"
+#include "solver/vertex_terms.h"
 #include "viennacl/vector.hpp"
 
 namespace snh::solver {
@@ -120,8 +124,10 @@ class ElasticModel {
   // Returns whether the set changed. contact_state(x) refreshes it at x.
   void set_self_contact_stiffness(double stiffness);
   bool refresh_self_contact(const VectorBase& x, bool new_step = false);
-  const std::vector<SelfContactPair>& self_contacts() const { return self_pairs_; }
-  const SelfContactDetector* self_contact_detector() const { return detector_.get(); }
+  const std::vector<SelfContactPair>& self_contacts() const;
+  const SelfContactDetector* self_contact_detector() const {
+    return self_contact_ ? &self_contact_->detector() : nullptr;
+  }
 
   // Total potential energy: elastic energy minus external work, summed on the
   // host in double and in element order. Non-finite when any element's is.
@@ -200,8 +206,8 @@ class ElasticModel {
   // The largest small-strain Poisson's ratio over the materials the mesh's
   // elements use (snh::max_poisson_ratio).
   double max_poisson_ratio() const { return max_poisson_ratio_; }
-  cl_mem inertia_buffer() const { return terms_.inertia ? inertia_mass_.get() : nullptr; }
-  cl_mem contact_blocks_buffer() const { return terms_.obstacles > 0 ? contact_blocks_.get() : nullptr; }
+  cl_mem inertia_buffer() const { return vertex_terms_ ? vertex_terms_->inertia_buffer() : nullptr; }
+  cl_mem contact_blocks_buffer() const { return vertex_terms_ ? vertex_terms_->contact_blocks_buffer() : nullptr; }
   ProductVariant variant() const { return variant_; }
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);
@@ -297,8 +303,6 @@ class ElasticModel {
   // Per-element elastic forces at x into element_scratch_ (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
   void compute_element_matrices();
-  // MATERIAL_ARGS from index first; returns the next index.
-  cl_uint set_material_args(cl_kernel k, cl_uint first) const;
   void assemble();
   // The assembled variant's stencil tables on the device and its kernels,
   // once: made when the variant is chosen, not in the first solve.
@@ -337,7 +341,7 @@ class ElasticModel {
   // The cached variant's products read the float copies now.
   bool float_cache() const { return float_products() && variant_ == ProductVariant::cached; }
   device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
-      element_blocks_, cache_, energies_, min_j_, inverse_blocks_, element_matrices_;
+      element_blocks_, cache_, energies_, min_j_, element_matrices_;
   bool has_external_ = false;
   int projected_ = 1;
   double last_assembly_seconds_ = 0.0;
@@ -361,40 +365,24 @@ class ElasticModel {
   double last_min_j_ = 0.0;
   std::vector<double> external_host_;
   ModelTerms terms_;
-  device::Buffer inertia_mass_, inertia_target_;
-  std::vector<double> inertia_mass_host_, inertia_target_host_;
+  // Inertia, obstacles and friction (null without inertia and obstacles).
+  std::unique_ptr<VertexTerms<Real>> vertex_terms_;
   double elastic_scale_ = 1.0;
   double max_poisson_ratio_ = 0.0;
   double elastic_magnitude_ = 0.0, last_energy_magnitude_ = 0.0;
-  // contact_blocks_ holds the blocks of the last linearize(), which the
-  // products use; other evaluations write theirs to contact_scratch_.
-  device::Buffer obstacles_, contact_energy_, contact_force_, contact_blocks_, contact_scratch_, contact_depth_;
-  double contact_stiffness_ = 0.0, contact_thickness_ = 0.0;
-  device::Buffer friction_start_, friction_anchors_, friction_start_records_, friction_records_;
-  device::Kernel friction_anchors_k_;
-  double friction_slip_ = 0.0;
-  device::Kernel contact_k_;
   // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
   void contact(const VectorBase& x, bool linearization = false) const;
-  // Each vertex's contact depth g at the last contact() (> 0: in a layer), read back from the device.
-  std::vector<Real> contact_depths() const;
   bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0 || terms_.self_contact; }
-  // Self-contact: detector, frozen set and its device arrays (pairs s, j0..j2
-  // and weights per contact; per-vertex CSR of (contact, k a_i); per-vertex
-  // k sum a_i^2 for block-Jacobi; the differences d_c).
-  std::unique_ptr<SelfContactDetector> detector_;
-  std::vector<SelfContactPair> self_pairs_;
-  double self_stiffness_ = 0.0;
-  device::Buffer self_pairs_buf_, self_weights_buf_, self_offsets_buf_, self_entries_buf_, self_coefficients_buf_,
-      self_d_buf_, self_diagonal_buf_;
-  device::Kernel self_k_;
-  void upload_self_contacts();
+  // Self-contact (ModelTerms::self_contact; null without): detector, frozen
+  // set and its device arrays.
+  std::unique_ptr<SelfContactTerms<Real>> self_contact_;
   // d_c = a_c^T u for the frozen set (before a gather that uses them).
   void self_differences(const VectorBase& u) const;
-  cl_uint set_self_args(cl_kernel k, cl_uint next) const;
   Vector linearized_x_;
   device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
-      setup_k_, apply_k_, matrices_k_, matrix_product_k_, mask_k_;
+      matrices_k_, matrix_product_k_, mask_k_;
+  // Block-Jacobi's inverted blocks and kernels (setup_preconditioner).
+  std::unique_ptr<BlockJacobi<Real>> block_jacobi_;
 };
 
 }  // namespace snh::solver

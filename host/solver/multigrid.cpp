@@ -7,6 +7,7 @@
 #include <string>
 #include <type_traits>
 
+#include "device/kernel_args.h"
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
 #include "solver/block_stencil.h"
@@ -17,7 +18,7 @@ namespace snh::solver {
 
 namespace {
 
-using device::set_arg;
+using device::KernelArgs;
 
 constexpr int kCellMatrix = 24 * 24;
 // Power iterations for lambda_max(D^-1 A): from the fixed start, and warm
@@ -369,29 +370,31 @@ void Levels<Real, C>::product(int level, const VectorBase& p, VectorBase& y) con
   const Level& L = *levels_[level];
   const int vertices = static_cast<int>(L.vertices);
   cl_kernel k = stencil_kernels(level).product.get();
-  set_arg(k, 0, mem(p));
-  set_arg(k, 1, L.neighbours.get());
-  set_arg(k, 2, L.stencil.get());
-  set_arg(k, 3, L.cycle_mask_handle());
-  set_arg(k, 4, vertices);
-  set_arg(k, 5, L.width);
-  set_arg(k, 6, mem(y));
-  cl_.run(k, L.vertices);
+  KernelArgs args(k);
+  args.add(mem(p))
+      .add(L.neighbours.get())
+      .add(L.stencil.get())
+      .add(L.cycle_mask_handle())
+      .add(vertices)
+      .add(L.width)
+      .add(mem(y));
+  cl_.run(args.bind(), L.vertices);
 }
 
 template <typename Real, typename C>
 void Levels<Real, C>::residual(int level, const VectorBase& p, const VectorBase& base, VectorBase& r) const {
   const Level& L = *levels_[level];
   cl_kernel k = stencil_kernels(level).residual.get();
-  set_arg(k, 0, mem(p));
-  set_arg(k, 1, L.neighbours.get());
-  set_arg(k, 2, L.stencil.get());
-  set_arg(k, 3, L.cycle_mask_handle());
-  set_arg(k, 4, static_cast<int>(L.vertices));
-  set_arg(k, 5, L.width);
-  set_arg(k, 6, mem(base));
-  set_arg(k, 7, mem(r));
-  cl_.run(k, L.vertices);
+  KernelArgs args(k);
+  args.add(mem(p))
+      .add(L.neighbours.get())
+      .add(L.stencil.get())
+      .add(L.cycle_mask_handle())
+      .add(static_cast<int>(L.vertices))
+      .add(L.width)
+      .add(mem(base))
+      .add(mem(r));
+  cl_.run(args.bind(), L.vertices);
 }
 
 template <typename Real, typename C>
@@ -400,17 +403,18 @@ void Levels<Real, C>::assemble_stencil(int level) {
   cl_kernel k = stencil_kernels(level).assemble.get();
   const int vertices = static_cast<int>(L.vertices);
   const int blocks = vertices * L.width;
-  set_arg(k, 0, L.matrices.get());
-  set_arg(k, 1, L.part_offsets.get());
-  set_arg(k, 2, L.parts.get());
-  set_arg(k, 3, blocks);
-  set_arg(k, 4, L.width);
   // The fine level's float matrices give a float stencil (matrix_real); in
   // a float cycle the coarse levels' Real sums are stored narrowed.
   const bool narrowed = kNarrow && !(level == 0 && fine_float_);
-  set_arg(k, 5, narrowed ? cl_mem{nullptr} : L.stencil.get());
-  set_arg(k, 6, narrowed ? L.stencil.get() : cl_mem{nullptr});
-  cl_.run(k, static_cast<size_t>(blocks));
+  KernelArgs args(k);
+  args.add(L.matrices.get())
+      .add(L.part_offsets.get())
+      .add(L.parts.get())
+      .add(blocks)
+      .add(L.width)
+      .add(narrowed ? cl_mem{nullptr} : L.stencil.get())
+      .add(narrowed ? L.stencil.get() : cl_mem{nullptr});
+  cl_.run(args.bind(), static_cast<size_t>(blocks));
 }
 
 template <typename Real, typename C>
@@ -424,15 +428,16 @@ void Levels<Real, C>::inverse_diagonal(int level, VectorBase& z) const {
   // cycle builds no float fem.cl.
   Level& L = *levels_[level];
   cl_kernel k = chebyshev_start_k_.get();
-  set_arg(k, 0, L.inverse.get());
-  set_arg(k, 1, mem(z));
-  set_arg(k, 2, C(1));
-  set_arg(k, 3, C(1));
-  set_arg(k, 4, static_cast<int>(L.vertices));
-  set_arg(k, 5, 0);
-  set_arg(k, 6, mem(L.d));
-  set_arg(k, 7, mem(z));
-  cl_.run(k, L.vertices);
+  KernelArgs args(k);
+  args.add(L.inverse.get())
+      .add(mem(z))
+      .add(C(1))
+      .add(C(1))
+      .add(static_cast<int>(L.vertices))
+      .add(0)
+      .add(mem(L.d))
+      .add(mem(z));
+  cl_.run(args.bind(), L.vertices);
 }
 
 template <typename Real, typename C>
@@ -450,44 +455,45 @@ void Levels<Real, C>::setup() {
     const cl_mem fine_matrices = l == 1 && !fine_built_ ? model_.element_matrices_buffer() : F.matrices.get();
     if (!fine_matrices) {
       cl_kernel k = galerkin_cache_k_.get();
-      set_arg(k, 0, octant_weights_.get());
-      set_arg(k, 1, L.children.get());
-      set_arg(k, 2, F.element_handle);
-      set_arg(k, 3, model_.gradients_buffer());
-      set_arg(k, 4, model_.weights_buffer());
-      set_arg(k, 5, model_.cache_buffer());
-      set_arg(k, 6, F.mask.get());
-      set_arg(k, 7, cells);
-      set_arg(k, 8, L.matrices.get());
-      set_arg(k, 9, L.blocks.get());
-      cl_.run(k, L.cells);
+      KernelArgs args(k);
+      args.add(octant_weights_.get())
+          .add(L.children.get())
+          .add(F.element_handle)
+          .add(model_.gradients_buffer())
+          .add(model_.weights_buffer())
+          .add(model_.cache_buffer())
+          .add(F.mask.get())
+          .add(cells)
+          .add(L.matrices.get())
+          .add(L.blocks.get());
+      cl_.run(args.bind(), L.cells);
     } else {
       cl_kernel k = l == 1 && fine_float_ ? fine_float_galerkin_k_.get() : galerkin_matrices_k_.get();
-      set_arg(k, 0, octant_weights_.get());
-      set_arg(k, 1, L.children.get());
-      set_arg(k, 2, F.element_handle);
-      set_arg(k, 3, fine_matrices);
-      set_arg(k, 4, F.mask.get());
-      set_arg(k, 5, cells);
-      set_arg(k, 6, L.matrices.get());
-      set_arg(k, 7, L.blocks.get());
-      cl_.run(k, L.cells);
+      KernelArgs args(k);
+      args.add(octant_weights_.get())
+          .add(L.children.get())
+          .add(F.element_handle)
+          .add(fine_matrices)
+          .add(F.mask.get())
+          .add(cells)
+          .add(L.matrices.get())
+          .add(L.blocks.get());
+      cl_.run(args.bind(), L.cells);
     }
     if (l == 1 && vertex_terms_) {
       cl_kernel k = galerkin_vertex_k_.get();
-      cl_uint next = 0;
-      set_arg(k, next++, octant_weights_.get());
-      set_arg(k, next++, L.children.get());
-      set_arg(k, next++, F.element_handle);
-      set_arg(k, next++, vertex_share_.get());
-      set_arg(k, next++, F.mask.get());
-      set_arg(k, next++, cells);
-      set_arg(k, next++, static_cast<Real>(model_.elastic_scale()));
-      if (model_.inertia_buffer()) set_arg(k, next++, model_.inertia_buffer());
-      if (model_.contact_blocks_buffer()) set_arg(k, next++, model_.contact_blocks_buffer());
-      set_arg(k, next++, L.matrices.get());
-      set_arg(k, next++, L.blocks.get());
-      cl_.run(k, L.cells);
+      KernelArgs args(k);
+      args.add(octant_weights_.get())
+          .add(L.children.get())
+          .add(F.element_handle)
+          .add(vertex_share_.get())
+          .add(F.mask.get())
+          .add(cells)
+          .add(static_cast<Real>(model_.elastic_scale()));
+      if (model_.inertia_buffer()) args.add(model_.inertia_buffer());
+      if (model_.contact_blocks_buffer()) args.add(model_.contact_blocks_buffer());
+      args.add(L.matrices.get()).add(L.blocks.get());
+      cl_.run(args.bind(), L.cells);
     }
     assemble_stencil(static_cast<int>(l));
     block_jacobi(L);
@@ -505,23 +511,23 @@ template <typename Real, typename C>
 void Levels<Real, C>::block_jacobi(Level& L) {
   cl_kernel s = jacobi_setup_k_.get();
   const int vertices = static_cast<int>(L.vertices);
-  set_arg(s, 0, L.blocks.get());
-  set_arg(s, 1, L.offsets.get());
-  set_arg(s, 2, L.adjacency.get());
-  set_arg(s, 3, L.mask.get());
-  set_arg(s, 4, vertices);
-  set_arg(s, 5, kNarrow ? wide_inverse_.get() : L.inverse.get());
-  cl_.run(s, L.vertices);
+  KernelArgs args(s);
+  args.add(L.blocks.get())
+      .add(L.offsets.get())
+      .add(L.adjacency.get())
+      .add(L.mask.get())
+      .add(vertices)
+      .add(kNarrow ? wide_inverse_.get() : L.inverse.get());
+  cl_.run(args.bind(), L.vertices);
   if (kNarrow) convert(narrow_k_, wide_inverse_.get(), 9 * L.vertices, L.inverse.get());
 }
 
 template <typename Real, typename C>
 void Levels<Real, C>::convert(const device::Kernel& k, cl_mem from, size_t values, cl_mem to) const {
   cl_kernel c = k.get();
-  set_arg(c, 0, from);
-  set_arg(c, 1, static_cast<int>(values));
-  set_arg(c, 2, to);
-  cl_.run(c, values);
+  KernelArgs args(c);
+  args.add(from).add(static_cast<int>(values)).add(to);
+  cl_.run(args.bind(), values);
 }
 
 template <typename Real, typename C>
@@ -614,33 +620,35 @@ void Levels<Real, C>::chebyshev(int level, VectorBase& x, VectorBase& r, bool wa
     {
       cl_kernel k = chebyshev_start_k_.get();
       const int accumulate = from ? 0 : 1;
-      set_arg(k, 0, L.inverse.get());
-      set_arg(k, 1, mem(start));
-      set_arg(k, 2, static_cast<C>(steps.c_z[0]));
-      set_arg(k, 3, static_cast<C>(steps.beta[0]));
-      set_arg(k, 4, count);
-      set_arg(k, 5, accumulate);
-      set_arg(k, 6, mem(L.d));
-      set_arg(k, 7, mem(x));
-      cl_.run(k, L.vertices);
+      KernelArgs args(k);
+      args.add(L.inverse.get())
+          .add(mem(start))
+          .add(static_cast<C>(steps.c_z[0]))
+          .add(static_cast<C>(steps.beta[0]))
+          .add(count)
+          .add(accumulate)
+          .add(mem(L.d))
+          .add(mem(x));
+      cl_.run(args.bind(), L.vertices);
     }
     for (int i = 1; i < degree; ++i) {
       cl_kernel s = stencil_kernels(level).step.get();
-      set_arg(s, 0, mem(L.d));
-      set_arg(s, 1, L.neighbours.get());
-      set_arg(s, 2, L.stencil.get());
-      set_arg(s, 3, L.cycle_mask_handle());
-      set_arg(s, 4, L.inverse.get());
-      set_arg(s, 5, count);
-      set_arg(s, 6, L.width);
-      set_arg(s, 7, static_cast<C>(steps.c_d[i]));
-      set_arg(s, 8, static_cast<C>(steps.c_z[i]));
-      set_arg(s, 9, static_cast<C>(steps.beta[i]));
-      set_arg(s, 10, mem(i == 1 ? start : r));
-      set_arg(s, 11, mem(r));
-      set_arg(s, 12, mem(x));
-      set_arg(s, 13, mem(L.d_next));
-      cl_.run(s, L.vertices);
+      KernelArgs args(s);
+      args.add(mem(L.d))
+          .add(L.neighbours.get())
+          .add(L.stencil.get())
+          .add(L.cycle_mask_handle())
+          .add(L.inverse.get())
+          .add(count)
+          .add(L.width)
+          .add(static_cast<C>(steps.c_d[i]))
+          .add(static_cast<C>(steps.c_z[i]))
+          .add(static_cast<C>(steps.beta[i]))
+          .add(mem(i == 1 ? start : r))
+          .add(mem(r))
+          .add(mem(x))
+          .add(mem(L.d_next));
+      cl_.run(args.bind(), L.vertices);
       L.d.fast_swap(L.d_next);
     }
     if (want_residual) {
@@ -691,27 +699,29 @@ void Levels<Real, C>::vcycle(int level) const {
   {
     cl_kernel k = restrict_k_.get();
     const int count = static_cast<int>(K.vertices);
-    set_arg(k, 0, mem(L.r));
-    set_arg(k, 1, L.cycle_mask_handle());
-    set_arg(k, 2, L.restrict_offsets.get());
-    set_arg(k, 3, L.restrict_vertices.get());
-    set_arg(k, 4, L.restrict_weights.get());
-    set_arg(k, 5, K.cycle_mask_handle());
-    set_arg(k, 6, count);
-    set_arg(k, 7, mem(K.b));
-    cl_.run(k, K.vertices);
+    KernelArgs args(k);
+    args.add(mem(L.r))
+        .add(L.cycle_mask_handle())
+        .add(L.restrict_offsets.get())
+        .add(L.restrict_vertices.get())
+        .add(L.restrict_weights.get())
+        .add(K.cycle_mask_handle())
+        .add(count)
+        .add(mem(K.b));
+    cl_.run(args.bind(), K.vertices);
   }
   vcycle(level + 1);
   {
     cl_kernel k = prolong_k_.get();
     const int count = static_cast<int>(L.vertices);
-    set_arg(k, 0, mem(K.x));
-    set_arg(k, 1, L.prolong_vertices.get());
-    set_arg(k, 2, L.prolong_weights.get());
-    set_arg(k, 3, L.cycle_mask_handle());
-    set_arg(k, 4, count);
-    set_arg(k, 5, mem(L.x));
-    cl_.run(k, L.vertices);
+    KernelArgs args(k);
+    args.add(mem(K.x))
+        .add(L.prolong_vertices.get())
+        .add(L.prolong_weights.get())
+        .add(L.cycle_mask_handle())
+        .add(count)
+        .add(mem(L.x));
+    cl_.run(args.bind(), L.vertices);
   }
   if (level > 0 || fine_built_) {
     residual(level, L.x, L.b, L.r);

@@ -1,0 +1,163 @@
+#include "solver/vertex_terms.h"
+
+#include <algorithm>
+
+namespace snh::solver {
+
+template <typename Real>
+VertexTerms<Real>::VertexTerms(device::OpenClContext& cl, size_t vertex_count, bool inertia, int obstacles,
+                               bool friction, const std::string& defines, PhaseProfiler* profiler)
+    : cl_(cl),
+      profiler_(profiler),
+      vertex_count_(vertex_count),
+      inertia_(inertia),
+      obstacles_count_(obstacles),
+      friction_(friction) {
+  const size_t dofs = 3 * vertex_count_;
+  if (inertia) {
+    inertia_mass_host_.assign(vertex_count_, 0.0);
+    inertia_target_host_.assign(dofs, 0.0);
+    const std::vector<Real> zeros(dofs, Real(0));
+    inertia_mass_ = cl_.buffer(CL_MEM_READ_ONLY, vertex_count_ * sizeof(Real), zeros.data());
+    inertia_target_ = cl_.buffer(CL_MEM_READ_ONLY, dofs * sizeof(Real), zeros.data());
+  }
+  if (obstacles > 0) {
+    const std::vector<Real> zeros(9 * vertex_count_, Real(0));
+    obstacles_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * obstacles * sizeof(Real), zeros.data());
+    contact_energy_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
+    contact_force_ = cl_.buffer(CL_MEM_READ_WRITE, dofs * sizeof(Real), zeros.data());
+    contact_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real), zeros.data());
+    contact_scratch_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real));
+    contact_depth_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * sizeof(Real));
+  }
+  if (friction) {
+    // Until set_friction: coefficients of 0, no friction.
+    const std::vector<Real> zeros(std::max<size_t>(obstacles * dofs, 16 * obstacles), Real(0));
+    friction_start_ = cl_.buffer(CL_MEM_READ_ONLY, dofs * sizeof(Real), zeros.data());
+    friction_anchors_ = cl_.buffer(CL_MEM_READ_WRITE, obstacles * dofs * sizeof(Real), zeros.data());
+    friction_start_records_ = cl_.buffer(CL_MEM_READ_ONLY, 8 * obstacles * sizeof(Real), zeros.data());
+    friction_records_ = cl_.buffer(CL_MEM_READ_ONLY, 16 * obstacles * sizeof(Real), zeros.data());
+    friction_slip_ = 1.0;
+  }
+  if (obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines, "snh_contact_vertices");
+  if (friction) friction_anchors_k_ = cl_.kernel("fem.cl", defines, "snh_friction_anchors");
+}
+
+template <typename Real>
+void VertexTerms<Real>::set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target) {
+  inertia_mass_host_ = coefficient;
+  inertia_target_host_ = target;
+  const std::vector<Real> c(coefficient.begin(), coefficient.end()), y(target.begin(), target.end());
+  cl_.write(inertia_mass_.get(), c.size() * sizeof(Real), c.data());
+  cl_.write(inertia_target_.get(), y.size() * sizeof(Real), y.data());
+}
+
+template <typename Real>
+void VertexTerms<Real>::add_inertia_energy(const std::vector<Real>& x, double& sum) const {
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double d = static_cast<double>(x[i]) - inertia_target_host_[i];
+    sum += 0.5 * inertia_mass_host_[i / 3] * d * d;
+  }
+}
+
+template <typename Real>
+void VertexTerms<Real>::set_obstacles(const std::vector<double>& records, double stiffness, double thickness) {
+  const std::vector<Real> r(records.begin(), records.end());
+  cl_.write(obstacles_.get(), r.size() * sizeof(Real), r.data());
+  contact_stiffness_ = stiffness;
+  contact_thickness_ = thickness;
+}
+
+template <typename Real>
+void VertexTerms<Real>::set_friction(const std::vector<double>& start_positions, const std::vector<double>& anchors,
+                                     const std::vector<double>& start_records,
+                                     const std::vector<double>& friction_records, double slip) {
+  const std::vector<Real> a(anchors.begin(), anchors.end());
+  cl_.write(friction_anchors_.get(), a.size() * sizeof(Real), a.data());
+  const std::vector<Real> x0(start_positions.begin(), start_positions.end());
+  const std::vector<Real> r0(start_records.begin(), start_records.end());
+  const std::vector<Real> fr(friction_records.begin(), friction_records.end());
+  cl_.write(friction_start_.get(), x0.size() * sizeof(Real), x0.data());
+  cl_.write(friction_start_records_.get(), r0.size() * sizeof(Real), r0.data());
+  cl_.write(friction_records_.get(), fr.size() * sizeof(Real), fr.data());
+  friction_slip_ = slip;
+}
+
+template <typename Real>
+std::vector<double> VertexTerms<Real>::next_friction_anchors(cl_mem x) const {
+  const int count = static_cast<int>(vertex_count_);
+  device::KernelArgs args(friction_anchors_k_.get());
+  args.add(x)
+      .add(friction_start_.get())
+      .add(obstacles_.get())
+      .add(friction_start_records_.get())
+      .add(friction_records_.get())
+      .add(static_cast<Real>(contact_thickness_))
+      .add(static_cast<Real>(friction_slip_))
+      .add(count)
+      .add(friction_anchors_.get());
+  cl_.run(args.bind(), vertex_count_);
+  std::vector<Real> a(obstacles_count_ * 3 * vertex_count_);
+  {
+    PhaseScope transfer(profiler_, Phase::transfers);
+    cl_.read(friction_anchors_.get(), a.size() * sizeof(Real), a.data());
+  }
+  return std::vector<double>(a.begin(), a.end());
+}
+
+template <typename Real>
+void VertexTerms<Real>::contact(cl_mem x, bool linearization) const {
+  const Real stiffness = static_cast<Real>(contact_stiffness_), thickness = static_cast<Real>(contact_thickness_);
+  const int count = static_cast<int>(vertex_count_);
+  device::KernelArgs args(contact_k_.get());
+  args.add(x)
+      .add(obstacles_.get())
+      .add(stiffness)
+      .add(thickness)
+      .add(count)
+      .add(contact_energy_.get())
+      .add(contact_force_.get())
+      .add(linearization ? contact_blocks_.get() : contact_scratch_.get())
+      .add(contact_depth_.get());
+  if (friction_)
+    args.add(friction_start_.get())
+        .add(friction_anchors_.get())
+        .add(friction_start_records_.get())
+        .add(friction_records_.get())
+        .add(static_cast<Real>(friction_slip_));
+  cl_.run(args.bind(), vertex_count_);
+}
+
+template <typename Real>
+std::vector<Real> VertexTerms<Real>::contact_depths() const {
+  std::vector<Real> depth(vertex_count_);
+  cl_.read(contact_depth_.get(), depth.size() * sizeof(Real), depth.data());
+  return depth;
+}
+
+template <typename Real>
+void VertexTerms<Real>::add_gather_args(device::KernelArgs& args) const {
+  if (inertia_) args.add(inertia_mass_.get()).add(inertia_target_.get());
+  if (obstacles_count_ > 0) args.add(contact_force_.get()).add(contact_blocks_.get());
+}
+
+template <typename Real>
+void VertexTerms<Real>::add_block_args(device::KernelArgs& args) const {
+  if (inertia_) args.add(inertia_mass_.get());
+  if (obstacles_count_ > 0) args.add(contact_blocks_.get());
+}
+
+template <typename Real>
+size_t VertexTerms<Real>::memory_bytes() const {
+  size_t bytes = 0;
+  for (const device::Buffer* b : {&inertia_mass_, &inertia_target_, &obstacles_, &contact_energy_, &contact_force_,
+                                  &contact_blocks_, &contact_scratch_, &contact_depth_, &friction_start_,
+                                  &friction_anchors_, &friction_start_records_, &friction_records_})
+    bytes += device::OpenClContext::bytes(b->get());
+  return bytes;
+}
+
+template class VertexTerms<float>;
+template class VertexTerms<double>;
+
+}  // namespace snh::solver

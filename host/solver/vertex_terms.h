@@ -1,0 +1,67 @@
+// The per-vertex terms of the elastic model beyond elasticity: implicit
+// Euler's inertia (SNH_INERTIA), the kinematic obstacles' contact penalty
+// (SNH_OBSTACLES) and lagged friction against them (SNH_FRICTION). Their
+// device arrays, and the arguments the model's gather, mask and block-Jacobi
+// kernels read. Internal to the library.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "device/kernel_args.h"
+#include "device/opencl_context.h"
+#include "solver/phase_profile.h"
+
+namespace snh::solver {
+
+template <typename Real>
+class VertexTerms {
+ public:
+  // `obstacles`: how many (0: none); friction needs obstacles (the caller
+  // checks). `defines`: the model's build.
+  VertexTerms(device::OpenClContext& cl, size_t vertex_count, bool inertia, int obstacles, bool friction,
+              const std::string& defines, PhaseProfiler* profiler);
+
+  // Inertia (validated by the caller): c_v per vertex and the target y.
+  void set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target);
+  // sum += 1/2 sum_v c_v |x_v - y_v|^2, entry by entry in order (x: xyz per vertex).
+  void add_inertia_energy(const std::vector<Real>& x, double& sum) const;
+  void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
+  void set_friction(const std::vector<double>& start_positions, const std::vector<double>& anchors,
+                    const std::vector<double>& start_records, const std::vector<double>& friction_records, double slip);
+  std::vector<double> next_friction_anchors(cl_mem x) const;
+  // snh_contact_vertices at x: energy, force, blocks (into the blocks the
+  // products read when `linearization`, else scratch) and depth per vertex.
+  void contact(cl_mem x, bool linearization = false) const;
+  // Each vertex's contact depth g at the last contact() (> 0: in a layer).
+  std::vector<Real> contact_depths() const;
+  cl_mem contact_energy() const { return contact_energy_.get(); }
+
+  // The gather's arguments (inertia c and y, contact force and blocks), and
+  // the products' and block-Jacobi's (c, contact blocks).
+  void add_gather_args(device::KernelArgs& args) const;
+  void add_block_args(device::KernelArgs& args) const;
+  // Null without the term.
+  cl_mem inertia_buffer() const { return inertia_ ? inertia_mass_.get() : nullptr; }
+  cl_mem contact_blocks_buffer() const { return obstacles_count_ > 0 ? contact_blocks_.get() : nullptr; }
+  size_t memory_bytes() const;
+
+ private:
+  device::OpenClContext& cl_;
+  PhaseProfiler* profiler_;
+  size_t vertex_count_;
+  bool inertia_;
+  int obstacles_count_;
+  bool friction_;
+  device::Buffer inertia_mass_, inertia_target_;
+  std::vector<double> inertia_mass_host_, inertia_target_host_;
+  // contact_blocks_ holds the blocks of the last linearization, which the
+  // products use; other evaluations write theirs to contact_scratch_.
+  device::Buffer obstacles_, contact_energy_, contact_force_, contact_blocks_, contact_scratch_, contact_depth_;
+  double contact_stiffness_ = 0.0, contact_thickness_ = 0.0;
+  device::Buffer friction_start_, friction_anchors_, friction_start_records_, friction_records_;
+  double friction_slip_ = 0.0;
+  device::Kernel contact_k_, friction_anchors_k_;
+};
+
+}  // namespace snh::solver
