@@ -39,6 +39,7 @@
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
 #include "solver/matrix_free.h"
+#include "support/random_vectors.h"
 #include "vector_compare.h"
 #include "viennacl/ocl/backend.hpp"
 #include "viennacl/vector.hpp"
@@ -85,21 +86,6 @@ const std::vector<Scene>& scenes() {
     return out;
   }();
   return all;
-}
-
-std::vector<double> random_vector(size_t n, double amplitude, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-amplitude, amplitude);
-  std::vector<double> v(n);
-  for (double& c : v) c = u(rng);
-  return v;
-}
-
-std::vector<double> perturbed(const Mesh& mesh, double amplitude, unsigned seed) {
-  std::vector<double> x = mesh.positions;
-  const std::vector<double> d = random_vector(x.size(), amplitude, seed);
-  for (size_t i = 0; i < x.size(); ++i) x[i] += d[i];
-  return x;
 }
 
 // Node 0 of element 0 pushed through its element: to 1.7 times the way to
