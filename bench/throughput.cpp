@@ -13,6 +13,7 @@
 #include <random>
 #include <sstream>
 
+#include "device/kernel_source.h"
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
 #include "fem/rest_state.h"
@@ -24,6 +25,11 @@
 #include "timing.h"
 
 namespace snh::bench {
+
+// bench/roofline.cl, embedded in the benchmark, not the library
+// (cmake/embed_text.cmake).
+extern const char* const kRooflineSource;
+
 namespace {
 
 using json = nlohmann::ordered_json;
@@ -45,8 +51,56 @@ struct Roofline {
   double peak() const { return std::max(peak_scalar, peak_vector); }
 };
 
+// roofline.cl's programs, built as OpenClContext::program builds the
+// library's (the working precision, SNH_GPU), with its #include of
+// snh_portable.h taken from the library's kernels; one per set of defines.
+class RooflineKernels {
+ public:
+  explicit RooflineKernels(device::OpenClContext& cl) : cl_(cl) {}
+
+  device::Kernel kernel(const std::string& defines, const char* name) {
+    device::Program& program = programs_[defines];
+    if (!program) program = build(defines);
+    cl_int status = CL_SUCCESS;
+    device::Kernel k(clCreateKernel(program.get(), name, &status));
+    device::check(status, "clCreateKernel");
+    return k;
+  }
+
+ private:
+  device::Program build(const std::string& defines) const {
+    std::string source;
+    std::istringstream in(kRooflineSource);
+    for (std::string line; std::getline(in, line);)
+      source += line == "#include \"snh_portable.h\"" ? device::kernel_program_source("snh_portable.h") : line + '\n';
+    const char* text = source.c_str();
+    const size_t length = source.size();
+    cl_int status = CL_SUCCESS;
+    device::Program program(clCreateProgramWithSource(cl_.context(), 1, &text, &length, &status));
+    device::check(status, "clCreateProgramWithSource");
+    const std::string flags = std::string("-cl-std=CL1.2 -DSNH_DOUBLE=") +
+                              (cl_.precision() == Precision::double_ ? "1" : "0") +
+                              (cl_.info().is_gpu ? " -DSNH_GPU=1" : "") + (defines.empty() ? "" : " " + defines);
+    cl_device_id device = cl_.device();
+    status = clBuildProgram(program.get(), 1, &device, flags.c_str(), nullptr, nullptr);
+    if (status != CL_SUCCESS) {
+      size_t size = 0;
+      clGetProgramBuildInfo(program.get(), device, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
+      std::string log(size, '\0');
+      clGetProgramBuildInfo(program.get(), device, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
+      throw Error("OpenCL: building bench/roofline.cl (" + flags + ") failed with error " + std::to_string(status) +
+                  "; build log:\n" + log);
+    }
+    return program;
+  }
+
+  device::OpenClContext& cl_;
+  std::map<std::string, device::Program> programs_;
+};
+
 template <typename Real>
 Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
+  RooflineKernels roofline(cl);
   // The best time of one launch and the wait for it (launches are queued).
   auto kernel_seconds = [&](cl_kernel k, size_t items) {
     return best_seconds(
@@ -67,7 +121,7 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
                  c = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real), init.data());
   // The scalar triad over n entries, then the 4-wide one over n / 4 vectors.
   auto triad_seconds = [&](const char* name, int items) {
-    device::Kernel triad = cl.kernel("roofline.cl", "", name);
+    device::Kernel triad = roofline.kernel("", name);
     arg(triad.get(), 0, a.get());
     arg(triad.get(), 1, b.get());
     arg(triad.get(), 2, c.get());
@@ -90,7 +144,7 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
   };
   for (const Fma& f : {Fma{"snh_fma_scalar", "", 8, 1}, Fma{"snh_fma_vector", "", 8, 8},
                        Fma{"snh_fma_vector", "-DSNH_FMA_CHAINS=6", 6, 8}}) {
-    device::Kernel fma = cl.kernel("roofline.cl", f.defines, f.name);
+    device::Kernel fma = roofline.kernel(f.defines, f.name);
     arg(fma.get(), 0, out.get());
     arg(fma.get(), 1, m);
     arg(fma.get(), 2, k);
@@ -106,7 +160,7 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
   };
   for (const Slow& op : {Slow{"snh_sqrt_vector", &r.sqrt_rate}, Slow{"snh_div_vector", &r.div_rate},
                          Slow{"snh_sqrt_div_vector", &r.sqrt_div_rate}}) {
-    device::Kernel slow = cl.kernel("roofline.cl", "", op.name);
+    device::Kernel slow = roofline.kernel("", op.name);
     arg(slow.get(), 0, out.get());
     arg(slow.get(), 1, m);
     const double t = kernel_seconds(slow.get(), slow_items);

@@ -12,6 +12,7 @@
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
 #include "solver/elastic_model.h"
+#include "support/lattices.h"
 #include "viennacl/vector.hpp"
 
 namespace snh::test {
@@ -26,15 +27,6 @@ inline device::OpenClContext& device_for(Precision precision) {
   }
   device::use_viennacl(ids[k]);
   return *contexts[k];
-}
-
-// `mesh` with every vertex moved by up to 0.1 h (a fixed seed): no two
-// elements share a rest shape.
-inline Mesh jittered(Mesh mesh, double h) {
-  std::mt19937_64 rng(4711);
-  std::uniform_real_distribution<double> u(-0.1 * h, 0.1 * h);
-  for (double& c : mesh.positions) c += u(rng);
-  return mesh;
 }
 
 // Values as the device of precision Real sees them, back in double.

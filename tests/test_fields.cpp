@@ -19,6 +19,8 @@
 #include "snh/fields.h"
 #include "snh/io.h"
 #include "snh/simulation.h"
+#include "support/errors.h"
+#include "support/lattices.h"
 #include "vtu_test_support.h"
 
 namespace snh::test {
@@ -27,18 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 using Mat = std::array<double, 9>;  // column-major 3x3
 using Vec = std::array<double, 3>;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected snh::Error";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 double max_abs(const double* a, size_t n) {
   double m = 0.0;
@@ -59,22 +49,7 @@ double norm(const Vec& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * 
 Vec sum(const Vec& a, const Vec& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 Vec difference(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 
-// Interior vertices of a unit-cube lattice moved by up to 15% of a cell.
-Mesh jittered_lattice(int n) {
-  Mesh mesh = make_box_lattice(n, n, n, 1.0 / n);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-0.15 / n, 0.15 / n);
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    bool interior = true;
-    for (int d = 0; d < 3; ++d) {
-      const double c = mesh.positions[3 * v + d];
-      interior = interior && c > 1e-9 && c < 1.0 - 1e-9;
-    }
-    if (interior)
-      for (int d = 0; d < 3; ++d) mesh.positions[3 * v + d] += u(rng);
-  }
-  return mesh;
-}
+Mesh jittered_lattice(int n) { return jittered_unit_cube(n, 11); }
 
 struct NamedMesh {
   std::string name;

@@ -17,27 +17,19 @@
 #include "snh/error.h"
 #include "snh/io.h"
 #include "snh/mesh.h"
+#include "support/errors.h"
 #include "vtu_test_support.h"
 
 namespace snh {
 namespace {
 
+using test::contains;
+using test::error_of;
+
 namespace fs = std::filesystem;
 
 // The message of the snh::Error `f` throws; fails the test when it throws
 // nothing.
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected snh::Error";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
 // Signed volume of tet `e`, computed directly from its corners.
 double tet_volume(const Mesh& mesh, size_t e) {
   const auto p0 = mesh.vertex(mesh.elements[4 * e]), p1 = mesh.vertex(mesh.elements[4 * e + 1]),

@@ -28,9 +28,13 @@
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
 #include "snh/selection.h"
+#include "support/errors.h"
+#include "support/lattices.h"
 
 namespace snh {
 namespace {
+
+using test::error_of;
 
 namespace fs = std::filesystem;
 
@@ -46,16 +50,6 @@ fs::path scratch(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no snh::Error was thrown";
-  return "";
 }
 
 std::string read_error(const fs::path& path) {
@@ -304,10 +298,7 @@ std::vector<Format> formats() {
 }
 
 // Irregular positions, so that a swapped coordinate or node shows.
-Mesh jiggled(Mesh m) {
-  for (size_t i = 0; i < m.positions.size(); ++i) m.positions[i] += 0.01 * std::sin(1.7 * double(i) + 0.3);
-  return m;
-}
+Mesh jiggled(Mesh m) { return test::sine_jiggled(std::move(m), 0.01); }
 
 double total(const Mesh& m) { return mesh_volume(m, m.positions); }
 

@@ -15,9 +15,13 @@
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
+#include "support/errors.h"
 
 namespace snh {
 namespace {
+
+using test::contains;
+using test::error_of;
 
 namespace fs = std::filesystem;
 
@@ -38,18 +42,6 @@ class TempDir {
  private:
   fs::path path_;
 };
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no snh::Error was thrown";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // Coordinates no short decimal holds (thirds, sevenths, tiny and huge
 // offsets), so that a writer with too few digits shows.

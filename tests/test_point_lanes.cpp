@@ -36,6 +36,7 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "solver/elastic_model.h"
+#include "support/random_vectors.h"
 
 namespace snh::test {
 namespace {
@@ -74,13 +75,7 @@ std::vector<double> hard_positions(const Mesh& mesh) {
 }
 
 // The direction the products are taken along: entries uniform in [-1, 1].
-std::vector<double> random_direction(size_t size, uint64_t seed) {
-  std::vector<double> p(size);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (double& c : p) c = u(rng);
-  return p;
-}
+std::vector<double> random_direction(size_t size, unsigned seed) { return random_vector(size, 1.0, seed); }
 
 template <typename Real>
 struct Outputs {

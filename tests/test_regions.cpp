@@ -40,6 +40,7 @@
 #include "snh/scene.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
+#include "support/random_vectors.h"
 #include "vector_compare.h"
 #include "viennacl/vector.hpp"
 
@@ -160,21 +161,6 @@ const std::vector<MapCase>& map_cases() {
     return out;
   }();
   return all;
-}
-
-std::vector<double> random_vector(size_t n, double amplitude, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-amplitude, amplitude);
-  std::vector<double> v(n);
-  for (double& c : v) c = u(rng);
-  return v;
-}
-
-std::vector<double> perturbed(const Mesh& mesh, double amplitude, unsigned seed) {
-  std::vector<double> x = mesh.positions;
-  const std::vector<double> d = random_vector(x.size(), amplitude, seed);
-  for (size_t i = 0; i < x.size(); ++i) x[i] += d[i];
-  return x;
 }
 
 std::vector<double> multiply(const Eigen::SparseMatrix<double>& k, const std::vector<double>& p) {

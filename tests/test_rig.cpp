@@ -19,22 +19,14 @@
 #include "snh/rig.h"
 #include "snh/selection.h"
 #include "snh/simulation.h"
+#include "support/errors.h"
 #include "voxel_test_support.h"
 
 namespace snh {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no snh::Error was thrown";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::contains;
+using test::error_of;
 
 // A closed box surface [lo, hi], 12 triangles with outward normals.
 TriangleSurface box_surface(const std::array<double, 3>& lo, const std::array<double, 3>& hi) {

@@ -20,23 +20,16 @@
 #include "snh/mesh_io.h"
 #include "snh/scene.h"
 #include "snh/selection.h"
+#include "support/errors.h"
+#include "support/lattices.h"
 
 namespace snh {
 namespace {
 
+using test::contains;
+using test::error_of;
+
 const std::string kMeshes = std::string(SNH_DATA_DIR) + "/meshes/";
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no snh::Error was thrown";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 bool sorted_unique(const std::vector<int32_t>& v) {
   for (size_t i = 1; i < v.size(); ++i)
@@ -213,12 +206,6 @@ TEST(Selection, SplitHexesCarriesGroupsAndArrays) {
 
 // ---- Body force ----
 
-// A lattice with every vertex moved, so hexes are neither affine nor equal.
-Mesh jittered(Mesh m, double amount) {
-  for (size_t i = 0; i < m.positions.size(); ++i) m.positions[i] += amount * std::sin(1.7 * double(i) + 0.3);
-  return m;
-}
-
 // Rest volume and first moment (integral of x) by a 4 x 4 x 4 Gauss rule on
 // each hex (exact for trilinear hexes) or exactly for tets.
 void volume_and_moment(const Mesh& m, double& volume, std::array<double, 3>& moment) {
@@ -272,9 +259,9 @@ void volume_and_moment(const Mesh& m, double& volume, std::array<double, 3>& mom
 TEST(Selection, BodyForceSumsToForceTimesVolumeWithTheRightMoment) {
   const std::array<double, 3> b{0.5, -2.0, -9.81};
   const std::vector<Mesh> meshes = {make_box_lattice(3, 2, 4, 0.2),
-                                    jittered(make_box_lattice(3, 2, 4, 0.2), 0.03),
+                                    test::sine_jiggled(make_box_lattice(3, 2, 4, 0.2), 0.03),
                                     make_tet_box(2, 3, 2, 0.3),
-                                    jittered(make_tet_box(2, 3, 2, 0.3), 0.04),
+                                    test::sine_jiggled(make_tet_box(2, 3, 2, 0.3), 0.04),
                                     read_mesh(kMeshes + "box_tet.msh41.msh"),
                                     read_mesh(kMeshes + "hex_box.msh")};
   for (size_t i = 0; i < meshes.size(); ++i) {

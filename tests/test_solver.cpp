@@ -8,6 +8,7 @@
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
+#include "support/lattices.h"
 
 namespace snh::test {
 namespace {
@@ -55,21 +56,7 @@ void patch_test(Mesh mesh, Precision precision, double tolerance) {
   EXPECT_LT(worst, tolerance);
 }
 
-Mesh jittered_lattice(int n) {
-  Mesh mesh = make_box_lattice(n, n, n, 1.0 / n);
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-0.15 / n, 0.15 / n);
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    bool interior = true;
-    for (int d = 0; d < 3; ++d) {
-      const double c = mesh.positions[3 * v + d];
-      interior = interior && c > 1e-9 && c < 1.0 - 1e-9;
-    }
-    if (interior)
-      for (int d = 0; d < 3; ++d) mesh.positions[3 * v + d] += u(rng);
-  }
-  return mesh;
-}
+Mesh jittered_lattice(int n) { return jittered_unit_cube(n, 5); }
 
 TEST(Solver, PatchTestHexLatticeDouble) { patch_test(make_box_lattice(3, 3, 3, 1.0 / 3), Precision::double_, 1e-10); }
 TEST(Solver, PatchTestJitteredHexDouble) { patch_test(jittered_lattice(3), Precision::double_, 1e-10); }

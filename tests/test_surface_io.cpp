@@ -16,10 +16,13 @@
 
 #include "snh/error.h"
 #include "snh/surface.h"
+#include "support/errors.h"
 #include "surface_shapes.h"
 
 namespace snh {
 namespace {
+
+using test::error_of;
 
 namespace fs = std::filesystem;
 
@@ -37,16 +40,6 @@ fs::path scratch(const std::string& name) {
 fs::path write_text(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
   return path;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no snh::Error was thrown";
-  return "";
 }
 
 // A tetrahedron facing outwards: vertices 0..3, its four triangles.

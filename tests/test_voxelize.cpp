@@ -27,22 +27,15 @@
 #include "snh/mesh_io.h"
 #include "snh/scene.h"
 #include "snh/surface.h"
+#include "support/errors.h"
 #include "surface_shapes.h"
 
 namespace snh {
 namespace {
 
-namespace fs = std::filesystem;
+using test::error_of;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no snh::Error was thrown";
-  return "";
-}
+namespace fs = std::filesystem;
 
 std::array<double, 3> centre(const Voxelization& v, const std::array<int, 3>& g) {
   return {v.origin[0] + (g[0] + 0.5) * v.cell, v.origin[1] + (g[1] + 0.5) * v.cell,
