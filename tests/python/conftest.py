@@ -35,7 +35,7 @@ def bar_problem():
     return twisted_bar()
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture
 def crosscheck_program():
     path = os.environ.get("SNH_PYTHON_CROSSCHECK")
     if not path or not os.path.exists(path):
