@@ -26,6 +26,7 @@ void print_header(const SceneFile& file, const SolveOptions& options, int frames
     std::cerr << to_string(options.precision);
   }
   std::cerr << '\n';
+  for (const std::string& line : scene_setup_report(file)) std::cerr << line << '\n';
 }
 
 void print_progress(const SceneProgress& p) {

@@ -69,7 +69,73 @@ void check_bone(const Bone& bone, size_t index) {
   }
 }
 
+// The distance from p to triangle (a, b, c): the closest point by the
+// triangle's Voronoi regions (Ericson, Real-Time Collision Detection, 5.1.5).
+double triangle_distance(const Point& p, const double* a, const double* b, const double* c) {
+  const auto sub = [](const double* x, const double* y) { return Point{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
+  const auto dot = [](const Point& x, const Point& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  const Point ab = sub(b, a), ac = sub(c, a), ap = sub(p.data(), a);
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  const auto at = [&](double v, double w) {  // a + v ab + w ac
+    double s = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const double q = a[d] + v * ab[d] + w * ac[d] - p[d];
+      s += q * q;
+    }
+    return std::sqrt(s);
+  };
+  if (d1 <= 0.0 && d2 <= 0.0) return at(0, 0);
+  const Point bp = sub(p.data(), b);
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return at(1, 0);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return at(d1 / (d1 - d3), 0);
+  const Point cp = sub(p.data(), c);
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return at(0, 1);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return at(0, d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return at(1 - w, w);
+  }
+  const double denom = va + vb + vc;
+  if (!(denom > 0.0)) return std::min({at(0, 0), at(1, 0), at(0, 1)});  // a degenerate triangle
+  return at(vb / denom, vc / denom);
+}
+
+double capsule_axis_distance(const Capsule& c, const Point& p) {
+  double ab[3], ap[3];
+  for (int d = 0; d < 3; ++d) {
+    ab[d] = c.b[d] - c.a[d];
+    ap[d] = p[d] - c.a[d];
+  }
+  const double length2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+  const double along =
+      length2 > 0.0 ? std::clamp((ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / length2, 0.0, 1.0) : 0.0;
+  double distance2 = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const double off = ap[d] - along * ab[d];
+    distance2 += off * off;
+  }
+  return std::sqrt(distance2);
+}
+
 }  // namespace
+
+double bone_distance(const Bone& bone, const std::array<double, 3>& p) {
+  if (const Capsule* c = std::get_if<Capsule>(&bone.shape))
+    return std::max(0.0, capsule_axis_distance(*c, p) - c->radius);
+  const TriangleSurface& s = std::get<TriangleSurface>(bone.shape);
+  if (bone_contains(bone, p)) return 0.0;
+  double best = HUGE_VAL;
+  for (size_t t = 0; t < s.triangle_count(); ++t)
+    best = std::min(best,
+                    triangle_distance(p, &s.positions[3 * s.triangles[3 * t]], &s.positions[3 * s.triangles[3 * t + 1]],
+                                      &s.positions[3 * s.triangles[3 * t + 2]]));
+  return best;
+}
 
 bool bone_contains(const Bone& bone, const std::array<double, 3>& p) {
   if (const Capsule* c = std::get_if<Capsule>(&bone.shape)) return in_capsule(*c, p);

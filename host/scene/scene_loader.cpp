@@ -12,6 +12,7 @@
 #include "snh/error.h"
 #include "snh/loads.h"
 #include "snh/mesh_io.h"
+#include "snh/pieces.h"
 #include "snh/rig.h"
 #include "snh/scene.h"
 #include "solver/obstacles.h"
@@ -244,6 +245,13 @@ SceneFile::Embedded read_embed(const Reader& r, const json& e, const std::filesy
     if (!e["cover_surface"].is_boolean()) r.fail("embed.cover_surface", "expected true or false");
     options.cover_surface = e["cover_surface"].get<bool>();
   }
+  if (e.contains("pieces")) {
+    try {
+      out.piece_rule = parse_piece_rule(r.text(e, "embed", "pieces", "error"));
+    } catch (const Error& error) {
+      r.fail("embed.pieces", error.what());
+    }
+  }
   out.voxels = voxelize(out.surface, cell, options);
   out.embedding = embed(out.voxels, out.surface);
   return out;
@@ -273,6 +281,40 @@ std::vector<Bone> read_bones(const Reader& r, const json& rig, const std::filesy
     bones.push_back(std::move(bone));
   }
   return bones;
+}
+
+// "embed.pieces": the lattice's pieces nothing holds refused, joined or
+// left out (snh/pieces.h), before anything per vertex (forces, initial
+// positions) is laid on the lattice; the constraint sets and the regions'
+// elements follow the new lattice. Obstacles at rest and dynamics hold
+// pieces too, so they are read here as well as below.
+void resolve_scene_pieces(const Reader& r, const json& doc, SceneFile& file) {
+  SceneFile::Embedded& embedded = *file.embedded;
+  PieceOptions options;
+  options.rule = embedded.piece_rule;
+  options.rule_name = "embed.pieces";
+  options.dynamic = doc.contains("dynamics");
+  options.loaded = doc.contains("body_force");
+  if (doc.contains("obstacles")) options.obstacles = read_obstacles(r, doc["obstacles"]);
+  if (doc.contains("contact") && doc["contact"].is_object())
+    options.contact_thickness = r.number(doc["contact"], "contact", "thickness", 0.0);
+  PiecedLattice pieced;
+  try {
+    pieced = resolve_pieces(embedded.voxels, embedded.embedding, embedded.surface, file.scene.constraints,
+                            file.rig ? file.rig->bones : std::vector<Bone>{}, options);
+  } catch (const Error& error) {
+    r.fail("embed.pieces", error.what());
+  }
+  embedded.pieces = std::move(pieced.pieces);
+  embedded.piece_warnings = std::move(pieced.warnings);
+  if (!pieced.changed) return;
+  embedded.voxels = std::move(pieced.voxels);
+  embedded.embedding = std::move(pieced.embedding);
+  file.scene.mesh = embedded.voxels.lattice;
+  std::vector<int32_t> element_material(pieced.element_source.size());
+  for (size_t e = 0; e < element_material.size(); ++e)
+    element_material[e] = file.materials.element_material[pieced.element_source[e]];
+  file.materials.element_material = std::move(element_material);
 }
 
 }  // namespace
@@ -339,6 +381,7 @@ SceneFile load_scene(const std::string& path) {
         r.fail("rig.animation", "the animation moves bone '" + bone + "', which is not in rig.bones");
     out.rig = std::move(out_rig);
   }
+  if (out.embedded) resolve_scene_pieces(r, doc, out);
   if (doc.contains("body_force"))
     s.options.external_force = lump_body_force(s.mesh, r.vec3(doc, "scene", "body_force", {0, 0, 0}));
   if (doc.contains("initial")) {

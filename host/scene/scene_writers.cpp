@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "scene/obstacle_surface.h"
 #include "scene/profile_json.h"
@@ -13,6 +14,8 @@
 #include "snh/error.h"
 #include "snh/fields.h"
 #include "snh/io.h"
+#include "snh/pieces.h"
+#include "snh/rig.h"
 #include "snh/scene.h"
 
 namespace snh {
@@ -215,7 +218,94 @@ json frames_json(const SceneFile& file, const SceneRun& run) {
   return j;
 }
 
+// The set-up: the lattice's pieces ("embed") and each bone's captured
+// lattice vertices ("rig").
+void add_setup_json(json& j, const SceneFile& file) {
+  if (file.embedded) {
+    json pieces = json::array();
+    for (const LatticePiece& p : file.embedded->pieces) {
+      json piece = {{"cells", p.elements.size()},
+                    {"vertices", p.vertices},
+                    {"min", p.lo},
+                    {"max", p.hi},
+                    {"held", to_string(p.hold)},
+                    {"held_by", p.held_by},
+                    {"outcome", p.outcome.empty() ? "kept" : p.outcome}};
+      if (p.outcome == "attached") piece["added_cells"] = p.added_cells;
+      if (!p.nearest_bone.empty())
+        piece["nearest_bone"] = {{"name", p.nearest_bone}, {"distance", p.nearest_bone_distance}};
+      pieces.push_back(piece);
+    }
+    j["lattice_pieces"] = {{"rule", to_string(file.embedded->piece_rule)},
+                           {"found", std::max<size_t>(1, file.embedded->pieces.size())},
+                           {"now", file.embedded->voxels.components},
+                           {"pieces", pieces},
+                           {"warnings", file.embedded->piece_warnings}};
+  }
+  if (file.rig) {
+    json bones = json::array();
+    for (const Bone& bone : file.rig->bones) {
+      size_t vertices = 0;
+      for (const ConstraintSet& set : file.scene.constraints)
+        if (set.name == bone.name) vertices = set.vertices.size();
+      bones.push_back({{"name", bone.name}, {"vertices", vertices}});
+    }
+    j["bones"] = bones;
+  }
+}
+
 }  // namespace
+
+std::vector<std::string> scene_setup_report(const SceneFile& file) {
+  std::vector<std::string> lines;
+  if (file.embedded) {
+    const auto& pieces = file.embedded->pieces;
+    std::ostringstream s;
+    if (pieces.size() < 2) {
+      s << "lattice: 1 piece";
+      lines.push_back(s.str());
+    } else {
+      s << "lattice: " << pieces.size() << " pieces (embed.pieces " << to_string(file.embedded->piece_rule) << "), now "
+        << file.embedded->voxels.components;
+      lines.push_back(s.str());
+      for (size_t p = 0; p < pieces.size(); ++p) {
+        std::ostringstream l;
+        l << "  piece " << p + 1 << ": " << pieces[p].elements.size() << " cells, ";
+        switch (pieces[p].hold) {
+          case PieceHold::constraint:
+            l << "held by constraint set '" << pieces[p].held_by << "'";
+            break;
+          case PieceHold::obstacle:
+            l << "held by " << pieces[p].held_by << " at rest";
+            break;
+          case PieceHold::inertia:
+            l << "held by its inertia only";
+            break;
+          case PieceHold::largest:
+            l << "the body (nothing holds any piece)";
+            break;
+          case PieceHold::none:
+            l << "held by nothing";
+            break;
+        }
+        if (pieces[p].outcome == "attached") l << ", attached (cells added: " << pieces[p].added_cells << ")";
+        if (pieces[p].outcome == "dropped") l << ", dropped";
+        if (!pieces[p].nearest_bone.empty())
+          l << "; nearest bone '" << pieces[p].nearest_bone << "' at " << pieces[p].nearest_bone_distance;
+        lines.push_back(l.str());
+      }
+    }
+    for (const std::string& w : file.embedded->piece_warnings) lines.push_back("warning: " + w);
+  }
+  if (file.rig)
+    for (const Bone& bone : file.rig->bones) {
+      size_t vertices = 0;
+      for (const ConstraintSet& set : file.scene.constraints)
+        if (set.name == bone.name) vertices = set.vertices.size();
+      lines.push_back("bone '" + bone.name + "': " + std::to_string(vertices) + " lattice vertices");
+    }
+  return lines;
+}
 
 std::string surface_obj_path(const std::string& prefix, const std::string& scene, int index) {
   char number[16];
@@ -248,14 +338,21 @@ SceneStepWriter SceneVtuSeries::writer() {
     const std::string lattice = numbered(name, index);
     write_step_vtu(folder_ + "/" + lattice, file.scene.mesh, file.materials, x, warnings_);
     written_.push_back({time, lattice, 0});
-    if (file.rig) {  // part 1: the embedded surface
-      if (!file.embedded) return;
-      const TriangleSurface& skin = file.embedded->surface;
-      std::vector<double> displacement(surface.size());
-      for (size_t i = 0; i < surface.size(); ++i) displacement[i] = surface[i] - skin.positions[i];
-      const std::string skin_file = numbered(name + "_surface", index);
-      write_surface_vtu(folder_ + "/" + skin_file, skin, surface, {{"displacement", 3, displacement}});
-      written_.push_back({time, skin_file, 1});
+    if (file.rig) {
+      if (file.embedded) {  // part 1: the embedded surface
+        const TriangleSurface& skin = file.embedded->surface;
+        std::vector<double> displacement(surface.size());
+        for (size_t i = 0; i < surface.size(); ++i) displacement[i] = surface[i] - skin.positions[i];
+        const std::string skin_file = numbered(name + "_surface", index);
+        write_surface_vtu(folder_ + "/" + skin_file, skin, surface, {{"displacement", 3, displacement}});
+        written_.push_back({time, skin_file, 1});
+      }
+      // part 2: the bones where the frame puts them
+      const std::string bones_file = numbered(name + "_bones", index);
+      const std::vector<Bone>& bones = file.rig->bones;
+      write_bone_mesh_vtu(folder_ + "/" + bones_file,
+                          bone_mesh(bones, bone_transforms_at(bones, file.rig->animation, std::max(index, 0))));
+      written_.push_back({time, bones_file, 2});
     } else if (!options_.obstacles.empty()) {  // part 1: the obstacles where the solver places them
       const std::string obstacles = numbered(name + "_obstacles", index);
       const double t = static_cast<double>(index) / options_.load_steps;
@@ -280,7 +377,9 @@ void write_scene_json(const std::string& path, const SceneFile& file, const Scen
   create_parent(path);
   std::ofstream out(path);
   if (!out) throw Error("cannot write " + path);
-  out << (file.rig ? frames_json(file, run) : load_steps_json(file, run)).dump(2) << '\n';
+  json j = file.rig ? frames_json(file, run) : load_steps_json(file, run);
+  add_setup_json(j, file);
+  out << j.dump(2) << '\n';
 }
 
 }  // namespace snh

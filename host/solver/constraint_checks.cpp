@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "snh/error.h"
+#include "snh/pieces.h"
 
 namespace snh::solver {
 
@@ -43,14 +44,17 @@ void place_by_callback(const Mesh& mesh, const ConstraintSet& c, double t, std::
                     " at load parameter " + std::to_string(t));
 }
 
-void check_rigid_modes(const Mesh& mesh, const std::vector<char>& prescribed, const std::vector<double>& force,
-                       std::vector<std::string>& warnings) {
+namespace {
+
+// The rigid motions one piece of the mesh (the vertices marked in `used`)
+// is left free, checked against the force on that piece; `piece`, when not
+// empty, names it in the error and the warning.
+void check_piece_rigid_modes(const Mesh& mesh, const std::vector<char>& used, const std::vector<char>& prescribed,
+                             const std::vector<double>& force, const std::string& piece,
+                             std::vector<std::string>& warnings) {
   const size_t n = mesh.vertex_count();
-  if (n == 0) return;
   // Rigid velocities u = t + w x (X - c) / L, centred and scaled for
   // conditioning; each prescribed DOF (v, d) asks u_d(X_v) = 0.
-  std::vector<char> used(n, 0);
-  for (int32_t v : mesh.elements) used[v] = 1;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   size_t count = 0;
   for (size_t v = 0; v < n; ++v)
@@ -101,7 +105,8 @@ void check_rigid_modes(const Mesh& mesh, const std::vector<char>& prescribed, co
       if (std::abs(mode[k]) > std::abs(mode[largest])) largest = k;
     return std::string(kNames[largest]);
   };
-  // Work of the external force along each free mode, against its size.
+  // Work of the external force on the piece along each free mode, against
+  // the size of the whole force.
   double force_norm = 0.0;
   for (double f : force) force_norm += f * f;
   force_norm = std::sqrt(force_norm);
@@ -115,16 +120,56 @@ void check_rigid_modes(const Mesh& mesh, const std::vector<char>& prescribed, co
         motion += u * u;
       }
     }
-    if (force_norm > 0.0 && std::abs(work) > 1e-9 * force_norm * std::sqrt(motion))
-      throw Error("the constraints leave the body free to move by " + describe(mode) +
-                  " and the external force pushes it that way: there is no static equilibrium (quasistatic "
-                  "solves have no inertia); prescribe more vertices or components");
+    if (force_norm > 0.0 && std::abs(work) > 1e-9 * force_norm * std::sqrt(motion)) {
+      if (piece.empty())
+        throw Error("the constraints leave the body free to move by " + describe(mode) +
+                    " and the external force pushes it that way: there is no static equilibrium (quasistatic "
+                    "solves have no inertia); prescribe more vertices or components");
+      throw Error("the constraints leave " + piece + " free to move by " + describe(mode) +
+                  " and the external force pushes it that way: there is no static equilibrium (quasistatic solves "
+                  "have no inertia); hold a vertex of that piece, or join it to the body or leave it out (a voxelized "
+                  "lattice's pieces: snh/pieces.h, scene key embed.pieces)");
+    }
   }
   std::ostringstream note;
-  note << "constraints: " << free_modes.size() << " rigid motion(s) left free (e.g. " << describe(free_modes[0])
+  note << "constraints: " << (piece.empty() ? "" : piece + ": ") << free_modes.size()
+       << " rigid motion(s) left free (e.g. " << describe(free_modes[0])
        << "); the equilibrium is defined only up to them";
   const std::string text = note.str();
   if (std::find(warnings.begin(), warnings.end(), text) == warnings.end()) warnings.push_back(text);
+}
+
+}  // namespace
+
+void check_rigid_modes(const Mesh& mesh, const std::vector<char>& prescribed, const std::vector<double>& force,
+                       std::vector<std::string>& warnings) {
+  const size_t n = mesh.vertex_count();
+  if (n == 0) return;
+  // Each piece (elements joined through shared vertices) moves on its own.
+  const std::vector<std::vector<int32_t>> pieces = mesh_pieces(mesh);
+  const int nodes = nodes_per_element(mesh.type);
+  std::vector<char> used(n, 0);
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    std::fill(used.begin(), used.end(), 0);
+    std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (int32_t e : pieces[p])
+      for (int k = 0; k < nodes; ++k) {
+        const int32_t v = mesh.elements[static_cast<size_t>(nodes) * e + k];
+        used[v] = 1;
+        for (int d = 0; d < 3; ++d) {
+          lo[d] = std::min(lo[d], mesh.positions[3 * v + d]);
+          hi[d] = std::max(hi[d], mesh.positions[3 * v + d]);
+        }
+      }
+    std::string name;
+    if (pieces.size() > 1) {
+      std::ostringstream s;
+      s << "piece " << p + 1 << " of " << pieces.size() << " (" << pieces[p].size() << " elements, rest bounding box ("
+        << lo[0] << ", " << lo[1] << ", " << lo[2] << ") to (" << hi[0] << ", " << hi[1] << ", " << hi[2] << "))";
+      name = s.str();
+    }
+    check_piece_rigid_modes(mesh, used, prescribed, force, name, warnings);
+  }
 }
 
 }  // namespace snh::solver

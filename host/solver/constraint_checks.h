@@ -20,9 +20,12 @@ std::vector<char> prescribed_dofs(const Mesh& mesh, const std::vector<Constraint
 void place_by_callback(const Mesh& mesh, const ConstraintSet& set, double t, std::vector<double>& x);
 
 // The rigid motions (3 translations, 3 rotations) the prescribed DOFs leave
-// free. With a net external force or torque along one of them there is no
-// equilibrium without inertia: snh::Error naming the free motion. Without
-// such a load the solution is defined only up to that motion: a warning.
+// free, for each piece of the mesh (elements joined through shared vertices:
+// snh::mesh_pieces) on its own. With a net external force or torque on a
+// piece along one of them there is no equilibrium without inertia:
+// snh::Error naming the free motion and, where the mesh has several pieces,
+// the piece (its number, element count and rest bounding box). Without such
+// a load the solution is defined only up to that motion: a warning.
 void check_rigid_modes(const Mesh& mesh, const std::vector<char>& prescribed, const std::vector<double>& force,
                        std::vector<std::string>& warnings);
 

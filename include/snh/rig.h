@@ -35,6 +35,10 @@ struct Bone {
 // inside for a capsule).
 bool bone_contains(const Bone& bone, const std::array<double, 3>& p);
 
+// The distance from rest point p to the bone's solid: 0 inside it, else to
+// the capsule's round surface or the nearest of the surface's triangles.
+double bone_distance(const Bone& bone, const std::array<double, 3>& p);
+
 // One constraint set per bone, named as the bone, of the lattice vertices
 // inside it (rest positions), in the bones' order, with no motion (they stay
 // at rest until Simulation::set_transform moves them). A vertex inside
@@ -59,5 +63,26 @@ Matrix4 identity_matrix4();
 // centroid. Throws snh::Error for a last row other than 0 0 0 1 or
 // non-finite entries.
 RigidTransform to_rigid_transform(const Matrix4& m, const std::array<double, 3>& center = {0, 0, 0});
+
+// The bones as one triangle surface, to be seen beside the lattice: a
+// capsule as a closed tessellated capsule (`segments` around its axis,
+// segments / 4 rings per round end), a surface bone as it is. `transforms`
+// (one per bone, or empty: rest) place each bone's vertices by x' = M [x; 1].
+struct BoneMesh {
+  TriangleSurface surface;
+  std::vector<int32_t> triangle_bone;  // per triangle: its bone's index in `bones`
+  std::vector<int32_t> vertex_bone;    // per vertex: likewise
+};
+BoneMesh bone_mesh(const std::vector<Bone>& bones, const std::vector<Matrix4>& transforms = {}, int segments = 16);
+
+// The mesh as an ASCII .vtu of triangles with the cell array "bone" (the
+// bone's index) for ParaView; snh::Error naming the file when it cannot be
+// written.
+void write_bone_mesh_vtu(const std::string& path, const BoneMesh& mesh);
+
+// Each animated bone's matrix at frame `frame` of `animation`, the identity
+// for the bones it does not move, in the order of `bones`.
+struct Animation;
+std::vector<Matrix4> bone_transforms_at(const std::vector<Bone>& bones, const Animation& animation, size_t frame);
 
 }  // namespace snh

@@ -23,6 +23,7 @@
 #include "snh/fields.h"
 #include "snh/frames.h"
 #include "snh/io.h"
+#include "snh/pieces.h"
 #include "snh/regions.h"
 #include "snh/rig.h"
 #include "snh/scenes.h"
@@ -53,6 +54,12 @@ struct SceneFile {
     TriangleSurface surface;
     Voxelization voxels;
     Embedding embedding;
+    // "embed.pieces": the rule for lattice pieces nothing holds, the pieces
+    // as found (what holds each, what the rule did) and the warnings
+    // (snh/pieces.h). voxels and embedding are the lattice after the rule.
+    PieceRule piece_rule = PieceRule::error;
+    std::vector<LatticePiece> pieces;
+    std::vector<std::string> piece_warnings;
   };
   std::optional<Embedded> embedded;
 
@@ -162,13 +169,20 @@ struct SceneRunOptions {
 // numbered from 0.
 SceneRun run_scene(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run = {});
 
+// What the set-up made of a loaded scene, as lines for a log: with "embed",
+// the lattice's pieces (count; each piece's cells, what holds it and what
+// embed.pieces did to it) and their warnings (prefixed "warning: "); with a
+// rig, each bone's captured lattice-vertex count.
+std::vector<std::string> scene_setup_report(const SceneFile& file);
+
 // The writers of a scene's outputs.
 //
 // A .vtu per step or frame into `folder` (<scene>_NNNN.vtu: displacement and
 // the element fields of snh/fields.h), the obstacles as surfaces
 // (<scene>_obstacles_NNNN.vtu, part 1) or a rig's embedded surface
-// (<scene>_surface_NNNN.vtu, part 1), and <scene>.pvd on finish(). `file`
-// must outlive the series.
+// (<scene>_surface_NNNN.vtu, part 1) and its bones placed by the frame's
+// transforms (<scene>_bones_NNNN.vtu, part 2: write_bone_mesh_vtu), and
+// <scene>.pvd on finish(). `file` must outlive the series.
 class SceneVtuSeries {
  public:
   SceneVtuSeries(std::string folder, const SceneFile& file, const SolveOptions& options);
