@@ -1,5 +1,5 @@
 // The rig (snh/rig.h, snh/animation.h, snh/frames.h): bones' inside tests
-// and their vertex sets (first listed bone wins, so sets are disjoint),
+// and distances, and their vertex sets (first listed bone wins, so sets are disjoint),
 // 4x4 matrices as transforms, animations in JSON and CSV with errors naming
 // file, line and bone, and frames solved with rigid, scaling and
 // intersecting bones.
@@ -54,6 +54,18 @@ TEST(RigBones, CapsuleHoldsThePointsWithinItsRadiusOfTheSegment) {
   EXPECT_FALSE(bone_contains(bone, {-0.3, 0.3, 0.3}));   // just outside it (0.520 from a)
   EXPECT_TRUE(bone_contains(bone, {2.49, 0.0, 0.0}));
   EXPECT_FALSE(bone_contains(bone, {2.51, 0.0, 0.0}));
+}
+
+TEST(RigBones, DistanceToACapsuleAndToASurfaceBone) {
+  const Bone capsule{"c", Capsule{{0, 0, 0}, {2, 0, 0}, 0.5}};
+  EXPECT_DOUBLE_EQ(bone_distance(capsule, {1.0, 0.2, 0.0}), 0.0);   // inside
+  EXPECT_DOUBLE_EQ(bone_distance(capsule, {1.0, 0.0, 1.5}), 1.0);   // beside the straight part
+  EXPECT_DOUBLE_EQ(bone_distance(capsule, {-3.0, 0.0, 0.0}), 2.5);  // beyond the round end at a
+  const Bone box{"b", box_surface({0, 0, 0}, {1, 1, 1})};
+  EXPECT_DOUBLE_EQ(bone_distance(box, {0.5, 0.5, 0.5}), 0.0);
+  EXPECT_DOUBLE_EQ(bone_distance(box, {0.5, 0.25, 1.75}), 0.75);               // above a face
+  EXPECT_NEAR(bone_distance(box, {2.0, 2.0, 0.5}), std::sqrt(2.0), 1e-15);     // off an edge
+  EXPECT_NEAR(bone_distance(box, {-1.0, -1.0, -1.0}), std::sqrt(3.0), 1e-15);  // off a corner
 }
 
 TEST(RigBones, SurfaceBoneHoldsTheLatticeVerticesInsideIt) {

@@ -447,7 +447,7 @@ PiecedLattice resolve_pieces(const Voxelization& voxels, const Embedding& embedd
     for (size_t e = 0; e < kept.element_cell.size(); ++e)
       kept_element.emplace(grid_index(voxels.dims, kept.element_cell[e]), static_cast<int32_t>(e));
     std::vector<Cell> anchor(out.pieces.size());
-    for (size_t p : free_pieces) anchor[p] = nearest_cells(held_cells, cells_of(p), voxels.dims).first;
+    for (size_t p : free_pieces) anchor[p] = nearest_cells(cells_of(p), held_cells, voxels.dims).second;
     std::vector<int32_t> piece_of_element(lattice.element_count(), -1);
     for (size_t p = 0; p < out.pieces.size(); ++p)
       for (int32_t e : out.pieces[p].elements) piece_of_element[e] = static_cast<int32_t>(p);
