@@ -327,7 +327,7 @@ TEST(Pieces, SceneFileRefusesAttachesOrDropsAndReportsPiecesAndBones) {
   const std::string bones0 = test::read_text(folder / "out" / "finger_bones_0000.vtu");
   const std::string bones1 = test::read_text(folder / "out" / "finger_bones_0001.vtu");
   ASSERT_FALSE(bones1.empty());
-  // The bone moved up 0.1 in frame 1: its first vertex (at rest (1.02 - 0.01, -0.01, -0.01)'s corner set) too.
+  // The bone moved up 0.1 in frame 1, and its mesh with it.
   const auto first_point = [](const std::string& vtu) {
     std::istringstream in(vtu.substr(vtu.find('>', vtu.find("<Points>") + 8) + 1));
     std::array<double, 3> p{};
