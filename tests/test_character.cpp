@@ -239,6 +239,23 @@ TEST(CharacterRig, LatticeEmbeddingAndWeightsCoverTheSurfaceInFileOrder) {
   }
 }
 
+TEST(CharacterSurface, PlyKeepsTheFileVertexOrder) {
+  const Character c = read_character(kArm);
+  const fs::path dir = fresh_dir("snh_character_ply");
+  std::vector<double> moved = c.surface.positions;
+  for (size_t i = 0; i < moved.size(); i += 3) moved[i] += 1.0;
+  write_surface_ply((dir / "arm.ply").string(), c.surface, moved);
+  const TriangleSurface back = read_surface((dir / "arm.ply").string());
+  ASSERT_EQ(back.vertex_count(), 359u);
+  EXPECT_EQ(back.triangles, c.surface.triangles);
+  for (size_t i = 0; i < moved.size(); ++i) EXPECT_NEAR(back.positions[i], moved[i], 1e-6);
+  EXPECT_NE(error_of([&] {
+              write_surface_ply((dir / "x.ply").string(), c.surface, {1, 2, 3});
+            }).find("x.ply"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 std::string file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});

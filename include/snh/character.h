@@ -185,6 +185,11 @@ std::vector<CharacterFrame> run_character_frames(Simulation& simulation, const C
                                                  const CharacterRig& rig, const CharacterFrameOptions& options = {},
                                                  const CharacterFrameCallback& on_frame = {});
 
+// The surface with positions x (xyz per vertex; empty: its own) as binary
+// little-endian PLY (float x, y, z; triangles as uchar-counted int lists),
+// vertices in the surface's order (write_obj, snh/surface.h, writes OBJ).
+void write_surface_ply(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x = {});
+
 // A point cache: the same points sampled over frames.
 struct PointCache {
   size_t point_count = 0;
