@@ -178,16 +178,21 @@ TEST(CharacterBones, CapsulesRunJointToChildWithARadiusFromTheSkin) {
   ASSERT_EQ(b.bones.size(), 2u);
   EXPECT_EQ(b.bones[0].name, "shoulder");
   EXPECT_EQ(b.bones[1].name, "elbow");
+  // Half the distance to the 16-sided tube's facets: R cos(pi / 16); the
+  // axis trimmed at both ends by 0.1 of the segment's 0.15 m plus the radius.
+  const double facet = 0.05 * std::cos(M_PI / 16), r = 0.5 * facet, trim = 0.015 + r;
   const Capsule& shoulder = std::get<Capsule>(b.bones[0].shape);
-  EXPECT_NEAR(shoulder.a[0], 0.05, 1e-7);
-  EXPECT_NEAR(shoulder.b[0], 0.2, 1e-7);
+  EXPECT_NEAR(shoulder.radius, r, 1e-6);
+  EXPECT_NEAR(shoulder.a[0], 0.05 + trim, 1e-6);
+  EXPECT_NEAR(shoulder.b[0], 0.2 - trim, 1e-6);
   EXPECT_NEAR(shoulder.a[1], 0.0, 1e-7);
-  // Half the distance to the 16-sided tube's facets: R cos(pi / 16).
-  const double facet = 0.05 * std::cos(M_PI / 16);
-  EXPECT_NEAR(shoulder.radius, 0.5 * facet, 1e-6);
-  const Capsule& elbow = std::get<Capsule>(b.bones[1].shape);
+  CharacterBoneOptions joint_to_joint;
+  joint_to_joint.joint_clearance = -1;
+  const CharacterBones full = character_bones(c, joint_to_joint);
+  const Capsule& elbow = std::get<Capsule>(full.bones[1].shape);
   EXPECT_NEAR(elbow.a[0], 0.2, 1e-7);
   EXPECT_NEAR(elbow.b[0], 0.35, 1e-7);
+  EXPECT_NEAR(elbow.radius, r, 1e-6);
   // The animation: each bone's skinning matrix per frame.
   ASSERT_EQ(b.animation.frame_count(), 31u);
   ASSERT_EQ(b.animation.bones, (std::vector<std::string>{"shoulder", "elbow"}));

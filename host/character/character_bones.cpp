@@ -208,6 +208,20 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
                     "': its segment touches the skin surface, so its radius would be 0 (give bones.radius." +
                     joint.name + " or exclude it)");
     }
+    if (options.joint_clearance >= 0.0) {
+      // Keep the capsule (caps included) clear of the flesh around both
+      // ends: two rigid bones meeting at a joint would crush the elements
+      // between them as the joint bends. Too short a segment for that
+      // leaves a sphere at its middle.
+      const Vec3 axis = sub(capsule.b, capsule.a);
+      const double length = norm(axis);
+      const double trim = std::min(options.joint_clearance * length + capsule.radius, 0.5 * length);
+      const Vec3 a = capsule.a;
+      for (int d = 0; d < 3; ++d) {
+        capsule.a[d] = a[d] + axis[d] * trim / length;
+        capsule.b[d] = a[d] + axis[d] * (length - trim) / length;
+      }
+    }
     out.bones.push_back({joint.name, capsule});
     out.joint.push_back(static_cast<int>(j));
   }

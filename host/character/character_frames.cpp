@@ -21,10 +21,23 @@ std::vector<CharacterFrame> run_character_frames(Simulation& simulation, const C
                 std::to_string(rig.lattice_weights.vertex_count()) + " lattice vertices, the simulation has " +
                 std::to_string(simulation.mesh().vertex_count()));
   std::vector<CharacterFrame> frames;
+  // The lattice's skinned positions of the frame before (the rest shape
+  // before the first frame, where the state starts).
+  std::vector<double> skinned_before = simulation.mesh().positions;
   for (size_t f = 0; f < all.frame_count(); ++f) {
     const std::vector<Matrix4>& skinning = character.clip.skinning[f];
-    if (options.skinned_guess)
-      simulation.set_state(linear_blend_skinning(simulation.mesh().positions, rig.lattice_weights, skinning));
+    if (options.skinned_guess) {
+      // The last state moved by the skinning's change since the last frame:
+      // it keeps what the solve added to skinning (volume at the inside of
+      // a bend, which skinning alone loses and a start from it would have
+      // to restore through inverted elements).
+      const std::vector<double> skinned =
+          linear_blend_skinning(simulation.mesh().positions, rig.lattice_weights, skinning);
+      std::vector<double> guess = simulation.positions();
+      for (size_t i = 0; i < guess.size(); ++i) guess[i] += skinned[i] - skinned_before[i];
+      simulation.set_state(guess);
+      skinned_before = skinned;
+    }
     Animation one;
     one.bones = all.bones;
     one.times = {all.times[f]};

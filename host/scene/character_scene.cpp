@@ -42,6 +42,7 @@ SceneFile::CharacterSection read_character_section(const SceneJson& r, const jso
     r.keys(b, "character.bones");
     bones.radius_fraction = r.number(b, "character.bones", "radius_fraction", bones.radius_fraction);
     if (!(bones.radius_fraction > 0.0)) r.fail("character.bones.radius_fraction", "must be > 0");
+    bones.joint_clearance = r.number(b, "character.bones", "joint_clearance", bones.joint_clearance);
     if (b.contains("exclude")) {
       if (!b["exclude"].is_array()) r.fail("character.bones.exclude", "expected an array of names or patterns");
       for (const json& p : b["exclude"]) {

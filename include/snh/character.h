@@ -120,6 +120,12 @@ struct CharacterBoneOptions {
   // Joints that get no bone, by name or glob pattern (fnmatch: * ? [..]),
   // e.g. "*finger*", "face_*", "*twist*".
   std::vector<std::string> exclude;
+  // Flesh left free around each end of a segment, as a fraction of its
+  // length: the capsule's axis is trimmed by this fraction of the length
+  // plus the radius at both ends, so that its rounded ends stay that far
+  // from the joints (bones meeting at a joint would crush the flesh
+  // between them as it bends). Negative: the full segment, joint to joint.
+  double joint_clearance = 0.1;
   // A joint without child joints: a segment of this fraction of its parent's
   // segment length, continuing the parent's direction; 0 skips such joints.
   double leaf_fraction = 0.0;
@@ -127,7 +133,7 @@ struct CharacterBoneOptions {
 
 // Bones and their animation from the skeleton: each kept joint's segment
 // runs from the joint to its child joint (the centroid of its children's
-// positions when it has several) at rest. Bones are named as their joints,
+// positions when it has several) at rest, trimmed by joint_clearance. Bones are named as their joints,
 // in joint order; the animation gives every bone, every frame, its skinning
 // matrix. snh::Error for a bone option naming no joint, a non-positive
 // fraction or radius, a segment of zero length, and no bone left.
@@ -167,8 +173,12 @@ struct CharacterFrame {
 
 struct CharacterFrameOptions {
   FrameOptions frames;
-  // Start each frame's solve from the linear blend skinning of the lattice
-  // (CharacterRig::lattice_weights) instead of the previous frame.
+  // Start each frame's solve from the previous frame's state moved by the
+  // change of the lattice's linear blend skinning (CharacterRig::
+  // lattice_weights) since that frame, instead of the previous frame's
+  // state as it is. (Starting from the skinned lattice itself loses what
+  // the solve restored, e.g. the volume inside a bend, and measured worse:
+  // docs/characters.md.)
   bool skinned_guess = false;
 };
 
