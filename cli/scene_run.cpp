@@ -189,7 +189,14 @@ int run_scene_file(const SceneFile& file, const SolveOptions& options, const Sce
     run_options.writers.push_back(vtu->writer());
   }
   if (!o.surface_prefix.empty()) run_options.writers.push_back(surface_obj_writer(o.surface_prefix, file));
+  std::optional<CharacterCacheSeries> caches;
+  if (file.character && !(file.pc2_path.empty() && file.mdd_path.empty() && file.lbs_path.empty())) {
+    caches.emplace(file.character->character, file.pc2_path, file.mdd_path, file.lbs_path);
+    run_options.writers.push_back([&caches](int frame, double, const std::vector<double>&,
+                                            const std::vector<double>& surface) { caches->add(frame, surface); });
+  }
   const SceneRun run = run_scene(file, options, run_options);
+  if (caches) caches->finish();
   if (vtu) {
     vtu->finish();
     for (const std::string& w : vtu->warnings()) std::cerr << "warning: " << w << '\n';

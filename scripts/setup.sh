@@ -9,7 +9,7 @@ packages=(cmake g++ make pkg-config clang-format
           ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
           libviennacl-dev libeigen3-dev libgtest-dev
           nlohmann-json3-dev libcli11-dev python3-matplotlib
-          gmsh python3-meshio
+          gmsh python3-meshio libassimp-dev
           python3-dev pybind11-dev python3-numpy python3-pytest)
 missing=()
 for p in "${packages[@]}"; do

@@ -7,6 +7,7 @@
 #include <random>
 #include <set>
 
+#include "scene/character_scene.h"
 #include "scene/scene_json.h"
 #include "scene/scene_selectors.h"
 #include "snh/error.h"
@@ -335,9 +336,19 @@ SceneFile load_scene(const std::string& path) {
   Scene& s = out.scene;
   s.name = r.text(doc, "scene", "name", std::filesystem::path(path).stem().string());
   s.description = r.text(doc, "scene", "description", "");
-  if (doc.contains("mesh") == doc.contains("embed"))
-    r.fail("mesh", doc.contains("mesh") ? "give \"mesh\" or \"embed\", not both" : "missing (or \"embed\")");
-  if (doc.contains("embed")) {
+  if (doc.contains("character")) {
+    for (const char* other : {"mesh", "embed", "rig"})
+      if (doc.contains(other))
+        r.fail("character", std::string("replaces \"mesh\", \"embed\" and \"rig\": give \"character\" or \"") + other +
+                                "\", not both");
+    out.character = scene_io::read_character_section(r, doc["character"], folder);
+    const SceneFile::CharacterSection& c = *out.character;
+    out.embedded = SceneFile::Embedded{c.character.surface, c.rig.voxels, c.rig.embedding};
+    s.mesh = c.rig.voxels.lattice;
+  } else if (doc.contains("mesh") == doc.contains("embed")) {
+    r.fail("mesh",
+           doc.contains("mesh") ? "give \"mesh\" or \"embed\", not both" : "missing (or \"embed\" or \"character\")");
+  } else if (doc.contains("embed")) {
     out.embedded = read_embed(r, doc["embed"], folder);
     s.mesh = out.embedded->voxels.lattice;
   } else {
@@ -362,6 +373,10 @@ SceneFile load_scene(const std::string& path) {
       if (c.contains("motion")) set.motion = read_motion(r, c["motion"], key + ".motion");
       s.constraints.push_back(set);
     }
+  }
+  if (out.character) {
+    for (const ConstraintSet& set : out.character->rig.constraints) s.constraints.push_back(set);
+    out.rig = SceneFile::Rig{out.character->rig.bones.bones, out.character->rig.bones.animation};
   }
   if (doc.contains("rig")) {
     const json& rig = doc["rig"];
@@ -420,7 +435,8 @@ SceneFile load_scene(const std::string& path) {
     if (!(dynamics.damping.mass >= 0.0)) r.fail("dynamics.damping.mass", "must be >= 0");
     if (!(dynamics.damping.stiffness >= 0.0)) r.fail("dynamics.damping.stiffness", "must be >= 0");
     if (dynamics.substeps < 1) r.fail("dynamics.substeps", "must be >= 1");
-    if (doc.contains("rig")) r.fail("dynamics", "not supported with \"rig\" yet (frames are quasistatic)");
+    if (doc.contains("rig") || doc.contains("character"))
+      r.fail("dynamics", "not supported with \"rig\" or \"character\" yet (frames are quasistatic)");
     s.options.dynamics = dynamics;
   }
   if (doc.contains("obstacles")) s.options.obstacles = read_obstacles(r, doc["obstacles"]);
@@ -490,6 +506,12 @@ SceneFile load_scene(const std::string& path) {
   out.json_path = r.text(output, "output", "json", "");
   out.surface_prefix = r.text(output, "output", "surface", "");
   if (!out.surface_prefix.empty() && !out.embedded) r.fail("output.surface", "needs \"embed\" (a surface to write)");
+  out.pc2_path = r.text(output, "output", "pc2", "");
+  out.mdd_path = r.text(output, "output", "mdd", "");
+  out.lbs_path = r.text(output, "output", "lbs", "");
+  for (const char* key : {"pc2", "mdd", "lbs"})
+    if (output.contains(key) && !out.character)
+      r.fail(std::string("output.") + key, "needs \"character\" (a skinned surface to cache)");
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "scene/character_scene.h"
 #include "snh/error.h"
 #include "snh/scene.h"
 #include "snh/shape.h"
@@ -153,6 +154,7 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
 }  // namespace
 
 SceneRun run_scene(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run) {
+  if (file.character) return scene_io::run_character_scene(file, options, run);
   return file.rig ? run_frames_of(file, options, run) : run_load_steps(file, options, run);
 }
 

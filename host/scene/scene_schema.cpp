@@ -44,7 +44,7 @@ const Keys kMaterial = {"model",    "E",     "nu", "barrier", "fung_gamma",   "f
 std::map<std::string, Keys> make_table() {
   std::map<std::string, Keys> t;
   t[""] = {"name",       "description", "mesh",     "embed",     "material", "regions", "constraints", "rig",
-           "body_force", "initial",     "dynamics", "obstacles", "contact",  "solver",  "output"};
+           "body_force", "initial",     "dynamics", "obstacles", "contact",  "solver",  "output",      "character"};
   t["mesh"] = {"file", "generator", "cells", "size", "radius", "length", "element", "allow_coincident_vertices"};
   t["embed"] = {"surface", "cell", "cover_surface", "pieces"};
   t["material"] = kMaterial;
@@ -57,6 +57,9 @@ std::map<std::string, Keys> make_table() {
   t["rig"] = {"bones", "animation"};
   t["rig.bones[]"] = {"name", "capsule", "surface"};
   t["rig.bones[].capsule"] = {"a", "b", "radius"};
+  t["character"] = {"file", "clip", "fps", "frames", "cell", "bones", "skinned_guess"};
+  // "radius" is an object of joint names (any key), so it has no entry.
+  t["character.bones"] = {"radius_fraction", "exclude", "radius", "joint_clearance"};
   t["initial"] = {"scramble_volume_factor", "seed"};
   t["dynamics"] = {"time_step", "density", "damping", "substeps"};
   t["dynamics.damping"] = {"mass", "stiffness"};
@@ -69,7 +72,7 @@ std::map<std::string, Keys> make_table() {
   t["contact"] = {"stiffness", "thickness", "self", "self_stiffness", "friction", "friction_slip"};
   t["solver"] = {"steps",          "precision", "strain_tolerance", "absolute_tolerance", "max_newton_iterations",
                  "preconditioner", "hessian",   "product_precision"};
-  t["output"] = {"vtu", "json", "surface"};
+  t["output"] = {"vtu", "json", "surface", "pc2", "mdd", "lbs"};
   return t;
 }
 

@@ -201,7 +201,7 @@ json frames_json(const SceneFile& file, const SceneRun& run) {
   j["profile"] = profile_json(profile);      // summed over the frames
   j["device_memory_bytes"] = device_memory;  // the largest frame's
   j["frames"] = json::array();
-  for (const FrameRecord& r : run.frames)
+  for (const FrameRecord& r : run.frames) {
     j["frames"].push_back({{"frame", r.frame},
                            {"time", r.time},
                            {"converged", r.converged},
@@ -215,6 +215,13 @@ json frames_json(const SceneFile& file, const SceneRun& run) {
                            {"min_j", r.min_j},
                            {"inverted_elements", r.inverted_elements},
                            {"history", history_json(r.history)}});
+    // A character's: the simulated surface against its skinned one.
+    const size_t k = j["frames"].size() - 1;
+    if (k < run.skin_deviation.size()) {
+      j["frames"][k]["lbs_max_distance"] = run.skin_deviation[k].max_distance;
+      j["frames"][k]["lbs_mean_distance"] = run.skin_deviation[k].mean_distance;
+    }
+  }
   return j;
 }
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "snh/animation.h"
+#include "snh/character.h"
 #include "snh/fields.h"
 #include "snh/frames.h"
 #include "snh/io.h"
@@ -71,6 +72,22 @@ struct SceneFile {
     Animation animation;
   };
   std::optional<Rig> rig;
+
+  // "character": a skinned character (snh/character.h) in place of "mesh",
+  // "embed" and "rig". The loader also fills `embedded` (the character's
+  // surface in the file's vertex order, the welded surface's lattice and
+  // the embedding) and `rig` (a bone per kept joint, the sampled clip), so
+  // that the rig's writers serve it too.
+  struct CharacterSection {
+    Character character;
+    CharacterRig rig;
+    bool skinned_guess = false;  // "character.skinned_guess"
+  };
+  std::optional<CharacterSection> character;
+  // "output.pc2", "output.mdd": the character's simulated surface per frame
+  // as point caches; "output.lbs": its linear-blend-skinned surface (.pc2 or
+  // .mdd). Empty for none; they need "character".
+  std::string pc2_path, mdd_path, lbs_path;
 
   // The file sets solver.strain_tolerance or solver.absolute_tolerance;
   // without them the strain tolerance is the precision's default
@@ -130,6 +147,9 @@ struct SceneRun {
   std::vector<SceneStep> steps;
   // A rig: a record per frame, and the device they ran on.
   std::vector<FrameRecord> frames;
+  // A character: per frame, the simulated surface's distance from the
+  // linear-blend-skinned one.
+  std::vector<SkinDeviation> skin_deviation;
   DeviceInfo device;
   bool converged = false;  // every step or frame
   // What could not be computed or written, e.g. a step without reactions.
@@ -164,7 +184,9 @@ struct SceneRunOptions {
 
 // Runs a loaded scene with `options` (the file's scene.options, changed as
 // the caller likes): load steps (or time steps with dynamics) on one solve,
-// or, with a rig, the animation's frames (snh/frames.h). Step 0 (the start)
+// or, with a rig, the animation's frames (snh/frames.h), or a character's
+// frames (run_character_frames; writers get its surface in the file's
+// vertex order, frames numbered as in the clip). Step 0 (the start)
 // of a load-step run goes to the writers before the solve; frames are
 // numbered from 0.
 SceneRun run_scene(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run = {});

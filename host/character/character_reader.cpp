@@ -1,0 +1,438 @@
+// Reading a skinned character through assimp (snh/character.h). assimp's
+// types stay in this file.
+//
+// The importer runs with aiProcess_Triangulate alone: no step that joins,
+// splits or reorders vertices, so the surface keeps the file's vertex list
+// (seams included) and the weld for the simulation is our own.
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+
+#include "snh/character.h"
+#include "snh/error.h"
+
+namespace snh {
+namespace {
+
+Matrix4 to_matrix4(const aiMatrix4x4& m) {
+  return {m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4};
+}
+
+bool finite(const Matrix4& m) {
+  return std::all_of(m.begin(), m.end(), [](double v) { return std::isfinite(v); });
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// A key's value between keys: linear (positions, scales) or spherical
+// (rotations) interpolation at the fraction of the way from key i to i+1,
+// as assimp's own evaluators do; before the first key the first, after the
+// last the last.
+template <class Key>
+size_t key_before(const Key* keys, unsigned count, double ticks, double& fraction) {
+  fraction = 0.0;
+  if (ticks <= keys[0].mTime) return 0;
+  if (ticks >= keys[count - 1].mTime) return count - 1;
+  size_t i = 0;
+  while (i + 1 < count && keys[i + 1].mTime <= ticks) ++i;
+  const double span = keys[i + 1].mTime - keys[i].mTime;
+  fraction = span > 0.0 ? (ticks - keys[i].mTime) / span : 0.0;
+  return i;
+}
+
+std::array<double, 3> sample_vector(const aiVectorKey* keys, unsigned count, double ticks,
+                                    const std::array<double, 3>& fallback, bool step) {
+  if (count == 0) return fallback;
+  double f = 0.0;
+  const size_t i = key_before(keys, count, ticks, f);
+  if (step) f = 0.0;
+  const aiVector3D& a = keys[i].mValue;
+  if (f == 0.0) return {a.x, a.y, a.z};
+  const aiVector3D& b = keys[i + 1].mValue;
+  return {a.x + f * (double(b.x) - a.x), a.y + f * (double(b.y) - a.y), a.z + f * (double(b.z) - a.z)};
+}
+
+std::array<double, 4> sample_rotation(const aiQuatKey* keys, unsigned count, double ticks,
+                                      const std::array<double, 4>& fallback, bool step) {
+  if (count == 0) return fallback;
+  double f = 0.0;
+  const size_t i = key_before(keys, count, ticks, f);
+  if (step) f = 0.0;
+  const aiQuaternion& qa = keys[i].mValue;
+  std::array<double, 4> a{qa.w, qa.x, qa.y, qa.z};
+  if (f != 0.0) {
+    const aiQuaternion& qb = keys[i + 1].mValue;
+    std::array<double, 4> b{qb.w, qb.x, qb.y, qb.z};
+    double c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+    if (c < 0.0) {  // the shorter arc
+      c = -c;
+      for (double& v : b) v = -v;
+    }
+    double s0 = 1.0 - f, s1 = f;
+    if (1.0 - c > 1e-9) {
+      const double omega = std::acos(std::min(c, 1.0)), so = std::sin(omega);
+      s0 = std::sin((1.0 - f) * omega) / so;
+      s1 = std::sin(f * omega) / so;
+    }
+    for (int k = 0; k < 4; ++k) a[k] = s0 * a[k] + s1 * b[k];
+  }
+  const double n = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3]);
+  for (double& v : a) v /= n;
+  return a;
+}
+
+// A node's rest transform as translation, rotation and scale.
+void decompose(const aiMatrix4x4& m, std::array<double, 3>& t, std::array<double, 4>& q, std::array<double, 3>& s) {
+  aiVector3D ts, ss;
+  aiQuaternion qs;
+  m.Decompose(ss, qs, ts);
+  t = {ts.x, ts.y, ts.z};
+  q = {qs.w, qs.x, qs.y, qs.z};
+  s = {ss.x, ss.y, ss.z};
+}
+
+// The channels of glTF animation `clip` whose sampler is STEP, as (node
+// name, 0 translation | 1 rotation | 2 scale): assimp 5.2 does not pass the
+// interpolation on. Read from the file's JSON (.gltf, or a .glb's first
+// chunk); nodes without a name are left linear. Nothing for other formats.
+std::set<std::pair<std::string, int>> gltf_step_channels(const std::string& path, int clip) {
+  std::set<std::pair<std::string, int>> out;
+  std::string ext = path.size() >= 5 ? path.substr(path.size() - 5) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (ext != ".gltf" && ext.substr(1) != ".glb") return out;
+  std::ifstream in(path, std::ios::binary);
+  std::string text(std::istreambuf_iterator<char>(in), {});
+  if (ext != ".gltf") {  // glb: 12-byte header, then chunk 0 (length, "JSON", data)
+    if (text.size() < 20 || text.compare(0, 4, "glTF") != 0 || text.compare(16, 4, "JSON") != 0) return out;
+    uint32_t length = 0;
+    for (int i = 0; i < 4; ++i) length |= uint32_t(static_cast<unsigned char>(text[12 + i])) << (8 * i);
+    text = text.substr(20, length);
+  }
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.contains("animations") || !doc["animations"].is_array() ||
+      clip >= static_cast<int>(doc["animations"].size()) || !doc.contains("nodes"))
+    return out;
+  const nlohmann::json& a = doc["animations"][clip];
+  if (!a.contains("channels") || !a.contains("samplers")) return out;
+  for (const nlohmann::json& ch : a["channels"]) {
+    const size_t sampler = ch.value("sampler", size_t(0));
+    if (sampler >= a["samplers"].size() || a["samplers"][sampler].value("interpolation", "LINEAR") != "STEP") continue;
+    if (!ch.contains("target") || !ch["target"].contains("node")) continue;
+    const size_t node = ch["target"]["node"].get<size_t>();
+    const std::string p = ch["target"].value("path", "");
+    if (node >= doc["nodes"].size() || !doc["nodes"][node].contains("name")) continue;
+    const int kind = p == "translation" ? 0 : p == "rotation" ? 1 : p == "scale" ? 2 : -1;
+    if (kind >= 0) out.insert({doc["nodes"][node]["name"].get<std::string>(), kind});
+  }
+  return out;
+}
+
+void weld(Character& c, double distance) {
+  const size_t n = c.surface.vertex_count();
+  const double h = distance;
+  std::unordered_map<long long, std::vector<int32_t>> grid;
+  const auto cell = [&](double v) { return static_cast<long long>(std::floor(v / h)); };
+  const auto key = [](long long i, long long j, long long k) {
+    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
+  };
+  c.welded_index.assign(n, -1);
+  c.welded = TriangleSurface{};
+  for (size_t v = 0; v < n; ++v) {
+    const double* p = &c.surface.positions[3 * v];
+    const long long ci = cell(p[0]), cj = cell(p[1]), ck = cell(p[2]);
+    int32_t found = -1;
+    for (long long i = ci - 1; i <= ci + 1 && found < 0; ++i)
+      for (long long j = cj - 1; j <= cj + 1 && found < 0; ++j)
+        for (long long k = ck - 1; k <= ck + 1 && found < 0; ++k) {
+          const auto it = grid.find(key(i, j, k));
+          if (it == grid.end()) continue;
+          for (int32_t w : it->second) {
+            const double* q = &c.welded.positions[3 * static_cast<size_t>(w)];
+            const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+            if (dx * dx + dy * dy + dz * dz <= h * h) {
+              found = w;
+              break;
+            }
+          }
+        }
+    if (found < 0) {
+      found = static_cast<int32_t>(c.welded.vertex_count());
+      c.welded.positions.insert(c.welded.positions.end(), p, p + 3);
+      grid[key(ci, cj, ck)].push_back(found);
+    }
+    c.welded_index[v] = found;
+  }
+  for (size_t t = 0; t < c.surface.triangle_count(); ++t) {
+    const int32_t a = c.welded_index[c.surface.triangles[3 * t]], b = c.welded_index[c.surface.triangles[3 * t + 1]],
+                  d = c.welded_index[c.surface.triangles[3 * t + 2]];
+    if (a == b || b == d || a == d) continue;  // collapsed by the weld
+    c.welded.triangles.insert(c.welded.triangles.end(), {a, b, d});
+  }
+}
+
+}  // namespace
+
+Character read_character(const std::string& path, const CharacterReadOptions& options) {
+  if (!(options.fps > 0.0) || !std::isfinite(options.fps)) fail(path, "fps must be > 0, got " + number(options.fps));
+  if (options.first_frame < 0) fail(path, "the first frame must be >= 0, got " + std::to_string(options.first_frame));
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+  if (!scene || !scene->mRootNode)
+    fail(path, std::string("cannot read the file (assimp: ") + importer.GetErrorString() + ")");
+
+  Character c;
+  c.file = path;
+  // Nodes by name, and each node's parent chain.
+  std::map<std::string, const aiNode*> nodes;
+  std::vector<const aiNode*> order;  // depth first, parents first
+  const std::function<void(const aiNode*)> visit = [&](const aiNode* n) {
+    nodes.emplace(n->mName.C_Str(), n);
+    order.push_back(n);
+    for (unsigned i = 0; i < n->mNumChildren; ++i) visit(n->mChildren[i]);
+  };
+  visit(scene->mRootNode);
+
+  // Joints: the nodes the skinned meshes' bones name, with their offset
+  // matrices (one per joint: meshes that share a joint must agree).
+  std::map<std::string, Matrix4> offsets;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    for (unsigned b = 0; b < mesh->mNumBones; ++b) {
+      const aiBone* bone = mesh->mBones[b];
+      const std::string name = bone->mName.C_Str();
+      const Matrix4 offset = to_matrix4(bone->mOffsetMatrix);
+      if (!finite(offset)) fail(path, "joint '" + name + "': its inverse bind matrix is not finite");
+      if (!nodes.count(name)) fail(path, "joint '" + name + "': no node of that name in the scene");
+      const auto [it, added] = offsets.emplace(name, offset);
+      if (!added)
+        for (int k = 0; k < 16; ++k)
+          if (std::abs(it->second[k] - offset[k]) > 1e-6 * (1.0 + std::abs(offset[k])))
+            fail(path, "joint '" + name + "': meshes give it different inverse bind matrices");
+    }
+  }
+  if (offsets.empty()) fail(path, "no skinned mesh (no mesh has bones)");
+  std::map<std::string, int> joint_of;
+  for (const aiNode* n : order) {
+    const std::string name = n->mName.C_Str();
+    if (!offsets.count(name) || joint_of.count(name)) continue;
+    Joint j;
+    j.name = name;
+    j.inverse_bind = offsets[name];
+    for (const aiNode* p = n->mParent; p; p = p->mParent) {
+      const auto it = joint_of.find(p->mName.C_Str());
+      if (it != joint_of.end()) {
+        j.parent = it->second;
+        break;
+      }
+    }
+    Matrix4 bind;
+    try {
+      bind = inverse_matrix4(j.inverse_bind);
+    } catch (const Error&) {
+      fail(path, "joint '" + name + "': its inverse bind matrix is singular");
+    }
+    j.rest_position = {bind[3], bind[7], bind[11]};
+    joint_of[name] = static_cast<int>(c.joints.size());
+    c.joints.push_back(j);
+  }
+
+  // The skin: every mesh with bones, its vertices as given.
+  std::vector<std::vector<std::pair<int32_t, double>>> rows;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    if (mesh->mNumBones == 0) continue;
+    const std::string mesh_name =
+        "mesh " + std::to_string(m) + (mesh->mName.length ? " '" + std::string(mesh->mName.C_Str()) + "'" : "");
+    const int32_t base = static_cast<int32_t>(c.surface.vertex_count());
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D& p = mesh->mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        fail(path, mesh_name + ": vertex " + std::to_string(v) + " has a non-finite position");
+      c.surface.positions.insert(c.surface.positions.end(), {p.x, p.y, p.z});
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines of a mixed mesh
+      for (unsigned k = 0; k < 3; ++k) c.surface.triangles.push_back(base + static_cast<int32_t>(face.mIndices[k]));
+    }
+    rows.resize(c.surface.vertex_count());
+    for (unsigned b = 0; b < mesh->mNumBones; ++b) {
+      const aiBone* bone = mesh->mBones[b];
+      const int32_t j = joint_of.at(bone->mName.C_Str());
+      for (unsigned k = 0; k < bone->mNumWeights; ++k) {
+        const aiVertexWeight& w = bone->mWeights[k];
+        if (w.mVertexId >= mesh->mNumVertices)
+          fail(path, mesh_name + ": joint '" + c.joints[j].name + "' weighs vertex " + std::to_string(w.mVertexId) +
+                         " of " + std::to_string(mesh->mNumVertices));
+        if (!std::isfinite(w.mWeight) || w.mWeight < 0.0f)
+          fail(path, mesh_name + ": vertex " + std::to_string(w.mVertexId) + " has weight " + number(w.mWeight) +
+                         " for joint '" + c.joints[j].name + "'");
+        if (w.mWeight > 0.0f) rows[base + w.mVertexId].push_back({j, w.mWeight});
+      }
+    }
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      auto& row = rows[base + v];
+      double sum = 0.0;
+      for (const auto& [j, w] : row) sum += w;
+      if (std::abs(sum - 1.0) > options.weight_tolerance) {
+        if (!(options.normalize_weights && sum > 0.0))
+          fail(path, mesh_name + ": vertex " + std::to_string(v) + " (surface vertex " + std::to_string(base + v) +
+                         "): its skin weights sum to " + number(sum) + ", not 1 (tolerance " +
+                         number(options.weight_tolerance) + ")");
+      }
+      if (sum > 0.0)
+        for (auto& jw : row) jw.second /= sum;
+      std::sort(row.begin(), row.end());
+    }
+  }
+  if (c.surface.triangle_count() == 0) fail(path, "the skinned meshes have no triangles");
+  for (const auto& row : rows) {
+    for (const auto& [j, w] : row) {
+      c.weights.joint.push_back(j);
+      c.weights.weight.push_back(w);
+    }
+    c.weights.offset.push_back(static_cast<int32_t>(c.weights.joint.size()));
+  }
+
+  // The weld of the simulated surface.
+  double diagonal = 0.0;
+  {
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (size_t v = 0; v < c.surface.vertex_count(); ++v)
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], c.surface.positions[3 * v + d]);
+        hi[d] = std::max(hi[d], c.surface.positions[3 * v + d]);
+      }
+    for (int d = 0; d < 3; ++d) diagonal += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+    diagonal = std::sqrt(diagonal);
+  }
+  const double weld_distance = options.weld_distance > 0.0 ? options.weld_distance : 1e-9 * std::max(diagonal, 1e-300);
+  weld(c, weld_distance);
+
+  // The clip.
+  for (unsigned a = 0; a < scene->mNumAnimations; ++a) c.clip_names.push_back(scene->mAnimations[a]->mName.C_Str());
+  const auto listing = [&]() {
+    std::string s;
+    for (size_t a = 0; a < c.clip_names.size(); ++a)
+      s += (a ? ", " : "") + std::to_string(a) + " '" + c.clip_names[a] + "'";
+    return s.empty() ? std::string("none") : s;
+  };
+  int clip = -1;
+  if (!options.clip.empty()) {
+    for (size_t a = 0; a < c.clip_names.size() && clip < 0; ++a)
+      if (c.clip_names[a] == options.clip) clip = static_cast<int>(a);
+    if (clip < 0) fail(path, "no animation clip named '" + options.clip + "' (clips: " + listing() + ")");
+  } else if (options.clip_index >= 0) {
+    if (options.clip_index >= static_cast<int>(c.clip_names.size()))
+      fail(path, "no animation clip " + std::to_string(options.clip_index) + " (clips: " + listing() + ")");
+    clip = options.clip_index;
+  } else if (!c.clip_names.empty()) {
+    clip = 0;
+  }
+  if (clip < 0) {
+    if (options.require_clip) fail(path, "no animation (an animation clip is needed)");
+    return c;
+  }
+  const aiAnimation* anim = scene->mAnimations[clip];
+  const double ticks_per_second = anim->mTicksPerSecond > 0.0 ? anim->mTicksPerSecond : 25.0;
+  const std::string clip_name = "clip '" + c.clip_names[clip] + "'";
+  std::map<std::string, const aiNodeAnim*> channels;
+  for (unsigned ci = 0; ci < anim->mNumChannels; ++ci) {
+    const aiNodeAnim* ch = anim->mChannels[ci];
+    const std::string node = ch->mNodeName.C_Str();
+    const auto bad = [&](const char* what, unsigned key) {
+      fail(path, clip_name + ": node '" + node + "': " + what + " key " + std::to_string(key) + " is not finite");
+    };
+    for (unsigned i = 0; i < ch->mNumPositionKeys; ++i) {
+      const auto& k = ch->mPositionKeys[i];
+      if (!std::isfinite(k.mTime) || !std::isfinite(k.mValue.x) || !std::isfinite(k.mValue.y) ||
+          !std::isfinite(k.mValue.z))
+        bad("translation", i);
+    }
+    for (unsigned i = 0; i < ch->mNumRotationKeys; ++i) {
+      const auto& k = ch->mRotationKeys[i];
+      const double n2 = double(k.mValue.w) * k.mValue.w + double(k.mValue.x) * k.mValue.x +
+                        double(k.mValue.y) * k.mValue.y + double(k.mValue.z) * k.mValue.z;
+      if (!std::isfinite(k.mTime) || !std::isfinite(n2)) bad("rotation", i);
+      if (!(n2 > 1e-12))
+        fail(path, clip_name + ": node '" + node + "': rotation key " + std::to_string(i) + " is zero");
+    }
+    for (unsigned i = 0; i < ch->mNumScalingKeys; ++i) {
+      const auto& k = ch->mScalingKeys[i];
+      if (!std::isfinite(k.mTime) || !std::isfinite(k.mValue.x) || !std::isfinite(k.mValue.y) ||
+          !std::isfinite(k.mValue.z))
+        bad("scale", i);
+    }
+    if (!nodes.count(node)) fail(path, clip_name + ": animates node '" + node + "', which the scene does not have");
+    channels[node] = ch;
+  }
+  const double duration = anim->mDuration / ticks_per_second;
+  if (!std::isfinite(duration) || duration < 0.0) fail(path, clip_name + ": its duration is not finite");
+  const int clip_last = static_cast<int>(std::floor(duration * options.fps + 1e-9));
+  const int last = options.last_frame < 0 ? clip_last : options.last_frame;
+  if (options.first_frame > last || last > clip_last)
+    fail(path, clip_name + ": frames " + std::to_string(options.first_frame) + ".." + std::to_string(last) +
+                   " are outside the clip's frames 0.." + std::to_string(clip_last) + " at " + number(options.fps) +
+                   " fps");
+
+  c.has_clip = true;
+  c.clip.name = c.clip_names[clip];
+  c.clip.index = clip;
+  c.clip.fps = options.fps;
+  c.clip.first_frame = options.first_frame;
+  // The clip index is the glTF animation's: assimp 5.2 imports them in order.
+  const auto step =
+      scene->mNumAnimations > 0 ? gltf_step_channels(path, clip) : std::set<std::pair<std::string, int>>{};
+  std::map<const aiNode*, Matrix4> world;
+  for (int f = options.first_frame; f <= last; ++f) {
+    const double seconds = f / options.fps, ticks = seconds * ticks_per_second;
+    world.clear();
+    for (const aiNode* n : order) {
+      Matrix4 local = to_matrix4(n->mTransformation);
+      const auto it = channels.find(n->mName.C_Str());
+      if (it != channels.end()) {
+        const aiNodeAnim* ch = it->second;
+        std::array<double, 3> t, s;
+        std::array<double, 4> q;
+        decompose(n->mTransformation, t, q, s);  // a channel without keys of a kind keeps the node's own
+        const std::string name = n->mName.C_Str();
+        local = compose_trs(sample_vector(ch->mPositionKeys, ch->mNumPositionKeys, ticks, t, step.count({name, 0})),
+                            sample_rotation(ch->mRotationKeys, ch->mNumRotationKeys, ticks, q, step.count({name, 1})),
+                            sample_vector(ch->mScalingKeys, ch->mNumScalingKeys, ticks, s, step.count({name, 2})));
+      }
+      world[n] = n->mParent ? multiply_matrix4(world.at(n->mParent), local) : local;
+    }
+    std::vector<Matrix4> skinning;
+    for (const Joint& j : c.joints) {
+      const Matrix4 m = multiply_matrix4(world.at(nodes.at(j.name)), j.inverse_bind);
+      if (!finite(m))
+        fail(path, clip_name + ": joint '" + j.name + "' at frame " + std::to_string(f) + " is not finite");
+      skinning.push_back(m);
+    }
+    c.clip.times.push_back(seconds);
+    c.clip.skinning.push_back(std::move(skinning));
+  }
+  return c;
+}
+
+}  // namespace snh
