@@ -36,9 +36,10 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   data_.nodes = rest.nodes;
   data_.quadrature = rest.quadrature;
   // Build-time specialization: only what this scene uses is compiled in.
-  std::string& defines = data_.defines;
-  defines = std::string("-DSNH_HEX8=") + (mesh.type == ElementType::hex8 ? "1" : "0") + " " + material_.defines() +
-            " -DSNH_UNIFORM_REST=" + (rest.uniform ? "1" : "0");
+  device::KernelConfig& config = data_.config;
+  config = material_.config();
+  config.element = mesh.type;
+  config.uniform_rest = rest.uniform;
   // Every program that reads the cache or the gradients (multigrid.cl and
   // stencil.cl too) builds from these defines, so they all agree on the
   // layout.
@@ -46,19 +47,18 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   if (layout == PointDataLayout::automatic)
     layout = lanes_by_default() ? PointDataLayout::value_major : PointDataLayout::tiled;
   const bool value_major = layout == PointDataLayout::value_major;
-  if (mesh.type == ElementType::hex8 && !value_major) defines += " -DSNH_POINT_MAJOR=1";
+  config.point_major = mesh.type == ElementType::hex8 && !value_major;
   if (layout == PointDataLayout::tiled) {
     data_.cache_tile = 32;
-    defines += " -DSNH_CACHE_TILE=" + std::to_string(data_.cache_tile) +
-               " -DSNH_STENCIL_TILE=" + std::to_string(data_.cache_tile);
+    config.cache_tile = config.stencil_tile = static_cast<int>(data_.cache_tile);
   }
-  data_.elastic_defines = defines;
+  data_.elastic_config = config;
   terms_ = terms;
-  if (terms.inertia) defines += " -DSNH_INERTIA=1";
-  if (terms.obstacles > 0) defines += " -DSNH_OBSTACLES=" + std::to_string(terms.obstacles);
-  if (terms.self_contact) defines += " -DSNH_SELF_CONTACT=1";
   if (terms.friction && terms.obstacles == 0) throw Error("solver: friction needs obstacles");
-  if (terms.friction) defines += " -DSNH_FRICTION=1";
+  config.inertia = terms.inertia;
+  config.obstacles = terms.obstacles;
+  config.self_contact = terms.self_contact;
+  config.friction = terms.friction;
 
   const size_t vertex_count = data_.vertex_count, element_count = data_.element_count;
   const fem::VertexSlots slots = fem::vertex_slots(mesh.elements, vertex_count);
@@ -91,17 +91,17 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   min_j_ = cl.buffer(CL_MEM_READ_WRITE, element_count * sizeof(Real));
   if (terms.inertia || terms.obstacles > 0)
     vertex_terms_ = std::make_unique<VertexTerms<Real>>(cl, vertex_count, terms.inertia, terms.obstacles,
-                                                        terms.friction, defines, &profiler_);
+                                                        terms.friction, config, &profiler_);
   data_.elements_host = elements;
 
-  energy_k_ = cl.kernel("fem.cl", defines, "snh_element_energy");
-  forces_k_ = cl.kernel("fem.cl", defines, "snh_element_forces");
+  energy_k_ = cl.kernel("fem.cl", config, "snh_element_energy");
+  forces_k_ = cl.kernel("fem.cl", config, "snh_element_forces");
   products_ = std::make_unique<ProductVariants<Real>>(data_, material_, variant, &profiler_);
   set_point_lanes(point_lanes_available() && lanes_by_default());
-  gather_k_ = cl.kernel("fem.cl", defines, "snh_gather_vectors");
-  block_jacobi_ = std::make_unique<BlockJacobi<Real>>(cl, vertex_count, defines);
-  mask_k_ = cl.kernel("fem.cl", defines, "snh_apply_mask");
-  if (terms.self_contact) self_contact_ = std::make_unique<SelfContactTerms<Real>>(cl, mesh, defines, &profiler_);
+  gather_k_ = cl.kernel("fem.cl", config, "snh_gather_vectors");
+  block_jacobi_ = std::make_unique<BlockJacobi<Real>>(cl, vertex_count, config);
+  mask_k_ = cl.kernel("fem.cl", config, "snh_apply_mask");
+  if (terms.self_contact) self_contact_ = std::make_unique<SelfContactTerms<Real>>(cl, mesh, config, &profiler_);
   for (size_t e = 0; e < element_count; ++e) {
     const Material& m = materials.of_element(e);
     double volume = 0.0;
@@ -158,7 +158,7 @@ void ElasticModel<Real>::set_material_lanes(int lanes) {
         "solver: 16 material lanes hold two hex8 elements, so they need one material for the mesh (this map has "
         "regions)");
   material_lanes_ = data_.point_lanes ? lanes : 0;
-  linearize_k_ = data_.point_kernel("snh_element_linearize", "", material_lanes_);
+  linearize_k_ = data_.point_kernel("snh_element_linearize", material_lanes_);
   products_->set_material_lanes(material_lanes_);
 }
 

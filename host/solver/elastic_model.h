@@ -160,11 +160,20 @@ class ElasticModel {
   // The preconditioner's inverted 3x3 blocks, column-major per vertex (tests).
   std::vector<Real> preconditioner_blocks() const;
 
-  std::string specialization() const { return data_.defines; }
+  std::string specialization() const { return data_.config.defines(); }
+  // The build (device/kernel_config.h) and the specialization a result
+  // reports: specialization() and the precision (-DSNH_DOUBLE).
+  const device::KernelConfig& kernel_config() const { return data_.config; }
+  std::string kernel_report() const {
+    device::KernelConfig c = data_.config;
+    c.precision = data_.cl.precision();
+    return c.report();
+  }
   // The same switches without the per-vertex terms (inertia, obstacles,
   // friction, self-contact): the builds of a multigrid's coarse levels,
   // whose cell matrices carry those terms already.
-  std::string elastic_specialization() const { return data_.elastic_defines; }
+  std::string elastic_specialization() const { return data_.elastic_config.defines(); }
+  const device::KernelConfig& elastic_kernel_config() const { return data_.elastic_config; }
   // What the multigrid preconditioner reads (solver/multigrid.h): the
   // context, the mesh's element and rest-state buffers, the linearization
   // cache and the constraint mask (host copy and buffer).

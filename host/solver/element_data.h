@@ -7,7 +7,6 @@
 #pragma once
 
 #include <cstddef>
-#include <string>
 #include <vector>
 
 #include "device/opencl_context.h"
@@ -24,7 +23,7 @@ struct ElementData {
   size_t cache_tile = 1;  // PointDataLayout::tiled: 32
   // The model's build (its per-vertex terms included) and the same without
   // those terms (the lanes program and the stencils need only the element's).
-  std::string defines, elastic_defines;
+  device::KernelConfig config, elastic_config;
   bool point_lanes = false;  // ElasticModel::set_point_lanes
   device::Buffer elements, gradients, weights, offsets, adjacency, mask, element_scratch, element_blocks, cache;
   std::vector<int> elements_host;
@@ -39,12 +38,16 @@ struct ElementData {
   // element matrices, element blocks), whatever the material lanes are.
   static constexpr int kCacheLanes = 8;
 
-  // Kernel `name` of the program point_lanes chooses (fem_lanes.cl at
-  // `lanes` lanes, or fem.cl), its defines followed by `extra`.
-  device::Kernel point_kernel(const char* name, const std::string& extra = "", int lanes = kCacheLanes) const {
-    if (point_lanes)
-      return cl.kernel("fem_lanes.cl", elastic_defines + " -DSNH_LANES=" + std::to_string(lanes) + extra, name);
-    return cl.kernel("fem.cl", defines + extra, name);
+  // Kernel `name` of the program point_lanes chooses: fem_lanes.cl at
+  // `lanes` lanes (the element's build only), or fem.cl (the model's); with
+  // the float data of float products (SNH_MIXED) or matrices stored in
+  // float (SNH_MATRIX_FLOAT) where asked.
+  device::Kernel point_kernel(const char* name, int lanes = kCacheLanes, bool mixed = false,
+                              bool matrix_float = false) const {
+    device::KernelConfig c = point_lanes ? elastic_config.with_lanes(lanes) : config;
+    c.mixed = mixed;
+    c.matrix_float = matrix_float;
+    return cl.kernel(point_lanes ? "fem_lanes.cl" : "fem.cl", c, name);
   }
   // A work-item per element.
   void run_element_kernel(cl_kernel k) const { cl.run(k, element_count); }

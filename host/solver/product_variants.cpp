@@ -25,8 +25,8 @@ template <typename Real>
 ProductVariants<Real>::ProductVariants(const ElementData<Real>& data, const device::MaterialArgs<Real>& material,
                                        ProductVariant variant, PhaseProfiler* profiler)
     : data_(data), material_(material), profiler_(profiler), variant_(variant) {
-  matrix_product_k_ = data_.cl.kernel("fem.cl", data_.defines, "snh_element_matrix_product");
-  matrix_rows_k_ = data_.cl.kernel("fem.cl", data_.defines, "snh_element_matrix_product_rows");
+  matrix_product_k_ = data_.cl.kernel("fem.cl", data_.config, "snh_element_matrix_product");
+  matrix_rows_k_ = data_.cl.kernel("fem.cl", data_.config, "snh_element_matrix_product_rows");
   matrix_rows_ = data_.cl.info().is_gpu;
 }
 
@@ -44,7 +44,7 @@ void ProductVariants<Real>::set_variant(ProductVariant v) {
 template <typename Real>
 void ProductVariants<Real>::set_material_lanes(int lanes) {
   material_lanes_ = lanes;
-  product_recompute_k_ = data_.point_kernel("snh_element_product_recompute", "", material_lanes_);
+  product_recompute_k_ = data_.point_kernel("snh_element_product_recompute", material_lanes_);
 }
 
 template <typename Real>
@@ -57,7 +57,7 @@ void ProductVariants<Real>::set_point_lanes(int material_lanes) {
   // values into 8-wide vectors, measured 1.8x slower (docs/performance.md).
   cached_lanes_ = data_.point_lanes && (sizeof(Real) == sizeof(float) || data_.nodes == 8);
   product_cached_k_ = cached_lanes_ ? data_.point_kernel("snh_element_product_cached")
-                                    : data_.cl.kernel("fem.cl", data_.defines, "snh_element_product_cached");
+                                    : data_.cl.kernel("fem.cl", data_.config, "snh_element_product_cached");
   if (product_float_k_) product_float_k_ = float_product_kernel();
   matrices_k_ = data_.point_kernel("snh_element_matrices");
   matrices_float_k_ = Kernel();
@@ -88,7 +88,7 @@ void ProductVariants<Real>::prepare_float_products() {
   // Made when the products first run in float (the cached or assembled
   // variant): other variants hold no float copies.
   if (!float_products()) return;
-  if (!narrow_k_) narrow_k_ = data_.cl.kernel("fem.cl", data_.defines, "snh_narrow");
+  if (!narrow_k_) narrow_k_ = data_.cl.kernel("fem.cl", data_.config, "snh_narrow");
   if (variant_ == ProductVariant::assembled) {
     // The float blocks' buffer (the stencil's tables are made with the
     // variant), holding the blocks assembled so far, if any (else the next
@@ -121,15 +121,15 @@ bool ProductVariants<Real>::float_product_lanes() const {
 template <typename Real>
 device::Kernel ProductVariants<Real>::float_product_kernel() const {
   return float_product_lanes()
-             ? data_.point_kernel("snh_element_product_cached", " -DSNH_MIXED=1")
-             : data_.cl.kernel("fem.cl", data_.defines + " -DSNH_MIXED=1", "snh_element_product_cached");
+             ? data_.point_kernel("snh_element_product_cached", ElementData<Real>::kCacheLanes, true)
+             : data_.cl.kernel("fem.cl", data_.config.with_mixed(), "snh_element_product_cached");
 }
 
 template <typename Real>
 void ProductVariants<Real>::make_stencil_float() {
   if (!stencil_product_float_k_)
     stencil_product_float_k_ =
-        data_.cl.kernel("stencil.cl", stencil_defines() + " -DSNH_MATRIX_FLOAT=1", "snh_stencil_product");
+        data_.cl.kernel("stencil.cl", stencil_config().with_matrix_float(), "snh_stencil_product");
   if (!stencil_float_) stencil_float_ = data_.cl.buffer(CL_MEM_READ_WRITE, stencil_values() * sizeof(float));
 }
 
@@ -167,8 +167,7 @@ void ProductVariants<Real>::element_matrices_into(cl_mem matrices, cl_mem diagon
   const bool from_copies = single_precision && float_cache();
   Kernel& float_kernel = from_copies ? matrices_mixed_k_ : matrices_float_k_;
   if (single_precision && !float_kernel)
-    float_kernel = data_.point_kernel("snh_element_matrices",
-                                      from_copies ? " -DSNH_MIXED=1 -DSNH_MATRIX_FLOAT=1" : " -DSNH_MATRIX_FLOAT=1");
+    float_kernel = data_.point_kernel("snh_element_matrices", ElementData<Real>::kCacheLanes, from_copies, true);
   const int count = static_cast<int>(data_.element_count);
   KernelArgs args(single_precision ? float_kernel.get() : matrices_k_.get());
   args.add(data_.elements.get())
@@ -187,8 +186,8 @@ size_t ProductVariants<Real>::stencil_values() const {
 }
 
 template <typename Real>
-std::string ProductVariants<Real>::stencil_defines() const {
-  return data_.elastic_defines + stencil_width_define(stencil_width_, data_.cache_tile, stencil_lower_);
+device::KernelConfig ProductVariants<Real>::stencil_config() const {
+  return stencil_build(data_.elastic_config, stencil_width_, data_.cache_tile, stencil_lower_);
 }
 
 template <typename Real>
@@ -209,8 +208,8 @@ void ProductVariants<Real>::prepare_stencil() {
   stencil_neighbours_ = upload(tiled_neighbours(t, data_.vertex_count, tile));
   stencil_part_offsets_ = upload(t.part_offsets);
   stencil_parts_ = upload(t.parts);
-  stencil_assemble_k_ = data_.cl.kernel("stencil.cl", stencil_defines(), "snh_stencil_assemble");
-  stencil_product_k_ = data_.cl.kernel("stencil.cl", stencil_defines(), "snh_stencil_product");
+  stencil_assemble_k_ = data_.cl.kernel("stencil.cl", stencil_config(), "snh_stencil_assemble");
+  stencil_product_k_ = data_.cl.kernel("stencil.cl", stencil_config(), "snh_stencil_product");
 }
 
 template <typename Real>

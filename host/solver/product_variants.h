@@ -114,8 +114,8 @@ class ProductVariants {
   size_t stencil_values() const;
   size_t stencil_memory_bytes() const;
   // The stencil kernels' build: the model's, with the width made a constant
-  // where the layout allows (stencil_width_define).
-  std::string stencil_defines() const;
+  // where the layout allows (stencil_build).
+  device::KernelConfig stencil_config() const;
   // The stencil's tables on the device and its kernels, once: made when the
   // variant is chosen, not in the first solve.
   void prepare_stencil();
