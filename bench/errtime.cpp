@@ -22,8 +22,8 @@
 #include <utility>
 
 #include "commands.h"
-#include "record_writer.h"
 #include "host_baseline.h"
+#include "record_writer.h"
 #include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"

@@ -44,8 +44,8 @@ void draw_plots(const std::string& command, const std::string& script, const std
     std::cerr << command << ": warning: " << kPython << " or " << path << " not found; plots skipped\n";
     return;
   }
-  const std::string line =
-      std::string(kPython) + " " + shell_quoted(path) + " " + shell_quoted(input) + " " + shell_quoted(out_dir) + " 1>&2";
+  const std::string line = std::string(kPython) + " " + shell_quoted(path) + " " + shell_quoted(input) + " " +
+                           shell_quoted(out_dir) + " 1>&2";
   if (std::system(line.c_str()) != 0)
     std::cerr << command << ": warning: plotting failed or matplotlib is missing; plots skipped\n";
 }

@@ -16,8 +16,8 @@
 #include <sstream>
 
 #include "commands.h"
-#include "record_writer.h"
 #include "product_precision_flag.h"
+#include "record_writer.h"
 #include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"

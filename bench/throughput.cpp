@@ -134,8 +134,8 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
     const char* name;
     int build_chains, chains, lanes;
   };
-  for (const Fma& f : {Fma{"snh_fma_scalar", 0, 8, 1}, Fma{"snh_fma_vector", 0, 8, 8},
-                       Fma{"snh_fma_vector", 6, 6, 8}}) {
+  for (const Fma& f :
+       {Fma{"snh_fma_scalar", 0, 8, 1}, Fma{"snh_fma_vector", 0, 8, 8}, Fma{"snh_fma_vector", 6, 6, 8}}) {
     device::KernelConfig config;
     config.fma_chains = f.build_chains;
     device::Kernel fma = roofline.kernel(config, f.name);

@@ -31,14 +31,14 @@ TEST(NameTables, EveryNameParsesBackToItsValue) {
   expect_round_trip({ProductVariant::automatic, ProductVariant::cached, ProductVariant::recompute,
                      ProductVariant::element_matrices, ProductVariant::assembled},
                     parse_product_variant);
-  expect_round_trip({Preconditioner::automatic, Preconditioner::none, Preconditioner::block_jacobi,
-                     Preconditioner::multigrid},
-                    parse_preconditioner);
+  expect_round_trip(
+      {Preconditioner::automatic, Preconditioner::none, Preconditioner::block_jacobi, Preconditioner::multigrid},
+      parse_preconditioner);
   expect_round_trip({MultigridFineLevel::automatic, MultigridFineLevel::built, MultigridFineLevel::current},
                     parse_multigrid_fine_level);
-  expect_round_trip({ChebyshevKind::automatic, ChebyshevKind::first, ChebyshevKind::fourth,
-                     ChebyshevKind::optimized_fourth},
-                    parse_chebyshev_kind);
+  expect_round_trip(
+      {ChebyshevKind::automatic, ChebyshevKind::first, ChebyshevKind::fourth, ChebyshevKind::optimized_fourth},
+      parse_chebyshev_kind);
   EXPECT_STREQ(to_string(ElementType::hex8), "hex8");
   EXPECT_STREQ(to_string(ElementType::tet4), "tet4");
   EXPECT_STREQ(to_string(ObstacleType::cylinder), "cylinder");

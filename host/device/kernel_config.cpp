@@ -23,9 +23,7 @@ constexpr int kModels = static_cast<int>(MaterialModel::neohookean) + 1;
 
 std::optional<int> flag(bool on) { return on ? std::optional<int>(1) : std::nullopt; }
 std::optional<int> count(int n) { return n > 0 ? std::optional<int>(n) : std::nullopt; }
-std::optional<int> boolean(const std::optional<bool>& b) {
-  return b ? std::optional<int>(*b ? 1 : 0) : std::nullopt;
-}
+std::optional<int> boolean(const std::optional<bool>& b) { return b ? std::optional<int>(*b ? 1 : 0) : std::nullopt; }
 std::optional<int> model_id(const std::optional<MaterialModel>& m) {
   return m ? std::optional<int>(static_cast<int>(*m)) : std::nullopt;
 }
@@ -173,8 +171,8 @@ KernelConfig KernelConfig::parse(const std::string& defines) {
       c.precision = value == 1 ? Precision::double_ : Precision::single;
       continue;
     }
-    const Switch* s = std::find_if(std::begin(kSwitches), std::end(kSwitches),
-                                   [&](const Switch& k) { return name == k.name; });
+    const Switch* s =
+        std::find_if(std::begin(kSwitches), std::end(kSwitches), [&](const Switch& k) { return name == k.name; });
     if (s == std::end(kSwitches)) throw Error("kernel build: unknown switch " + name);
     if (!s->set(c, value)) throw Error("kernel build: switch " + name + " cannot be " + text);
   }

@@ -18,31 +18,31 @@
 namespace snh::device {
 
 struct KernelConfig {
-  std::optional<ElementType> element;        // SNH_HEX8 (hex8 1, tet4 0)
-  bool general_material = false;             // SNH_GENERAL_KERNEL: the model read at run time
-  std::optional<MaterialModel> model;        // SNH_MODEL
-  std::optional<bool> barrier;               // SNH_BARRIER
-  std::optional<bool> nonlinear;             // SNH_NONLINEAR: through the alpha/mixing parts
+  std::optional<ElementType> element;         // SNH_HEX8 (hex8 1, tet4 0)
+  bool general_material = false;              // SNH_GENERAL_KERNEL: the model read at run time
+  std::optional<MaterialModel> model;         // SNH_MODEL
+  std::optional<bool> barrier;                // SNH_BARRIER
+  std::optional<bool> nonlinear;              // SNH_NONLINEAR: through the alpha/mixing parts
   std::optional<MaterialModel> lambda_model;  // SNH_LAMBDA_MODEL: the lambda part's model
-  bool regions = false;                      // SNH_REGIONS: materials per element from a table
-  std::optional<bool> uniform_rest;          // SNH_UNIFORM_REST: lattices' shared rest shape
-  bool point_major = false;                  // SNH_POINT_MAJOR: hex8 per-point data point-major
-  int cache_tile = 0;                        // SNH_CACHE_TILE (0: untiled)
-  int stencil_tile = 0;                      // SNH_STENCIL_TILE (0: untiled)
+  bool regions = false;                       // SNH_REGIONS: materials per element from a table
+  std::optional<bool> uniform_rest;           // SNH_UNIFORM_REST: lattices' shared rest shape
+  bool point_major = false;                   // SNH_POINT_MAJOR: hex8 per-point data point-major
+  int cache_tile = 0;                         // SNH_CACHE_TILE (0: untiled)
+  int stencil_tile = 0;                       // SNH_STENCIL_TILE (0: untiled)
   // The per-vertex terms (solver/vertex_terms.h, solver/self_contact_terms.h).
   bool inertia = false;       // SNH_INERTIA
   int obstacles = 0;          // SNH_OBSTACLES
   bool self_contact = false;  // SNH_SELF_CONTACT
   bool friction = false;      // SNH_FRICTION
   // Switches of single programs.
-  int lanes = 0;                 // SNH_LANES: fem_lanes.cl's width (8 or 16)
-  bool mixed = false;            // SNH_MIXED: float data, double p and results
-  bool matrix_float = false;     // SNH_MATRIX_FLOAT: matrices or blocks stored in float
-  bool float_cycle = false;      // SNH_FLOAT: a double build's float multigrid cycle
-  int stencil_width = 0;         // SNH_STENCIL_WIDTH (0: an argument)
-  int stencil_lower = 0;         // SNH_STENCIL_LOWER
-  int fma_chains = 0;            // SNH_FMA_CHAINS (the benchmark's roofline)
-  bool gpu = false;              // SNH_GPU: the GPUs' build on any device (the context adds it on GPUs)
+  int lanes = 0;              // SNH_LANES: fem_lanes.cl's width (8 or 16)
+  bool mixed = false;         // SNH_MIXED: float data, double p and results
+  bool matrix_float = false;  // SNH_MATRIX_FLOAT: matrices or blocks stored in float
+  bool float_cycle = false;   // SNH_FLOAT: a double build's float multigrid cycle
+  int stencil_width = 0;      // SNH_STENCIL_WIDTH (0: an argument)
+  int stencil_lower = 0;      // SNH_STENCIL_LOWER
+  int fma_chains = 0;         // SNH_FMA_CHAINS (the benchmark's roofline)
+  bool gpu = false;           // SNH_GPU: the GPUs' build on any device (the context adds it on GPUs)
   // SNH_DOUBLE: set by the context that builds; not part of defines().
   std::optional<Precision> precision;
 

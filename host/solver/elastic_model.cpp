@@ -146,7 +146,8 @@ int ElasticModel<Real>::default_material_lanes() const {
   // per work-item). 8 where hex8 elements carry their own material (a
   // work-item's material is one element's).
   const DeviceInfo& info = data_.cl.info();
-  const unsigned native = sizeof(Real) == sizeof(double) ? info.native_vector_width_double : info.native_vector_width_float;
+  const unsigned native =
+      sizeof(Real) == sizeof(double) ? info.native_vector_width_double : info.native_vector_width_float;
   return native >= 8 && !hex8_materials_per_element() ? 16 : ElementData<Real>::kCacheLanes;
 }
 
@@ -170,9 +171,9 @@ void ElasticModel<Real>::set_float_products(bool on) {
 template <typename Real>
 size_t ElasticModel<Real>::memory_bytes() const {
   size_t bytes = material_.memory_bytes() + linearized_x_.size() * sizeof(Real);
-  for (const device::Buffer* b : {&data_.elements, &data_.gradients, &data_.weights, &data_.offsets, &data_.adjacency,
-                                  &data_.mask, &external_, &data_.element_scratch, &data_.element_blocks, &data_.cache,
-                                  &energies_, &min_j_})
+  for (const device::Buffer* b :
+       {&data_.elements, &data_.gradients, &data_.weights, &data_.offsets, &data_.adjacency, &data_.mask, &external_,
+        &data_.element_scratch, &data_.element_blocks, &data_.cache, &energies_, &min_j_})
     bytes += device::OpenClContext::bytes(b->get());
   if (vertex_terms_) bytes += vertex_terms_->memory_bytes();
   bytes += block_jacobi_->memory_bytes();
@@ -207,8 +208,8 @@ void ElasticModel<Real>::set_inertia(const std::vector<double>& coefficient, con
   if (!terms_.inertia) throw Error("solver: set_inertia on a model built without the inertia term");
   if (coefficient.size() != data_.vertex_count || target.size() != dofs())
     throw Error("solver: inertia has " + std::to_string(coefficient.size()) + " coefficients and " +
-                std::to_string(target.size()) + " target entries, expected " + std::to_string(data_.vertex_count) + " and " +
-                std::to_string(dofs()));
+                std::to_string(target.size()) + " target entries, expected " + std::to_string(data_.vertex_count) +
+                " and " + std::to_string(dofs()));
   for (double c : coefficient)
     if (!(c >= 0.0) || !std::isfinite(c)) throw Error("solver: inertia coefficient not finite and >= 0");
   for (double y : target)
@@ -462,11 +463,12 @@ void ElasticModel<Real>::setup_preconditioner() {
         .add(data_.element_blocks.get());
     data_.run_point_kernel(args.bind(), data_.point_lanes ? ElementData<Real>::kCacheLanes : 0);
   }
-  block_jacobi_->setup(data_.element_blocks.get(), data_.offsets.get(), data_.adjacency.get(), data_.mask.get(), [this](KernelArgs& args) {
-    if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
-    if (vertex_terms_) vertex_terms_->add_block_args(args);
-    if (terms_.self_contact) args.add(self_contact_->diagonal());
-  });
+  block_jacobi_->setup(data_.element_blocks.get(), data_.offsets.get(), data_.adjacency.get(), data_.mask.get(),
+                       [this](KernelArgs& args) {
+                         if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
+                         if (vertex_terms_) vertex_terms_->add_block_args(args);
+                         if (terms_.self_contact) args.add(self_contact_->diagonal());
+                       });
 }
 
 template <typename Real>

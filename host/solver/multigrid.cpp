@@ -299,8 +299,8 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
       const bool float_matrices = l == 0 && fine_float_;
       const device::KernelConfig assembly =
           stencil_build(float_matrices ? coarse.with_matrix_float() : coarse, L.width, tile, stencil.lower);
-      const device::KernelConfig apply = stencil_build(
-          float_matrices && !kNarrow ? cycle.with_matrix_float() : cycle, L.width, tile, stencil.lower);
+      const device::KernelConfig apply =
+          stencil_build(float_matrices && !kNarrow ? cycle.with_matrix_float() : cycle, L.width, tile, stencil.lower);
       L.stencil_kernels = StencilKernels{cl_.kernel("stencil.cl", assembly, "snh_stencil_assemble"),
                                          cl_.kernel("stencil.cl", apply, "snh_stencil_product"),
                                          cl_.kernel("stencil.cl", apply, "snh_stencil_residual"),

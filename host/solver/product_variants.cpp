@@ -101,8 +101,7 @@ void ProductVariants<Real>::prepare_float_products() {
   }
   if (!float_cache() || cache_float_) return;
   product_float_k_ = float_product_kernel();
-  narrow(data_.gradients.get(), device::OpenClContext::bytes(data_.gradients.get()) / sizeof(Real),
-         gradients_float_);
+  narrow(data_.gradients.get(), device::OpenClContext::bytes(data_.gradients.get()) / sizeof(Real), gradients_float_);
   narrow(data_.weights.get(), device::OpenClContext::bytes(data_.weights.get()) / sizeof(Real), weights_float_);
   // This linearization's cache, if any (else the next linearize() writes it).
   narrow(data_.cache.get(), data_.cache_values(), cache_float_);
@@ -120,9 +119,8 @@ bool ProductVariants<Real>::float_product_lanes() const {
 
 template <typename Real>
 device::Kernel ProductVariants<Real>::float_product_kernel() const {
-  return float_product_lanes()
-             ? data_.point_kernel("snh_element_product_cached", ElementData<Real>::kCacheLanes, true)
-             : data_.cl.kernel("fem.cl", data_.config.with_mixed(), "snh_element_product_cached");
+  return float_product_lanes() ? data_.point_kernel("snh_element_product_cached", ElementData<Real>::kCacheLanes, true)
+                               : data_.cl.kernel("fem.cl", data_.config.with_mixed(), "snh_element_product_cached");
 }
 
 template <typename Real>
@@ -263,11 +261,7 @@ void ProductVariants<Real>::element_product(const VectorBase& p, const VectorBas
   const int count = static_cast<int>(data_.element_count);
   if (variant_ == ProductVariant::element_matrices) {
     KernelArgs args(matrix_rows_ ? matrix_rows_k_.get() : matrix_product_k_.get());
-    args.add(mem(p))
-        .add(data_.elements.get())
-        .add(element_matrices_.get())
-        .add(count)
-        .add(data_.element_scratch.get());
+    args.add(mem(p)).add(data_.elements.get()).add(element_matrices_.get()).add(count).add(data_.element_scratch.get());
     data_.cl.run(args.bind(), matrix_rows_ ? data_.element_count * 3 * data_.nodes : data_.element_count);
   } else if (variant_ == ProductVariant::cached) {
     const bool narrow = float_cache();

@@ -99,11 +99,11 @@ class ProductVariants {
   bool float_products_ = false;
   Kernel product_float_k_, narrow_k_, stencil_product_float_k_;
   Buffer cache_float_, gradients_float_, weights_float_, stencil_float_;
-  void make_stencil_float();                                // the float blocks' buffer and product kernel, once
-  void narrow(cl_mem from, size_t values, Buffer& to);      // to (made if empty) <- (float)from
-  bool float_product_lanes() const;                         // the mixed product runs fem_lanes.cl's kernel
-  Kernel float_product_kernel() const;                      // the SNH_MIXED cached product
-  void prepare_float_products();                            // the above, once float_products() holds
+  void make_stencil_float();                            // the float blocks' buffer and product kernel, once
+  void narrow(cl_mem from, size_t values, Buffer& to);  // to (made if empty) <- (float)from
+  bool float_product_lanes() const;                     // the mixed product runs fem_lanes.cl's kernel
+  Kernel float_product_kernel() const;                  // the SNH_MIXED cached product
+  void prepare_float_products();                        // the above, once float_products() holds
 
   // Assembled variant: the block stencil (solver/block_stencil.h), assembled
   // on the device from the element matrices in element order

@@ -19,7 +19,8 @@ class SelfContactTerms {
  public:
   // `config`: the model's build (with self_contact); uploads the
   // empty set. Uploads are charged to `profiler`'s transfers.
-  SelfContactTerms(device::OpenClContext& cl, const Mesh& mesh, const device::KernelConfig& config, PhaseProfiler* profiler);
+  SelfContactTerms(device::OpenClContext& cl, const Mesh& mesh, const device::KernelConfig& config,
+                   PhaseProfiler* profiler);
 
   // The springs' stiffness (validated by the caller); uploads the set again
   // when it changes.
