@@ -23,14 +23,11 @@
 
 #include "commands.h"
 #include "host_baseline.h"
+#include "record_writer.h"
 #include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
-
-#ifndef SNH_BENCH_SCRIPT_DIR
-#define SNH_BENCH_SCRIPT_DIR "bench"
-#endif
 
 namespace snh::bench {
 namespace {
@@ -43,7 +40,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kThresholds[] = {1e-2, 1e-4, 1e-6};
 constexpr const char* kThresholdNames[] = {"1e-2", "1e-4", "1e-6"};
-constexpr const char* kPython = "/usr/bin/python3";
 
 const char* kErrorMetric =
     "||x - x_ref(step)||_2 / max(||x_ref(step) - X_rest||_2, ||x_initial - X_rest||_2) over all vertices, x_ref the "
@@ -452,30 +448,6 @@ double worst_reached(const Reference& ref) {
   return worst;
 }
 
-std::string quoted(const std::string& path) {
-  std::string out = "'";
-  for (char c : path) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// Draws errtime_<scene>.png with Debian's python3-matplotlib; a warning, not
-// a failure, when it is missing.
-void draw_plots(const std::string& out_dir) {
-  const std::string script = std::string(SNH_BENCH_SCRIPT_DIR) + "/plot_errtime.py";
-  if (!std::filesystem::exists(kPython)) {
-    std::cerr << "errtime: warning: " << kPython << " not found; plots skipped\n";
-    return;
-  }
-  if (!std::filesystem::exists(script)) {
-    std::cerr << "errtime: warning: " << script << " not found; plots skipped\n";
-    return;
-  }
-  const std::string command = std::string(kPython) + " " + quoted(script) + " " + quoted(out_dir + "/errtime.csv") +
-                              " " + quoted(out_dir) + " 1>&2";
-  const int status = std::system(command.c_str());
-  if (status != 0) std::cerr << "errtime: warning: plotting failed or matplotlib is missing; plots skipped\n";
-}
-
 std::vector<std::string> expand(const std::string& choice, std::vector<std::string> all) {
   return choice == "both" ? all : std::vector<std::string>{choice};
 }
@@ -550,8 +522,7 @@ int run_errtime(const ErrtimeOptions& o) {
 
   // CSV: one row per step start and per Newton update.
   {
-    std::ofstream csv(o.out_dir + "/errtime.csv");
-    if (!csv) throw Error("cannot write " + o.out_dir + "/errtime.csv");
+    std::ostringstream csv;
     csv << "scene,series,precision,preconditioner,step,newton_iteration,newton_total,cg_total,seconds,residual,error,"
            "projected\n";
     csv << std::setprecision(9);
@@ -564,6 +535,7 @@ int run_errtime(const ErrtimeOptions& o) {
           if (r.projected >= 0) csv << r.projected;
           csv << '\n';
         }
+    write_text(o.out_dir + "/errtime.csv", csv.str());
   }
 
   // JSON summary.
@@ -599,7 +571,7 @@ int run_errtime(const ErrtimeOptions& o) {
     for (const Series& s : run.series) j["series"].push_back(series_json(s, run.scene.options.load_steps));
     summary["scenes"].push_back(j);
   }
-  std::ofstream(o.out_dir + "/errtime.json") << summary.dump(2) << '\n';
+  write_json(o.out_dir + "/errtime.json", summary);
 
   // Markdown.
   std::ostringstream md;
@@ -671,7 +643,7 @@ int run_errtime(const ErrtimeOptions& o) {
       md << " |\n";
     }
   }
-  std::ofstream(o.out_dir + "/errtime.md") << md.str();
+  write_text(o.out_dir + "/errtime.md", md.str());
 
   // Short table on stdout.
   std::cout << std::left << std::setw(10) << "scene" << std::setw(20) << "series" << std::setw(8) << "newton"
@@ -690,7 +662,7 @@ int run_errtime(const ErrtimeOptions& o) {
                 << std::setw(9) << fmt_seconds(time_to(s, last, 1e-6)) << std::setw(11)
                 << fmt(s.rows.back().residual, 2) << fmt(s.rows.back().error, 2) << '\n';
     }
-  if (o.plots) draw_plots(o.out_dir);
+  if (o.plots) draw_plots("errtime", "plot_errtime.py", o.out_dir + "/errtime.csv", o.out_dir);
   std::cout << "wrote " << o.out_dir << "/errtime.csv, errtime.json, errtime.md (" << std::setprecision(3)
             << std::chrono::duration<double>(Clock::now() - start).count() << " s)\n";
   return any ? 0 : 1;

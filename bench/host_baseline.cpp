@@ -18,6 +18,7 @@
 #include "snh/loads.h"
 #include "snh/regions.h"
 #include "solver/constraint_checks.h"
+#include "solver/load_stepping.h"
 #include "solver/newton_driver.h"
 #include "solver/phase_profile.h"
 
@@ -75,7 +76,10 @@ class HostProblem {
   // Constraint targets and, with SolveOptions::ramp_loads, forces at load parameter t.
   void apply_load(double t, std::vector<double>& x) {
     snh::apply_constraints(mesh_, constraints_, t, x);
-    for (size_t i = 0; i < force_.size(); ++i) force_[i] = options_.ramp_loads ? t * full_force_[i] : full_force_[i];
+    if (options_.ramp_loads)
+      solver::ramp_force(std::vector<double>(full_force_.size(), 0.0), full_force_, t, force_);
+    else
+      force_ = full_force_;
   }
 
   // Total potential energy: elastic energy minus external work.
@@ -237,7 +241,7 @@ HostBaselineResult solve_on_host(const Scene& scene, const SolveOptions& options
   std::vector<double> x = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
   result.converged = true;
   for (int s = 1; s <= options.load_steps; ++s) {
-    problem.apply_load(static_cast<double>(s) / options.load_steps, x);
+    problem.apply_load(solver::load_fraction(s, options.load_steps), x);
     const StepResult step = newton.solve_step(s, x, tolerance, result.history, start, observe);
     result.converged = result.converged && step.converged;
     result.steps.push_back(step);

@@ -17,13 +17,10 @@
 
 #include "commands.h"
 #include "product_precision_flag.h"
+#include "record_writer.h"
 #include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
-
-#ifndef SNH_BENCH_SCRIPT_DIR
-#define SNH_BENCH_SCRIPT_DIR "bench"
-#endif
 
 namespace snh::bench {
 namespace {
@@ -34,7 +31,6 @@ using scene_io::profile_parts;
 using json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kPython = "/usr/bin/python3";
 // Smith, Goes, Kim 2018, sec. 6: their largest flesh meshes on a GPU.
 constexpr const char* kPaper =
     "Smith et al. 2018 (sec. 6, GPU): bicep 156k DOF at 25.6 s per step; 965k DOF at 100.6 s per frame";
@@ -135,26 +131,6 @@ std::string thousands(long long n) {
 }
 
 std::string mebibytes(size_t bytes) { return fmt(static_cast<double>(bytes) / (1024.0 * 1024.0), 3); }
-
-std::string quoted(const std::string& path) {
-  std::string out = "'";
-  for (char c : path) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// Draws scale.png with Debian's python3-matplotlib; a warning, not a
-// failure, when it is missing.
-void draw_plot(const std::string& out_dir) {
-  const std::string script = std::string(SNH_BENCH_SCRIPT_DIR) + "/plot_scale.py";
-  if (!std::filesystem::exists(kPython) || !std::filesystem::exists(script)) {
-    std::cerr << "scale: warning: " << kPython << " or " << script << " not found; plot skipped\n";
-    return;
-  }
-  const std::string command = std::string(kPython) + " " + quoted(script) + " " + quoted(out_dir + "/scale.json") +
-                              " " + quoted(out_dir) + " 1>&2";
-  if (std::system(command.c_str()) != 0)
-    std::cerr << "scale: warning: plotting failed or matplotlib is missing; plot skipped\n";
-}
 
 json record_json(const ScaleRecord& r) {
   json j;
@@ -282,8 +258,7 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
 
   // CSV: one row per record; skipped rows keep their reason.
   {
-    std::ofstream csv(o.out_dir + "/scale.csv");
-    if (!csv) throw Error("cannot write " + o.out_dir + "/scale.csv");
+    std::ostringstream csv;
     csv << "scene,res,elements,dofs,preconditioner,newton_iterations,cg_per_newton,seconds_per_step,"
            "device_memory_bytes,converged";
     for (const auto& part : parts) csv << ",profile_" << part.first;
@@ -303,6 +278,7 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
         csv << ",\"" << reason << "\"\n";
       }
     }
+    write_text(o.out_dir + "/scale.csv", csv.str());
   }
 
   json summary;
@@ -320,7 +296,7 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
   for (const ScaleSlope& s : slopes)
     summary["slopes"].push_back(
         {{"scene", s.scene}, {"preconditioner", s.preconditioner}, {"slope", s.slope}, {"points", s.points}});
-  std::ofstream(o.out_dir + "/scale.json") << summary.dump(2) << '\n';
+  write_json(o.out_dir + "/scale.json", summary);
 
   std::ostringstream md;
   md << "# snh-gpu-bench scale\n\n"
@@ -355,8 +331,8 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
     for (const auto& part : profile_parts(r.profile)) md << " | " << fmt(part.second);
     md << " |\n";
   }
-  std::ofstream(o.out_dir + "/scale.md") << md.str();
-  if (o.plots) draw_plot(o.out_dir);
+  write_text(o.out_dir + "/scale.md", md.str());
+  if (o.plots) draw_plots("scale", "plot_scale.py", o.out_dir + "/scale.json", o.out_dir);
 }
 
 int run_scale_command(const ScaleOptions& o) {

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "record_writer.h"
 #include "snh/error.h"
 
 namespace snh::bench {
@@ -348,7 +349,7 @@ int run_stability(const StabilityOptions& o) {
   all["resolution"] = o.resolution;
   all["squash_height"] = o.squash_height;
   all["runs"] = json::array();
-  std::ofstream csv(o.out_dir + "/stability.csv");
+  std::ostringstream csv;
   csv << "case,precision,converged,status,newton,cg,seconds,min_j,max_j,inverted_at_start,inverted,volume_ratio,"
          "min_volume_ratio,max_penetration,contact_thickness,non_finite_positions,nan_in_history,recovery,note\n";
   std::ostringstream md;
@@ -380,8 +381,9 @@ int run_stability(const StabilityOptions& o) {
        << " | " << (nan > 0 ? "**YES**" : "none") << " | " << rec << " | " << note << " |\n";
   }
   all["runs_with_nan_or_error"] = problems;
-  std::ofstream(o.out_dir + "/stability.json") << all.dump(2) << '\n';
-  std::ofstream(o.out_dir + "/stability.md") << md.str();
+  write_text(o.out_dir + "/stability.csv", csv.str());
+  write_json(o.out_dir + "/stability.json", all);
+  write_text(o.out_dir + "/stability.md", md.str());
   std::cout << md.str();
   std::cerr << "wrote " << o.out_dir << "/stability.{json,csv,md}" << (problems ? "; NaN or errors found!" : "")
             << '\n';

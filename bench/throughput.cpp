@@ -13,6 +13,7 @@
 #include <random>
 #include <sstream>
 
+#include "device/kernel_args.h"
 #include "device/kernel_source.h"
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
@@ -34,11 +35,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-template <typename T>
-void arg(cl_kernel k, cl_uint i, const T& v) {
-  device::check(clSetKernelArg(k, i, sizeof(T), &v), "clSetKernelArg");
-}
-
 struct Roofline {
   double bandwidth = 0.0;  // bytes per second, triad: the faster of the two forms
   double bandwidth_scalar = 0.0;
@@ -53,14 +49,15 @@ struct Roofline {
 
 // roofline.cl's programs, built as OpenClContext::program builds the
 // library's (the working precision, SNH_GPU), with its #include of
-// snh_portable.h taken from the library's kernels; one per set of defines.
+// snh_portable.h taken from the library's kernels; one per build
+// (device::KernelConfig: only fma_chains varies).
 class RooflineKernels {
  public:
   explicit RooflineKernels(device::OpenClContext& cl) : cl_(cl) {}
 
-  device::Kernel kernel(const std::string& defines, const char* name) {
-    device::Program& program = programs_[defines];
-    if (!program) program = build(defines);
+  device::Kernel kernel(const device::KernelConfig& config, const char* name) {
+    device::Program& program = programs_[config.cache_key("roofline.cl")];
+    if (!program) program = build(config);
     cl_int status = CL_SUCCESS;
     device::Kernel k(clCreateKernel(program.get(), name, &status));
     device::check(status, "clCreateKernel");
@@ -68,7 +65,7 @@ class RooflineKernels {
   }
 
  private:
-  device::Program build(const std::string& defines) const {
+  device::Program build(const device::KernelConfig& config) const {
     std::string source;
     std::istringstream in(kRooflineSource);
     for (std::string line; std::getline(in, line);)
@@ -78,9 +75,7 @@ class RooflineKernels {
     cl_int status = CL_SUCCESS;
     device::Program program(clCreateProgramWithSource(cl_.context(), 1, &text, &length, &status));
     device::check(status, "clCreateProgramWithSource");
-    const std::string flags = std::string("-cl-std=CL1.2 -DSNH_DOUBLE=") +
-                              (cl_.precision() == Precision::double_ ? "1" : "0") +
-                              (cl_.info().is_gpu ? " -DSNH_GPU=1" : "") + (defines.empty() ? "" : " " + defines);
+    const std::string flags = cl_.build_options(config);
     cl_device_id device = cl_.device();
     status = clBuildProgram(program.get(), 1, &device, flags.c_str(), nullptr, nullptr);
     if (status != CL_SUCCESS) {
@@ -121,13 +116,10 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
                  c = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real), init.data());
   // The scalar triad over n entries, then the 4-wide one over n / 4 vectors.
   auto triad_seconds = [&](const char* name, int items) {
-    device::Kernel triad = roofline.kernel("", name);
-    arg(triad.get(), 0, a.get());
-    arg(triad.get(), 1, b.get());
-    arg(triad.get(), 2, c.get());
-    arg(triad.get(), 3, Real(0.5));
-    arg(triad.get(), 4, items);
-    return kernel_seconds(triad.get(), static_cast<size_t>(items));
+    device::Kernel triad = roofline.kernel({}, name);
+    return kernel_seconds(
+        device::KernelArgs(triad.get()).add(a.get()).add(b.get()).add(c.get()).add(Real(0.5)).add(items).bind(),
+        static_cast<size_t>(items));
   };
   r.bandwidth_scalar = 3.0 * n * sizeof(Real) / triad_seconds("snh_triad", n);
   r.bandwidth_vector = 3.0 * n * sizeof(Real) / triad_seconds("snh_triad4", n / 4);
@@ -136,19 +128,18 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
   const int items = 1 << 16;
   device::Buffer out = cl.buffer(CL_MEM_READ_WRITE, items * sizeof(Real));
   const Real m = Real(0.999), k = Real(0.001);
-  // {kernel, its build's defines, chains, lanes}; the 8-wide peak is the
-  // faster of 8 and 6 chains (roofline.cl, SNH_FMA_CHAINS).
+  // {kernel, its build's chains (0: roofline.cl's 8), chains, lanes}; the
+  // 8-wide peak is the faster of 8 and 6 chains (roofline.cl, SNH_FMA_CHAINS).
   struct Fma {
-    const char *name, *defines;
-    int chains, lanes;
+    const char* name;
+    int build_chains, chains, lanes;
   };
-  for (const Fma& f : {Fma{"snh_fma_scalar", "", 8, 1}, Fma{"snh_fma_vector", "", 8, 8},
-                       Fma{"snh_fma_vector", "-DSNH_FMA_CHAINS=6", 6, 8}}) {
-    device::Kernel fma = roofline.kernel(f.defines, f.name);
-    arg(fma.get(), 0, out.get());
-    arg(fma.get(), 1, m);
-    arg(fma.get(), 2, k);
-    const double t = kernel_seconds(fma.get(), items);
+  for (const Fma& f :
+       {Fma{"snh_fma_scalar", 0, 8, 1}, Fma{"snh_fma_vector", 0, 8, 8}, Fma{"snh_fma_vector", 6, 6, 8}}) {
+    device::KernelConfig config;
+    config.fma_chains = f.build_chains;
+    device::Kernel fma = roofline.kernel(config, f.name);
+    const double t = kernel_seconds(device::KernelArgs(fma.get()).add(out.get()).add(m).add(k).bind(), items);
     const double flops = 2.0 * f.chains * 256 * items * f.lanes;  // SNH_FMA_ITERATIONS = 256
     double& peak = f.lanes == 1 ? r.peak_scalar : r.peak_vector;
     peak = std::max(peak, flops / t);
@@ -160,10 +151,8 @@ Roofline measure_roofline(device::OpenClContext& cl, double min_seconds) {
   };
   for (const Slow& op : {Slow{"snh_sqrt_vector", &r.sqrt_rate}, Slow{"snh_div_vector", &r.div_rate},
                          Slow{"snh_sqrt_div_vector", &r.sqrt_div_rate}}) {
-    device::Kernel slow = roofline.kernel("", op.name);
-    arg(slow.get(), 0, out.get());
-    arg(slow.get(), 1, m);
-    const double t = kernel_seconds(slow.get(), slow_items);
+    device::Kernel slow = roofline.kernel({}, op.name);
+    const double t = kernel_seconds(device::KernelArgs(slow.get()).add(out.get()).add(m).bind(), slow_items);
     *op.rate = 64.0 * 32 * slow_items / t;  // SNH_SLOW_ITERATIONS = 32
   }
   return r;

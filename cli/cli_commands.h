@@ -13,5 +13,7 @@ void add_voxelize_command(CLI::App& app, int& exit_code);
 void add_hessian_command(CLI::App& app, int& exit_code);  // hessian_export.h
 // `snh run SCENE.json`: the scene file with the solver flags of scene_run.h.
 void add_run_command(CLI::App& app, int& exit_code);
+// `snh programs SCENE.json`: the kernel programs the scene builds (programs.h).
+void add_programs_command(CLI::App& app, int& exit_code);
 
 }  // namespace snh::cli

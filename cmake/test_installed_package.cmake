@@ -2,6 +2,7 @@
 # examples/flex_frames, examples/arm_rig and examples/scene_file against it
 # with find_package(snh), and runs them: the install tree works for a host
 # application.
+include(${CMAKE_CURRENT_LIST_DIR}/run_step.cmake)
 set(prefix ${BINARY_DIR}/install-test)
 set(app_build ${BINARY_DIR}/host-app-build)
 set(frames_build ${BINARY_DIR}/flex-frames-build)
@@ -22,8 +23,5 @@ foreach(step
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/examples/scene_file;-B;${scene_build};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release"
     "${CMAKE_COMMAND};--build;${scene_build}"
     "${scene_build}/scene_file;${SOURCE_DIR}/data/scenes/soft_stiff_bar.json;${scene_build}/summary.json")
-  execute_process(COMMAND ${step} RESULT_VARIABLE status)
-  if(NOT status EQUAL 0)
-    message(FATAL_ERROR "failed (${status}): ${step}")
-  endif()
+  snh_run_step(${step})
 endforeach()

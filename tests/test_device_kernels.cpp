@@ -91,7 +91,7 @@ void expect_gpu_build_same(Precision precision) {
     std::vector<Matrix3> fs;
     for (const NamedDeformation& d : deformations_for(m)) fs.push_back(to_array<double>(d.F));
     const std::vector<ProbeResult> cpu = probe::evaluate(cl, m.material, fs);
-    const std::vector<ProbeResult> gpu = probe::evaluate(cl, m.material, fs, "-DSNH_GPU=1");
+    const std::vector<ProbeResult> gpu = probe::evaluate(cl, m.material, fs, true);
     ASSERT_EQ(gpu.size(), cpu.size());
     for (size_t n = 0; n < fs.size(); ++n) {
       SCOPED_TRACE(m.name + " / " + std::to_string(n) + " / " + to_string(precision));
@@ -163,13 +163,18 @@ TEST(DeviceKernels, AllocationBeyondTheDeviceIsAClearError) {
 TEST(DeviceKernels, KernelBuildFailureCarriesBuildLog) {
   device::OpenClContext cl(DeviceOptions{}, Precision::double_);
   try {
-    cl.program("probe.cl", "-DSNH_BARRIER=undefined_symbol_xyz");
+    // fem_lanes.cl refuses any width but 8 and 16 (#error).
+    device::KernelConfig config;
+    config.element = ElementType::hex8;
+    config.lanes = 3;
+    cl.program("fem_lanes.cl", config);
     ADD_FAILURE() << "expected a build error";
   } catch (const Error& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("building kernels/probe.cl"), std::string::npos) << what;
+    EXPECT_NE(what.find("building kernels/fem_lanes.cl"), std::string::npos) << what;
+    EXPECT_NE(what.find("-DSNH_LANES=3"), std::string::npos) << what;
     EXPECT_NE(what.find("build log"), std::string::npos) << what;
-    EXPECT_NE(what.find("undefined_symbol_xyz"), std::string::npos) << what;
+    EXPECT_NE(what.find("8 or 16"), std::string::npos) << what;  // the #error's text
   }
 }
 

@@ -4,13 +4,17 @@
 
 namespace snh::device {
 
-std::string material_defines(const Material& m, MaterialKernel build) {
-  if (build == MaterialKernel::runtime) return "-DSNH_GENERAL_KERNEL=1";
-  const bool parts = m.adjusted() || build == MaterialKernel::all_terms;
-  std::string d = "-DSNH_MODEL=" + std::to_string(static_cast<int>(m.model)) +
-                  " -DSNH_BARRIER=" + (m.barrier ? "1" : "0") + " -DSNH_NONLINEAR=" + (parts ? "1" : "0");
-  if (m.lambda_model) d += " -DSNH_LAMBDA_MODEL=" + std::to_string(static_cast<int>(*m.lambda_model));
-  return d;
+KernelConfig material_config(const Material& m, MaterialKernel build) {
+  KernelConfig c;
+  if (build == MaterialKernel::runtime) {
+    c.general_material = true;
+    return c;
+  }
+  c.model = m.model;
+  c.barrier = m.barrier;
+  c.nonlinear = m.adjusted() || build == MaterialKernel::all_terms;
+  c.lambda_model = m.lambda_model;
+  return c;
 }
 
 bool same_specialization(const Material& a, const Material& b) {
@@ -18,12 +22,19 @@ bool same_specialization(const Material& a, const Material& b) {
          a.lambda_model == b.lambda_model;
 }
 
-std::string material_defines(const MaterialMap& map, MaterialKernel build) {
-  if (map.uniform()) return material_defines(map.materials.front(), build);
+KernelConfig material_config(const MaterialMap& map, MaterialKernel build) {
+  if (map.uniform()) return material_config(map.materials.front(), build);
   bool shared = build != MaterialKernel::runtime;
   for (const Material& m : map.materials) shared = shared && same_specialization(m, map.materials.front());
-  return (shared ? material_defines(map.materials.front(), build) : std::string("-DSNH_GENERAL_KERNEL=1")) +
-         " -DSNH_REGIONS=1";
+  KernelConfig c = material_config(map.materials.front(), shared ? build : MaterialKernel::runtime);
+  c.regions = true;
+  return c;
+}
+
+std::string material_defines(const Material& m, MaterialKernel build) { return material_config(m, build).defines(); }
+
+std::string material_defines(const MaterialMap& map, MaterialKernel build) {
+  return material_config(map, build).defines();
 }
 
 template <typename Real>
@@ -64,7 +75,7 @@ cl_uint set_material_args(cl_kernel k, cl_uint first, const Material& m) {
 
 template <typename Real>
 MaterialArgs<Real>::MaterialArgs(OpenClContext& cl, const MaterialMap& map, MaterialKernel build)
-    : defines_(material_defines(map, build)), uniform_(map.materials.front()) {
+    : config_(material_config(map, build)), uniform_(map.materials.front()) {
   if (map.uniform()) return;
   const std::vector<Real> table = material_table<Real>(map);
   table_ = cl.buffer(CL_MEM_READ_ONLY, table.size() * sizeof(Real), table.data());

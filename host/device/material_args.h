@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "device/kernel_args.h"
+#include "device/kernel_config.h"
 #include "device/opencl_context.h"
 #include "snh/material.h"
 #include "snh/regions.h"
@@ -24,6 +25,9 @@ namespace snh::device {
 // The last two are the baselines of `snh-gpu-bench specialization`.
 enum class MaterialKernel { specialized, runtime, all_terms };
 
+// The material's fields of a kernel build (model, barrier, alpha/mixing
+// path, lambda model; or the run-time material), and their switches.
+KernelConfig material_config(const Material& material, MaterialKernel build = MaterialKernel::specialized);
 std::string material_defines(const Material& material, MaterialKernel build = MaterialKernel::specialized);
 
 // The switches for a map. A uniform map: those of its one material, nothing
@@ -31,6 +35,7 @@ std::string material_defines(const Material& material, MaterialKernel build = Ma
 // when every material shares model, barrier, alpha/mixing path and lambda model,
 // the specialized switches of the first one; else the run-time material
 // (-DSNH_GENERAL_KERNEL=1).
+KernelConfig material_config(const MaterialMap& map, MaterialKernel build = MaterialKernel::specialized);
 std::string material_defines(const MaterialMap& map, MaterialKernel build = MaterialKernel::specialized);
 
 // Whether two materials build the same specialized kernels (model, barrier,
@@ -57,7 +62,8 @@ class MaterialArgs {
  public:
   MaterialArgs(OpenClContext& cl, const MaterialMap& map, MaterialKernel build);
 
-  const std::string& defines() const { return defines_; }
+  const KernelConfig& config() const { return config_; }
+  std::string defines() const { return config_.defines(); }
   bool per_element() const { return static_cast<bool>(table_); }
   // Adds MATERIAL_ARGS to a kernel's argument list.
   KernelArgs& add_to(KernelArgs& args) const;
@@ -67,7 +73,7 @@ class MaterialArgs {
   }
 
  private:
-  std::string defines_;
+  KernelConfig config_;
   Material uniform_;
   Buffer table_, element_material_;
 };

@@ -169,8 +169,17 @@ OpenClContext::~OpenClContext() {
   if (context_) clReleaseContext(context_);
 }
 
-cl_program OpenClContext::program(const std::string& file, const std::string& defines) {
-  const std::string key = file + '|' + defines;
+std::string OpenClContext::build_options(const KernelConfig& config) const {
+  KernelConfig c = config;
+  c.precision = precision_;
+  // SNH_GPU: a work-item's data-dependent loops cost a GPU nothing beyond
+  // its warp's slowest point, where pocl's CPU kernels vectorize across
+  // work-items only without them (kernels/snh_portable.h).
+  return c.build_options(info_.is_gpu);
+}
+
+cl_program OpenClContext::program(const std::string& file, const KernelConfig& config) {
+  const std::string key = config.cache_key(file);
   auto found = programs_.find(key);
   if (found != programs_.end()) return found->second.get();
   const std::string source = kernel_program_source(file);
@@ -179,12 +188,7 @@ cl_program OpenClContext::program(const std::string& file, const std::string& de
   cl_int status = CL_SUCCESS;
   Program program(clCreateProgramWithSource(context_, 1, &text, &length, &status));
   check(status, "clCreateProgramWithSource");
-  // SNH_GPU: a work-item's data-dependent loops cost a GPU nothing beyond
-  // its warp's slowest point, where pocl's CPU kernels vectorize across
-  // work-items only without them (kernels/snh_portable.h).
-  const std::string flags = std::string("-cl-std=CL1.2 -DSNH_DOUBLE=") +
-                            (precision_ == Precision::double_ ? "1" : "0") + (info_.is_gpu ? " -DSNH_GPU=1" : "") +
-                            (defines.empty() ? "" : " " + defines);
+  const std::string flags = build_options(config);
   status = clBuildProgram(program.get(), 1, &device_, flags.c_str(), nullptr, nullptr);
   if (status != CL_SUCCESS) {
     size_t size = 0;
@@ -196,12 +200,16 @@ cl_program OpenClContext::program(const std::string& file, const std::string& de
   }
   cl_program raw = program.get();
   programs_.emplace(key, std::move(program));
+  KernelConfig built = config;
+  built.precision = precision_;
+  built_.push_back(BuiltProgram{file, built});
+  ProgramRecorder::record(file, built);
   return raw;
 }
 
-Kernel OpenClContext::kernel(const std::string& file, const std::string& defines, const char* name) {
+Kernel OpenClContext::kernel(const std::string& file, const KernelConfig& config, const char* name) {
   cl_int status = CL_SUCCESS;
-  Kernel k(clCreateKernel(program(file, defines), name, &status));
+  Kernel k(clCreateKernel(program(file, config), name, &status));
   check(status, "clCreateKernel");
   return k;
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "device/kernel_config.h"
 #include "snh/device.h"
 
 namespace snh::device {
@@ -55,11 +56,26 @@ class OpenClContext {
   cl_command_queue queue() const { return queue_; }
   cl_device_id device() const { return device_; }
 
-  // Builds kernels/<file> with -DSNH_DOUBLE=0|1 and the extra `defines`
-  // (e.g. "-DSNH_BARRIER=1"); cached per (file, defines). A failed build
-  // throws snh::Error carrying the compiler's log.
-  cl_program program(const std::string& file, const std::string& defines = "");
-  Kernel kernel(const std::string& file, const std::string& defines, const char* name);
+  // Builds kernels/<file> with `config` (device/kernel_config.h) in this
+  // context's precision; cached per (file, config.defines()). A failed
+  // build throws snh::Error carrying the compiler's log.
+  cl_program program(const std::string& file, const KernelConfig& config = {});
+  Kernel kernel(const std::string& file, const KernelConfig& config, const char* name);
+  // The same from written switches ("-DSNH_BARRIER=1 ..."), parsed by
+  // KernelConfig::parse (an unknown switch throws snh::Error).
+  cl_program program(const std::string& file, const std::string& defines) {
+    return program(file, KernelConfig::parse(defines));
+  }
+  Kernel kernel(const std::string& file, const std::string& defines, const char* name) {
+    return kernel(file, KernelConfig::parse(defines), name);
+  }
+  Kernel kernel(const std::string& file, const char* defines, const char* name) {
+    return kernel(file, std::string(defines), name);
+  }
+  // The programs built so far, in build order.
+  const std::vector<BuiltProgram>& programs() const { return built_; }
+  // The build options of `config` on this device (KernelConfig::build_options).
+  std::string build_options(const KernelConfig& config) const;
 
   // A buffer of `bytes` (at least 1): a copy of `host`, else zeros. The
   // zeros are written when the buffer is made, in queue order: its contents
@@ -99,6 +115,7 @@ class OpenClContext {
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
   std::map<std::string, Program> programs_;
+  std::vector<BuiltProgram> built_;
   // Kernels queued by run() whose events are not yet read, by name; read
   // (and released) by kernel_seconds(), and every kMaxPending launches.
   static constexpr size_t kMaxPending = 512;

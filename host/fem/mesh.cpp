@@ -10,18 +10,17 @@
 
 #include "fem/rest_state.h"
 #include "snh/error.h"
+#include "solver/name_table.h"
 
 namespace snh {
 
-const char* to_string(ElementType type) {
-  switch (type) {
-    case ElementType::hex8:
-      return "hex8";
-    case ElementType::tet4:
-      return "tet4";
-  }
-  return "unknown";
-}
+namespace {
+
+constexpr NameTable<ElementType, 2> kElementTypeNames{{{ElementType::hex8, "hex8"}, {ElementType::tet4, "tet4"}}};
+
+}  // namespace
+
+const char* to_string(ElementType type) { return name_of(kElementTypeNames, type, "unknown"); }
 
 int nodes_per_element(ElementType type) {
   switch (type) {

@@ -1,6 +1,7 @@
 #include <string>
 #include <vector>
 
+#include "device/kernel_args.h"
 #include "device/material_args.h"
 #include "device/opencl_context.h"
 #include "probe/probe_kernel.h"
@@ -17,7 +18,7 @@ constexpr int kRecord = 103;  // SNH_PROBE_RECORD in kernels/probe.cl
 
 template <typename Real>
 std::vector<ProbeResult> evaluate_in(device::OpenClContext& cl, const Material& material,
-                                     const std::vector<Matrix3>& fs, const std::string& extra_defines) {
+                                     const std::vector<Matrix3>& fs, bool gpu_build) {
   const int count = static_cast<int>(fs.size());
   std::vector<Real> input(9 * fs.size());
   for (size_t n = 0; n < fs.size(); ++n)
@@ -25,14 +26,13 @@ std::vector<ProbeResult> evaluate_in(device::OpenClContext& cl, const Material& 
   std::vector<Real> output(kRecord * fs.size());
   device::Buffer in = cl.buffer(CL_MEM_READ_ONLY, input.size() * sizeof(Real), input.empty() ? nullptr : input.data());
   device::Buffer out = cl.buffer(CL_MEM_WRITE_ONLY, output.size() * sizeof(Real));
-  const std::string defines = device::material_defines(material) + (extra_defines.empty() ? "" : " " + extra_defines);
-  device::Kernel k = cl.kernel("probe.cl", defines, "snh_probe");
-  cl_mem in_mem = in.get(), out_mem = out.get();
-  device::check(clSetKernelArg(k.get(), 0, sizeof(cl_mem), &in_mem), "clSetKernelArg");
-  device::check(clSetKernelArg(k.get(), 1, sizeof(int), &count), "clSetKernelArg");
-  const cl_uint next = device::set_material_args<Real>(k.get(), 2, material);
-  device::check(clSetKernelArg(k.get(), next, sizeof(cl_mem), &out_mem), "clSetKernelArg");
-  cl.run(k.get(), fs.size());
+  device::KernelConfig config = device::material_config(material);
+  config.gpu = gpu_build;
+  device::Kernel k = cl.kernel("probe.cl", config, "snh_probe");
+  device::KernelArgs args(k.get());
+  args.add(in.get()).add(count);
+  device::add_material_args<Real>(args, material).add(out.get());
+  cl.run(args.bind(), fs.size());
   if (!output.empty()) cl.read(out.get(), output.size() * sizeof(Real), output.data());
 
   std::vector<ProbeResult> results(fs.size());
@@ -51,9 +51,9 @@ std::vector<ProbeResult> evaluate_in(device::OpenClContext& cl, const Material& 
 }  // namespace
 
 std::vector<ProbeResult> evaluate(device::OpenClContext& cl, const Material& material, const std::vector<Matrix3>& fs,
-                                  const std::string& extra_defines) {
-  return cl.precision() == Precision::double_ ? evaluate_in<double>(cl, material, fs, extra_defines)
-                                              : evaluate_in<float>(cl, material, fs, extra_defines);
+                                  bool gpu_build) {
+  return cl.precision() == Precision::double_ ? evaluate_in<double>(cl, material, fs, gpu_build)
+                                              : evaluate_in<float>(cl, material, fs, gpu_build);
 }
 
 }  // namespace probe

@@ -1,6 +1,5 @@
 // The probe kernel (kernels/probe.cl) run on a context: MaterialProbe's
-// evaluation, with the kernel's build options open to the tests (e.g. a
-// GPU's -DSNH_GPU=1 on pocl).
+// evaluation, with the GPUs' build open to the tests (SNH_GPU on pocl).
 #pragma once
 
 #include <string>
@@ -12,8 +11,9 @@
 namespace snh::probe {
 
 // psi, P, projected H, eigenvalues and sigma at each F, in the context's
-// precision; `extra_defines` is added to the material's build options.
+// precision; with `gpu_build`, the GPUs' build (KernelConfig::gpu) on any
+// device.
 std::vector<ProbeResult> evaluate(device::OpenClContext& cl, const Material& material, const std::vector<Matrix3>& fs,
-                                  const std::string& extra_defines = "");
+                                  bool gpu_build = false);
 
 }  // namespace snh::probe

@@ -3,11 +3,11 @@
 namespace snh::solver {
 
 template <typename Real>
-BlockJacobi<Real>::BlockJacobi(device::OpenClContext& cl, size_t vertex_count, const std::string& defines)
+BlockJacobi<Real>::BlockJacobi(device::OpenClContext& cl, size_t vertex_count, const device::KernelConfig& config)
     : cl_(cl), vertex_count_(vertex_count) {
   inverse_blocks_ = cl_.buffer(CL_MEM_READ_WRITE, vertex_count_ * 9 * sizeof(Real));
-  setup_k_ = cl_.kernel("fem.cl", defines, "snh_block_jacobi_setup");
-  apply_k_ = cl_.kernel("fem.cl", defines, "snh_block_jacobi_apply");
+  setup_k_ = cl_.kernel("fem.cl", config, "snh_block_jacobi_setup");
+  apply_k_ = cl_.kernel("fem.cl", config, "snh_block_jacobi_apply");
 }
 
 template <typename Real>

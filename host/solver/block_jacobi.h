@@ -16,8 +16,8 @@ namespace snh::solver {
 template <typename Real>
 class BlockJacobi {
  public:
-  // `defines`: the model's build (its per-vertex terms included).
-  BlockJacobi(device::OpenClContext& cl, size_t vertex_count, const std::string& defines);
+  // `config`: the model's build (its per-vertex terms included).
+  BlockJacobi(device::OpenClContext& cl, size_t vertex_count, const device::KernelConfig& config);
 
   // The blocks from the elements' diagonal blocks, gathered per vertex
   // through the slots (offsets, adjacency) and masked; `vertex_args` adds

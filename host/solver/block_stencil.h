@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "device/kernel_config.h"
 #include "fem/vertex_slots.h"
 
 namespace snh::solver {
@@ -79,14 +80,12 @@ inline size_t stencil_entries(const StencilTables& t, size_t vertex_count, size_
 // The neighbour table in that layout (padding of the last tile: 0).
 std::vector<int> tiled_neighbours(const StencilTables& t, size_t vertex_count, size_t tile);
 
-// The build option that makes a stencil's width a constant of the kernels
+// The build that makes a stencil's width a constant of the kernels
 // that read it (SNH_STENCIL_WIDTH: their loop over a vertex's blocks
 // unrolled), with the per-vertex blocks (tile 1, CPUs; measured there). The
-// tiled layout (GPUs) keeps the width an argument: "" .
-inline std::string stencil_width_define(int width, size_t tile, int lower = 0) {
-  return tile == 1 && width > 0 ? " -DSNH_STENCIL_WIDTH=" + std::to_string(width) +
-                                      (lower > 0 ? " -DSNH_STENCIL_LOWER=" + std::to_string(lower) : std::string())
-                                : std::string();
+// tiled layout (GPUs) keeps the width an argument: `config` unchanged.
+inline device::KernelConfig stencil_build(const device::KernelConfig& config, int width, size_t tile, int lower = 0) {
+  return tile == 1 && width > 0 ? config.with_stencil(width, lower) : config;
 }
 
 }  // namespace snh::solver

@@ -79,21 +79,16 @@ class Reader {
     if (n > 0) std::memcpy(out, data_.data() + at_, n);
     at_ += n;
   }
-  uint32_t u32(const std::string& item) {
-    uint32_t v = 0;
+  // One value as the writer stored it (host byte order).
+  template <typename T>
+  T value(const std::string& item) {
+    T v{};
     bytes(&v, sizeof v, item);
     return v;
   }
-  uint64_t u64(const std::string& item) {
-    uint64_t v = 0;
-    bytes(&v, sizeof v, item);
-    return v;
-  }
-  double f64(const std::string& item) {
-    double v = 0;
-    bytes(&v, sizeof v, item);
-    return v;
-  }
+  uint32_t u32(const std::string& item) { return value<uint32_t>(item); }
+  uint64_t u64(const std::string& item) { return value<uint64_t>(item); }
+  double f64(const std::string& item) { return value<double>(item); }
   bool flag(const std::string& item) {
     uint8_t b = 0;
     bytes(&b, 1, item);

@@ -1,5 +1,8 @@
-// The elastic model on the device: buffers of one mesh and its materials
-// (one, or one per region) and the kernels of kernels/fem.cl, operating on
+// The elastic operator on the device: one mesh's element data
+// (solver/element_data.h) and its materials (one, or one per region), with
+// energy, forces, residual, linearization and the dispatch of the Hessian
+// products (solver/product_variants.h) and the per-vertex terms
+// (solver/vertex_terms.h, solver/self_contact_terms.h), operating on
 // ViennaCL vectors so that ViennaCL's CG can drive the matrix-free product.
 // Internal to the library.
 #pragma once
@@ -20,7 +23,9 @@
 #include "solver/block_jacobi.h"
 #include "solver/block_stencil.h"
 #include "solver/device_reduction.h"
+#include "solver/element_data.h"
 #include "solver/phase_profile.h"
+#include "solver/product_variants.h"
 #include "solver/self_contact.h"
 #include "solver/self_contact_terms.h"
 #include "solver/vertex_terms.h"
@@ -84,7 +89,7 @@ class ElasticModel {
                ProductVariant variant, device::MaterialKernel build = device::MaterialKernel::specialized,
                const ModelTerms& terms = {});
 
-  size_t dofs() const { return 3 * vertex_count_; }
+  size_t dofs() const { return data_.dofs(); }
   // 1 for free DOFs, 0 for constrained ones (xyz per vertex).
   void set_mask(const std::vector<Real>& mask);
   // Lumped external force, xyz per vertex; empty for none.
@@ -155,37 +160,40 @@ class ElasticModel {
   // The preconditioner's inverted 3x3 blocks, column-major per vertex (tests).
   std::vector<Real> preconditioner_blocks() const;
 
-  std::string specialization() const { return defines_; }
+  std::string specialization() const { return data_.config.defines(); }
+  // The build (device/kernel_config.h) and the specialization a result
+  // reports: specialization() and the precision (-DSNH_DOUBLE).
+  const device::KernelConfig& kernel_config() const { return data_.config; }
+  std::string kernel_report() const {
+    device::KernelConfig c = data_.config;
+    c.precision = data_.cl.precision();
+    return c.report();
+  }
   // The same switches without the per-vertex terms (inertia, obstacles,
   // friction, self-contact): the builds of a multigrid's coarse levels,
   // whose cell matrices carry those terms already.
-  std::string elastic_specialization() const { return elastic_defines_; }
+  std::string elastic_specialization() const { return data_.elastic_config.defines(); }
+  const device::KernelConfig& elastic_kernel_config() const { return data_.elastic_config; }
   // What the multigrid preconditioner reads (solver/multigrid.h): the
   // context, the mesh's element and rest-state buffers, the linearization
   // cache and the constraint mask (host copy and buffer).
-  device::OpenClContext& context() const { return cl_; }
-  cl_mem elements_buffer() const { return elements_.get(); }
-  cl_mem gradients_buffer() const { return gradients_.get(); }
-  cl_mem weights_buffer() const { return weights_.get(); }
-  cl_mem cache_buffer() const { return cache_.get(); }
+  device::OpenClContext& context() const { return data_.cl; }
+  cl_mem elements_buffer() const { return data_.elements.get(); }
+  cl_mem gradients_buffer() const { return data_.gradients.get(); }
+  cl_mem weights_buffer() const { return data_.weights.get(); }
+  cl_mem cache_buffer() const { return data_.cache.get(); }
   // The cache's size in values: 30 per quadrature point (kernels/fem/element.h),
   // with the elements rounded up to whole tiles in the tiled layout.
-  size_t cache_values() const {
-    return (element_count_ + cache_tile_ - 1) / cache_tile_ * cache_tile_ * quadrature_ * 30;
-  }
+  size_t cache_values() const { return data_.cache_values(); }
   // Elements per tile of the cache: 1, or 32 in the tiled layout.
-  size_t cache_tile() const { return cache_tile_; }
+  size_t cache_tile() const { return data_.cache_tile; }
   // Vertices per tile of the block stencils (the multigrid's levels read
   // this model's defines): the same.
-  size_t stencil_tile() const { return cache_tile_; }
+  size_t stencil_tile() const { return data_.cache_tile; }
   // The per-element matrices of the last linearize() (element_matrices and
   // assembled variants), else null.
-  cl_mem element_matrices_buffer() const {
-    return variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled
-               ? element_matrices_.get()
-               : nullptr;
-  }
-  size_t element_count() const { return element_count_; }
+  cl_mem element_matrices_buffer() const { return products_->element_matrices_buffer(); }
+  size_t element_count() const { return data_.element_count; }
   // The element matrices of the last linearize() (projected or true, as
   // linearized) and their 3x3 diagonal blocks into caller-owned buffers
   // (element_count() * (3N)^2 and * 9N reals; column-major, as
@@ -195,7 +203,9 @@ class ElasticModel {
   // the working precision. With float products on (the cached variant)
   // those float matrices are computed in float from the cache's float copy
   // (SNH_MIXED; multigrid's built fine level).
-  void element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks, bool single_precision = false) const;
+  void element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks, bool single_precision = false) const {
+    products_->element_matrices_into(matrices, diagonal_blocks, single_precision, projected_ != 0);
+  }
   // The per-vertex terms a multigrid's coarse levels take in (solver/multigrid.h):
   // the terms built in, the elastic energy's scale (implicit Euler's), the
   // inertia coefficients c_v (null without inertia) and the obstacle
@@ -208,7 +218,7 @@ class ElasticModel {
   double max_poisson_ratio() const { return max_poisson_ratio_; }
   cl_mem inertia_buffer() const { return vertex_terms_ ? vertex_terms_->inertia_buffer() : nullptr; }
   cl_mem contact_blocks_buffer() const { return vertex_terms_ ? vertex_terms_->contact_blocks_buffer() : nullptr; }
-  ProductVariant variant() const { return variant_; }
+  ProductVariant variant() const { return products_->variant(); }
   // Takes effect at the next linearize(). `automatic` is not accepted here.
   void set_variant(ProductVariant v);
   // Per-point lanes (kernels/fem_lanes.cl): the linearization, the
@@ -222,7 +232,7 @@ class ElasticModel {
   // (PointDataLayout, the GPUs' default) or for tet4 meshes with
   // materials per region (throws snh::Error).
   void set_point_lanes(bool on);
-  bool point_lanes() const { return point_lanes_; }
+  bool point_lanes() const { return data_.point_lanes; }
   // With point lanes on: the width of the kernels that evaluate the
   // material (the linearization and the recompute product), 8 or 16 lanes
   // (a work-item per 2 hex8 elements or 16 tet4 ones); the kernels that
@@ -245,35 +255,32 @@ class ElasticModel {
   void set_float_products(bool on);
   // Whether the products run in float now (set, a double model, the cached
   // or assembled variant).
-  bool float_products() const {
-    return float_products_ && sizeof(Real) > sizeof(float) &&
-           (variant_ == ProductVariant::cached || variant_ == ProductVariant::assembled);
-  }
+  bool float_products() const { return products_->float_products(); }
   bool point_lanes_available() const;
   // The element-matrices product with a work-item per matrix row instead of
   // per element (fem.cl, snh_element_matrix_product_rows): coalesced reads
   // on GPUs, where it is the default; the same values.
-  void set_matrix_product_rows(bool on) { matrix_rows_ = on; }
-  bool matrix_product_rows() const { return matrix_rows_; }
+  void set_matrix_product_rows(bool on) { products_->set_matrix_product_rows(on); }
+  bool matrix_product_rows() const { return products_->matrix_product_rows(); }
   // The lanes program and the value-major hex8 point data (PointDataLayout)
   // are the defaults on CPU devices.
-  bool lanes_by_default() const { return !cl_.info().is_gpu; }
+  bool lanes_by_default() const { return !data_.cl.info().is_gpu; }
   // Device memory the current variant holds beyond the mesh and vectors:
   // the linearization cache, element matrices or assembled matrix.
-  size_t variant_memory_bytes() const;
+  size_t variant_memory_bytes() const { return products_->variant_memory_bytes(); }
   // Seconds the last linearize() spent assembling the block stencil (its
   // tables too, the first time); 0 for other variants.
-  double last_assembly_seconds() const { return last_assembly_seconds_; }
+  double last_assembly_seconds() const { return products_->last_assembly_seconds(); }
   // The assembled operator's 3x3 blocks stored per vertex (0 before the
   // first assembly): the most vertices any vertex shares an element with,
   // plus one (kernels/fem/block_stencil.h).
-  int assembled_width() const { return stencil_width_; }
+  int assembled_width() const { return products_->assembled_width(); }
   // The blocks each vertex reads as the transposes of its neighbours' (the
   // upper layout, per-vertex blocks on CPUs: solver/block_stencil.h), else
   // 0; and the blocks stored (padding and the upper layout's zero block
   // included).
-  int assembled_lower() const { return stencil_lower_; }
-  size_t assembled_blocks() const { return stencil_values() / 9; }
+  int assembled_lower() const { return products_->assembled_lower(); }
+  size_t assembled_blocks() const { return products_->assembled_blocks(); }
   // Device memory of every buffer the model holds: mesh, rest state,
   // material, scratch, preconditioner and variant_memory_bytes(); not the
   // solver's vectors.
@@ -286,101 +293,43 @@ class ElasticModel {
   const DeviceReduction& reduction() const { return reduction_; }
 
  private:
-  void run_element_kernel(cl_kernel k) const;
-  // The same for the kernels fem_lanes.cl also has (linearize, cached and
-  // recompute products, element matrices, element blocks).
-  // lanes: 0 for fem.cl's kernel, else fem_lanes.cl's at that width (a
-  // work-item per lanes / quadrature points elements).
-  void run_point_kernel(cl_kernel k, int lanes) const;
-  // Kernel `name` of the program set_point_lanes chose (fem_lanes.cl at
-  // `lanes` lanes, or fem.cl), its defines followed by `extra`.
-  device::Kernel point_kernel(const char* name, const std::string& extra = "", int lanes = kCacheLanes) const;
-  // The width of the lanes kernels that read the cache (cached product,
-  // element matrices, element blocks), whatever material_lanes() is.
-  static constexpr int kCacheLanes = 8;
   // hex8 elements with their own materials: a lanes work-item holds one.
-  bool hex8_materials_per_element() const { return nodes_ == 8 && material_.per_element(); }
-  // Per-element elastic forces at x into element_scratch_ (before the gather).
+  bool hex8_materials_per_element() const { return data_.nodes == 8 && material_.per_element(); }
+  // Per-element elastic forces at x into the element scratch (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
-  void compute_element_matrices();
-  void assemble();
-  // The assembled variant's stencil tables on the device and its kernels,
-  // once: made when the variant is chosen, not in the first solve.
-  void prepare_stencil();
   // vertex_mode: 0 none, 1 residual terms of u = x, 2 product terms of u = p
   // (fem.cl, snh_gather_vectors); scale multiplies the element values.
   void gather(const device::Buffer& element_values, VectorBase& out, bool external, const VectorBase* u = nullptr,
               int vertex_mode = 0, double scale = 1.0) const;
-
-  device::OpenClContext& cl_;
-  mutable PhaseProfiler profiler_;
-  DeviceReduction reduction_;
-  size_t vertex_count_, element_count_;
-  int nodes_, quadrature_;
-  device::MaterialArgs<Real> material_;
-  ProductVariant variant_;
-  std::string defines_, elastic_defines_;
-  bool point_lanes_ = false;
-  int material_lanes_ = 0;     // set_material_lanes
-  size_t cache_tile_ = 1;      // PointDataLayout::tiled: 32
-  bool cached_lanes_ = false;  // the cached product's kernel is fem_lanes.cl's
-  bool matrix_rows_ = false;   // set_matrix_product_rows
-  device::Kernel matrix_rows_k_;
-  mutable device::Kernel matrices_float_k_;  // built at its first use
-  mutable device::Kernel matrices_mixed_k_;  // the same from the float copies (float products), likewise
-  // set_float_products: the SNH_MIXED product, the narrowing kernel and the
-  // float copies of the cache, gradients and weights.
-  bool float_products_ = false;
-  device::Kernel product_float_k_, narrow_k_, stencil_product_float_k_;
-  device::Buffer cache_float_, gradients_float_, weights_float_, stencil_float_;
-  void make_stencil_float();                                    // the float blocks' buffer and product kernel, once
-  void narrow(cl_mem from, size_t values, device::Buffer& to);  // to (made if empty) <- (float)from
-  bool float_product_lanes() const;                             // the mixed product runs fem_lanes.cl's kernel
-  device::Kernel float_product_kernel() const;                  // the SNH_MIXED cached product
-  void prepare_float_products();                                // the above, once float_products() holds
-  // The cached variant's products read the float copies now.
-  bool float_cache() const { return float_products() && variant_ == ProductVariant::cached; }
-  device::Buffer elements_, gradients_, weights_, offsets_, adjacency_, mask_, external_, element_scratch_,
-      element_blocks_, cache_, energies_, min_j_, element_matrices_;
-  bool has_external_ = false;
-  int projected_ = 1;
-  double last_assembly_seconds_ = 0.0;
-  // Assembled variant: the block stencil (solver/block_stencil.h), assembled
-  // on the device from the element matrices in element order
-  // (deterministic), and its width.
-  device::Buffer stencil_, stencil_neighbours_, stencil_part_offsets_, stencil_parts_;
-  device::Kernel stencil_assemble_k_, stencil_product_k_;
-  int stencil_width_ = 0, stencil_lower_ = 0;
-  // The stencil's stored values (stencil_entries).
-  size_t stencil_values() const {
-    return stencil_entries(stencil_width_, vertex_count_, stencil_tile(), stencil_lower_);
-  }
-  size_t stencil_memory_bytes() const;
-  // The stencil kernels' build: the model's, with the width made a constant
-  // where the layout allows (stencil_width_define).
-  std::string stencil_defines() const {
-    return elastic_defines_ + stencil_width_define(stencil_width_, stencil_tile(), stencil_lower_);
-  }
-  std::vector<int> elements_host_;
-  double last_min_j_ = 0.0;
-  std::vector<double> external_host_;
-  ModelTerms terms_;
-  // Inertia, obstacles and friction (null without inertia and obstacles).
-  std::unique_ptr<VertexTerms<Real>> vertex_terms_;
-  double elastic_scale_ = 1.0;
-  double max_poisson_ratio_ = 0.0;
-  double elastic_magnitude_ = 0.0, last_energy_magnitude_ = 0.0;
   // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
   void contact(const VectorBase& x, bool linearization = false) const;
   bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0 || terms_.self_contact; }
+  // d_c = a_c^T u for the frozen set (before a gather that uses them).
+  void self_differences(const VectorBase& u) const;
+
+  ElementData<Real> data_;
+  mutable PhaseProfiler profiler_;
+  DeviceReduction reduction_;
+  device::MaterialArgs<Real> material_;
+  int material_lanes_ = 0;  // set_material_lanes
+  device::Buffer external_, energies_, min_j_;
+  bool has_external_ = false;
+  int projected_ = 1;
+  double last_min_j_ = 0.0;
+  std::vector<double> external_host_;
+  ModelTerms terms_;
+  double elastic_scale_ = 1.0;
+  double max_poisson_ratio_ = 0.0;
+  double elastic_magnitude_ = 0.0, last_energy_magnitude_ = 0.0;
+  Vector linearized_x_;
+  device::Kernel energy_k_, forces_k_, linearize_k_, diagonal_k_, gather_k_, mask_k_;
+  // The Hessian products and what they store.
+  std::unique_ptr<ProductVariants<Real>> products_;
+  // Inertia, obstacles and friction (null without inertia and obstacles).
+  std::unique_ptr<VertexTerms<Real>> vertex_terms_;
   // Self-contact (ModelTerms::self_contact; null without): detector, frozen
   // set and its device arrays.
   std::unique_ptr<SelfContactTerms<Real>> self_contact_;
-  // d_c = a_c^T u for the frozen set (before a gather that uses them).
-  void self_differences(const VectorBase& u) const;
-  Vector linearized_x_;
-  device::Kernel energy_k_, forces_k_, linearize_k_, product_cached_k_, product_recompute_k_, diagonal_k_, gather_k_,
-      matrices_k_, matrix_product_k_, mask_k_;
   // Block-Jacobi's inverted blocks and kernels (setup_preconditioner).
   std::unique_ptr<BlockJacobi<Real>> block_jacobi_;
 };

@@ -134,7 +134,7 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   struct StencilKernels {
     device::Kernel assemble, product, residual, step;
   };
-  // Each level's, built for its width (stencil_width_define) and, on a
+  // Each level's, built for its width (stencil_build) and, on a
   // float fine level, its float matrices.
   const StencilKernels& stencil_kernels(int level) const;
   // Inertia or obstacle contact in the fine operator: added to the first
@@ -216,12 +216,13 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
   // The coarse levels carry the per-vertex terms inside their cell matrices
   // (snh_galerkin_vertex_terms): their products, gathers and smoothers are
   // the elastic-only builds.
-  const std::string defines = model.specialization(), coarse = model.elastic_specialization();
+  const device::KernelConfig& defines = model.kernel_config();
+  const device::KernelConfig& coarse = model.elastic_kernel_config();
   galerkin_cache_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_cache");
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
   // The V-cycle's builds: a float cycle's are the same switches compiled in
   // float (SNH_FLOAT, kernels/snh_portable.h).
-  const std::string cycle = kNarrow ? coarse + " -DSNH_FLOAT=1" : coarse;
+  const device::KernelConfig cycle = kNarrow ? coarse.with_float_cycle() : coarse;
   prolong_k_ = cl_.kernel("multigrid.cl", cycle, "snh_prolong_add");
   restrict_k_ = cl_.kernel("multigrid.cl", cycle, "snh_restrict");
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", cycle, "snh_chebyshev_start");
@@ -239,7 +240,7 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
   if (kNarrow && !fine_built_) throw Error("multigrid: a float V-cycle needs a built fine level");
   fine_float_ = fine_built_ && options.fine_level_float && sizeof(Real) > sizeof(float);
   if (fine_float_)
-    fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", coarse + " -DSNH_MATRIX_FLOAT=1", "snh_galerkin_from_matrices");
+    fine_float_galerkin_k_ = cl_.kernel("multigrid.cl", coarse.with_matrix_float(), "snh_galerkin_from_matrices");
   if (vertex_terms_) {
     galerkin_vertex_k_ = cl_.kernel("multigrid.cl", defines, "snh_galerkin_vertex_terms");
     // Each vertex's terms shared out equally to the cells around it.
@@ -295,10 +296,11 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
       L.width = stencil.width;
       // Float matrices at a float fine level: assembled from float
       // (SNH_MATRIX_FLOAT), and in a Real cycle read by mixed kernels.
-      const std::string float_matrices = l == 0 && fine_float_ ? " -DSNH_MATRIX_FLOAT=1" : "";
-      const std::string width = stencil_width_define(L.width, tile, stencil.lower);
-      const std::string assembly = coarse + float_matrices + width,
-                        apply = cycle + (kNarrow ? "" : float_matrices) + width;
+      const bool float_matrices = l == 0 && fine_float_;
+      const device::KernelConfig assembly =
+          stencil_build(float_matrices ? coarse.with_matrix_float() : coarse, L.width, tile, stencil.lower);
+      const device::KernelConfig apply =
+          stencil_build(float_matrices && !kNarrow ? cycle.with_matrix_float() : cycle, L.width, tile, stencil.lower);
       L.stencil_kernels = StencilKernels{cl_.kernel("stencil.cl", assembly, "snh_stencil_assemble"),
                                          cl_.kernel("stencil.cl", apply, "snh_stencil_product"),
                                          cl_.kernel("stencil.cl", apply, "snh_stencil_residual"),

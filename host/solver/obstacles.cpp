@@ -4,20 +4,21 @@
 #include <string>
 
 #include "snh/error.h"
+#include "solver/name_table.h"
 
 namespace snh {
 
-const char* to_string(ObstacleType type) {
-  switch (type) {
-    case ObstacleType::plane:
-      return "plane";
-    case ObstacleType::sphere:
-      return "sphere";
-    case ObstacleType::cylinder:
-      return "cylinder";
-  }
-  return "?";
-}
+namespace {
+
+constexpr NameTable<ObstacleType, 3> kObstacleTypeNames{{
+    {ObstacleType::plane, "plane"},
+    {ObstacleType::sphere, "sphere"},
+    {ObstacleType::cylinder, "cylinder"},
+}};
+
+}  // namespace
+
+const char* to_string(ObstacleType type) { return name_of(kObstacleTypeNames, type); }
 
 }  // namespace snh
 

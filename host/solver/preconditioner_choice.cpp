@@ -5,67 +5,50 @@
 #include "snh/error.h"
 #include "snh/simulation.h"
 #include "solver/lattice_hierarchy.h"
+#include "solver/name_table.h"
 
 namespace snh {
 
-const char* to_string(Preconditioner p) {
-  switch (p) {
-    case Preconditioner::automatic:
-      return "automatic";
-    case Preconditioner::none:
-      return "none";
-    case Preconditioner::block_jacobi:
-      return "block-jacobi";
-    case Preconditioner::multigrid:
-      return "multigrid";
-  }
-  return "?";
-}
+namespace {
+
+constexpr NameTable<Preconditioner, 4> kPreconditionerNames{{
+    {Preconditioner::automatic, "automatic"},
+    {Preconditioner::none, "none"},
+    {Preconditioner::block_jacobi, "block-jacobi"},
+    {Preconditioner::multigrid, "multigrid"},
+}};
+
+constexpr NameTable<MultigridFineLevel, 3> kFineLevelNames{{
+    {MultigridFineLevel::automatic, "automatic"},
+    {MultigridFineLevel::built, "built"},
+    {MultigridFineLevel::current, "current"},
+}};
+
+constexpr NameTable<ChebyshevKind, 4> kChebyshevKindNames{{
+    {ChebyshevKind::automatic, "automatic"},
+    {ChebyshevKind::first, "first"},
+    {ChebyshevKind::fourth, "fourth"},
+    {ChebyshevKind::optimized_fourth, "optimized-fourth"},
+}};
+
+}  // namespace
+
+const char* to_string(Preconditioner p) { return name_of(kPreconditionerNames, p); }
 
 Preconditioner parse_preconditioner(const std::string& text) {
-  for (Preconditioner p :
-       {Preconditioner::automatic, Preconditioner::none, Preconditioner::block_jacobi, Preconditioner::multigrid})
-    if (text == to_string(p)) return p;
-  throw Error("preconditioner: expected automatic, none, block-jacobi or multigrid, got '" + text + "'");
+  return value_named(kPreconditionerNames, text, "preconditioner");
 }
 
-const char* to_string(MultigridFineLevel f) {
-  switch (f) {
-    case MultigridFineLevel::automatic:
-      return "automatic";
-    case MultigridFineLevel::built:
-      return "built";
-    case MultigridFineLevel::current:
-      return "current";
-  }
-  return "?";
-}
+const char* to_string(MultigridFineLevel f) { return name_of(kFineLevelNames, f); }
 
 MultigridFineLevel parse_multigrid_fine_level(const std::string& text) {
-  for (MultigridFineLevel f : {MultigridFineLevel::automatic, MultigridFineLevel::built, MultigridFineLevel::current})
-    if (text == to_string(f)) return f;
-  throw Error("multigrid fine level: expected automatic, built or current, got '" + text + "'");
+  return value_named(kFineLevelNames, text, "multigrid fine level");
 }
 
-const char* to_string(ChebyshevKind k) {
-  switch (k) {
-    case ChebyshevKind::automatic:
-      return "automatic";
-    case ChebyshevKind::first:
-      return "first";
-    case ChebyshevKind::fourth:
-      return "fourth";
-    case ChebyshevKind::optimized_fourth:
-      return "optimized-fourth";
-  }
-  return "?";
-}
+const char* to_string(ChebyshevKind k) { return name_of(kChebyshevKindNames, k); }
 
 ChebyshevKind parse_chebyshev_kind(const std::string& text) {
-  for (ChebyshevKind k :
-       {ChebyshevKind::automatic, ChebyshevKind::first, ChebyshevKind::fourth, ChebyshevKind::optimized_fourth})
-    if (text == to_string(k)) return k;
-  throw Error("chebyshev kind: expected automatic, first, fourth or optimized-fourth, got '" + text + "'");
+  return value_named(kChebyshevKindNames, text, "chebyshev kind");
 }
 
 // Measured with `snh-gpu-bench scene twist|stretch --res R [--nu N]

@@ -1,31 +1,26 @@
 // Names of the Hessian-product variants and the measured default.
 #include "snh/error.h"
 #include "snh/simulation.h"
+#include "solver/name_table.h"
 
 namespace snh {
 
-const char* to_string(ProductVariant v) {
-  switch (v) {
-    case ProductVariant::automatic:
-      return "automatic";
-    case ProductVariant::cached:
-      return "cached";
-    case ProductVariant::recompute:
-      return "recompute";
-    case ProductVariant::element_matrices:
-      return "element-matrices";
-    case ProductVariant::assembled:
-      return "assembled";
-  }
-  return "?";
-}
+namespace {
+
+constexpr NameTable<ProductVariant, 5> kProductVariantNames{{
+    {ProductVariant::automatic, "automatic"},
+    {ProductVariant::cached, "cached"},
+    {ProductVariant::recompute, "recompute"},
+    {ProductVariant::element_matrices, "element-matrices"},
+    {ProductVariant::assembled, "assembled"},
+}};
+
+}  // namespace
+
+const char* to_string(ProductVariant v) { return name_of(kProductVariantNames, v); }
 
 ProductVariant parse_product_variant(const std::string& text) {
-  for (ProductVariant v : {ProductVariant::automatic, ProductVariant::cached, ProductVariant::recompute,
-                           ProductVariant::element_matrices, ProductVariant::assembled})
-    if (text == to_string(v)) return v;
-  throw Error("product variant: expected automatic, cached, recompute, element-matrices or assembled, got '" + text +
-              "'");
+  return value_named(kProductVariantNames, text, "product variant");
 }
 
 // Measured with `snh-gpu-bench throughput --element hex8,tet4 --size

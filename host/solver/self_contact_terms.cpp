@@ -5,10 +5,10 @@
 namespace snh::solver {
 
 template <typename Real>
-SelfContactTerms<Real>::SelfContactTerms(device::OpenClContext& cl, const Mesh& mesh, const std::string& defines,
-                                         PhaseProfiler* profiler)
+SelfContactTerms<Real>::SelfContactTerms(device::OpenClContext& cl, const Mesh& mesh,
+                                         const device::KernelConfig& config, PhaseProfiler* profiler)
     : cl_(cl), profiler_(profiler), vertex_count_(mesh.vertex_count()), detector_(mesh) {
-  differences_k_ = cl_.kernel("fem.cl", defines, "snh_self_contact_differences");
+  differences_k_ = cl_.kernel("fem.cl", config, "snh_self_contact_differences");
   upload();  // the empty set
 }
 

@@ -17,9 +17,10 @@ namespace snh::solver {
 template <typename Real>
 class SelfContactTerms {
  public:
-  // `defines`: the model's build (with -DSNH_SELF_CONTACT=1); uploads the
+  // `config`: the model's build (with self_contact); uploads the
   // empty set. Uploads are charged to `profiler`'s transfers.
-  SelfContactTerms(device::OpenClContext& cl, const Mesh& mesh, const std::string& defines, PhaseProfiler* profiler);
+  SelfContactTerms(device::OpenClContext& cl, const Mesh& mesh, const device::KernelConfig& config,
+                   PhaseProfiler* profiler);
 
   // The springs' stiffness (validated by the caller); uploads the set again
   // when it changes.

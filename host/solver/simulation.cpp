@@ -343,8 +343,7 @@ struct Simulation::Impl {
           single ? single->problem->multigrid_float_cycle() : dual->problem->multigrid_float_cycle();
     }
     result.tolerance = tolerance;
-    result.kernel_specialization = (single ? single->model->specialization() : dual->model->specialization()) +
-                                   " -DSNH_DOUBLE=" + (options.precision == Precision::double_ ? "1" : "0");
+    result.kernel_specialization = single ? single->model->kernel_report() : dual->model->kernel_report();
     result.warnings = warnings;
     for (size_t k = 0; k < constraints.size(); ++k) solver::record_start(constraints[k], x, targets[k]);
     precision_fallback.begin(options.precision);

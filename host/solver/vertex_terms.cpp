@@ -6,7 +6,7 @@ namespace snh::solver {
 
 template <typename Real>
 VertexTerms<Real>::VertexTerms(device::OpenClContext& cl, size_t vertex_count, bool inertia, int obstacles,
-                               bool friction, const std::string& defines, PhaseProfiler* profiler)
+                               bool friction, const device::KernelConfig& config, PhaseProfiler* profiler)
     : cl_(cl),
       profiler_(profiler),
       vertex_count_(vertex_count),
@@ -39,8 +39,8 @@ VertexTerms<Real>::VertexTerms(device::OpenClContext& cl, size_t vertex_count, b
     friction_records_ = cl_.buffer(CL_MEM_READ_ONLY, 16 * obstacles * sizeof(Real), zeros.data());
     friction_slip_ = 1.0;
   }
-  if (obstacles > 0) contact_k_ = cl_.kernel("fem.cl", defines, "snh_contact_vertices");
-  if (friction) friction_anchors_k_ = cl_.kernel("fem.cl", defines, "snh_friction_anchors");
+  if (obstacles > 0) contact_k_ = cl_.kernel("fem.cl", config, "snh_contact_vertices");
+  if (friction) friction_anchors_k_ = cl_.kernel("fem.cl", config, "snh_friction_anchors");
 }
 
 template <typename Real>

@@ -18,9 +18,9 @@ template <typename Real>
 class VertexTerms {
  public:
   // `obstacles`: how many (0: none); friction needs obstacles (the caller
-  // checks). `defines`: the model's build.
+  // checks). `config`: the model's build.
   VertexTerms(device::OpenClContext& cl, size_t vertex_count, bool inertia, int obstacles, bool friction,
-              const std::string& defines, PhaseProfiler* profiler);
+              const device::KernelConfig& config, PhaseProfiler* profiler);
 
   // Inertia (validated by the caller): c_v per vertex and the target y.
   void set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target);
