@@ -19,6 +19,7 @@
 #include "snh/frames.h"
 #include "snh/loads.h"
 #include "snh/rig.h"
+#include "snh/scene.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
@@ -318,6 +319,41 @@ TEST(SurfaceContact, EmbeddedSurfaceStaysOutOfAPressingSphere) {
   // The contact now reports the surface's depth into the layer.
   EXPECT_GT(with_surface.result.steps.back().contacts, 0);
   EXPECT_EQ(lattice_only.result.steps.back().contacts, 0);
+}
+
+// A scene file with "embed" and "obstacles" puts the surface in contact by
+// itself: the same press as above, run from the file.
+TEST(SurfaceContact, SceneFileWithEmbedAndObstaclesUsesTheSurface) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("snh_surface_contact_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write_obj((dir / "ball.obj").string(), icosphere(3, kBallRadius));
+  const double r = 0.3, start = kBallRadius + r + 2 * kThickness;
+  const nlohmann::json scene = {
+      {"embed", {{"surface", "ball.obj"}, {"cell", kCell}}},
+      {"material", {{"E", 1e3}, {"nu", 0.3}}},
+      {"constraints", {{{"name", "held"}, {"select", {{"box", {{"min", {-1, -1, -1}}, {"max", {1, 1, -0.49}}}}}}}}},
+      {"obstacles",
+       {{{"type", "sphere"},
+         {"center", {0.0, 0.0, start}},
+         {"radius", r},
+         {"keyframes",
+          {{{"t", 0.0}, {"translation", {0.0, 0.0, 0.0}}},
+           {{"t", 1.0}, {"translation", {0.0, 0.0, -(kPress + 2 * kThickness)}}}}}}}},
+      {"contact", {{"stiffness", 3e3}, {"thickness", kThickness}}},
+      {"solver", {{"steps", 4}, {"max_newton_iterations", 600}}}};
+  std::ofstream(dir / "press.json") << scene.dump();
+  const SceneFile file = load_scene((dir / "press.json").string());
+  ASSERT_TRUE(file.embedded);
+  const SceneRun run = run_scene(file, file.scene.options);
+  ASSERT_TRUE(run.converged);
+  const StepResult& last = run.result.steps.back();
+  EXPECT_GT(last.contacts, 0);  // the lattice vertices alone never reach the layer
+  EXPECT_GT(last.max_penetration, 0.0);
+  EXPECT_LT(last.max_penetration, kThickness);  // every surface point outside the sphere
+  EXPECT_TRUE(last.warnings.empty());
+  fs::remove_all(dir);
 }
 
 // Without obstacles a contact surface changes nothing, bit for bit.
