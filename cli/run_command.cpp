@@ -14,6 +14,7 @@ struct RunCommand {
   std::string device;
   SolverFlags solver;
   SceneOutputs outputs;
+  bool fail_on_inverted = false;
 };
 
 }  // namespace
@@ -30,12 +31,16 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
   o->solver.add_to(cmd, "load steps (per frame with a rig; time steps with dynamics; 0: the file's solver.steps)");
   cmd->add_flag("--quiet,-q", o->outputs.quiet, "no progress lines on stderr");
+  cmd->add_flag("--fail-on-inverted", o->fail_on_inverted,
+                "fail (exit code 4, naming the step or frame) when a step or frame ends with inverted elements "
+                "(the file's solver.fail_on_inverted, default false)");
   cmd->callback([o, cmd, &exit_code] {
     o->solver.note_given(cmd);
     const SceneFile file = load_scene(o->file);
     SolveOptions options = file.scene.options;
     options.device.match = o->device;
     o->solver.apply_to_file(file, options);
+    if (o->fail_on_inverted) options.fail_on_inverted = true;
     exit_code = run_scene_file(file, options, o->outputs);
   });
 }

@@ -33,24 +33,30 @@ void print_progress(const SceneProgress& p) {
   if (p.frame) {
     std::cerr << "  frame " << p.index << "/" << p.count << " (t = " << p.time << "): " << p.status << ", "
               << p.newton_iterations << " Newton, " << p.cg_iterations << " CG, " << std::setprecision(3) << p.seconds
-              << " s, min J " << p.min_j << '\n';
-    return;
+              << " s, min J " << p.min_j << ", inverted " << p.inverted_elements;
+  } else {
+    std::cerr << "  step " << p.index << "/" << p.count << ": " << p.status << ", " << p.newton_iterations
+              << " Newton, " << p.cg_iterations << " CG, " << std::setprecision(3) << p.seconds << " s";
+    if (p.time > 0.0) std::cerr << ", t = " << std::setprecision(4) << p.time << " s";
+    std::cerr << ", min J " << std::setprecision(3) << p.min_j << ", inverted " << p.inverted_elements;
   }
-  std::cerr << "  step " << p.index << "/" << p.count << ": " << p.newton_iterations << " Newton, " << p.cg_iterations
-            << " CG, " << std::setprecision(3) << p.seconds << " s";
-  if (p.time > 0.0) std::cerr << ", t = " << std::setprecision(4) << p.time << " s";
+  if (!p.warnings.empty())
+    std::cerr << " (" << p.warnings.size() << (p.warnings.size() == 1 ? " warning)" : " warnings)");
   std::cerr << '\n';
 }
 
 void print_frames(const SceneRun& run) {
   double seconds = 0.0;
-  std::cout << "frame  newton  cg      status                 residual   min J\n";
+  std::cout << "frame  newton  cg      status                 residual   min J       inverted  warnings\n";
   for (const FrameRecord& r : run.frames) {
     seconds += r.seconds;
     std::cout << std::left << std::setw(7) << r.frame << std::setw(8) << r.newton_iterations << std::setw(8)
               << r.cg_iterations << std::setw(23) << r.status << std::setw(11) << std::setprecision(3)
-              << r.residual_norm << std::setprecision(4) << r.min_j << '\n';
+              << r.residual_norm << std::setw(12) << std::setprecision(4) << r.min_j << std::setw(10)
+              << r.inverted_elements << r.warnings.size() << '\n';
   }
+  for (const FrameRecord& r : run.frames)
+    for (const std::string& w : r.warnings) std::cerr << "warning: frame " << r.frame << ": " << w << '\n';
   std::cout << "all frames converged " << (run.converged ? "yes" : "no") << ", " << std::setprecision(4) << seconds
             << " s solving, " << run.frames.size() << " frames\n";
 }
@@ -61,7 +67,7 @@ void print_steps(const SceneRun& run) {
   const bool contact = !options.obstacles.empty() || options.contact.self, dynamic = options.dynamics.has_value();
   const bool measured = !options.contact.self && options.contact.stiffness > 0.0;
   const bool self_column = options.contact.self || measured;
-  std::cout << "step  newton  cg      status                 residual"
+  std::cout << "step  newton  cg      status                 residual    min_J       inverted"
             << (dynamic ? "    time      volume    min_J     shape_rms" : "")
             << (contact ? "   contacts  max_penetration" : "")
             << (options.contact.self ? "  self_contacts  max_self_penetration"
@@ -74,7 +80,8 @@ void print_steps(const SceneRun& run) {
     const SceneStep& record = k < run.steps.size() ? run.steps[k] : none;
     std::cout << std::left << std::setw(6) << s.step << std::setw(8) << s.newton_iterations << std::setw(8)
               << s.cg_iterations << std::setw(23) << s.status << std::setw(12) << std::setprecision(3)
-              << s.residual_norm;
+              << s.residual_norm << std::setw(12) << std::setprecision(4) << s.min_j << std::setw(10)
+              << s.inverted_elements;
     if (dynamic) {
       const StepShape& sh = record.shape;
       std::cout << std::setw(10) << std::setprecision(4) << s.time << std::setw(10) << std::setprecision(5)
@@ -208,6 +215,20 @@ int run_scene_file(const SceneFile& file, const SolveOptions& options, const Sce
   else
     print_steps(run);
   if (!o.json_path.empty()) write_scene_json(o.json_path, file, run);
+  // SolveOptions::fail_on_inverted: the step or frame that failed, named.
+  for (const StepResult& s : run.result.steps)
+    if (s.status == StepStatus::inverted_elements) {
+      std::cerr << "error: " << (run.options.dynamics ? "time step " : "load step ") << s.step << " ended with "
+                << s.inverted_elements << " inverted elements (min J " << s.min_j
+                << ") and inverted elements fail this run\n";
+      return 4;
+    }
+  for (const FrameRecord& r : run.frames)
+    if (r.status == StepStatus::inverted_elements) {
+      std::cerr << "error: frame " << r.frame << " ended with " << r.inverted_elements << " inverted elements (min J "
+                << r.min_j << ") and inverted elements fail this run\n";
+      return 4;
+    }
   return run.converged ? 0 : 3;
 }
 

@@ -15,6 +15,9 @@
  *   SNH_FRICTION      lagged Coulomb friction against the obstacles
  *                     (contact/obstacle.h, obstacle_friction) in
  *                     snh_contact_vertices; only with SNH_OBSTACLES
+ *   SNH_SURFACE_CONTACT an embedded surface's points in contact with the
+ *                     obstacles (contact/obstacle.h, surface_point_contact)
+ *                     in snh_contact_vertices; only with SNH_OBSTACLES
  *   SNH_SELF_CONTACT  self-collision springs (solver/self_contact.h): the
  *                     per-contact differences d_c = a_c^T u and their
  *                     per-vertex gather k a_i d_c in the same kernels
@@ -471,6 +474,11 @@ __kernel void snh_contact_vertices(__global const real* x, __global const real* 
                                    __global const real* x_start, __global const real* anchors,
                                    __global const real* start_obstacles, __global const real* friction, const real slip
 #endif
+#if SNH_SURFACE_CONTACT
+                                   ,
+                                   __global const int* surface_offsets, __global const int* surface_entries,
+                                   __global const int* surface_vertices, __global const real* surface_weights
+#endif
 ) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
@@ -482,6 +490,15 @@ __kernel void snh_contact_vertices(__global const real* x, __global const real* 
   const real x0[3] = {x_start[3 * v], x_start[3 * v + 1], x_start[3 * v + 2]};
   e += obstacle_friction(start_obstacles, friction, SNH_OBSTACLES, stiffness, thickness, slip, x0,
                          anchors + 3 * SNH_OBSTACLES * v, xv, f, h);
+#endif
+#if SNH_SURFACE_CONTACT
+  /* The embedded surface points whose cell holds v, in point order (entry =
+   * 8 point + slot): each point's share on v (contact/obstacle.h). */
+  for (int k = surface_offsets[v]; k < surface_offsets[v + 1]; ++k) {
+    const int entry = surface_entries[k], point = entry / 8;
+    e += surface_point_contact(obstacles, SNH_OBSTACLES, stiffness, thickness, x, surface_vertices + 8 * point,
+                               surface_weights + 8 * point, entry - 8 * point, f, h, &g);
+  }
 #endif
   energy[v] = e;
   for (int i = 0; i < 3; ++i) force[3 * v + i] = f[i];

@@ -47,6 +47,8 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     record.time = animation.times[f];
     record.converged = r.converged;
     record.status = r.steps.empty() ? StepStatus::none : r.steps.back().status;
+    for (const StepResult& s : r.steps)
+      record.warnings.insert(record.warnings.end(), s.warnings.begin(), s.warnings.end());
     for (const StepResult& s : r.steps) {
       record.newton_iterations += s.newton_iterations;
       record.cg_iterations += s.cg_iterations;
@@ -57,6 +59,15 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     record.volume_ratio = r.volume_ratio;
     record.min_j = r.min_j;
     record.inverted_elements = r.inverted_elements;
+    if (record.inverted_elements > 0 && (options.fail_on_inverted || record.status == StepStatus::inverted_elements)) {
+      record.status = StepStatus::inverted_elements;
+      record.converged = false;
+    }
+    try {
+      record.reactions = simulation.reactions();
+    } catch (const Error& e) {
+      record.warnings.push_back("frame " + std::to_string(f) + " has no reactions: " + e.what());
+    }
     record.history = r.history;
     record.product = r.product;
     record.preconditioner = r.preconditioner;
@@ -70,7 +81,8 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     const std::vector<double>& x = simulation.positions();
     const std::vector<double> surface = embedding ? embedded_positions(*embedding, mesh, x) : std::vector<double>{};
     const bool go_on = on_frame ? on_frame(record, x, surface) : true;
-    if (!go_on || (options.stop_on_failure && !record.converged)) break;
+    if (!go_on || (options.stop_on_failure && !record.converged) || record.status == StepStatus::inverted_elements)
+      break;
   }
   return records;
 }

@@ -473,6 +473,10 @@ SceneFile load_scene(const std::string& path) {
   s.options.precision = parse_precision(r.text(solver, "solver", "precision", "double"));
   s.options.max_newton_iterations =
       r.integer(solver, "solver", "max_newton_iterations", defaults::max_newton_iterations);
+  if (solver.contains("fail_on_inverted")) {
+    if (!solver["fail_on_inverted"].is_boolean()) r.fail("solver.fail_on_inverted", "expected true or false");
+    s.options.fail_on_inverted = solver["fail_on_inverted"].get<bool>();
+  }
   try {
     s.options.preconditioner = parse_preconditioner(r.text(solver, "solver", "preconditioner", "automatic"));
   } catch (const Error& error) {

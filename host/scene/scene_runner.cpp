@@ -46,11 +46,13 @@ SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const
   }
   const Embedding* embedding = file.embedded ? &file.embedded->embedding : nullptr;
   Simulation simulation(file.scene.mesh, file.materials, file.scene.constraints, options);
+  if (file.embedded && !options.obstacles.empty()) simulation.set_contact_surface(file.embedded->embedding);
   SceneRun out;
   out.options = options;
   out.device = simulation.device();
   FrameOptions frame_options;
   frame_options.load_steps = options.load_steps;
+  frame_options.fail_on_inverted = options.fail_on_inverted;
   const int frames = static_cast<int>(animation.frame_count());
   out.frames = run_frames(simulation, animation, embedding, frame_options,
                           [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>& surface) {
@@ -66,6 +68,8 @@ SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const
                               p.seconds = r.seconds;
                               p.time = r.time;
                               p.min_j = r.min_j;
+                              p.inverted_elements = r.inverted_elements;
+                              p.warnings = r.warnings;
                               run.progress(p);
                             }
                             write_all(run, r.frame, r.time, x, surface);
@@ -86,6 +90,7 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
   write_all(run, 0, 0.0, x0, surface_of(scene.mesh, x0));
 
   QuasistaticSolver solver(scene.mesh, file.materials, scene.constraints, options);
+  if (file.embedded && !options.obstacles.empty()) solver.simulation().set_contact_surface(file.embedded->embedding);
   const Mesh& mesh = solver.mesh();
   SceneRun out;
   out.options = options;
@@ -127,7 +132,12 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
         }
         const double time = options.dynamics ? solver.simulation().time() : static_cast<double>(step);
         if (run.progress) {
+          const StepResult& done = solver.simulation().last_step();
           progress.index = step;
+          progress.status = done.status;
+          progress.min_j = done.min_j;
+          progress.inverted_elements = done.inverted_elements;
+          progress.warnings = done.warnings;
           progress.seconds = std::chrono::duration<double>(Clock::now() - step_start).count();
           progress.time = options.dynamics ? time : 0.0;
           run.progress(progress);

@@ -93,6 +93,8 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                  {"seconds", s.seconds},
                  {"contacts", s.contacts},
                  {"max_penetration", s.max_penetration},
+                 {"inverted_elements", s.inverted_elements},
+                 {"warnings", s.warnings},
                  {"profile", profile_json(s.profile)}};
     if (options.preconditioner == Preconditioner::multigrid || s.preconditioner_builds > 0)
       step["preconditioner_builds"] = s.preconditioner_builds;
@@ -108,6 +110,8 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
       step["min_j"] = sh.min_j;
       step["rigid_fit_rms"] = sh.rigid_fit_rms;
       step["rigid_fit_rms_relative"] = sh.rigid_fit_rms_relative;
+    } else if (std::isfinite(s.min_j)) {
+      step["min_j"] = s.min_j;
     }
     j["steps"].push_back(step);
   }
@@ -121,6 +125,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
   j["min_j"] = r.min_j;
   j["max_j"] = r.max_j;
   j["inverted_elements"] = r.inverted_elements;
+  j["warnings"] = r.warnings;
   j["history"] = history_json(r.history);
   return j;
 }
@@ -155,6 +160,7 @@ json load_steps_json(const SceneFile& file, const SceneRun& run) {
   const SolveResult& r = run.result;
   const Material& material = file.material;
   json j = summary_json(file.scene, run.options, r, run.steps);
+  for (const std::string& w : run.warnings) j["warnings"].push_back(w);
   // Self-contact off: what the detector measured after each step.
   for (size_t i = 0; i < run.steps.size() && i < j["steps"].size(); ++i) {
     if (!run.steps[i].self_contact_measured) continue;
@@ -197,6 +203,7 @@ json frames_json(const SceneFile& file, const SceneRun& run) {
   }
   j["load_steps_per_frame"] = options.load_steps;
   j["converged"] = run.converged;
+  j["warnings"] = run.warnings;
   j["seconds"] = seconds;
   j["profile"] = profile_json(profile);      // summed over the frames
   j["device_memory_bytes"] = device_memory;  // the largest frame's
@@ -214,6 +221,8 @@ json frames_json(const SceneFile& file, const SceneRun& run) {
                            {"volume_ratio", r.volume_ratio},
                            {"min_j", r.min_j},
                            {"inverted_elements", r.inverted_elements},
+                           {"warnings", r.warnings},
+                           {"reactions", reactions_json(r.reactions)},
                            {"history", history_json(r.history)}});
     // A character's: the simulated surface against its skinned one.
     const size_t k = j["frames"].size() - 1;

@@ -24,6 +24,7 @@ void add_solver_json(nlohmann::ordered_json& j, const SolveOptions& options, con
     j["multigrid_chebyshev"] = to_string(r.multigrid_chebyshev);
   }
   j["hessian"] = to_string(options.hessian);
+  j["fail_on_inverted"] = options.fail_on_inverted;
 }
 
 }  // namespace snh::scene_io

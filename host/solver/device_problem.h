@@ -140,6 +140,27 @@ class DeviceProblem {
     out = x + static_cast<Real>(alpha) * p;
   }
   void swap(Vector& u, Vector& v) { u.fast_swap(v); }
+  // Tangled equilibria (solver/newton_driver.h): each free DOF of x moved by
+  // `size` (set_perturbation) times a number in [-1, 1) drawn from `seed`
+  // (splitmix64: the same on every platform).
+  void set_perturbation(std::vector<Real> free, double size) {
+    free_ = std::move(free);
+    perturbation_ = size;
+  }
+  void perturb(Vector& x, uint64_t seed) {
+    PhaseScope timed(&model_.profiler(), Phase::transfers);
+    std::vector<Real> host(x.size());
+    viennacl::copy(x.begin(), x.end(), host.begin());
+    for (size_t i = 0; i < host.size(); ++i) {
+      uint64_t z = (seed += 0x9e3779b97f4a7c15ull);
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+      z ^= z >> 31;
+      const double unit = static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;  // [-1, 1)
+      if (i < free_.size() && free_[i] != Real(0)) host[i] += static_cast<Real>(perturbation_ * unit);
+    }
+    viennacl::copy(host.begin(), host.end(), x.begin());
+  }
 
  private:
   bool preconditioned() const { return preconditioner_ != Preconditioner::none; }
@@ -167,6 +188,8 @@ class DeviceProblem {
   Preconditioner preconditioner_;
   MultigridRebuild rebuild_;
   uint64_t built_contacts_ = 0;  // contact_set_signature() at the last multigrid build
+  std::vector<Real> free_;       // 1 per free DOF, 0 per prescribed (perturb)
+  double perturbation_ = 0.0;
 };
 
 }  // namespace snh::solver

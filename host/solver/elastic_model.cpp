@@ -244,6 +244,12 @@ void ElasticModel<Real>::set_obstacles(const std::vector<double>& records, doubl
 }
 
 template <typename Real>
+void ElasticModel<Real>::set_contact_surface(const ContactSurface& surface) {
+  if (terms_.obstacles == 0) throw Error("solver: set_contact_surface on a model built without obstacles");
+  vertex_terms_->set_contact_surface(surface);
+}
+
+template <typename Real>
 void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions, const std::vector<double>& anchors,
                                       const std::vector<double>& start_records,
                                       const std::vector<double>& friction_records, double slip) {

@@ -106,6 +106,8 @@ class ElasticModel {
   // energy gains sum over vertices of their contact energy, the residual
   // their contact force, the Hessian their Gauss-Newton blocks.
   void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
+  // An embedded surface's points join the obstacle contact (VertexTerms).
+  void set_contact_surface(const ContactSurface& surface);
   // Friction (ModelTerms::friction) for the coming solve: the step's start
   // positions (xyz per vertex), the anchors (xyz per vertex and obstacle,
   // vertex-major), the obstacles' records at the step's start, their

@@ -31,13 +31,27 @@
 // called at the start of the step and of every Newton iteration, before that
 // iteration's energy, residual and convergence test; the set stays frozen for
 // the iteration's linearization, linear solve and line search. Returns
-// whether the set changed (the energy and residual are then recomputed).
+// whether the set changed (the energy and residual are then recomputed), and
+//   void perturb(Vector& x, uint64_t seed);  // move the free DOFs a little
+// for tangled equilibria (below).
+//
+// Tangled equilibria: where the residual meets the tolerance with an element
+// inverted (J <= 0), the iterate may be a saddle that Newton reached by
+// symmetry (a cube crushed onto a line: the true Hessian's smallest
+// eigenvalue there is -0.038) rather than a minimum. With perturb, the free
+// DOFs are then perturbed (RecoveryAction::inverted_equilibrium_perturbed)
+// and Newton goes on; if it reaches a lower energy the new state is judged
+// the same way (at most kMaxPerturbations times), else (a strict local
+// minimum: the scramble of docs/validation.md) the equilibrium is restored
+// bit for bit and kept (inverted_equilibrium_kept). converged stays Newton's
+// criterion: the inverted elements are reported by the caller.
 #pragma once
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -81,6 +95,13 @@ bool refresh_of(P& problem, const typename P::Vector& x, bool new_step) {
   else
     return false;
 }
+
+// The problem's perturb(x, seed), or false (no perturbation) when it has none.
+template <typename P, typename = void>
+struct HasPerturb : std::false_type {};
+template <typename P>
+struct HasPerturb<P, std::void_t<decltype(std::declval<P&>().perturb(std::declval<typename P::Vector&>(), 1u))>>
+    : std::true_type {};
 
 template <typename Problem>
 class NewtonDriver {
@@ -142,6 +163,22 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
   int projection_cooldown = 0;
   double last_alpha = 0.0;
   int crawling = 0;
+  // Tangled equilibria (above): the converged inverted state while Newton
+  // tries a perturbation of it, and its energy.
+  constexpr int kMaxPerturbations = 3;
+  int perturbations = 0;
+  bool perturbed = false;
+  std::unique_ptr<Vector> equilibrium;
+  double equilibrium_energy = 0.0;
+  // Back to the kept equilibrium, its residual and energy recomputed.
+  auto restore_equilibrium = [&] {
+    problem_.swap(x, *equilibrium);
+    refresh_of(problem_, x, false);
+    problem_.residual(x, r);
+    rn = problem_.norm(r);
+    energy = problem_.energy(x);
+    perturbed = false;
+  };
 
   for (int it = 0;; ++it) {
     // The active set at this iterate: energy, residual and the convergence
@@ -171,11 +208,62 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
       rec.seconds = elapsed(start);
       history.push_back(rec);
     };
+    // A failure after a perturbation: the equilibrium it left is kept.
+    auto failed_after_perturbation = [&] {
+      if (!perturbed) return false;
+      restore_equilibrium();
+      note(RecoveryAction::inverted_equilibrium_kept);
+      rec.residual_norm = rn;
+      rec.energy = energy;
+      result.converged = rn <= tolerance;
+      finish(result.converged ? StepStatus::converged : StepStatus::non_finite_state);
+      return true;
+    };
     if (!std::isfinite(rn) || !std::isfinite(energy)) {
+      if (failed_after_perturbation()) break;
       finish(StepStatus::non_finite_state);
       break;
     }
     if (rn <= tolerance) {
+      if constexpr (HasPerturb<Problem>::value) {
+        const double noise = 64.0 * eps * std::max(std::abs(energy), energy_magnitude_of(problem_));
+        if (perturbed && !(energy < equilibrium_energy - std::max(noise, 1e-6 * std::abs(equilibrium_energy)))) {
+          // No lower equilibrium near the inverted one: keep it.
+          restore_equilibrium();
+          note(RecoveryAction::inverted_equilibrium_kept);
+          rec.residual_norm = rn;
+          rec.energy = energy;
+        } else {
+          perturbed = false;
+          problem_.energy(x);  // min J at x (the last energy() may have been a rejected trial's)
+          if (problem_.last_min_j() <= 0.0 && perturbations < kMaxPerturbations && rn <= tolerance) {
+            if (!equilibrium) equilibrium = std::make_unique<Vector>(problem_.vector());
+            problem_.step(x, 0.0, r, *equilibrium);  // a copy of x
+            equilibrium_energy = energy;
+            problem_.perturb(
+                x, 0x5eedull + 1000003ull * static_cast<uint64_t>(step) + static_cast<uint64_t>(perturbations));
+            ++perturbations;
+            perturbed = true;
+            note(RecoveryAction::inverted_equilibrium_perturbed);
+            rec.seconds = elapsed(start);
+            history.push_back(rec);
+            refresh_of(problem_, x, false);
+            problem_.residual(x, r);
+            rn = problem_.norm(r);
+            energy = problem_.energy(x);
+            // A new start: progress, forcing terms and the Hessian choice
+            // are judged from here.
+            residuals.clear();
+            energies.clear();
+            eta = options_.forcing_max;
+            previous_rn = rn;
+            last_alpha = 0.0;
+            crawling = 0;
+            projection_cooldown = 0;
+            continue;
+          }
+        }
+      }
       result.converged = true;
       finish(StepStatus::converged);
       break;
@@ -191,11 +279,13 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
       const double best = *std::min_element(residuals.begin() + old + 1, residuals.end());
       const double noise = 64.0 * eps * std::max(std::abs(energies[old]), energy_magnitude_of(problem_));
       if (best > 0.99 * residuals[old] && energies[old] - energy <= noise) {
+        if (failed_after_perturbation()) break;
         finish(StepStatus::stagnated);
         break;
       }
     }
     if (it >= options_.max_newton_iterations) {
+      if (failed_after_perturbation()) break;
       finish(StepStatus::max_newton_iterations);
       break;
     }
@@ -343,6 +433,7 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     rec.step_length = accepted;
     if (accepted == 0.0) {
       result.cg_iterations += rec.cg_iterations;
+      if (failed_after_perturbation()) break;
       finish(StepStatus::line_search_failed);
       break;
     }

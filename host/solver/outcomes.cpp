@@ -33,7 +33,7 @@ E parse_in(const NameTable<E, N>& table, const std::string& text, const char* wh
   throw Error(std::string(what) + ": expected one of " + known + ", got '" + text + "'");
 }
 
-constexpr NameTable<StepStatus, 7> kStepStatusNames{{
+constexpr NameTable<StepStatus, 8> kStepStatusNames{{
     {StepStatus::none, ""},
     {StepStatus::converged, "converged"},
     {StepStatus::max_newton_iterations, "max_newton_iterations"},
@@ -41,7 +41,16 @@ constexpr NameTable<StepStatus, 7> kStepStatusNames{{
     {StepStatus::stagnated, "stagnated"},
     {StepStatus::non_finite_state, "non_finite_state"},
     {StepStatus::cancelled, "cancelled"},
+    {StepStatus::inverted_elements, "inverted_elements"},
 }};
+
+constexpr NameTable<ResultWarning, 3> kResultWarningNames{{
+    {ResultWarning::inverted_elements, "inverted_elements"},
+    {ResultWarning::not_converged, "not_converged"},
+    {ResultWarning::obstacle_penetration, "obstacle_penetration"},
+}};
+
+constexpr const char* kWarningSeparator = ": ";
 
 constexpr NameTable<CgStop, 5> kCgStopNames{{
     {CgStop::none, ""},
@@ -51,7 +60,7 @@ constexpr NameTable<CgStop, 5> kCgStopNames{{
     {CgStop::breakdown, "breakdown"},
 }};
 
-constexpr NameTable<RecoveryAction, 9> kRecoveryNames{{
+constexpr NameTable<RecoveryAction, 11> kRecoveryNames{{
     {RecoveryAction::cg_breakdown_steepest_descent, "cg_breakdown -> steepest_descent"},
     {RecoveryAction::non_finite_direction_steepest_descent, "non_finite_direction -> steepest_descent"},
     {RecoveryAction::non_descent_steepest_descent, "non_descent -> steepest_descent"},
@@ -61,6 +70,8 @@ constexpr NameTable<RecoveryAction, 9> kRecoveryNames{{
     {RecoveryAction::shorter_step, "non_finite_residual -> shorter_step"},
     {RecoveryAction::extended_step, "negative_curvature -> step x"},
     {RecoveryAction::double_fallback, "float -> double"},
+    {RecoveryAction::inverted_equilibrium_perturbed, "inverted_equilibrium -> perturbation"},
+    {RecoveryAction::inverted_equilibrium_kept, "perturbation -> inverted_equilibrium_kept"},
 }};
 
 constexpr const char* kFloatPrefix = "float ";
@@ -77,6 +88,22 @@ bool ends_with(const std::string& text, const std::string& suffix) {
 const char* to_string(StepStatus status) { return name_in(kStepStatusNames, status); }
 StepStatus parse_step_status(const std::string& text) { return parse_in(kStepStatusNames, text, "step status"); }
 std::ostream& operator<<(std::ostream& out, StepStatus status) { return out << to_string(status); }
+
+const char* to_string(ResultWarning kind) { return name_in(kResultWarningNames, kind); }
+ResultWarning parse_result_warning(const std::string& text) {
+  return parse_in(kResultWarningNames, text, "result warning");
+}
+
+std::string warning_text(ResultWarning kind, const std::string& detail) {
+  return to_string(kind) + std::string(kWarningSeparator) + detail;
+}
+
+bool has_warning(const std::vector<std::string>& warnings, ResultWarning kind) {
+  const std::string prefix = to_string(kind) + std::string(kWarningSeparator);
+  for (const std::string& w : warnings)
+    if (starts_with(w, prefix)) return true;
+  return false;
+}
 
 const char* to_string(CgStop stop) { return name_in(kCgStopNames, stop); }
 CgStop parse_cg_stop(const std::string& text) { return parse_in(kCgStopNames, text, "CG stop"); }

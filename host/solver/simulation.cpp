@@ -33,6 +33,7 @@
 #include "solver/simulation_engine.h"
 #include "solver/simulation_state.h"
 #include "solver/solve_accounting.h"
+#include "solver/step_assessment.h"
 
 namespace snh {
 
@@ -82,6 +83,8 @@ struct Simulation::Impl {
       for (size_t o = 0; o < count; ++o)
         for (int d = 0; d < 3; ++d) friction_anchor[3 * (count * vertex + o) + d] = x[3 * vertex + d];
   }
+  // The embedded surface in contact with the obstacles (set_contact_surface).
+  solver::ContactSurface contact_surface;
   std::vector<Target> targets;
   std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
   std::vector<double> body_force_lumped;
@@ -89,6 +92,7 @@ struct Simulation::Impl {
   std::array<double, 3> body_force{0, 0, 0};
   std::unique_ptr<Engine<float>> single;
   std::unique_ptr<Engine<double>> dual;  // double: the main engine or the float fallback
+  StepResult last_step;                  // Simulation::last_step
   double callback_seconds = 0.0;         // in the caller's callbacks during the current solve
   solver::Counters solve_start;          // counters() when the current solve began
 
@@ -213,7 +217,9 @@ struct Simulation::Impl {
   template <typename Real>
   std::unique_ptr<Engine<Real>> make_engine(std::unique_ptr<device::OpenClContext> context, ProductVariant variant) {
     const solver::EngineSetup setup{mesh, rest, materials, options, prescribed, preconditioner, friction};
-    return solver::make_engine<Real>(setup, cl, viennacl_context_id, std::move(context), variant);
+    auto engine = solver::make_engine<Real>(setup, cl, viennacl_context_id, std::move(context), variant);
+    if (!contact_surface.empty()) engine->model->set_contact_surface(contact_surface);
+    return engine;
   }
 
   // Every engine's next linearization builds its preconditioner afresh
@@ -362,14 +368,19 @@ struct Simulation::Impl {
         solver::ramp_force(force_from, force_to, fraction, force_applied);
         step = solve_step(s, steps, result, start, progress);
       }
-      result.converged = result.converged && step.converged;
+      solver::assess_step(mesh, rest, x, options, (options.dynamics ? "time step " : "load step ") + std::to_string(s),
+                          step);
+      result.warnings.insert(result.warnings.end(), step.warnings.begin(), step.warnings.end());
+      result.converged = result.converged && step.converged && step.status != StepStatus::inverted_elements;
       result.final_residual_norm = step.residual_norm;
       const solver::Counters step_end = counters();
       step.profile = solver::profile_between(step_start, step_end,
                                              std::chrono::duration<double>(Clock::now() - step_clock).count());
       step.preconditioner_builds = step_end.preconditioner_builds - step_start.preconditioner_builds;
       result.steps.push_back(step);
+      last_step = step;
       if (on_step) in_callback([&] { on_step(s, x); });
+      if (step.status == StepStatus::inverted_elements) break;  // SolveOptions::fail_on_inverted
       if (step.status == StepStatus::cancelled) {
         result.cancelled = true;
         break;
@@ -546,6 +557,15 @@ void Simulation::restart() {
   m.force_applied.clear();
 }
 
+void Simulation::set_contact_surface(const Embedding& embedding) {
+  Impl& m = *impl_;
+  solver::ContactSurface surface = solver::contact_surface(m.mesh, embedding);
+  if (m.options.obstacles.empty()) return;  // nothing to touch
+  if (m.single) m.single->model->set_contact_surface(surface);
+  if (m.dual) m.dual->model->set_contact_surface(surface);
+  m.contact_surface = std::move(surface);
+}
+
 SimulationState Simulation::checkpoint() {
   Impl& m = *impl_;
   SimulationState s;
@@ -592,6 +612,7 @@ const std::vector<double>& Simulation::positions() const { return impl_->x; }
 const std::vector<double>& Simulation::velocities() const { return impl_->v; }
 double Simulation::time() const { return impl_->time; }
 const std::vector<double>& Simulation::applied_force() const { return impl_->force_applied; }
+const StepResult& Simulation::last_step() const { return impl_->last_step; }
 const Mesh& Simulation::mesh() const { return impl_->mesh; }
 const MaterialMap& Simulation::materials() const { return impl_->materials; }
 const std::vector<ConstraintSet>& Simulation::constraints() const { return impl_->constraints; }

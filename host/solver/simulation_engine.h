@@ -83,6 +83,9 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
                                                                 resolved_multigrid_options(options));
   }
   engine->problem = std::make_unique<DeviceProblem<Real>>(*engine->model, setup.preconditioner, std::move(multigrid));
+  // Tangled equilibria are perturbed by 1% of the vertex spacing
+  // (solver/newton_driver.h).
+  engine->problem->set_perturbation(mask, 1e-2 * vertex_spacing(setup.mesh));
   engine->newton = std::make_unique<NewtonDriver<DeviceProblem<Real>>>(*engine->problem, options);
   device::use_viennacl(main_viennacl_context);
   return engine;

@@ -1,6 +1,9 @@
 #include "solver/vertex_terms.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "snh/error.h"
 
 namespace snh::solver {
 
@@ -12,7 +15,8 @@ VertexTerms<Real>::VertexTerms(device::OpenClContext& cl, size_t vertex_count, b
       vertex_count_(vertex_count),
       inertia_(inertia),
       obstacles_count_(obstacles),
-      friction_(friction) {
+      friction_(friction),
+      defines_(defines) {
   const size_t dofs = 3 * vertex_count_;
   if (inertia) {
     inertia_mass_host_.assign(vertex_count_, 0.0);
@@ -66,6 +70,29 @@ void VertexTerms<Real>::set_obstacles(const std::vector<double>& records, double
   cl_.write(obstacles_.get(), r.size() * sizeof(Real), r.data());
   contact_stiffness_ = stiffness;
   contact_thickness_ = thickness;
+}
+
+template <typename Real>
+void VertexTerms<Real>::set_contact_surface(const ContactSurface& surface) {
+  if (obstacles_count_ == 0) throw Error("solver: a contact surface needs obstacles");
+  if (!surface.empty() && surface.offsets.size() != vertex_count_ + 1)
+    throw Error("solver: a contact surface of " + std::to_string(surface.offsets.size() - 1) + " vertices, expected " +
+                std::to_string(vertex_count_));
+  surface_ = !surface.empty();
+  if (!surface_) {
+    contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
+    for (device::Buffer* b : {&surface_offsets_, &surface_entries_, &surface_vertices_, &surface_weights_}) *b = {};
+    return;
+  }
+  const std::vector<Real> weights(surface.point_weights.begin(), surface.point_weights.end());
+  // An empty entry list still needs a buffer.
+  const std::vector<int32_t> entries = surface.entries.empty() ? std::vector<int32_t>{0} : surface.entries;
+  surface_offsets_ = cl_.buffer(CL_MEM_READ_ONLY, surface.offsets.size() * sizeof(int32_t), surface.offsets.data());
+  surface_entries_ = cl_.buffer(CL_MEM_READ_ONLY, entries.size() * sizeof(int32_t), entries.data());
+  surface_vertices_ =
+      cl_.buffer(CL_MEM_READ_ONLY, surface.point_vertices.size() * sizeof(int32_t), surface.point_vertices.data());
+  surface_weights_ = cl_.buffer(CL_MEM_READ_ONLY, weights.size() * sizeof(Real), weights.data());
+  contact_k_ = cl_.kernel("fem.cl", defines_ + " -DSNH_SURFACE_CONTACT=1", "snh_contact_vertices");
 }
 
 template <typename Real>
@@ -125,6 +152,11 @@ void VertexTerms<Real>::contact(cl_mem x, bool linearization) const {
         .add(friction_start_records_.get())
         .add(friction_records_.get())
         .add(static_cast<Real>(friction_slip_));
+  if (surface_)
+    args.add(surface_offsets_.get())
+        .add(surface_entries_.get())
+        .add(surface_vertices_.get())
+        .add(surface_weights_.get());
   cl_.run(args.bind(), vertex_count_);
 }
 
@@ -150,11 +182,51 @@ void VertexTerms<Real>::add_block_args(device::KernelArgs& args) const {
 template <typename Real>
 size_t VertexTerms<Real>::memory_bytes() const {
   size_t bytes = 0;
-  for (const device::Buffer* b : {&inertia_mass_, &inertia_target_, &obstacles_, &contact_energy_, &contact_force_,
-                                  &contact_blocks_, &contact_scratch_, &contact_depth_, &friction_start_,
-                                  &friction_anchors_, &friction_start_records_, &friction_records_})
+  for (const device::Buffer* b :
+       {&inertia_mass_, &inertia_target_, &obstacles_, &contact_energy_, &contact_force_, &contact_blocks_,
+        &contact_scratch_, &contact_depth_, &friction_start_, &friction_anchors_, &friction_start_records_,
+        &friction_records_, &surface_offsets_, &surface_entries_, &surface_vertices_, &surface_weights_})
     bytes += device::OpenClContext::bytes(b->get());
   return bytes;
+}
+
+ContactSurface contact_surface(const Mesh& mesh, const Embedding& embedding) {
+  ContactSurface out;
+  const size_t points = embedding.element.size();
+  if (points == 0) return out;
+  if (mesh.type != ElementType::hex8) throw Error("contact surface: an embedding needs a hex8 lattice");
+  if (embedding.weights.size() != 8 * points)
+    throw Error("contact surface: " + std::to_string(embedding.weights.size()) + " weights for " +
+                std::to_string(points) + " surface vertices (8 per vertex)");
+  out.point_vertices.resize(8 * points);
+  out.point_weights = embedding.weights;
+  std::vector<int32_t> count(mesh.vertex_count() + 1, 0);
+  for (size_t p = 0; p < points; ++p) {
+    const int32_t e = embedding.element[p];
+    if (e < 0 || static_cast<size_t>(e) >= mesh.element_count())
+      throw Error("contact surface: surface vertex " + std::to_string(p) + " lies in element " + std::to_string(e) +
+                  " of a mesh of " + std::to_string(mesh.element_count()));
+    double sum = 0.0;
+    for (int i = 0; i < 8; ++i) {
+      const double w = embedding.weights[8 * p + i];
+      if (!std::isfinite(w))
+        throw Error("contact surface: surface vertex " + std::to_string(p) + " has a non-finite weight");
+      sum += w;
+      const int32_t v = mesh.elements[8 * static_cast<size_t>(e) + i];
+      out.point_vertices[8 * p + i] = v;
+      ++count[v + 1];
+    }
+    if (std::abs(sum - 1.0) > 1e-6)
+      throw Error("contact surface: the weights of surface vertex " + std::to_string(p) + " sum to " +
+                  std::to_string(sum) + ", not 1");
+  }
+  out.offsets.assign(mesh.vertex_count() + 1, 0);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) out.offsets[v + 1] = out.offsets[v] + count[v + 1];
+  out.entries.resize(out.offsets.back());
+  std::vector<int32_t> next(out.offsets.begin(), out.offsets.end() - 1);
+  for (size_t p = 0; p < points; ++p)
+    for (int i = 0; i < 8; ++i) out.entries[next[out.point_vertices[8 * p + i]]++] = static_cast<int32_t>(8 * p + i);
+  return out;
 }
 
 template class VertexTerms<float>;

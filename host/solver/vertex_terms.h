@@ -10,9 +10,29 @@
 
 #include "device/kernel_args.h"
 #include "device/opencl_context.h"
+#include "snh/mesh.h"
+#include "snh/surface.h"
 #include "solver/phase_profile.h"
 
 namespace snh::solver {
+
+// An embedded surface's points in contact with the obstacles
+// (Simulation::set_contact_surface), arranged for a gather per lattice
+// vertex: per point its cell's 8 vertices and trilinear weights; per lattice
+// vertex v the entries offsets[v] .. offsets[v + 1] of the points whose cell
+// holds it, each 8 point + slot, in point order (so each vertex sums its
+// shares in a fixed order: no atomics).
+struct ContactSurface {
+  std::vector<int32_t> point_vertices;  // 8 per point
+  std::vector<double> point_weights;    // 8 per point
+  std::vector<int32_t> offsets;         // vertex_count + 1
+  std::vector<int32_t> entries;
+  bool empty() const { return point_vertices.empty(); }
+};
+
+// The contact surface of an embedding in `mesh` (hex8); throws snh::Error
+// naming the surface vertex whose element or weights do not fit.
+ContactSurface contact_surface(const Mesh& mesh, const Embedding& embedding);
 
 template <typename Real>
 class VertexTerms {
@@ -27,6 +47,10 @@ class VertexTerms {
   // sum += 1/2 sum_v c_v |x_v - y_v|^2, entry by entry in order (x: xyz per vertex).
   void add_inertia_energy(const std::vector<Real>& x, double& sum) const;
   void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
+  // The embedded surface's points join the contact (SNH_SURFACE_CONTACT:
+  // the contact kernel is rebuilt with them); an empty one leaves them out
+  // again. Needs obstacles.
+  void set_contact_surface(const ContactSurface& surface);
   void set_friction(const std::vector<double>& start_positions, const std::vector<double>& anchors,
                     const std::vector<double>& start_records, const std::vector<double>& friction_records, double slip);
   std::vector<double> next_friction_anchors(cl_mem x) const;
@@ -62,6 +86,10 @@ class VertexTerms {
   device::Buffer friction_start_, friction_anchors_, friction_start_records_, friction_records_;
   double friction_slip_ = 0.0;
   device::Kernel contact_k_, friction_anchors_k_;
+  std::string defines_;
+  // The contact surface's arrays (ContactSurface), empty without one.
+  device::Buffer surface_offsets_, surface_entries_, surface_vertices_, surface_weights_;
+  bool surface_ = false;
 };
 
 }  // namespace snh::solver

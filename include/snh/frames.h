@@ -18,8 +18,10 @@ namespace snh {
 struct FrameRecord {
   int frame = 0;
   double time = 0.0;
-  bool converged = false;
-  StepStatus status = StepStatus::none;  // the last load step's (StepResult::status)
+  bool converged = false;  // every load step's Newton solve met its tolerance (and none failed on inversion)
+  // The last load step's (StepResult::status); StepStatus::inverted_elements
+  // where FrameOptions::fail_on_inverted (or SolveOptions') failed the frame.
+  StepStatus status = StepStatus::none;
   int newton_iterations = 0;
   int cg_iterations = 0;
   double residual_norm = 0.0;
@@ -27,7 +29,15 @@ struct FrameRecord {
   SolveProfile profile;  // where the frame's solve spent its time (SolveResult::profile)
   double volume_ratio = 0.0;
   double min_j = 0.0;
-  int inverted_elements = 0;
+  int inverted_elements = 0;  // at the frame's end (J <= 0 at some quadrature point)
+  // Damage the frame's solve or end state shows (StepResult::warnings of its
+  // load steps; each begins with its ResultWarning's name, snh/outcomes.h).
+  // Empty: a clean frame.
+  std::vector<std::string> warnings;
+  // Per constraint set, the force and torque it exerts on the body at the
+  // frame's end (Simulation::reactions); empty where they are undefined (a
+  // non-finite state: then a warning says so).
+  std::vector<Reaction> reactions;
   std::vector<NewtonIteration> history;  // the frame's Newton iterations (SolveResult::history)
   // What the frame's solve ran, as SolveResult reports it (the fields of the
   // same names): automatic choices resolved.
@@ -45,6 +55,10 @@ struct FrameOptions {
   int load_steps = 1;  // per frame
   // Stop at the first frame that does not converge (its record is the last).
   bool stop_on_failure = false;
+  // A frame that ends with inverted elements fails: its status becomes
+  // StepStatus::inverted_elements, converged false, and it is the last frame
+  // run (as SolveOptions::fail_on_inverted does per load step).
+  bool fail_on_inverted = false;
 };
 
 // Called after each frame with its record, the lattice positions and the

@@ -22,11 +22,41 @@ enum class StepStatus {
   stagnated,
   non_finite_state,  // "non_finite_state": a non-finite residual or energy at an iterate
   cancelled,         // "cancelled": the progress callback returned false
+  // "inverted_elements": the step ended with elements with J <= 0 and
+  // SolveOptions::fail_on_inverted (or FrameOptions::fail_on_inverted) made
+  // that a failure; StepResult::converged still says whether Newton met
+  // its tolerance.
+  inverted_elements,
 };
 
 const char* to_string(StepStatus status);
 StepStatus parse_step_status(const std::string& text);  // the names above
 std::ostream& operator<<(std::ostream& out, StepStatus status);
+
+// What a result warns of. Each warning in StepResult::warnings,
+// SolveResult::warnings and FrameRecord::warnings that reports damage
+// begins with its kind's name and ": " (warning_text), so that a program can
+// tell them apart (has_warning) and a person can read them.
+enum class ResultWarning {
+  // "inverted_elements": elements with J <= 0 at some quadrature point at
+  // the end of the step (or frame), whether or not Newton converged.
+  inverted_elements,
+  // "not_converged": the Newton solve stopped short of its tolerance (the
+  // iteration limit, a failed line search, stagnation, a non-finite state);
+  // the text names the status and the residual.
+  not_converged,
+  // "obstacle_penetration": a vertex (or embedded surface point) ended
+  // deeper in an obstacle's contact layer than the layer is thick, that is
+  // inside the obstacle itself.
+  obstacle_penetration,
+};
+
+const char* to_string(ResultWarning kind);
+ResultWarning parse_result_warning(const std::string& text);  // the names above
+// "<name>: <detail>".
+std::string warning_text(ResultWarning kind, const std::string& detail);
+// Whether one of `warnings` is of that kind (begins with its name and ": ").
+bool has_warning(const std::vector<std::string>& warnings, ResultWarning kind);
 
 // Why a Newton iteration's conjugate gradient solve stopped.
 enum class CgStop {
@@ -64,6 +94,13 @@ enum class RecoveryAction {
   // (SolveOptions::fallback_to_double); Recovery::float_status says how
   // float ended. On the first record of the re-solve.
   double_fallback,  // "float -> double", printed as "float <status> -> double"
+  // Newton met its tolerance with an element inverted: the free vertices
+  // were perturbed (by 1% of the vertex spacing) and Newton went on, to
+  // leave a saddle such as a symmetric crush (docs/validation.md).
+  inverted_equilibrium_perturbed,  // "inverted_equilibrium -> perturbation"
+  // Newton after the perturbation found no lower equilibrium: the
+  // inverted one (a strict local minimum) was restored and kept.
+  inverted_equilibrium_kept,  // "perturbation -> inverted_equilibrium_kept"
 };
 
 const char* to_string(RecoveryAction action);

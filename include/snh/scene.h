@@ -164,10 +164,12 @@ struct SceneProgress {
   int newton_iterations = 0;
   int cg_iterations = 0;
   double residual_norm = 0.0;            // frames: the frame's; steps: before the last Newton update
-  StepStatus status = StepStatus::none;  // frames: FrameRecord::status; steps: none (in SolveResult after the run)
+  StepStatus status = StepStatus::none;  // FrameRecord::status or StepResult::status
   double seconds = 0.0;
-  double time = 0.0;   // a frame's animation time or a dynamic step's simulated time
-  double min_j = 0.0;  // frames only
+  double time = 0.0;                  // a frame's animation time or a dynamic step's simulated time
+  double min_j = 0.0;                 // at the end of the frame or step
+  int inverted_elements = 0;          // at the end of the frame or step
+  std::vector<std::string> warnings;  // FrameRecord::warnings or StepResult::warnings
 };
 
 // Called with each step's or frame's lattice positions and the embedded
@@ -228,7 +230,8 @@ SceneStepWriter surface_obj_writer(const std::string& prefix, const SceneFile& f
 
 // The run's JSON summary ("output.json"): the scene, device, material and
 // solver settings, each step (reactions, shape, contacts) or frame with its
-// Newton history.
+// Newton history, warnings (StepResult::warnings, FrameRecord::warnings) and
+// reactions.
 void write_scene_json(const std::string& path, const SceneFile& file, const SceneRun& run);
 
 }  // namespace snh

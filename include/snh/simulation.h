@@ -25,6 +25,7 @@
 #include "snh/mesh.h"
 #include "snh/outcomes.h"
 #include "snh/regions.h"
+#include "snh/surface.h"
 
 namespace snh {
 
@@ -466,6 +467,11 @@ struct SolveOptions : SolverTuning {
   // warning and the float result). Reported in StepResult::precision_used,
   // StepResult::fallback and SolveResult::warnings.
   bool fallback_to_double = false;
+  // A step whose end state has inverted elements (J <= 0 at some quadrature
+  // point) fails: its status becomes StepStatus::inverted_elements,
+  // SolveResult::converged false, and the later steps are not run. false:
+  // such a step keeps its Newton status and says so in its warnings.
+  bool fail_on_inverted = false;
   // Starting positions of the first step (xyz per vertex); empty: rest.
   std::vector<double> initial_positions;
   // Starting velocities with dynamics (xyz per vertex); empty: zero.
@@ -541,6 +547,15 @@ struct StepResult {
   // reused one, MultigridOptions::rebuild_every); 0 with other
   // preconditioners.
   int preconditioner_builds = 0;
+  // The state at the end of the step: the smallest J over the quadrature
+  // points and the elements with J <= 0 at some point.
+  double min_j = 0.0;
+  int inverted_elements = 0;
+  // Damage the step's end state or its solve shows, each beginning with its
+  // ResultWarning's name (snh/outcomes.h): inverted elements (also when
+  // Newton converged), a solve that stopped short of its tolerance, a
+  // vertex inside an obstacle. Empty: a clean step.
+  std::vector<std::string> warnings;
 };
 
 struct SolveResult {
@@ -574,7 +589,9 @@ struct SolveResult {
   // With multigrid: whether its V-cycle ran in float
   // (MultigridOptions::float_cycle as used).
   bool multigrid_float_cycle = false;
-  std::vector<std::string> warnings;  // e.g. unused vertices (they stay where they are)
+  // e.g. unused vertices (they stay where they are), and every step's
+  // warnings (StepResult::warnings, naming the step).
+  std::vector<std::string> warnings;
 };
 
 // Called after each load step with the step's positions (e.g. to write a .vtu).
@@ -698,6 +715,18 @@ class Simulation {
   // The lumped external force (external_force plus body force) of the last
   // solve's final step, xyz per vertex.
   const std::vector<double>& applied_force() const;
+  // The result of the last step solved (in a StepCallback: that step's).
+  const StepResult& last_step() const;
+
+  // An embedded surface (snh/surface.h) that takes part in contact with the
+  // obstacles: each surface point p = sum_i w_i x_i of its cell's lattice
+  // vertices gets the obstacles' penalty, and its force f goes to the
+  // vertices as w_i f (docs/design.md). Throws snh::Error for an embedding
+  // that does not fit the mesh (an element out of range, weights not 8 per
+  // point or not finite). Without obstacles it changes nothing; with them
+  // the contact kernel is rebuilt with the surface term. An empty embedding
+  // removes the surface.
+  void set_contact_surface(const Embedding& embedding);
 
   const Mesh& mesh() const;
   const MaterialMap& materials() const;

@@ -110,6 +110,41 @@ SNH_FN real obstacle_contact(SNH_GLOBAL const real* table, int count, real stiff
   return energy;
 }
 
+/* An embedded surface point p = sum_i w_i x_i of its cell's 8 lattice
+ * vertices (`vertices`, `weights`; snh/surface.h Embedding) in contact with
+ * the obstacles (Simulation::set_contact_surface): the penalty E_p(p) of
+ * obstacle_contact, shared out to the vertices. Its share on vertex
+ * vertices[slot], w = weights[slot]:
+ *   energy w E_p (the shares sum to E_p, as sum_i w_i = 1),
+ *   force  w f_p, exactly -dE_p/dx_i,
+ *   Hessian block |w| (sum_j |w_j|) H_p  in place of the exact w_i w_j H_p.
+ * The block diagonal majorizes the exact (w w^T) (x) H_p, since
+ * (sum_i w_i u_i)^T H (sum_i w_i u_i) <= (sum_j |w_j|) sum_i |w_i| u_i^T H u_i
+ * (Cauchy-Schwarz, H PSD): it is PSD, equal to the exact term on a common
+ * translation u_i = u of the cell (w >= 0), stiffer for relative motions of
+ * its vertices, and it fits the per-vertex contact blocks the products,
+ * block-Jacobi and the multigrid read. Newton stays a descent method; a
+ * point in contact converges linearly in the relative modes. Frictionless.
+ * Raises *depth to the point's largest g; returns the energy share. */
+SNH_FN real surface_point_contact(SNH_GLOBAL const real* table, int count, real stiffness, real thickness,
+                                  SNH_GLOBAL const real* x, SNH_GLOBAL const int* vertices,
+                                  SNH_GLOBAL const real* weights, int slot, real* force, real* hessian, real* depth) {
+  real p[3] = {SNH_R(0), SNH_R(0), SNH_R(0)};
+  real spread = SNH_R(0);
+  for (int i = 0; i < 8; ++i) {
+    const int v = vertices[i];
+    for (int d = 0; d < 3; ++d) p[d] += weights[i] * x[3 * v + d];
+    spread += fabs(weights[i]);
+  }
+  real f[3] = {SNH_R(0), SNH_R(0), SNH_R(0)}, h[9];
+  for (int i = 0; i < 9; ++i) h[i] = SNH_R(0);
+  const real energy = obstacle_contact(table, count, stiffness, thickness, p, f, h, depth);
+  const real w = weights[slot], c = fabs(w) * spread;
+  for (int d = 0; d < 3; ++d) force[d] += w * f[d];
+  for (int i = 0; i < 9; ++i) hessian[i] += c * h[i];
+  return w * energy;
+}
+
 /* Sum over `count` obstacles of the lagged friction potential at vertex
  * position x (start position x0, anchors[3 count] per obstacle at the step's
  * start; `start` the obstacle records at the step's start, `friction` the

@@ -16,6 +16,11 @@
 #ifndef SNH_FRICTION
 #define SNH_FRICTION 0
 #endif
+/* An embedded surface in contact with the obstacles (with SNH_OBSTACLES only;
+ * solver/vertex_terms.h): snh_contact_vertices adds its points' shares. */
+#ifndef SNH_SURFACE_CONTACT
+#define SNH_SURFACE_CONTACT 0
+#endif
 #define SNH_VERTEX_TERMS (SNH_INERTIA || SNH_OBSTACLES || SNH_SELF_CONTACT)
 
 #endif

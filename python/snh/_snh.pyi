@@ -951,10 +951,13 @@ class StepStatus:
       non_finite_state
     
       cancelled
+    
+      inverted_elements
     """
     __members__: typing.ClassVar[dict[str, StepStatus]]
     cancelled: typing.ClassVar[StepStatus]
     converged: typing.ClassVar[StepStatus]
+    inverted_elements: typing.ClassVar[StepStatus]
     line_search_failed: typing.ClassVar[StepStatus]
     max_newton_iterations: typing.ClassVar[StepStatus]
     non_finite_state: typing.ClassVar[StepStatus]
@@ -1063,12 +1066,18 @@ class RecoveryAction:
       extended_step
     
       double_fallback
+    
+      inverted_equilibrium_perturbed
+    
+      inverted_equilibrium_kept
     """
     __members__: typing.ClassVar[dict[str, RecoveryAction]]
     cg_breakdown_partial_direction: typing.ClassVar[RecoveryAction]
     cg_breakdown_steepest_descent: typing.ClassVar[RecoveryAction]
     double_fallback: typing.ClassVar[RecoveryAction]
     extended_step: typing.ClassVar[RecoveryAction]
+    inverted_equilibrium_kept: typing.ClassVar[RecoveryAction]
+    inverted_equilibrium_perturbed: typing.ClassVar[RecoveryAction]
     line_search_steepest_descent: typing.ClassVar[RecoveryAction]
     line_search_steepest_descent_failed: typing.ClassVar[RecoveryAction]
     non_descent_steepest_descent: typing.ClassVar[RecoveryAction]
@@ -1254,11 +1263,21 @@ class StepResult:
         What fallback_to_double did, or ''.
         """
     @property
+    def inverted_elements(self) -> int:
+        """
+        Elements with J <= 0 at the step's end.
+        """
+    @property
     def max_penetration(self) -> float:
         ...
     @property
     def max_self_penetration(self) -> float:
         ...
+    @property
+    def min_j(self) -> float:
+        """
+        The smallest J at the step's end.
+        """
     @property
     def newton_iterations(self) -> int:
         ...
@@ -1294,6 +1313,11 @@ class StepResult:
     def time(self) -> float:
         """
         With dynamics: simulated time at the step's end.
+        """
+    @property
+    def warnings(self) -> list[str]:
+        """
+        Damage the step shows (empty: a clean step).
         """
 class SolveResult:
     """
@@ -1484,6 +1508,11 @@ class FrameRecord:
     def profile(self) -> SolveProfile:
         ...
     @property
+    def reactions(self) -> list[Reaction]:
+        """
+        Reaction per constraint set at the frame's end.
+        """
+    @property
     def residual_norm(self) -> float:
         ...
     @property
@@ -1500,6 +1529,11 @@ class FrameRecord:
     @property
     def volume_ratio(self) -> float:
         ...
+    @property
+    def warnings(self) -> list[str]:
+        """
+        Damage the frame shows (empty: a clean frame).
+        """
 class RigidTransform:
     """
     x = rotation (X - center) + center + translation; rotation a (3, 3) matrix.
@@ -2290,6 +2324,14 @@ class FrameOptions:
     Frame driver settings.
     """
     def __init__(self, **kwargs) -> None:
+        ...
+    @property
+    def fail_on_inverted(self) -> bool:
+        """
+        A frame ending with inverted elements fails (StepStatus.inverted_elements) and is the last.
+        """
+    @fail_on_inverted.setter
+    def fail_on_inverted(self, arg0: bool) -> None:
         ...
     @property
     def load_steps(self) -> int:

@@ -27,7 +27,8 @@ void bind_results(py::module_& m) {
                          .value("line_search_failed", snh::StepStatus::line_search_failed)
                          .value("stagnated", snh::StepStatus::stagnated)
                          .value("non_finite_state", snh::StepStatus::non_finite_state)
-                         .value("cancelled", snh::StepStatus::cancelled);
+                         .value("cancelled", snh::StepStatus::cancelled)
+                         .value("inverted_elements", snh::StepStatus::inverted_elements);
   step_status.attr("__str__") =
       py::cpp_function([](snh::StepStatus s) { return std::string(snh::to_string(s)); }, py::is_method(step_status));
   auto cg_stop = py::enum_<snh::CgStop>(m, "CgStop", "Why a Newton iteration's conjugate gradient solve stopped.")
@@ -48,7 +49,9 @@ void bind_results(py::module_& m) {
           .value("line_search_steepest_descent_failed", snh::RecoveryAction::line_search_steepest_descent_failed)
           .value("shorter_step", snh::RecoveryAction::shorter_step)
           .value("extended_step", snh::RecoveryAction::extended_step)
-          .value("double_fallback", snh::RecoveryAction::double_fallback);
+          .value("double_fallback", snh::RecoveryAction::double_fallback)
+          .value("inverted_equilibrium_perturbed", snh::RecoveryAction::inverted_equilibrium_perturbed)
+          .value("inverted_equilibrium_kept", snh::RecoveryAction::inverted_equilibrium_kept);
   recovery_action.attr("__str__") = py::cpp_function(
       [](snh::RecoveryAction a) { return std::string(snh::to_string(a)); }, py::is_method(recovery_action));
   py::class_<snh::Recovery>(m, "Recovery", "One recovery of a Newton iteration (read-only).")
@@ -111,6 +114,9 @@ void bind_results(py::module_& m) {
       .def_readonly("self_contacts", &snh::StepResult::self_contacts)
       .def_readonly("max_self_penetration", &snh::StepResult::max_self_penetration)
       .def_readonly("preconditioner_builds", &snh::StepResult::preconditioner_builds)
+      .def_readonly("min_j", &snh::StepResult::min_j, "The smallest J at the step's end.")
+      .def_readonly("inverted_elements", &snh::StepResult::inverted_elements, "Elements with J <= 0 at the step's end.")
+      .def_readonly("warnings", &snh::StepResult::warnings, "Damage the step shows (empty: a clean step).")
       .def("__repr__", [](const snh::StepResult& s) {
         return "StepResult(step=" + std::to_string(s.step) + ", status='" + snh::to_string(s.status) + "')";
       });
@@ -202,6 +208,8 @@ void bind_results(py::module_& m) {
       .def_readonly("volume_ratio", &snh::FrameRecord::volume_ratio)
       .def_readonly("min_j", &snh::FrameRecord::min_j)
       .def_readonly("inverted_elements", &snh::FrameRecord::inverted_elements)
+      .def_readonly("warnings", &snh::FrameRecord::warnings, "Damage the frame shows (empty: a clean frame).")
+      .def_readonly("reactions", &snh::FrameRecord::reactions, "Reaction per constraint set at the frame's end.")
       .def_readonly("history", &snh::FrameRecord::history);
 }
 

@@ -193,7 +193,9 @@ void bind_rig(py::module_& m) {
   py::class_<snh::FrameOptions>(m, "FrameOptions", "Frame driver settings.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::FrameOptions>(kw); }))
       .def_readwrite("load_steps", &snh::FrameOptions::load_steps, "Load steps per frame.")
-      .def_readwrite("stop_on_failure", &snh::FrameOptions::stop_on_failure, "Stop at the first failed frame.");
+      .def_readwrite("stop_on_failure", &snh::FrameOptions::stop_on_failure, "Stop at the first failed frame.")
+      .def_readwrite("fail_on_inverted", &snh::FrameOptions::fail_on_inverted,
+                     "A frame ending with inverted elements fails (StepStatus.inverted_elements) and is the last.");
   m.def(
       "run_frames",
       [](snh::Simulation& sim, const snh::Animation& animation, const snh::Embedding* embedding,

@@ -280,6 +280,8 @@ void bind_simulation(py::module_& m) {
       .def_readwrite("contact", &snh::SolveOptions::contact, "ContactOptions (its fields can be set in place).")
       .def_readwrite("load_steps", &snh::SolveOptions::load_steps, "Load (or time) steps per solve.")
       .def_readwrite("max_newton_iterations", &snh::SolveOptions::max_newton_iterations)
+      .def_readwrite("fail_on_inverted", &snh::SolveOptions::fail_on_inverted,
+                     "A step ending with inverted elements fails (StepStatus.inverted_elements); later steps not run.")
       .def_readwrite("strain_tolerance", &snh::SolveOptions::strain_tolerance, "None: 1e-6 double, 1e-4 float.")
       .def_readwrite("absolute_tolerance", &snh::SolveOptions::absolute_tolerance)
       .def_readwrite("relative_tolerance", &snh::SolveOptions::relative_tolerance)
