@@ -83,6 +83,7 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
                                                                 resolved_multigrid_options(options));
   }
   engine->problem = std::make_unique<DeviceProblem<Real>>(*engine->model, setup.preconditioner, std::move(multigrid));
+  engine->problem->use_device_cg(options.cg_check_every);
   engine->newton = std::make_unique<NewtonDriver<DeviceProblem<Real>>>(*engine->problem, options);
   device::use_viennacl(main_viennacl_context);
   return engine;
