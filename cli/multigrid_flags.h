@@ -17,7 +17,7 @@ struct MultigridFlags {
   std::string fine_level = "automatic";  // MultigridOptions::fine_level
   std::string fine_float = "on";         // MultigridOptions::fine_level_float
   std::string float_cycle = "on";        // MultigridOptions::float_cycle
-  std::string coarse_solve = "device";   // MultigridOptions::coarse_solve_on_device
+  std::string coarse_solve = "host";     // MultigridOptions::coarse_solve_on_device
 
   void add_to(CLI::App* cmd) {
     cmd->add_option("--multigrid-rebuild-every", rebuild_every,

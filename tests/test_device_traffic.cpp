@@ -108,6 +108,7 @@ Traced run(const Scene& scene, Preconditioner preconditioner, int check_every,
   // A V-cycle with a coarse level at this size (the default coarsest level
   // would be the whole mesh).
   o.multigrid.coarsest_dofs = 60;
+  o.multigrid.coarse_solve_on_device = true;
   QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, o);
   const Calls before = calls;
   Traced r;

@@ -213,10 +213,12 @@ struct MultigridOptions {
   bool float_cycle = true;
   // The coarsest level's solve on the device: the set-up inverts the
   // level's LDL^T factor on the host into a dense inverse that a kernel
-  // applies, so a V-cycle never waits for the host. false: the factor's
-  // solve on the host, the level's vector read back and written again in
-  // every V-cycle (docs/performance.md).
-  bool coarse_solve_on_device = true;
+  // applies, so a V-cycle never waits for the host. false (default): the
+  // factor's solve on the host, the level's vector read back and written
+  // again in every V-cycle. On pocl the inverse's set-up (about n times the
+  // factor's solve, n up to coarsest_dofs) cost more than the reads it
+  // saves (docs/performance.md); not yet measured on a GPU.
+  bool coarse_solve_on_device = false;
 };
 
 // `options` with smoother_degree and chebyshev_kind resolved (see above) for
@@ -380,7 +382,7 @@ namespace defaults {
 inline constexpr int max_newton_iterations = 200;
 // CG iterations (operator applications) per Newton iteration.
 inline constexpr int max_cg_iterations = 20000;
-inline constexpr int cg_check_every = 8;  // SolverTuning::cg_check_every (docs/performance.md)
+inline constexpr int cg_check_every = 2;  // SolverTuning::cg_check_every (docs/performance.md)
 // Load steps (time steps with dynamics) per solve.
 inline constexpr int load_steps = 1;
 // The stopping strain (SolveOptions::strain_tolerance) in double and in
