@@ -158,11 +158,13 @@ __kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_d
     __global const double* check, const int groups, __global real* p) {
   __local double fold[SNH_CG_GROUP];
   const int l = (int)get_local_id(0), g = (int)get_group_id(0);
-  if (check[(SNH_CG_CHECK + 1) * groups + SNH_CG_CHECK] != 0.0) return;
+  /* No early return: every item reaches the barriers below (pocl). */
+  const int moving = check[(SNH_CG_CHECK + 1) * groups + SNH_CG_CHECK] == 0.0;
   const double beta = snh_cg_total(rz_new, groups, fold, l) / snh_cg_total(rz_old, groups, fold, l);
   const real b = (real)beta;
   const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
-  for (int i = begin + l; i < end; i += SNH_CG_GROUP) p[i] = z[i] + b * p[i];
+  if (moving)
+    for (int i = begin + l; i < end; i += SNH_CG_GROUP) p[i] = z[i] + b * p[i];
 }
 
 /* y = x + alpha p (the line search's trial points; alpha in double). */
@@ -189,8 +191,8 @@ __kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_n
   __local double fold[SNH_CG_GROUP];
   const int l = (int)get_local_id(0), g = (int)get_group_id(0);
   const double s = snh_cg_total(partial, groups, fold, l);
-  if (!(s > 0.0) || !isfinite(s)) return;
   const real scale = (real)(1.0 / sqrt(s));
   const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
-  for (int i = begin + l; i < end; i += SNH_CG_GROUP) v[i] *= scale;
+  if (s > 0.0 && isfinite(s))
+    for (int i = begin + l; i < end; i += SNH_CG_GROUP) v[i] *= scale;
 }
