@@ -62,6 +62,7 @@ SolveOptions solve_options(const Scene& scene, const ScaleOptions& o, Preconditi
   options.preconditioner = preconditioner;
   cli::apply_product_precision(o.product_precision, options);
   o.multigrid.apply(options.multigrid);
+  if (o.cg_check_every >= 0) options.cg_check_every = o.cg_check_every;
   return options;
 }
 
@@ -392,6 +393,10 @@ void add_scale_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
   cli::add_product_precision_option(cmd, o->product_precision);
+  cmd->add_option("--cg-check-every", o->cg_check_every,
+                  "CG's convergence test read back every N iterations (0: ViennaCL's CG, read every iteration; "
+                  "default: SolverTuning::cg_check_every)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU)");
   o->multigrid.add_to(cmd);
   cmd->add_option("--out", o->out_dir, "folder for scale.csv, scale.json, scale.md and scale.png")

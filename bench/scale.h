@@ -27,6 +27,7 @@ struct ScaleOptions {
   double poisson_ratio = 0.49;
   std::string precision = "double";             // float or double
   std::string product_precision = "automatic";  // SolveOptions::product_precision: float, double or automatic (unset)
+  int cg_check_every = -1;                      // >= 0: SolverTuning::cg_check_every (else its default)
   std::string device;                           // substring of "<platform> / <device>"
   cli::MultigridFlags multigrid;                // --multigrid-* (multigrid_flags.h)
   std::string out_dir = "bench-results";        // scale.* written here

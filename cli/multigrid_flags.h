@@ -17,6 +17,7 @@ struct MultigridFlags {
   std::string fine_level = "automatic";  // MultigridOptions::fine_level
   std::string fine_float = "on";         // MultigridOptions::fine_level_float
   std::string float_cycle = "on";        // MultigridOptions::float_cycle
+  std::string coarse_solve = "host";     // MultigridOptions::coarse_solve_on_device
 
   void add_to(CLI::App* cmd) {
     cmd->add_option("--multigrid-rebuild-every", rebuild_every,
@@ -53,6 +54,11 @@ struct MultigridFlags {
                     "float (on; its builds and CG stay double) or in double (off)")
         ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
+    cmd->add_option("--multigrid-coarse-solve", coarse_solve,
+                    "multigrid: the coarsest level's solve by a dense inverse on the device (device) or by its "
+                    "factor on the host, read back and written again in every V-cycle (host)")
+        ->check(CLI::IsMember({"device", "host"}))
+        ->capture_default_str();
   }
 
   void apply(MultigridOptions& options) const {
@@ -63,6 +69,7 @@ struct MultigridFlags {
     options.fine_level = parse_multigrid_fine_level(fine_level);
     options.fine_level_float = fine_float == "on";
     options.float_cycle = float_cycle == "on";
+    options.coarse_solve_on_device = coarse_solve == "device";
   }
 };
 

@@ -43,6 +43,8 @@ void expect_profile(const nlohmann::json& p, const std::string& what) {
     sum += p[key].get<double>();
   }
   ASSERT_TRUE(p.contains("total")) << what;
+  for (const char* key : {"kernel_launches", "blocking_readbacks", "bytes_to_host", "bytes_to_device", "traffic"})
+    EXPECT_TRUE(p.contains(key)) << what << ": " << key;
   EXPECT_NEAR(sum, p["total"].get<double>(), 1e-9 * std::max(1.0, p["total"].get<double>())) << what;
 }
 

@@ -224,6 +224,7 @@ Buffer OpenClContext::buffer(cl_mem_flags flags, size_t bytes, const void* host)
   const size_t size = std::max<size_t>(bytes, 1);
   Buffer b(clCreateBuffer(context_, flags, size, const_cast<void*>(host), &status));
   check(status, "clCreateBuffer");
+  if (host) counts_.bytes_to_device += static_cast<int64_t>(bytes);
   if (!host) {
     // The widest pattern OpenCL allows that divides the size (pocl copies
     // the pattern at a time).
@@ -236,10 +237,13 @@ Buffer OpenClContext::buffer(cl_mem_flags flags, size_t bytes, const void* host)
 }
 
 void OpenClContext::write(cl_mem buffer, size_t bytes, const void* data) {
+  counts_.bytes_to_device += static_cast<int64_t>(bytes);
   check(clEnqueueWriteBuffer(queue_, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr), "clEnqueueWriteBuffer");
 }
 
 void OpenClContext::read(cl_mem buffer, size_t bytes, void* data) {
+  ++counts_.blocking_readbacks;
+  counts_.bytes_to_host += static_cast<int64_t>(bytes);
   check(clEnqueueReadBuffer(queue_, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr), "clEnqueueReadBuffer");
 }
 
@@ -275,6 +279,7 @@ void OpenClContext::run(cl_kernel kernel, size_t global_size) {
   check(clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global, &local, 0, nullptr, &event),
         "clEnqueueNDRangeKernel");
   pending_.emplace_back(name, event);
+  ++counts_.kernel_launches;
 }
 
 void OpenClContext::collect_pending() const {

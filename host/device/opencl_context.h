@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "device/kernel_config.h"
+#include "device/transfer_counts.h"
 #include "snh/device.h"
 
 namespace snh::device {
@@ -86,6 +87,8 @@ class OpenClContext {
   Buffer buffer(cl_mem_flags flags, size_t bytes, const void* host = nullptr);
   // The size of a buffer (0 for none).
   static size_t bytes(cl_mem buffer);
+  // Blocking transfers, counted in counts(); device vectors go through these
+  // (device/readback.h), never through ViennaCL's copy().
   void write(cl_mem buffer, size_t bytes, const void* data);
   void read(cl_mem buffer, size_t bytes, void* data);
   // The first `bytes` of `from` into `to`, on the device (in queue order).
@@ -102,6 +105,12 @@ class OpenClContext {
   const std::map<std::string, double>& kernel_seconds() const;
   // Waits for everything queued (ViennaCL's operations share the queue).
   void finish();
+  // Launches, blocking reads and bytes each way since this context was made,
+  // counted at the call: run(), read(), write() and buffers made from host
+  // data. ViennaCL's own operations do not pass here; the solver's loops do
+  // not use them (tests/test_device_traffic.cpp checks the counts against
+  // the OpenCL calls themselves).
+  const TransferCounts& counts() const { return counts_; }
 
   static constexpr size_t kWorkGroupSize = 64;
 
@@ -116,6 +125,7 @@ class OpenClContext {
   cl_command_queue queue_ = nullptr;
   std::map<std::string, Program> programs_;
   std::vector<BuiltProgram> built_;
+  TransferCounts counts_;
   // Kernels queued by run() whose events are not yet read, by name; read
   // (and released) by kernel_seconds(), and every kMaxPending launches.
   static constexpr size_t kMaxPending = 512;

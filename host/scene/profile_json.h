@@ -1,6 +1,7 @@
 // The per-phase profile (snh::SolveProfile) as the reports write it: a JSON
 // object with one key per phase, and the phases in a fixed order for tables,
-// then `kernels`: seconds per OpenCL kernel by name. And the Newton history
+// then `kernels`: seconds per OpenCL kernel by name, then the device traffic
+// (launches, blocking read-backs, bytes each way) in all and by phase. And the Newton history
 // (snh::NewtonIteration) as the scene reports write it.
 #pragma once
 
@@ -33,6 +34,19 @@ inline nlohmann::ordered_json profile_json(const SolveProfile& p) {
   nlohmann::ordered_json kernels = nlohmann::ordered_json::object();
   for (const auto& [name, seconds] : p.kernels) kernels[name] = seconds;
   j["kernels"] = kernels;
+  // Device traffic, counted (the same on every device): in all and by phase.
+  j["kernel_launches"] = p.kernel_launches;
+  j["blocking_readbacks"] = p.blocking_readbacks;
+  j["bytes_to_host"] = p.bytes_to_host;
+  j["bytes_to_device"] = p.bytes_to_device;
+  j["cg_iterations_past_convergence"] = p.cg_iterations_past_convergence;
+  nlohmann::ordered_json traffic = nlohmann::ordered_json::object();
+  for (const auto& [phase, t] : p.traffic)
+    traffic[phase] = {{"kernel_launches", t.kernel_launches},
+                      {"blocking_readbacks", t.blocking_readbacks},
+                      {"bytes_to_host", t.bytes_to_host},
+                      {"bytes_to_device", t.bytes_to_device}};
+  j["traffic"] = traffic;
   return j;
 }
 

@@ -14,6 +14,7 @@
 
 #include "device/viennacl_binding.h"
 #include "snh/error.h"
+#include "solver/device_cg.h"
 #include "solver/elastic_model.h"
 #include "solver/matrix_free.h"
 #include "solver/newton_driver.h"
@@ -40,7 +41,18 @@ class DeviceProblem {
       throw Error("solver: the multigrid preconditioner was not built");
     if (preconditioner == Preconditioner::automatic)
       throw Error("solver: resolve Preconditioner::automatic before use");
+    model_.profiler().count_with(&model_.context().counts());
   }
+
+  // CG on the device checking convergence every `check_every` iterations
+  // (SolverTuning::cg_check_every); 0, or a device without fp64: ViennaCL's
+  // CG. The line search's steps and copies then run as counted kernels too.
+  void use_device_cg(int check_every) {
+    device_cg_.reset();
+    if (check_every > 0 && DeviceCg<Real>::available(model_.context()))
+      device_cg_ = std::make_unique<DeviceCg<Real>>(model_.context(), model_.dofs(), check_every);
+  }
+  bool device_cg() const { return device_cg_ != nullptr; }
 
   size_t dofs() const { return model_.dofs(); }
   // The multigrid's options as it resolved them (the smoothing chosen from
@@ -52,10 +64,18 @@ class DeviceProblem {
   // driver's r, p, trial, r_trial, far, r_far) with those of ViennaCL's CG
   // inside it (result, residual, tmp, z, p).
   size_t memory_bytes() const {
-    return model_.memory_bytes() + 12 * model_.dofs() * sizeof(Real) + (multigrid_ ? multigrid_->memory_bytes() : 0);
+    return model_.memory_bytes() + 12 * model_.dofs() * sizeof(Real) + (multigrid_ ? multigrid_->memory_bytes() : 0) +
+           (device_cg_ ? device_cg_->memory_bytes() : 0);
   }
   double epsilon() const { return std::numeric_limits<Real>::epsilon(); }
-  Vector vector() const { return Vector(viennacl::scalar_vector<Real>(model_.dofs(), Real(0))); }
+  // A zero vector: zero-filled where it is made (OpenClContext::buffer), no
+  // kernel (ViennaCL's own clearing would launch one behind the counts).
+  Vector vector() const {
+    // Padded as ViennaCL pads its own (fast_swap exchanges buffers, not sizes).
+    const size_t padded = viennacl::tools::align_to_multiple<size_t>(model_.dofs(), viennacl::dense_padding_size);
+    device::Buffer zeros = model_.context().buffer(CL_MEM_READ_WRITE, padded * sizeof(Real));
+    return Vector(zeros.get(), model_.dofs());  // ViennaCL keeps its own reference
+  }
   double energy(const Vector& x) { return model_.energy(x); }
   double last_min_j() const { return model_.last_min_j(); }
   double energy_magnitude() const { return model_.last_energy_magnitude(); }
@@ -111,9 +131,33 @@ class DeviceProblem {
   }
   // Multigrid hierarchies built so far (0 without multigrid).
   int preconditioner_builds() const { return rebuild_.builds(); }
+  // CG iterations run past the one that met the tolerance, over all solves
+  // (SolveProfile::cg_iterations_past_convergence).
+  long long cg_iterations_past_convergence() const { return past_convergence_; }
 
   LinearSolve solve(const Vector& r, Vector& p, double eta, int max_iterations) {
     PhaseScope timed(&model_.profiler(), Phase::cg_vector_work);
+    if (device_cg_) {
+      PhaseProfiler* profiler = &model_.profiler();
+      const CgResult c = device_cg_->solve(
+          r, p, eta, max_iterations,
+          [this, profiler](const viennacl::vector_base<Real>& d, viennacl::vector_base<Real>& q) {
+            PhaseScope product(profiler, Phase::products);
+            model_.product(d, q);
+          },
+          [this, profiler](viennacl::vector_base<Real>& z) {
+            PhaseScope apply(preconditioned() ? profiler : nullptr, Phase::preconditioner_apply);
+            precond_.apply(z);
+          });
+      LinearSolve s;
+      s.iterations = c.iterations;
+      s.relative_residual = c.relative_residual;
+      s.negative_curvature = c.negative_curvature;
+      s.breakdown = c.breakdown;
+      past_convergence_ += c.past_convergence;
+      if (multigrid_) rebuild_.solved(s.iterations, s.relative_residual, s.relative_residual <= eta);
+      return s;
+    }
     device::tune_viennacl_vector_kernels<Real>(r.size());
     op_.reset();
     viennacl::linalg::cg_tag tag(static_cast<Real>(eta), static_cast<unsigned>(max_iterations));
@@ -132,12 +176,18 @@ class DeviceProblem {
 
   void precondition(const Vector& r, Vector& p) {
     PhaseScope timed(preconditioned() ? &model_.profiler() : nullptr, Phase::preconditioner_apply);
-    p = r;
+    if (device_cg_)
+      device_cg_->copy(r, p);
+    else
+      p = r;
     precond_.apply(p);
   }
   void step(const Vector& x, double alpha, const Vector& p, Vector& out) {
     PhaseScope timed(&model_.profiler(), Phase::line_search_energies);
-    out = x + static_cast<Real>(alpha) * p;
+    if (device_cg_)
+      device_cg_->axpy(x, alpha, p, out);
+    else
+      out = x + static_cast<Real>(alpha) * p;
   }
   void swap(Vector& u, Vector& v) { u.fast_swap(v); }
   // Tangled equilibria (solver/newton_driver.h): each free DOF of x moved by
@@ -190,6 +240,8 @@ class DeviceProblem {
   uint64_t built_contacts_ = 0;  // contact_set_signature() at the last multigrid build
   std::vector<Real> free_;       // 1 per free DOF, 0 per prescribed (perturb)
   double perturbation_ = 0.0;
+  long long past_convergence_ = 0;
+  std::unique_ptr<DeviceCg<Real>> device_cg_;
 };
 
 }  // namespace snh::solver

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "device/material_args.h"
+#include "device/readback.h"
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
 #include "viennacl/linalg/prod.hpp"
@@ -281,7 +282,7 @@ ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
     // already in contact keep theirs).
     refresh_self_contact(x);
     std::vector<Real> xh(dofs());
-    viennacl::copy(x.begin(), x.end(), xh.begin());
+    device::read_back(cl_, x, xh);
     const std::vector<double> xd(xh.begin(), xh.end());
     for (const SelfContactPair& c : self_contact_->pairs()) {
       ++state.self_contacts;
@@ -332,7 +333,7 @@ bool ElasticModel<Real>::refresh_self_contact(const VectorBase& x, bool new_step
   std::vector<Real> xh(dofs());
   {
     PhaseScope transfer(&profiler_, Phase::transfers);
-    viennacl::copy(x.begin(), x.end(), xh.begin());
+    device::read_back(cl_, x, xh);
   }
   return self_contact_->refresh(std::vector<double>(xh.begin(), xh.end()), new_step);
 }
@@ -367,7 +368,7 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
     std::vector<Real> xh(dofs());
     {
       PhaseScope transfer(&profiler_, Phase::transfers);
-      viennacl::copy(x.begin(), x.end(), xh.begin());
+      device::read_back(cl_, x, xh);
     }
     if (has_external_)
       for (size_t i = 0; i < xh.size(); ++i) {
@@ -420,7 +421,7 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
 template <typename Real>
 void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   PhaseScope timed(&profiler_, Phase::linearization);
-  linearized_x_ = x;
+  cl_.copy(mem(x), mem(linearized_x_), dofs() * sizeof(Real));  // in queue order, no ViennaCL kernel
   projected_ = projected ? 1 : 0;
   const int count = static_cast<int>(data_.element_count);
   KernelArgs args(linearize_k_.get());

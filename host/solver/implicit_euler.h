@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "device/readback.h"
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
 
@@ -69,10 +70,10 @@ void set_incremental_potential(ElasticModel<Real>& model, const EulerStep& euler
   if (euler.stiffness_damping > 0.0) {
     const std::vector<Real> xs(euler.start.begin(), euler.start.end());
     viennacl::vector<Real> xn(xs.size()), fe(xs.size());
-    viennacl::copy(xs.begin(), xs.end(), xn.begin());
+    device::write_to_device(model.context(), xs, xn);
     model.elastic_forces(xn, fe);
-    std::vector<Real> host(xs.size());
-    viennacl::copy(fe.begin(), fe.end(), host.begin());
+    std::vector<Real> host;
+    device::read_back(model.context(), fe, host);
     force.resize(host.size(), 0.0);
     for (size_t i = 0; i < host.size(); ++i) force[i] -= euler.stiffness_damping * static_cast<double>(host[i]);
   }

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "device/kernel_args.h"
+#include "device/readback.h"
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
 #include "solver/block_stencil.h"
@@ -160,6 +161,16 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
   bool coarsest_ok_ = false;
   mutable std::vector<C> host_rhs_;
+  // The coarsest solve on the device: A^-1 dense (in C), computed from the
+  // factor at each set-up and applied by snh_coarse_inverse_apply, so a
+  // V-cycle never waits for the host (MultigridOptions::coarse_solve).
+  bool coarse_on_device_ = false;
+  // The power iteration's norms on the device (kernels/cg.cl).
+  static constexpr size_t kPowerSpan = 4096;  // SNH_CG_SPAN of its kernels
+  device::Kernel power_dot_k_, power_normalize_k_;
+  mutable device::Buffer power_partials_;
+  device::Kernel coarse_inverse_k_;
+  device::Buffer coarsest_inverse_;
 };
 
 template <typename Real, typename C>
@@ -224,6 +235,15 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
   // float (SNH_FLOAT, kernels/snh_portable.h).
   const device::KernelConfig cycle = kNarrow ? coarse.with_float_cycle() : coarse;
   prolong_k_ = cl_.kernel("multigrid.cl", cycle, "snh_prolong_add");
+  if (cl_.info().has_fp64) {
+    const std::string power =
+        (kNarrow ? std::string("-DSNH_FLOAT=1 ") : std::string()) + "-DSNH_CG_SPAN=" + std::to_string(kPowerSpan);
+    power_dot_k_ = cl_.kernel("cg.cl", power, "snh_cg_dot");
+    power_normalize_k_ = cl_.kernel("cg.cl", power, "snh_cg_normalize");
+  }
+  coarse_on_device_ = options_.coarse_solve_on_device;
+  if (coarse_on_device_)
+    coarse_inverse_k_ = cl_.kernel("coarse_solve.cl", kNarrow ? "-DSNH_FLOAT=1" : "", "snh_coarse_inverse_apply");
   restrict_k_ = cl_.kernel("multigrid.cl", cycle, "snh_restrict");
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", cycle, "snh_chebyshev_start");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
@@ -325,9 +345,9 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
       L.restrict_vertices = upload_int(h.restriction_vertices, L.bytes);
       L.restrict_weights = upload_cycle(h.restriction_weights, L.bytes);
     }
-    for (auto* v : {&L.b, &L.x, &L.r, &L.d, &L.t, &L.d_next})
+    for (auto* v : {&L.b, &L.x, &L.r, &L.d, &L.t, &L.d_next, &L.eigenvector})
       *v = viennacl::vector<C>(viennacl::scalar_vector<C>(n, C(0)));
-    L.bytes += 6 * n * sizeof(C);
+    L.bytes += 7 * n * sizeof(C);
     levels_.push_back(std::move(level));
   }
   if (hierarchy_.levels.size() > 1) {
@@ -549,23 +569,54 @@ void Levels<Real, C>::estimate_bound(size_t l) {
       state = state * 1664525u + 1013904223u;
       start[i] = h.mask[i] ? C(0.5 + static_cast<double>(state >> 8) / 16777216.0) : C(0);
     }
-    if (L.eigenvector.size() != 3 * L.vertices) {
-      L.eigenvector = viennacl::vector<C>(3 * L.vertices);
-      L.bytes += 3 * L.vertices * sizeof(C);
-    }
-    viennacl::copy(start.begin(), start.end(), L.eigenvector.begin());
+    device::write_to_device(cl_, start, L.eigenvector);
   }
-  double lambda = 0.0;
   const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
+  if (!power_dot_k_) {  // no fp64 on the device: ViennaCL's norms, read at every step
+    double lambda = 0.0;
+    for (int it = 0; it < iterations; ++it) {
+      const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
+      if (!(norm > 0.0) || !std::isfinite(norm)) break;
+      L.eigenvector *= C(1.0 / norm);
+      product(static_cast<int>(l), L.eigenvector, L.t);
+      inverse_diagonal(static_cast<int>(l), L.t);
+      lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
+      L.eigenvector.fast_swap(L.t);
+    }
+    L.estimated = std::isfinite(lambda) && lambda > 0.0;
+    L.lambda = L.estimated ? lambda : 1.0;
+    L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, L.lambda);
+    return;
+  }
+  // On the device: each step normalizes by the norm's partials (kernels/cg.cl)
+  // without a read; only the final estimate is read.
+  const int n = static_cast<int>(3 * L.vertices);
+  const size_t groups = (3 * L.vertices + kPowerSpan - 1) / kPowerSpan;
+  if (!power_partials_ || device::OpenClContext::bytes(power_partials_.get()) < groups * sizeof(double))
+    power_partials_ = cl_.buffer(CL_MEM_READ_WRITE, groups * sizeof(double));
+  auto squares = [&](const VectorBase& v) {
+    cl_.run(KernelArgs(power_dot_k_.get()).add(mem(v)).add(mem(v)).add(n).add(power_partials_.get()).bind(),
+            groups * 64);
+  };
   for (int it = 0; it < iterations; ++it) {
-    const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
-    if (!(norm > 0.0) || !std::isfinite(norm)) break;
-    L.eigenvector *= C(1.0 / norm);
+    squares(L.eigenvector);
+    cl_.run(KernelArgs(power_normalize_k_.get())
+                .add(mem(L.eigenvector))
+                .add(n)
+                .add(power_partials_.get())
+                .add(static_cast<int>(groups))
+                .bind(),
+            groups * 64);
     product(static_cast<int>(l), L.eigenvector, L.t);
     inverse_diagonal(static_cast<int>(l), L.t);
-    lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
     L.eigenvector.fast_swap(L.t);
   }
+  squares(L.eigenvector);
+  std::vector<double> partial(groups);
+  cl_.read(power_partials_.get(), groups * sizeof(double), partial.data());
+  double lambda = 0.0;
+  for (double p : partial) lambda += p;
+  lambda = std::sqrt(lambda);
   L.estimated = std::isfinite(lambda) && lambda > 0.0;
   if (!L.estimated) lambda = 1.0;  // start again next time
   L.lambda = lambda;
@@ -587,6 +638,20 @@ void Levels<Real, C>::factor_coarsest() {
     if (!h.mask[i]) values[coarsest_diagonal_[i]] += 1.0;  // dead DOF (its row and column are 0): identity
   coarsest_.factorize(coarsest_matrix_);
   coarsest_ok_ = coarsest_.info() == Eigen::Success && coarsest_.vectorD().minCoeff() > 0.0;
+  if (!coarsest_ok_ || !coarse_on_device_) return;
+  // Column j of A^-1 (symmetric: also row j), with zero rows and columns at
+  // constrained DOFs, as the host solve's masked result has.
+  const Eigen::Index n = static_cast<Eigen::Index>(3 * L.vertices);
+  const Eigen::MatrixXd inverse = coarsest_.solve(Eigen::MatrixXd::Identity(n, n));
+  std::vector<C> dense(static_cast<size_t>(n * n));
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = 0; i < n; ++i)
+      dense[static_cast<size_t>(j * n + i)] = h.mask[i] && h.mask[j] ? static_cast<C>(inverse(i, j)) : C(0);
+  if (!coarsest_inverse_) {
+    coarsest_inverse_ = cl_.buffer(CL_MEM_READ_ONLY, dense.size() * sizeof(C));
+    table_bytes_ += dense.size() * sizeof(C);
+  }
+  cl_.write(coarsest_inverse_.get(), dense.size() * sizeof(C), dense.data());
 }
 
 template <typename Real, typename C>
@@ -596,14 +661,19 @@ void Levels<Real, C>::coarse_solve() const {
     chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b);
     return;
   }
-  host_rhs_.resize(3 * L.vertices);
-  viennacl::copy(L.b.begin(), L.b.end(), host_rhs_.begin());
+  if (coarse_on_device_) {
+    const int n = static_cast<int>(3 * L.vertices);
+    cl_.run(KernelArgs(coarse_inverse_k_.get()).add(coarsest_inverse_.get()).add(mem(L.b)).add(n).add(mem(L.x)).bind(),
+            3 * L.vertices);
+    return;
+  }
+  device::read_back(cl_, L.b, host_rhs_);
   Eigen::VectorXd rhs(host_rhs_.size());
   for (size_t i = 0; i < host_rhs_.size(); ++i) rhs[i] = static_cast<double>(host_rhs_[i]);
   const Eigen::VectorXd solution = coarsest_.solve(rhs);
   const LatticeLevel& h = hierarchy_.levels.back();
   for (size_t i = 0; i < host_rhs_.size(); ++i) host_rhs_[i] = h.mask[i] ? static_cast<C>(solution[i]) : C(0);
-  viennacl::copy(host_rhs_.begin(), host_rhs_.end(), L.x.begin());
+  device::write_to_device(cl_, host_rhs_, L.x);
 }
 
 template <typename Real, typename C>
@@ -742,9 +812,9 @@ void Levels<Real, C>::apply(WideBase& z) const {
     vcycle(0);
     convert(widen_k_, mem(fine.x), z.size(), mem(z));
   } else {
-    fine.b = z;
+    cl_.copy(mem(z), mem(fine.b), z.size() * sizeof(C));
     vcycle(0);
-    z = fine.x;
+    cl_.copy(mem(fine.x), mem(z), z.size() * sizeof(C));
   }
 }
 

@@ -11,6 +11,13 @@
 // that queue) runs at every boundary, so queued work is charged to the phase
 // that queued it and not to the next one that waits. Timers read only the
 // clock: results stay bit-identical.
+//
+// With a context's counts attached (count_with), the profiler also charges
+// each phase the kernel launches, blocking read-backs and bytes the context
+// counted while the phase was open (device/transfer_counts.h). Counts
+// outside every scope are left to the caller (the context's total less the
+// phases: two engines may share a context). Counted at the call, not
+// timed: the same on every device.
 #pragma once
 
 #include <algorithm>
@@ -20,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "device/transfer_counts.h"
 #include "snh/simulation.h"
 
 namespace snh::solver {
@@ -36,6 +44,8 @@ enum class Phase : int {
 constexpr int kPhaseCount = 7;
 
 using PhaseSeconds = std::array<double, kPhaseCount>;
+// Per phase, then `other` (index kPhaseCount).
+using PhaseTraffic = std::array<device::TransferCounts, kPhaseCount + 1>;
 
 class PhaseProfiler {
  public:
@@ -43,6 +53,13 @@ class PhaseProfiler {
 
   // finish: waits for the device's queued work (empty on the host).
   explicit PhaseProfiler(std::function<void()> finish = {}) : finish_(std::move(finish)) {}
+
+  // Attributes the counts of `counts` (a context's, outliving the profiler's
+  // use) to phases from now on.
+  void count_with(const device::TransferCounts* counts) {
+    counts_ = counts;
+    if (counts_) counted_ = *counts_;
+  }
 
   // A scope charged to the phase already charged (nested in a
   // preconditioner's setup or apply) neither waits nor reads the clock: the
@@ -62,6 +79,7 @@ class PhaseProfiler {
     if (finish_) finish_();
     const auto now = Clock::now();
     if (!stack_.empty()) seconds_[index(stack_.back())] += std::chrono::duration<double>(now - since_).count();
+    charge_counts(stack_.empty() ? kPhaseCount : index(stack_.back()));
     stack_.push_back(phase);
     since_ = now;
   }
@@ -74,6 +92,7 @@ class PhaseProfiler {
     if (finish_) finish_();
     const auto now = Clock::now();
     seconds_[index(phase)] += std::chrono::duration<double>(now - since_).count();
+    charge_counts(index(phase));
     since_ = now;
   }
 
@@ -84,11 +103,29 @@ class PhaseProfiler {
     return out;
   }
 
+  // Counts per phase so far (those since the last boundary charged to the
+  // open phase); the `other` slot stays 0.
+  PhaseTraffic traffic() const {
+    PhaseTraffic out = traffic_;
+    if (counts_ && !stack_.empty()) out[index(stack_.back())] += *counts_ - counted_;
+    return out;
+  }
+
  private:
   static int index(Phase p) { return static_cast<int>(p); }
+  // Charges the counts since the last boundary to `slot` (kPhaseCount:
+  // outside every scope, left to the caller).
+  void charge_counts(int slot) {
+    if (!counts_) return;
+    if (slot < kPhaseCount) traffic_[slot] += *counts_ - counted_;
+    counted_ = *counts_;
+  }
 
   std::function<void()> finish_;
   PhaseSeconds seconds_{};
+  const device::TransferCounts* counts_ = nullptr;
+  device::TransferCounts counted_;  // *counts_ at the last boundary
+  PhaseTraffic traffic_{};
   std::vector<Phase> stack_;
   Clock::time_point since_;
 };
@@ -120,6 +157,48 @@ inline PhaseSeconds sum(const PhaseSeconds& a, const PhaseSeconds& b) {
   PhaseSeconds out;
   for (int k = 0; k < kPhaseCount; ++k) out[k] = a[k] + b[k];
   return out;
+}
+
+inline PhaseTraffic difference(const PhaseTraffic& a, const PhaseTraffic& b) {
+  PhaseTraffic out;
+  for (int k = 0; k <= kPhaseCount; ++k) out[k] = a[k] - b[k];
+  return out;
+}
+
+inline PhaseTraffic sum(const PhaseTraffic& a, const PhaseTraffic& b) {
+  PhaseTraffic out;
+  for (int k = 0; k <= kPhaseCount; ++k) out[k] = a[k] + b[k];
+  return out;
+}
+
+// The phases' names as SolveProfile and the reports spell them, `other` last.
+inline const char* phase_name(int k) {
+  static const char* const names[kPhaseCount + 1] = {"linearization",
+                                                     "products",
+                                                     "preconditioner_setup",
+                                                     "preconditioner_apply",
+                                                     "cg_vector_work",
+                                                     "line_search_energies",
+                                                     "transfers",
+                                                     "other"};
+  return names[k];
+}
+
+// The public counts of `traffic` into `p`: totals and per phase.
+inline void add_traffic(const PhaseTraffic& traffic, SolveProfile& p) {
+  for (int k = 0; k <= kPhaseCount; ++k) {
+    const device::TransferCounts& c = traffic[k];
+    DeviceTraffic t;
+    t.kernel_launches = c.kernel_launches;
+    t.blocking_readbacks = c.blocking_readbacks;
+    t.bytes_to_host = c.bytes_to_host;
+    t.bytes_to_device = c.bytes_to_device;
+    p.traffic[phase_name(k)] = t;
+    p.kernel_launches += t.kernel_launches;
+    p.blocking_readbacks += t.blocking_readbacks;
+    p.bytes_to_host += t.bytes_to_host;
+    p.bytes_to_device += t.bytes_to_device;
+  }
 }
 
 // The public profile of `spent` within a wall time `total`; `other` is what

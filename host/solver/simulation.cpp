@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "device/opencl_context.h"
+#include "device/readback.h"
 #include "device/viennacl_binding.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
@@ -107,6 +108,17 @@ struct Simulation::Impl {
          {single ? single->own_context.get() : nullptr, dual ? dual->own_context.get() : nullptr})
       if (context)
         for (const auto& [name, seconds] : context->kernel_seconds()) c.kernels[name] += seconds;
+    // Traffic: the phases' by profiler, `other` the contexts' total less them.
+    if (single) c.traffic = solver::sum(c.traffic, single->model->profiler().traffic());
+    if (dual) c.traffic = solver::sum(c.traffic, dual->model->profiler().traffic());
+    device::TransferCounts all = cl.counts();
+    for (const device::OpenClContext* context :
+         {single ? single->own_context.get() : nullptr, dual ? dual->own_context.get() : nullptr})
+      if (context) all += context->counts();
+    for (int k = 0; k < solver::kPhaseCount; ++k) all -= c.traffic[k];
+    c.traffic[solver::kPhaseCount] = all;
+    c.cg_iterations_past_convergence = (dual ? dual->problem->cg_iterations_past_convergence() : 0) +
+                                       (single ? single->problem->cg_iterations_past_convergence() : 0);
     c.preconditioner_builds =
         (dual ? dual->problem->preconditioner_builds() : 0) + (single ? single->problem->preconditioner_builds() : 0);
     c.callback_seconds = callback_seconds;
@@ -296,19 +308,23 @@ struct Simulation::Impl {
       engine.model->set_self_contact_stiffness(options.contact.self_stiffness > 0.0 ? options.contact.self_stiffness
                                                                                     : options.contact.stiffness);
     const std::vector<Real> xr(x.begin(), x.end());
-    viennacl::vector<Real> xd(x.size());
+    // Wrapping a zero-filled buffer: ViennaCL's own sized vector would clear
+    // it with a kernel behind the device counts.
+    const device::Buffer x_buffer =
+        engine.model->context().buffer(CL_MEM_READ_WRITE, xr.size() * sizeof(Real) + 128 * sizeof(Real));
+    viennacl::vector<Real> xd(x_buffer.get(), xr.size());
     {
       solver::PhaseScope upload(&engine.model->profiler(), solver::Phase::transfers);
-      viennacl::copy(xr.begin(), xr.end(), xd.begin());
+      device::write_to_device(engine.model->context(), xr, xd);
     }
     typename solver::NewtonDriver<solver::DeviceProblem<Real>>::Observer observe;
     if (options.on_iteration || progress)
       observe = [&](const NewtonIteration& rec, const viennacl::vector<Real>& xi) {
         return in_callback([&] {
           if (options.on_iteration) {
-            std::vector<Real> host(xi.size());
-            viennacl::copy(xi.begin(), xi.end(), host.begin());
-            options.on_iteration(rec, std::vector<double>(host.begin(), host.end()));
+            std::vector<double> host;
+            device::read_back(engine.model->context(), xi, host);
+            options.on_iteration(rec, host);
           }
           return progress ? progress(rec) : true;
         });
@@ -320,10 +336,10 @@ struct Simulation::Impl {
     step.max_penetration = std::max(contact.max_penetration, contact.max_self_penetration);
     step.self_contacts = contact.self_contacts;
     step.max_self_penetration = contact.max_self_penetration;
-    std::vector<Real> back(x.size());
+    std::vector<double> back;
     {
       solver::PhaseScope download(&engine.model->profiler(), solver::Phase::transfers);
-      viennacl::copy(xd.begin(), xd.end(), back.begin());
+      device::read_back(engine.model->context(), xd, back);
     }
     std::copy(back.begin(), back.end(), x.begin());
     device::use_viennacl(viennacl_context_id);

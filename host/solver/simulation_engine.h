@@ -86,6 +86,7 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
   // Tangled equilibria are perturbed by 1% of the vertex spacing
   // (solver/newton_driver.h).
   engine->problem->set_perturbation(mask, 1e-2 * vertex_spacing(setup.mesh));
+  engine->problem->use_device_cg(options.cg_check_every);
   engine->newton = std::make_unique<NewtonDriver<DeviceProblem<Real>>>(*engine->problem, options);
   device::use_viennacl(main_viennacl_context);
   return engine;

@@ -15,6 +15,20 @@ SolveProfile& SolveProfile::operator+=(const SolveProfile& o) {
   other += o.other;
   total += o.total;
   for (const auto& [name, seconds] : o.kernels) kernels[name] += seconds;
+  kernel_launches += o.kernel_launches;
+  blocking_readbacks += o.blocking_readbacks;
+  bytes_to_host += o.bytes_to_host;
+  bytes_to_device += o.bytes_to_device;
+  for (const auto& [name, t] : o.traffic) traffic[name] += t;
+  cg_iterations_past_convergence += o.cg_iterations_past_convergence;
+  return *this;
+}
+
+DeviceTraffic& DeviceTraffic::operator+=(const DeviceTraffic& o) {
+  kernel_launches += o.kernel_launches;
+  blocking_readbacks += o.blocking_readbacks;
+  bytes_to_host += o.bytes_to_host;
+  bytes_to_device += o.bytes_to_device;
   return *this;
 }
 
@@ -34,6 +48,8 @@ SolveProfile profile_between(const Counters& since, const Counters& now, double 
   SolveProfile profile =
       make_profile(difference(now.phases, since.phases), seconds - (now.callback_seconds - since.callback_seconds));
   profile.kernels = kernel_difference(now.kernels, since.kernels);
+  add_traffic(difference(now.traffic, since.traffic), profile);
+  profile.cg_iterations_past_convergence = now.cg_iterations_past_convergence - since.cg_iterations_past_convergence;
   return profile;
 }
 

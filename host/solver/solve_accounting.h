@@ -19,6 +19,8 @@ namespace snh::solver {
 struct Counters {
   PhaseSeconds phases{};
   std::map<std::string, double> kernels;  // seconds per kernel
+  PhaseTraffic traffic{};                 // device traffic per phase
+  long long cg_iterations_past_convergence = 0;
   int preconditioner_builds = 0;
   double callback_seconds = 0.0;  // in the caller's callbacks
 };

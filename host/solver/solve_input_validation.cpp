@@ -52,6 +52,9 @@ void validate_solve_inputs(const Mesh& mesh, const std::vector<ConstraintSet>& c
   if (options.load_steps < 1) throw Error("solve options: load_steps must be >= 1");
   if (options.max_newton_iterations < 0 || options.max_cg_iterations < 1)
     throw Error("solve options: iteration limits must be positive");
+  if (options.cg_check_every < 0)
+    throw Error("solve options: cg_check_every must be >= 0 (0: ViennaCL's CG), got " +
+                std::to_string(options.cg_check_every));
   if (!(options.absolute_tolerance >= 0.0) || !(options.relative_tolerance >= 0.0) ||
       (options.strain_tolerance && !(*options.strain_tolerance >= 0.0)))
     throw Error("solve options: tolerances must be finite and >= 0");

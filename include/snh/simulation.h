@@ -212,6 +212,14 @@ struct MultigridOptions {
   // false: the V-cycle in the working precision. No effect in float or with
   // fine_level current (docs/performance.md).
   bool float_cycle = true;
+  // The coarsest level's solve on the device: the set-up inverts the
+  // level's LDL^T factor on the host into a dense inverse that a kernel
+  // applies, so a V-cycle never waits for the host. false (default): the
+  // factor's solve on the host, the level's vector read back and written
+  // again in every V-cycle. On pocl the inverse's set-up (about n times the
+  // factor's solve, n up to coarsest_dofs) cost more than the reads it
+  // saves (docs/performance.md); not yet measured on a GPU.
+  bool coarse_solve_on_device = false;
 };
 
 // `options` with smoother_degree and chebyshev_kind resolved (see above) for
@@ -375,6 +383,7 @@ namespace defaults {
 inline constexpr int max_newton_iterations = 200;
 // CG iterations (operator applications) per Newton iteration.
 inline constexpr int max_cg_iterations = 20000;
+inline constexpr int cg_check_every = 2;  // SolverTuning::cg_check_every (docs/performance.md)
 // Load steps (time steps with dynamics) per solve.
 inline constexpr int load_steps = 1;
 // The stopping strain (SolveOptions::strain_tolerance) in double and in
@@ -418,6 +427,13 @@ struct SolverTuning {
   // Reported in SolveResult::product_precision.
   std::optional<Precision> product_precision;
   HessianMode hessian = HessianMode::adaptive;
+  // CG with its inner products on the device reads its convergence test
+  // back once every cg_check_every iterations (a read the host waits for);
+  // it may run up to cg_check_every - 1 iterations past convergence
+  // (SolveProfile::cg_iterations_past_convergence). 0: ViennaCL's CG, which
+  // reads its inner products every iteration (the previous solver, kept for
+  // comparison; also what devices without fp64 use).
+  int cg_check_every = defaults::cg_check_every;
 };
 
 // What to solve: precision, time stepping or load steps, obstacles and
@@ -490,6 +506,18 @@ struct SolveOptions : SolverTuning {
 // own products and vector work count as its setup or apply), so the parts add
 // up to `total`. Device work is waited for at every phase boundary, so
 // queued kernels are charged to the phase that queued them.
+// What a solve asked of the device, counted where the engine queues it (the
+// same figures on every device): kernel launches, blocking read-backs (reads
+// the host waits for: vectors, reduction partials, convergence checks) and
+// the bytes copied between host and device.
+struct DeviceTraffic {
+  long long kernel_launches = 0;
+  long long blocking_readbacks = 0;
+  long long bytes_to_host = 0;
+  long long bytes_to_device = 0;
+  DeviceTraffic& operator+=(const DeviceTraffic& o);
+};
+
 struct SolveProfile {
   double linearization = 0.0;         // per-point SVD and eigensystem (and element matrices, assembly)
   double products = 0.0;              // Hessian products (CG's operator applications)
@@ -510,6 +538,21 @@ struct SolveProfile {
   // Wall time of the solve (or step), less the time in the caller's
   // callbacks (on_iteration, progress, on_step).
   double total = 0.0;
+  // Device traffic of the solve (DeviceTraffic), in all ...
+  long long kernel_launches = 0;
+  long long blocking_readbacks = 0;
+  long long bytes_to_host = 0;
+  long long bytes_to_device = 0;
+  // ... and by phase, under the names of the fields above ("linearization",
+  // "products", ..., "transfers", "other"). A linear solve's share is its
+  // products, preconditioner_apply and cg_vector_work: divided by the CG
+  // iterations, the traffic per CG iteration.
+  std::map<std::string, DeviceTraffic> traffic;
+  // CG iterations run after the iteration at which CG had already met its
+  // tolerance: convergence is checked every SolverTuning::cg_check_every
+  // iterations, so at most that less one per linear solve (included in the
+  // CG iteration counts).
+  long long cg_iterations_past_convergence = 0;
   SolveProfile& operator+=(const SolveProfile& o);
 };
 

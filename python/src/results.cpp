@@ -94,7 +94,13 @@ void bind_results(py::module_& m) {
       .def_readonly("transfers", &snh::SolveProfile::transfers)
       .def_readonly("other", &snh::SolveProfile::other)
       .def_readonly("kernels", &snh::SolveProfile::kernels, "Seconds per OpenCL kernel, by name.")
-      .def_readonly("total", &snh::SolveProfile::total, "Wall time less the callbacks.");
+      .def_readonly("total", &snh::SolveProfile::total, "Wall time less the callbacks.")
+      .def_readonly("kernel_launches", &snh::SolveProfile::kernel_launches, "Kernels queued on the device.")
+      .def_readonly("blocking_readbacks", &snh::SolveProfile::blocking_readbacks,
+                    "Reads from the device the host waited for.")
+      .def_readonly("bytes_to_host", &snh::SolveProfile::bytes_to_host)
+      .def_readonly("bytes_to_device", &snh::SolveProfile::bytes_to_device)
+      .def_readonly("cg_iterations_past_convergence", &snh::SolveProfile::cg_iterations_past_convergence);
 
   py::class_<snh::StepResult>(m, "StepResult", "One load or time step's outcome (read-only).")
       .def_readonly("step", &snh::StepResult::step)

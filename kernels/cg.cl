@@ -1,0 +1,198 @@
+/* Preconditioned conjugate gradients with its scalars on the device
+ * (host/solver/device_cg.h): inner products are reduced to per-group partial
+ * sums, and the kernel that needs a product's value (alpha in the update,
+ * beta in the new direction) adds that product's partials itself, in index
+ * order, in every work-group; no value crosses to the host inside an
+ * iteration. The host reads the residual norms' partials (a ring of
+ * SNH_CG_CHECK iterations) and the status once per convergence check.
+ *
+ * Deterministic: each work-group g covers the entries [g SPAN, (g+1) SPAN),
+ * its item l adds l, l + GROUP, ... in that order, and the group folds its
+ * GROUP values in a fixed tree in local memory; partials are added in index
+ * order by a fixed tree as well. No atomics. Sums are in double whatever the
+ * working precision (built only where the device has cl_khr_fp64); vectors
+ * and updates are in `real` (float and double from this one source;
+ * SNH_FLOAT = 1 builds the float variant in a double context).
+ *
+ * The check buffer (doubles): [SNH_CG_CHECK rings of `groups` partials of
+ * r.r][`groups` partials of r0.r0][SNH_CG_CHECK statuses][the live status].
+ * Status: 0 running, 1 p.Ap <= 0 (negative curvature), 2 alpha not finite
+ * (breakdown). Once it is set, alpha is 0 in every later update: x and r
+ * stay where they were until the host sees the status. */
+#include "snh_portable.h"
+
+#if !SNH_DOUBLE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#endif
+
+#ifndef SNH_CG_CHECK
+#define SNH_CG_CHECK 1
+#endif
+#define SNH_CG_GROUP 64
+#ifndef SNH_CG_SPAN
+#define SNH_CG_SPAN (SNH_CG_GROUP * 64)
+#endif
+
+/* Folds fold[0..GROUP) into fold[0] by a fixed tree; every item returns it. */
+SNH_FN double snh_cg_fold(__local double* fold, const int l) {
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int h = SNH_CG_GROUP / 2; h > 0; h >>= 1) {
+    if (l < h) fold[l] += fold[l + h];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  const double s = fold[0];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return s;
+}
+
+/* The sum of partial[0..groups), the same in every work-group. */
+SNH_FN double snh_cg_total(__global const double* partial, const int groups, __local double* fold, const int l) {
+  double s = 0.0;
+  for (int i = l; i < groups; i += SNH_CG_GROUP) s += partial[i];
+  fold[l] = s;
+  return snh_cg_fold(fold, l);
+}
+
+/* partial[g] = sum of a[i] b[i] over group g's span. */
+__kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_dot(__global const real* a,
+                                                                                   __global const real* b, const int n,
+                                                                                   __global double* partial) {
+  __local double fold[SNH_CG_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
+  double s = 0.0;
+  for (int i = begin + l; i < end; i += SNH_CG_GROUP) s += (double)a[i] * (double)b[i];
+  fold[l] = s;
+  s = snh_cg_fold(fold, l);
+  if (l == 0) partial[g] = s;
+}
+
+/* x = 0, r = b, z = b (the preconditioner then applies in place to z). */
+__kernel void snh_cg_start(__global const real* b, const int n, __global real* x, __global real* r, __global real* z) {
+  const int i = (int)get_global_id(0);
+  if (i >= n) return;
+  const real v = b[i];
+  x[i] = (real)0;
+  r[i] = v;
+  z[i] = v;
+}
+
+/* p = z; partials of r.z (rz) and of r.r (the check buffer's r0 slot);
+ * clears the statuses. */
+__kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_first_direction(
+    __global const real* r, __global const real* z, const int n, __global real* p, __global double* rz,
+    __global double* check, const int groups) {
+  __local double fold[SNH_CG_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
+  double srz = 0.0, srr = 0.0;
+  for (int i = begin + l; i < end; i += SNH_CG_GROUP) {
+    const real zi = z[i], ri = r[i];
+    p[i] = zi;
+    srz += (double)ri * (double)zi;
+    srr += (double)ri * (double)ri;
+  }
+  fold[l] = srz;
+  srz = snh_cg_fold(fold, l);
+  fold[l] = srr;
+  srr = snh_cg_fold(fold, l);
+  __global double* status = check + (SNH_CG_CHECK + 1) * groups;
+  if (l == 0) {
+    rz[g] = srz;
+    check[SNH_CG_CHECK * groups + g] = srr;
+  }
+  if (g == 0 && l <= SNH_CG_CHECK) status[l] = 0.0;
+}
+
+/* alpha = (r.z) / (p.Ap) from their partials; x += alpha p, r -= alpha Ap,
+ * z = r (for the preconditioner); partials of the new r.r into the ring's
+ * `slot`, and the status after this iteration. */
+__kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_update(
+    __global const real* p, __global const real* q, const int n, __global const double* rz, __global const double* pq,
+    __global real* x, __global real* r, __global real* z, __global double* check, const int groups, const int slot) {
+  __local double fold[SNH_CG_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  __global double* status = check + (SNH_CG_CHECK + 1) * groups;
+  const double was = status[SNH_CG_CHECK];
+  const double sum_rz = snh_cg_total(rz, groups, fold, l);
+  const double sum_pq = snh_cg_total(pq, groups, fold, l);
+  double state = was;
+  double alpha = 0.0;
+  if (was == 0.0) {
+    if (!(sum_pq > 0.0)) {
+      state = isfinite(sum_pq) ? 1.0 : 2.0;
+    } else {
+      alpha = sum_rz / sum_pq;
+      if (!isfinite(alpha)) state = 2.0;
+    }
+    if (state != 0.0) alpha = 0.0;
+  }
+  const real a = (real)alpha;
+  const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
+  double srr = 0.0;
+  /* Stopped: x and r stay (0 times a non-finite p would not). */
+  const int moving = state == 0.0;
+  for (int i = begin + l; i < end; i += SNH_CG_GROUP) {
+    real ri = r[i];
+    if (moving) {
+      x[i] += a * p[i];
+      ri -= a * q[i];
+      r[i] = ri;
+    }
+    z[i] = ri;
+    srr += (double)ri * (double)ri;
+  }
+  fold[l] = srr;
+  srr = snh_cg_fold(fold, l);
+  if (l == 0) check[slot * groups + g] = srr;
+  if (g == 0 && l == 0) {
+    status[slot] = state;
+    status[SNH_CG_CHECK] = state;
+  }
+}
+
+/* beta = (r.z)_new / (r.z)_old from their partials; p = z + beta p (kept
+ * once stopped). */
+__kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_direction(
+    __global const real* z, const int n, __global const double* rz_new, __global const double* rz_old,
+    __global const double* check, const int groups, __global real* p) {
+  __local double fold[SNH_CG_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  /* No early return: every item reaches the barriers below (pocl). */
+  const int moving = check[(SNH_CG_CHECK + 1) * groups + SNH_CG_CHECK] == 0.0;
+  const double beta = snh_cg_total(rz_new, groups, fold, l) / snh_cg_total(rz_old, groups, fold, l);
+  const real b = (real)beta;
+  const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
+  if (moving)
+    for (int i = begin + l; i < end; i += SNH_CG_GROUP) p[i] = z[i] + b * p[i];
+}
+
+/* y = x + alpha p (the line search's trial points; alpha in double). */
+__kernel void snh_cg_axpy(__global const real* x, const double alpha, __global const real* p, const int n,
+                          __global real* y) {
+  const int i = (int)get_global_id(0);
+  if (i >= n) return;
+  y[i] = x[i] + (real)alpha * p[i];
+}
+
+/* y = x. */
+__kernel void snh_cg_copy(__global const real* x, const int n, __global real* y) {
+  const int i = (int)get_global_id(0);
+  if (i >= n) return;
+  y[i] = x[i];
+}
+
+/* v = v / sqrt(sum of partial) where that sum is positive and finite (left
+ * as it is otherwise): the multigrid's power iteration normalizes on the
+ * device and reads only its final estimate. */
+__kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_normalize(__global real* v, const int n,
+                                                                                         __global const double* partial,
+                                                                                         const int groups) {
+  __local double fold[SNH_CG_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  const double s = snh_cg_total(partial, groups, fold, l);
+  const real scale = (real)(1.0 / sqrt(s));
+  const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
+  if (s > 0.0 && isfinite(s))
+    for (int i = begin + l; i < end; i += SNH_CG_GROUP) v[i] *= scale;
+}

@@ -1,0 +1,276 @@
+// The device traffic a solve reports (SolveProfile::kernel_launches,
+// blocking_readbacks, bytes_to_host, bytes_to_device and their split by
+// phase) is what the engine asks of OpenCL: this test binary stands between
+// the library and the OpenCL loader (its own clEnqueue* entry points count
+// each call, then forward to the loader's), so the profile's figures are
+// compared with the calls themselves, ViennaCL's included. Then CG on the
+// device: one blocking read per cg_check_every iterations and none inside
+// products or V-cycles, the same equilibria as ViennaCL's CG, and bitwise
+// repeatable runs.
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "snh/error.h"
+#include "snh/scenes.h"
+#include "snh/simulation.h"
+
+namespace {
+
+struct Calls {
+  long long launches = 0, blocking_reads = 0, other_reads = 0, bytes_to_host = 0, bytes_to_device = 0;
+};
+Calls calls;
+
+template <typename F>
+F real_entry(const char* name) {
+  void* f = dlsym(RTLD_NEXT, name);
+  if (!f) std::abort();
+  return reinterpret_cast<F>(f);
+}
+
+}  // namespace
+
+extern "C" {
+
+CL_API_ENTRY cl_int CL_API_CALL clEnqueueNDRangeKernel(cl_command_queue q, cl_kernel k, cl_uint dims,
+                                                       const size_t* offset, const size_t* global, const size_t* local,
+                                                       cl_uint waits, const cl_event* wait, cl_event* event) {
+  using F = decltype(&clEnqueueNDRangeKernel);
+  static const F real = real_entry<F>("clEnqueueNDRangeKernel");
+  ++calls.launches;
+  return real(q, k, dims, offset, global, local, waits, wait, event);
+}
+
+CL_API_ENTRY cl_int CL_API_CALL clEnqueueTask(cl_command_queue q, cl_kernel k, cl_uint waits, const cl_event* wait,
+                                              cl_event* event) {
+  using F = decltype(&clEnqueueTask);
+  static const F real = real_entry<F>("clEnqueueTask");
+  ++calls.launches;
+  return real(q, k, waits, wait, event);
+}
+
+CL_API_ENTRY cl_int CL_API_CALL clEnqueueReadBuffer(cl_command_queue q, cl_mem b, cl_bool blocking, size_t offset,
+                                                    size_t size, void* ptr, cl_uint waits, const cl_event* wait,
+                                                    cl_event* event) {
+  using F = decltype(&clEnqueueReadBuffer);
+  static const F real = real_entry<F>("clEnqueueReadBuffer");
+  (blocking ? calls.blocking_reads : calls.other_reads)++;
+  calls.bytes_to_host += static_cast<long long>(size);
+  return real(q, b, blocking, offset, size, ptr, waits, wait, event);
+}
+
+CL_API_ENTRY cl_int CL_API_CALL clEnqueueWriteBuffer(cl_command_queue q, cl_mem b, cl_bool blocking, size_t offset,
+                                                     size_t size, const void* ptr, cl_uint waits, const cl_event* wait,
+                                                     cl_event* event) {
+  using F = decltype(&clEnqueueWriteBuffer);
+  static const F real = real_entry<F>("clEnqueueWriteBuffer");
+  calls.bytes_to_device += static_cast<long long>(size);
+  return real(q, b, blocking, offset, size, ptr, waits, wait, event);
+}
+
+CL_API_ENTRY cl_mem CL_API_CALL clCreateBuffer(cl_context c, cl_mem_flags flags, size_t size, void* host,
+                                               cl_int* status) {
+  using F = decltype(&clCreateBuffer);
+  static const F real = real_entry<F>("clCreateBuffer");
+  if (flags & CL_MEM_COPY_HOST_PTR) calls.bytes_to_device += static_cast<long long>(size);
+  return real(c, flags, size, host, status);
+}
+
+}  // extern "C"
+
+namespace snh::test {
+namespace {
+
+Scene twist(int resolution = 3) {
+  SceneParameters p;
+  p.resolution = resolution;
+  return make_scene("twist", p);
+}
+
+struct Traced {
+  SolveResult result;
+  Calls calls;  // the OpenCL calls made during solve()
+};
+
+Traced run(const Scene& scene, Preconditioner preconditioner, int check_every,
+           HessianMode hessian = HessianMode::adaptive) {
+  SolveOptions o = scene.options;
+  o.hessian = hessian;
+  o.preconditioner = preconditioner;
+  o.cg_check_every = check_every;
+  // A V-cycle with a coarse level at this size (the default coarsest level
+  // would be the whole mesh).
+  o.multigrid.coarsest_dofs = 60;
+  o.multigrid.coarse_solve_on_device = true;
+  QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, o);
+  const Calls before = calls;
+  Traced r;
+  r.result = solver.solve();
+  r.calls.launches = calls.launches - before.launches;
+  r.calls.blocking_reads = calls.blocking_reads - before.blocking_reads;
+  r.calls.other_reads = calls.other_reads - before.other_reads;
+  r.calls.bytes_to_host = calls.bytes_to_host - before.bytes_to_host;
+  r.calls.bytes_to_device = calls.bytes_to_device - before.bytes_to_device;
+  return r;
+}
+
+// A linear solve's share of the traffic: its products, preconditioner
+// applications and CG's own work.
+DeviceTraffic cg_traffic(const SolveProfile& p) {
+  DeviceTraffic t;
+  for (const char* phase : {"products", "preconditioner_apply", "cg_vector_work"})
+    if (p.traffic.count(phase)) t += p.traffic.at(phase);
+  return t;
+}
+
+int cg_iterations(const SolveResult& r) {
+  int n = 0;
+  for (const StepResult& s : r.steps) n += s.cg_iterations;
+  return n;
+}
+
+// One per Newton iteration that solved (with HessianMode::projected: no
+// retry on the projection).
+int linear_solves(const SolveResult& r) {
+  int n = 0;
+  for (const NewtonIteration& h : r.history)
+    if (h.cg_stop != CgStop::none) ++n;
+  return n;
+}
+
+void expect_counts_are_the_calls(const Traced& r, const std::string& what) {
+  const SolveProfile& p = r.result.profile;
+  EXPECT_EQ(p.kernel_launches, r.calls.launches) << what;
+  EXPECT_EQ(p.blocking_readbacks, r.calls.blocking_reads) << what;
+  EXPECT_EQ(r.calls.other_reads, 0) << what;
+  EXPECT_EQ(p.bytes_to_host, r.calls.bytes_to_host) << what;
+  EXPECT_EQ(p.bytes_to_device, r.calls.bytes_to_device) << what;
+  // The phases add up to the totals.
+  DeviceTraffic sum;
+  for (const auto& [phase, t] : p.traffic) sum += t;
+  EXPECT_EQ(sum.kernel_launches, p.kernel_launches) << what;
+  EXPECT_EQ(sum.blocking_readbacks, p.blocking_readbacks) << what;
+  EXPECT_EQ(sum.bytes_to_host, p.bytes_to_host) << what;
+  // The steps' traffic is the solve's, split.
+  long long launches = 0, reads = 0;
+  for (const StepResult& s : r.result.steps) {
+    launches += s.profile.kernel_launches;
+    reads += s.profile.blocking_readbacks;
+  }
+  EXPECT_LE(launches, p.kernel_launches) << what;
+  EXPECT_LE(reads, p.blocking_readbacks) << what;
+  EXPECT_GT(launches, 0) << what;
+}
+
+TEST(DeviceTraffic, CountsAreTheOpenClCallsWithBlockJacobi) {
+  const Traced r = run(twist(), Preconditioner::block_jacobi, 8);
+  ASSERT_TRUE(r.result.converged);
+  expect_counts_are_the_calls(r, "block-jacobi");
+}
+
+TEST(DeviceTraffic, CountsAreTheOpenClCallsWithMultigrid) {
+  const Traced r = run(twist(4), Preconditioner::multigrid, 8);
+  ASSERT_TRUE(r.result.converged);
+  expect_counts_are_the_calls(r, "multigrid");
+}
+
+TEST(DeviceTraffic, CountsAreTheOpenClCallsWithViennaClCg) {
+  const Traced r = run(twist(), Preconditioner::block_jacobi, 0);
+  ASSERT_TRUE(r.result.converged);
+  // ViennaCL's CG queues its own kernels and reads behind the engine's
+  // counts: only what the engine itself queued is counted, never more.
+  EXPECT_LE(r.result.profile.kernel_launches, r.calls.launches);
+  EXPECT_LE(r.result.profile.blocking_readbacks, r.calls.blocking_reads);
+  EXPECT_GT(r.calls.blocking_reads - r.result.profile.blocking_readbacks, cg_iterations(r.result));
+}
+
+// Checked every iteration, CG reads exactly once per iteration; products and
+// the preconditioner never read.
+TEST(DeviceTraffic, CgCheckedEveryIterationReadsOncePerIteration) {
+  const Traced r = run(twist(), Preconditioner::block_jacobi, 1, HessianMode::projected);
+  ASSERT_TRUE(r.result.converged);
+  const SolveProfile& p = r.result.profile;
+  EXPECT_EQ(p.cg_iterations_past_convergence, 0);
+  EXPECT_EQ(cg_traffic(p).blocking_readbacks, cg_iterations(r.result));
+  EXPECT_EQ(p.traffic.at("products").blocking_readbacks, 0);
+  EXPECT_EQ(p.traffic.at("preconditioner_apply").blocking_readbacks, 0);
+}
+
+void expect_reads_per_check(Preconditioner preconditioner, int resolution, int k) {
+  const Traced r = run(twist(resolution), preconditioner, k, HessianMode::projected);
+  ASSERT_TRUE(r.result.converged);
+  const SolveProfile& p = r.result.profile;
+  const long long run_iterations = cg_iterations(r.result);  // past convergence included
+  const long long solves = linear_solves(r.result);
+  ASSERT_GT(solves, 0);
+  // ceil(iterations / k) per linear solve.
+  const long long reads = cg_traffic(p).blocking_readbacks;
+  EXPECT_GE(reads * k, run_iterations);
+  EXPECT_LE(reads * k, run_iterations + solves * (k - 1));
+  EXPECT_LE(p.cg_iterations_past_convergence, solves * (k - 1));
+  // None inside a product or a V-cycle.
+  EXPECT_EQ(p.traffic.at("products").blocking_readbacks, 0);
+  if (p.traffic.count("preconditioner_apply")) EXPECT_EQ(p.traffic.at("preconditioner_apply").blocking_readbacks, 0);
+}
+
+TEST(DeviceTraffic, CgReadsOncePerCheckWithBlockJacobi) { expect_reads_per_check(Preconditioner::block_jacobi, 3, 4); }
+
+TEST(DeviceTraffic, CgReadsOncePerCheckWithMultigrid) { expect_reads_per_check(Preconditioner::multigrid, 4, 8); }
+
+// The device CG reaches the equilibrium ViennaCL's CG reaches, within the
+// Newton tolerance, and repeats itself bit for bit.
+void expect_same_equilibrium(const Scene& scene, Preconditioner preconditioner) {
+  const Traced old = run(scene, preconditioner, 0);
+  const Traced a = run(scene, preconditioner, 8);
+  const Traced b = run(scene, preconditioner, 8);
+  ASSERT_TRUE(old.result.converged);
+  ASSERT_TRUE(a.result.converged);
+  EXPECT_EQ(a.result.positions, b.result.positions);
+  ASSERT_EQ(a.result.history.size(), b.result.history.size());
+  for (size_t i = 0; i < a.result.history.size(); ++i)
+    EXPECT_EQ(a.result.history[i].energy, b.result.history[i].energy) << i;
+  // Both stop at |r| <= tolerance; the positions differ by at most what
+  // that residual moves at the material's smallest stiffness, far below
+  // the mesh spacing.
+  ASSERT_EQ(a.result.positions.size(), old.result.positions.size());
+  double diff = 0.0, extent = 0.0;
+  for (size_t i = 0; i < a.result.positions.size(); ++i) {
+    diff = std::max(diff, std::abs(a.result.positions[i] - old.result.positions[i]));
+    extent = std::max(extent, std::abs(old.result.positions[i]));
+  }
+  EXPECT_LT(diff, 1e-5 * extent);
+  const double e_old = old.result.history.back().energy, e_new = a.result.history.back().energy;
+  EXPECT_NEAR(e_new, e_old, 1e-8 * std::abs(e_old));
+  EXPECT_LE(a.result.final_residual_norm, a.result.tolerance);
+}
+
+TEST(DeviceTraffic, DeviceCgFindsViennaClsEquilibriumWithBlockJacobi) {
+  expect_same_equilibrium(twist(), Preconditioner::block_jacobi);
+}
+
+TEST(DeviceTraffic, DeviceCgFindsViennaClsEquilibriumWithMultigrid) {
+  expect_same_equilibrium(twist(4), Preconditioner::multigrid);
+}
+
+TEST(DeviceTraffic, DeviceCgFindsViennaClsEquilibriumInTheStretch) {
+  SceneParameters p;
+  p.resolution = 3;
+  expect_same_equilibrium(make_scene("stretch", p), Preconditioner::block_jacobi);
+}
+
+TEST(DeviceTraffic, NegativeCheckIntervalIsRefused) {
+  const Scene scene = twist();
+  SolveOptions o = scene.options;
+  o.cg_check_every = -1;
+  EXPECT_THROW(QuasistaticSolver(scene.mesh, scene.material, scene.constraints, o).solve(), Error);
+}
+
+}  // namespace
+}  // namespace snh::test
