@@ -53,6 +53,8 @@ TEST(KernelConfig, WritesTheSwitchesInTheReportedOrder) {
   EXPECT_EQ(c.elastic().with_lanes(16).with_mixed().with_matrix_float().defines(),
             c.elastic().defines() + " -DSNH_LANES=16 -DSNH_MIXED=1 -DSNH_MATRIX_FLOAT=1");
   EXPECT_EQ(c.cache_key("fem.cl"), "fem.cl|" + c.defines());
+  EXPECT_EQ(c.with_surface_contact().defines(), c.defines() + " -DSNH_SURFACE_CONTACT=1");
+  EXPECT_EQ(c.with_surface_contact().elastic().defines(), c.elastic().defines());
 }
 
 TEST(KernelConfig, ParsesWhatItWrites) {
@@ -61,7 +63,8 @@ TEST(KernelConfig, ParsesWhatItWrites) {
   c.lambda_model = MaterialModel::neohookean;
   c.regions = true;
   c.self_contact = true;
-  const KernelConfig variant = c.with_lanes(8).with_mixed().with_float_cycle().with_stencil(27, 13);
+  const KernelConfig variant =
+      c.with_surface_contact().with_lanes(8).with_mixed().with_float_cycle().with_stencil(27, 13);
   for (const KernelConfig& k : {c, variant, KernelConfig{}}) {
     const KernelConfig back = KernelConfig::parse(k.precision ? k.report() : k.defines());
     EXPECT_EQ(back, k) << k.defines();

@@ -84,6 +84,8 @@ const Switch kSwitches[] = {
      [](KernelConfig& c, int v) { return set_flag(c.self_contact, v); }},
     {"SNH_FRICTION", [](const KernelConfig& c) { return flag(c.friction); },
      [](KernelConfig& c, int v) { return set_flag(c.friction, v); }},
+    {"SNH_SURFACE_CONTACT", [](const KernelConfig& c) { return flag(c.surface_contact); },
+     [](KernelConfig& c, int v) { return set_flag(c.surface_contact, v); }},
     {"SNH_LANES", [](const KernelConfig& c) { return count(c.lanes); },
      [](KernelConfig& c, int v) { return set_count(c.lanes, v); }},
     {"SNH_MIXED", [](const KernelConfig& c) { return flag(c.mixed); },
@@ -216,6 +218,13 @@ KernelConfig KernelConfig::elastic() const {
   c.obstacles = 0;
   c.self_contact = false;
   c.friction = false;
+  c.surface_contact = false;
+  return c;
+}
+
+KernelConfig KernelConfig::with_surface_contact() const {
+  KernelConfig c = *this;
+  c.surface_contact = true;
   return c;
 }
 

@@ -34,6 +34,7 @@ struct KernelConfig {
   int obstacles = 0;          // SNH_OBSTACLES
   bool self_contact = false;  // SNH_SELF_CONTACT
   bool friction = false;      // SNH_FRICTION
+  bool surface_contact = false;  // SNH_SURFACE_CONTACT: an embedded surface's points in obstacle contact
   // Switches of single programs.
   int lanes = 0;              // SNH_LANES: fem_lanes.cl's width (8 or 16)
   bool mixed = false;         // SNH_MIXED: float data, double p and results
@@ -69,7 +70,9 @@ struct KernelConfig {
   KernelConfig with_matrix_float() const;
   KernelConfig with_float_cycle() const;
   KernelConfig with_stencil(int width, int lower) const;
-  // Without the per-vertex terms (inertia, obstacles, self-contact, friction).
+  KernelConfig with_surface_contact() const;
+  // Without the per-vertex terms (inertia, obstacles, self-contact, friction,
+  // surface contact).
   KernelConfig elastic() const;
 
   bool operator==(const KernelConfig& o) const { return defines() == o.defines() && precision == o.precision; }

@@ -282,7 +282,7 @@ ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
     // already in contact keep theirs).
     refresh_self_contact(x);
     std::vector<Real> xh(dofs());
-    device::read_back(cl_, x, xh);
+    device::read_back(data_.cl, x, xh);
     const std::vector<double> xd(xh.begin(), xh.end());
     for (const SelfContactPair& c : self_contact_->pairs()) {
       ++state.self_contacts;
@@ -333,7 +333,7 @@ bool ElasticModel<Real>::refresh_self_contact(const VectorBase& x, bool new_step
   std::vector<Real> xh(dofs());
   {
     PhaseScope transfer(&profiler_, Phase::transfers);
-    device::read_back(cl_, x, xh);
+    device::read_back(data_.cl, x, xh);
   }
   return self_contact_->refresh(std::vector<double>(xh.begin(), xh.end()), new_step);
 }
@@ -368,7 +368,7 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
     std::vector<Real> xh(dofs());
     {
       PhaseScope transfer(&profiler_, Phase::transfers);
-      device::read_back(cl_, x, xh);
+      device::read_back(data_.cl, x, xh);
     }
     if (has_external_)
       for (size_t i = 0; i < xh.size(); ++i) {
@@ -421,7 +421,7 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
 template <typename Real>
 void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   PhaseScope timed(&profiler_, Phase::linearization);
-  cl_.copy(mem(x), mem(linearized_x_), dofs() * sizeof(Real));  // in queue order, no ViennaCL kernel
+  data_.cl.copy(mem(x), mem(linearized_x_), dofs() * sizeof(Real));  // in queue order, no ViennaCL kernel
   projected_ = projected ? 1 : 0;
   const int count = static_cast<int>(data_.element_count);
   KernelArgs args(linearize_k_.get());

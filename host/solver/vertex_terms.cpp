@@ -16,7 +16,7 @@ VertexTerms<Real>::VertexTerms(device::OpenClContext& cl, size_t vertex_count, b
       inertia_(inertia),
       obstacles_count_(obstacles),
       friction_(friction),
-      defines_(defines) {
+      config_(config) {
   const size_t dofs = 3 * vertex_count_;
   if (inertia) {
     inertia_mass_host_.assign(vertex_count_, 0.0);
@@ -80,7 +80,7 @@ void VertexTerms<Real>::set_contact_surface(const ContactSurface& surface) {
                 std::to_string(vertex_count_));
   surface_ = !surface.empty();
   if (!surface_) {
-    contact_k_ = cl_.kernel("fem.cl", defines_, "snh_contact_vertices");
+    contact_k_ = cl_.kernel("fem.cl", config_, "snh_contact_vertices");
     for (device::Buffer* b : {&surface_offsets_, &surface_entries_, &surface_vertices_, &surface_weights_}) *b = {};
     return;
   }
@@ -92,7 +92,7 @@ void VertexTerms<Real>::set_contact_surface(const ContactSurface& surface) {
   surface_vertices_ =
       cl_.buffer(CL_MEM_READ_ONLY, surface.point_vertices.size() * sizeof(int32_t), surface.point_vertices.data());
   surface_weights_ = cl_.buffer(CL_MEM_READ_ONLY, weights.size() * sizeof(Real), weights.data());
-  contact_k_ = cl_.kernel("fem.cl", defines_ + " -DSNH_SURFACE_CONTACT=1", "snh_contact_vertices");
+  contact_k_ = cl_.kernel("fem.cl", config_.with_surface_contact(), "snh_contact_vertices");
 }
 
 template <typename Real>

@@ -86,7 +86,7 @@ class VertexTerms {
   device::Buffer friction_start_, friction_anchors_, friction_start_records_, friction_records_;
   double friction_slip_ = 0.0;
   device::Kernel contact_k_, friction_anchors_k_;
-  std::string defines_;
+  device::KernelConfig config_;
   // The contact surface's arrays (ContactSurface), empty without one.
   device::Buffer surface_offsets_, surface_entries_, surface_vertices_, surface_weights_;
   bool surface_ = false;
