@@ -244,7 +244,16 @@ SceneFile::Embedded read_embed(const Reader& r, const json& e, const std::filesy
     if (!e["cover_surface"].is_boolean()) r.fail("embed.cover_surface", "expected true or false");
     options.cover_surface = e["cover_surface"].get<bool>();
   }
-  out.voxels = voxelize(out.surface, cell, options);
+  if (e.contains("strict_surface")) {
+    if (!e["strict_surface"].is_boolean()) r.fail("embed.strict_surface", "expected true or false");
+    options.strict = e["strict_surface"].get<bool>();
+  }
+  options.name = (folder / r.text(e, "embed", "surface", "")).string();
+  try {
+    out.voxels = voxelize(out.surface, cell, options);
+  } catch (const Error& error) {
+    r.fail("embed.surface", error.what());
+  }
   out.embedding = embed(out.voxels, out.surface);
   return out;
 }
@@ -283,7 +292,8 @@ SceneFile load_scene(const std::string& path) {
   json doc;
   try {
     doc = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double's range.
     throw Error(path + ": not valid JSON (" + e.what() + ")");
   }
   const Reader r{path};
