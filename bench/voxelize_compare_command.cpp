@@ -3,7 +3,7 @@
 // counts (VoxelizeOptions::strict) against generalized winding numbers (the
 // default); then the surface opened (a seam: the triangles above its middle
 // get their own copies of the vertices they share with the rest; a hole: the
-// triangles within two cells of its highest-x vertex removed) against the
+// triangles within four cells of its highest-x vertex removed) against the
 // closed original, counting the cells that differ and how far from the
 // surface they lie. CPU only.
 #include <algorithm>
@@ -53,7 +53,7 @@ TriangleSurface opened(const TriangleSurface& s, double cell) {
   for (size_t t = 0; t < s.triangle_count(); ++t) {
     double d2 = 0.0;
     for (int d = 0; d < 3; ++d) d2 += std::pow(centroid(t, d) - s.positions[3 * tip + d], 2);
-    if (d2 < 4.0 * cell * cell) continue;
+    if (d2 < 16.0 * cell * cell) continue;
     for (int k = 0; k < 3; ++k) {
       int32_t v = s.triangles[3 * t + k];
       if (centroid(t, 2) > middle && below[v]) {
