@@ -12,6 +12,7 @@ namespace snh::bench {
 void add_scene_command(CLI::App& app, int& exit_code);
 void add_errtime_command(CLI::App& app, int& exit_code);  // errtime.h: run_errtime for the suite
 void add_scale_command(CLI::App& app, int& exit_code);    // scale.h: run_scale for the suite
+void add_voxelize_compare_command(CLI::App& app, int& exit_code);
 
 // The default suite, run when no subcommand is given: the element check,
 // throughput, specialization, errtime and a small scale, into out_dir with a combined summary.{json,md}.

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   snh::cli::add_voxelize_command(app, exit_code);
   snh::cli::add_hessian_command(app, exit_code);
   snh::bench::add_scale_command(app, exit_code);
+  snh::bench::add_voxelize_compare_command(app, exit_code);
   std::string out_dir = "bench-results";
   int samples = 20000;
   app.add_option("--out", out_dir, "folder for the default suite's results")->capture_default_str();

@@ -2,6 +2,7 @@
 // with a JSON summary and ParaView output on request; `scene --file F` runs
 // a scene file as `snh run F` does (cli/scene_run.h).
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <set>
@@ -51,6 +52,8 @@ int run_scene(const SceneOptions& given) {
     // A scene file carries its own material and solver settings; --json,
     // --vtu and --surface on the command line override its outputs.
     const SceneFile f = load_scene(o.file);
+    if (f.embedded)
+      for (const std::string& warning : f.embedded->voxels.warnings) std::cerr << "warning: " << warning << "\n";
     if (!o.outputs.surface_prefix.empty() && !f.embedded) throw Error("scene: --surface needs a scene with \"embed\"");
     SolveOptions options = f.scene.options;
     options.device.match = o.device;

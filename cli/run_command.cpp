@@ -1,5 +1,6 @@
 // `snh run SCENE.json`: a scene file (docs/scene-files.md) with its outputs;
 // the solver flags override the file's settings.
+#include <iostream>
 #include <memory>
 #include <string>
 
@@ -37,6 +38,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->callback([o, cmd, &exit_code] {
     o->solver.note_given(cmd);
     const SceneFile file = load_scene(o->file);
+    // The embedded surface's defects (seams, holes, flipped triangles, ...).
+    if (file.embedded)
+      for (const std::string& warning : file.embedded->voxels.warnings) std::cerr << "warning: " << warning << "\n";
     SolveOptions options = file.scene.options;
     options.device.match = o->device;
     o->solver.apply_to_file(file, options);

@@ -26,6 +26,8 @@ struct VoxelizeCommand {
   std::string out;
   int64_t max_cells = VoxelizeOptions{}.max_grid_cells;
   bool cover_surface = false;
+  bool strict = false;
+  double weld_tolerance = VoxelizeOptions{}.weld_tolerance;
 };
 
 int run_voxelize(const VoxelizeCommand& o) {
@@ -36,7 +38,11 @@ int run_voxelize(const VoxelizeCommand& o) {
   VoxelizeOptions options;
   options.max_grid_cells = o.max_cells;
   options.cover_surface = o.cover_surface;
+  options.strict = o.strict;
+  options.weld_tolerance = o.weld_tolerance;
+  options.name = o.surface;
   Voxelization v = voxelize(surface, o.cell, options);
+  for (const std::string& warning : v.warnings) std::cerr << "warning: " << warning << "\n";
   const auto t2 = Clock::now();
   MeshArray grid_cell{"grid_cell", 3, {}};
   grid_cell.values.reserve(3 * v.element_cell.size());
@@ -45,7 +51,7 @@ int run_voxelize(const VoxelizeCommand& o) {
   write_mesh(o.out, v.lattice);
   const auto t3 = Clock::now();
 
-  const double enclosed = enclosed_volume(surface);
+  const double enclosed = v.report.enclosed_volume;
   const double lattice = double(v.lattice.element_count()) * o.cell * o.cell * o.cell;
   const auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
@@ -55,6 +61,10 @@ int run_voxelize(const VoxelizeCommand& o) {
             << " triangles, area " << surface_area(surface) << "\n";
   std::cout << "grid: " << v.dims[0] << " x " << v.dims[1] << " x " << v.dims[2] << " cells of " << v.cell << " from ("
             << v.origin[0] << ", " << v.origin[1] << ", " << v.origin[2] << ")\n";
+  const SurfaceReport& r = v.report;
+  std::cout << "surface defects: " << r.welded_vertices << " welded vertices, " << r.open_edges << " open edges, "
+            << r.non_manifold_edges << " non-manifold edges, " << r.inconsistent_edges << " inconsistent edges, "
+            << r.degenerate_triangles << " degenerate triangles, " << r.shells << " shells\n";
   std::cout << "cells: " << v.lattice.element_count() << "\n";
   std::cout << "vertices: " << v.lattice.vertex_count() << "\n";
   std::cout << "components: " << v.components << "\n";
@@ -84,9 +94,10 @@ void add_voxelize_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<VoxelizeCommand>();
   CLI::App* cmd = app.add_subcommand(
       "voxelize",
-      "A closed triangle surface (.obj, .ply, .stl) to a hex8 lattice: cells whose centres are inside, not glued "
+      "A triangle surface (.obj, .ply, .stl) to a hex8 lattice: cells whose centres are inside (winding number >= "
+      "1/2; seams, holes and flipped triangles are welded or tolerated and reported on stderr), not glued "
       "across gaps thinner than a cell (written as .msh, .vtk, .vtu or .mesh)");
-  cmd->add_option("surface", o->surface, "closed surface: .obj, .ply (ASCII or binary) or .stl (ASCII or binary)")
+  cmd->add_option("surface", o->surface, "the surface: .obj, .ply (ASCII or binary) or .stl (ASCII or binary)")
       ->required();
   cmd->add_option("--cell", o->cell, "cube side of the lattice, in the surface's units")
       ->required()
@@ -98,6 +109,13 @@ void add_voxelize_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--cover-surface", o->cover_surface,
                 "also keep the cells the surface passes through (every surface point in a kept cell; a gap "
                 "holding a cell centre is glued)");
+  cmd->add_flag("--strict", o->strict,
+                "refuse a surface that is not closed and consistently oriented, and decide inside by crossing counts "
+                "(default: weld, warn about defects and decide inside by winding numbers)");
+  cmd->add_option("--weld-tolerance", o->weld_tolerance,
+                  "vertices closer than this times the bounding box's diagonal are welded into one")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--max-cells", o->max_cells, "refuse grids of more cells than this")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -1,38 +1,91 @@
 #!/usr/bin/env bash
-# Fuzzes each mesh reader with libFuzzer (Debian's clang), outside CI.
-# Usage: fuzz/run.sh [seconds per format, default 300] [formats...]
-# Builds fuzz/build/fuzz_<format> with ASan and UBSan from the reader
-# sources (no OpenCL), seeds fuzz/corpus/<format> from data/meshes, runs each
-# fuzzer for the given time and leaves crashing inputs in
-# fuzz/artifacts/<format>/. Copy those to tests/fuzz_regressions/<format>/
-# with the format's extension once fixed (TetGen inputs are the .node text,
-# a NUL byte, the .ele text: split them into a .node/.ele pair).
+# Fuzzes the readers of user input with libFuzzer (Debian's clang), outside CI.
+# Usage: fuzz/run.sh [seconds per target, default 300] [targets...]
+# Targets: the mesh readers msh vtk vtu mesh tetgen (fuzz_read_mesh.cpp), the
+# surface readers obj ply stl (fuzz_read_surface.cpp), the animation parsers
+# json csv (fuzz_read_animation.cpp) and the scene-file loader scene
+# (fuzz_load_scene.cpp). Builds fuzz/build/fuzz_<target> with ASan and UBSan
+# from the sources each needs (the scene loader also links build/libsnh.a
+# and OpenCL for what it does not fuzz), seeds fuzz/corpus/<target> from
+# data/ and fuzz/seeds/, runs each fuzzer for the given time, one at a time
+# and niced, and leaves crashing inputs in fuzz/artifacts/<target>/. Copy
+# those to tests/fuzz_regressions/<target>/ with the format's extension once
+# fixed (TetGen inputs are the .node text, a NUL byte, the .ele text: split
+# them into a .node/.ele pair).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-300}"
 shift || true
-formats=("$@")
-[ ${#formats[@]} -eq 0 ] && formats=(msh vtk vtu mesh tetgen)
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(msh vtk vtu mesh tetgen obj ply stl json csv scene)
 CXX="${CXX:-clang++}"
-sources=(host/io/mesh_readers.cpp host/io/gmsh_reader.cpp host/io/vtk_reader.cpp host/io/vtu_reader.cpp
-         host/io/medit_reader.cpp host/io/tetgen_reader.cpp host/fem/mesh.cpp host/fem/rest_state.cpp)
-mkdir -p fuzz/build
-for f in "${formats[@]}"; do
-  "$CXX" -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    -DSNH_FUZZ_FORMAT="$f" -Iinclude -Ihost fuzz/fuzz_read_mesh.cpp "${sources[@]}" -o "fuzz/build/fuzz_$f"
+mesh_sources=(host/io/mesh_readers.cpp host/io/gmsh_reader.cpp host/io/vtk_reader.cpp host/io/vtu_reader.cpp
+              host/io/medit_reader.cpp host/io/tetgen_reader.cpp host/fem/mesh.cpp host/fem/rest_state.cpp)
+surface_sources=("${mesh_sources[@]}" host/io/surface_io.cpp host/io/obj_reader.cpp host/io/ply_reader.cpp
+                 host/io/stl_reader.cpp host/fem/closed_surface.cpp host/fem/surface_report.cpp
+                 host/fem/fast_winding_number.cpp host/fem/voxelize.cpp)
+# The scene loader and what it calls; the rest of the library (the solver,
+# OpenCL) comes uninstrumented from the Release build's build/libsnh.a.
+scene_sources=("${surface_sources[@]}" host/scene/scene_loader.cpp host/scene/scene_selectors.cpp
+               host/scene/scene_schema.cpp host/rig/animation_reader.cpp host/rig/bone_transform.cpp host/rig/bones.cpp host/rig/winding_number.cpp
+               host/fem/embedding.cpp host/fem/selection.cpp)
+flags=(-std=c++17 -g -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -Iinclude -Ihost -Ikernels
+       -isystem /usr/include/eigen3 -D_GNU_SOURCE -DCL_TARGET_OPENCL_VERSION=120 -DVIENNACL_WITH_OPENCL)
+link_after=()
+mkdir -p fuzz/build/obj
+# Each library source compiled once (instrumented for coverage), again only
+# when it changed; the targets link what they need.
+objects() {
+  local out=()
+  for src in "$@"; do
+    local o="fuzz/build/obj/${src//\//_}.o"
+    if [ ! -f "$o" ] || [ "$src" -nt "$o" ] || [ -n "$(find include host -name '*.h' -newer "$o" -print -quit)" ]; then
+      nice -n 19 "$CXX" "${flags[@]}" -fsanitize=fuzzer-no-link -c "$src" -o "$o"
+    fi
+    out+=("$o")
+  done
+  echo "${out[@]}"
+}
+link() {  # link TARGET HARNESS DEFINE... -- SOURCES...
+  local target="$1" harness="$2"
+  shift 2
+  local defines=()
+  while [ "$1" != "--" ]; do defines+=("$1"); shift; done
+  shift
+  local objs
+  objs=$(objects "$@")
+  # shellcheck disable=SC2086
+  nice -n 19 "$CXX" "${flags[@]}" -fsanitize=fuzzer "${defines[@]}" "$harness" $objs "${link_after[@]}" \
+    -o "fuzz/build/fuzz_$target"
+}
+for f in "${targets[@]}"; do
   corpus="fuzz/corpus/$f"
   mkdir -p "$corpus" "fuzz/artifacts/$f"
   case "$f" in
-    msh) cp data/meshes/*.msh "$corpus/" ;;
-    vtk) cp data/meshes/*.vtk "$corpus/" ;;
-    vtu) cp data/meshes/*.vtu "$corpus/" ;;
-    mesh) cp data/meshes/*.mesh "$corpus/" ;;
+    msh|vtk|vtu|mesh|tetgen) link "$f" fuzz/fuzz_read_mesh.cpp -DSNH_FUZZ_FORMAT="$f" -- "${mesh_sources[@]}" ;;
+    obj|ply|stl)
+      link "$f" fuzz/fuzz_read_surface.cpp -DSNH_FUZZ_FORMAT="$f" -DSNH_FUZZ_SURFACE_REPORT -- "${surface_sources[@]}" ;;
+    json|csv) link "$f" fuzz/fuzz_read_animation.cpp -DSNH_FUZZ_FORMAT="$f" -- host/rig/animation_reader.cpp \
+      host/rig/bone_transform.cpp ;;
+    scene)
+      [ -f build/libsnh.a ] || { echo "fuzz: build/libsnh.a is missing: build the library first" >&2; exit 1; }
+      link_after=(build/libsnh.a -lOpenCL)
+      link scene fuzz/fuzz_load_scene.cpp -DSNH_DATA_DIR="\"$PWD/data\"" -- "${scene_sources[@]}"
+      link_after=() ;;
+    *) echo "fuzz: unknown target $f" >&2; exit 2 ;;
+  esac
+  case "$f" in
+    msh|vtk|vtu|mesh|obj|ply|stl) cp data/meshes/*."$f" data/surfaces/*."$f" "$corpus/" 2>/dev/null || true ;;
+    json) cp data/arm/*.json "$corpus/" ;;
+    csv) cp fuzz/seeds/csv/*.csv "$corpus/" ;;
+    scene) cp data/scenes/*.json "$corpus/" ;;
     tetgen)
       for node in data/meshes/*.node; do
         { cat "$node"; printf '\0'; cat "${node%.node}.ele"; } > "$corpus/$(basename "${node%.node}").tetgen"
       done ;;
   esac
   echo "fuzz: $f for ${seconds}s"
-  "fuzz/build/fuzz_$f" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-    -artifact_prefix="fuzz/artifacts/$f/" -print_final_stats=1 2>&1 | tail -n 25 || echo "fuzz: $f found a problem"
+  nice -n 19 "fuzz/build/fuzz_$f" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -max_len=65536 -artifact_prefix="fuzz/artifacts/$f/" -print_final_stats=1 2>&1 | tail -n 25 ||
+    echo "fuzz: $f found a problem"
 done

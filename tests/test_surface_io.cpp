@@ -293,8 +293,10 @@ TEST(SurfaceClosed, MissingTriangleNamesItsOpenEdges) {
   EXPECT_NE(e.find("0 (0, 0, 0) - 2 (0, 2, 0)"), std::string::npos) << e;
   EXPECT_NE(e.find("2 (0, 2, 0) - 3 (1, 2, 0)"), std::string::npos) << e;
   EXPECT_NE(e.find("0 (0, 0, 0) - 3 (1, 2, 0)"), std::string::npos) << e;
-  // voxelize checks first.
-  const std::string v = error_of([&] { voxelize(s, 0.5); });
+  // voxelize with VoxelizeOptions::strict checks first.
+  VoxelizeOptions strict;
+  strict.strict = true;
+  const std::string v = error_of([&] { voxelize(s, 0.5, strict); });
   EXPECT_NE(v.find("3 open edges"), std::string::npos) << v;
 }
 
@@ -311,8 +313,13 @@ TEST(SurfaceClosed, FlippedTriangleIsAnOrientationError) {
   TriangleSurface inwards = test::box_surface({0, 0, 0}, {1, 1, 1});
   for (size_t t = 0; t < inwards.triangle_count(); ++t)
     std::swap(inwards.triangles[3 * t + 1], inwards.triangles[3 * t + 2]);
-  const std::string i = error_of([&] { voxelize(inwards, 0.25); });
+  VoxelizeOptions strict;
+  strict.strict = true;
+  const std::string i = error_of([&] { voxelize(inwards, 0.25, strict); });
   EXPECT_NE(i.find("face inwards"), std::string::npos) << i;
+  // By default it encloses nothing (winding number -1 inside).
+  const std::string d = error_of([&] { voxelize(inwards, 0.25); });
+  EXPECT_NE(d.find("no cell centre lies inside the surface"), std::string::npos) << d;
 }
 
 TEST(SurfaceClosed, EdgeOfFourTrianglesIsNonManifold) {

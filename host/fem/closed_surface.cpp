@@ -16,22 +16,22 @@ namespace {
 
 constexpr size_t kNamed = 5;  // edges named per kind in an error message
 
-void check_arrays(const TriangleSurface& s) {
+void check_arrays(const TriangleSurface& s, const std::string& name = "surface") {
   if (s.positions.size() % 3 != 0) {
     std::ostringstream m;
-    m << "surface: the position array has " << s.positions.size() << " values, not a multiple of 3 (xyz per vertex)";
+    m << name << ": the position array has " << s.positions.size() << " values, not a multiple of 3 (xyz per vertex)";
     throw Error(m.str());
   }
   if (s.triangles.size() % 3 != 0) {
     std::ostringstream m;
-    m << "surface: the triangle array has " << s.triangles.size() << " indices, not a multiple of 3";
+    m << name << ": the triangle array has " << s.triangles.size() << " indices, not a multiple of 3";
     throw Error(m.str());
   }
-  if (s.triangle_count() == 0) throw Error("surface: it has no triangles");
+  if (s.triangle_count() == 0) throw Error(name + ": it has no triangles");
   for (size_t i = 0; i < s.positions.size(); ++i)
     if (!std::isfinite(s.positions[i])) {
       std::ostringstream m;
-      m << "surface: vertex " << i / 3 << " has a non-finite coordinate ("
+      m << name << ": vertex " << i / 3 << " has a non-finite coordinate ("
         << "xyz"[i % 3] << " = " << s.positions[i] << ")";
       throw Error(m.str());
     }
@@ -40,13 +40,13 @@ void check_arrays(const TriangleSurface& s) {
     for (int a = 0; a < 3; ++a)
       if (v[a] < 0 || static_cast<size_t>(v[a]) >= s.vertex_count()) {
         std::ostringstream m;
-        m << "surface: triangle " << t << " refers to vertex " << v[a] << ", but the surface has " << s.vertex_count()
+        m << name << ": triangle " << t << " refers to vertex " << v[a] << ", but the surface has " << s.vertex_count()
           << " vertices";
         throw Error(m.str());
       }
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
       std::ostringstream m;
-      m << "surface: triangle " << t << " repeats a vertex (" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+      m << name << ": triangle " << t << " repeats a vertex (" << v[0] << ", " << v[1] << ", " << v[2] << ")";
       throw Error(m.str());
     }
   }
@@ -95,8 +95,8 @@ double surface_area(const TriangleSurface& surface) {
   return area;
 }
 
-void validate_closed_surface(const TriangleSurface& surface) {
-  check_arrays(surface);
+void validate_closed_surface(const TriangleSurface& surface, const std::string& name) {
+  check_arrays(surface, name);
   std::vector<HalfEdge> edges;
   edges.reserve(surface.triangles.size());
   for (size_t t = 0; t < surface.triangle_count(); ++t)
@@ -114,23 +114,24 @@ void validate_closed_surface(const TriangleSurface& surface) {
     size_t j = i + 1;
     while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
     const HalfEdge& e = edges[i];
-    const std::string name = vertex_text(surface, e.low) + " - " + vertex_text(surface, e.high);
+    const std::string edge = vertex_text(surface, e.low) + " - " + vertex_text(surface, e.high);
     if (j - i == 1) {
-      if (open++ < kNamed) open_text << "\n  " << name << " of triangle " << e.triangle;
+      if (open++ < kNamed) open_text << "\n  " << edge << " of triangle " << e.triangle;
     } else if (j - i > 2) {
       if (non_manifold++ < kNamed) {
-        non_manifold_text << "\n  " << name << " shared by " << j - i << " triangles:";
+        non_manifold_text << "\n  " << edge << " shared by " << j - i << " triangles:";
         for (size_t k = i; k < j && k < i + 6; ++k) non_manifold_text << ' ' << edges[k].triangle;
       }
     } else if (edges[i].forward == edges[i + 1].forward) {
       if (same_direction++ < kNamed)
-        same_text << "\n  " << name << " of triangles " << e.triangle << " and " << edges[i + 1].triangle;
+        same_text << "\n  " << edge << " of triangles " << e.triangle << " and " << edges[i + 1].triangle;
     }
     i = j;
   }
   if (open + non_manifold + same_direction > 0) {
     std::ostringstream m;
-    m << "surface: it is not closed and consistently oriented (every edge must be shared by exactly two triangles "
+    m << name
+      << ": it is not closed and consistently oriented (every edge must be shared by exactly two triangles "
          "that traverse it in opposite directions); "
       << surface.triangle_count() << " triangles, " << surface.vertex_count() << " vertices";
     const auto kind = [&](size_t count, const char* what, const std::ostringstream& named) {
@@ -150,7 +151,7 @@ void validate_closed_surface(const TriangleSurface& surface) {
   const double volume = enclosed_volume(surface);
   if (!(volume > 0.0)) {
     std::ostringstream m;
-    m << "surface: its enclosed volume is " << volume
+    m << name << ": its enclosed volume is " << volume
       << " (not positive): its triangles face inwards (reverse their vertex order) or it encloses nothing";
     throw Error(m.str());
   }

@@ -22,8 +22,10 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
+#include <string>
 #include <vector>
 
+#include "fem/fast_winding_number.h"
 #include "fem/union_find.h"
 #include "snh/error.h"
 #include "snh/surface.h"
@@ -88,8 +90,14 @@ bool crosses(const double* p, const int32_t* v, int a, double pb, double pc, Cro
   return true;
 }
 
-// Fills kInside (axis 0 only) and kCut << axis for every row parallel to `axis`.
-void sweep(const TriangleSurface& surface, const Grid& grid, int axis, std::vector<uint8_t>& flags) {
+// Fills kCut << axis for every row parallel to `axis`, and kInside by the
+// crossing count when `count_inside` (axis 0 only). Without `winding` (the
+// crossing-count rule), any crossing between two centres cuts; with it (the
+// winding number of each centre, rounded), only a run of crossings along
+// which the winding number falls below 1/2: a gap, not the wall of a shell
+// inside another.
+void sweep(const TriangleSurface& surface, const Grid& grid, int axis, bool count_inside,
+           const std::vector<int8_t>* winding, std::vector<uint8_t>& flags) {
   const int a = axis, b = (axis + 1) % 3, c = (axis + 2) % 3;
   const int nb = grid.dims[b], nc = grid.dims[c], na = grid.dims[a];
   const double* p = surface.positions.data();
@@ -152,9 +160,13 @@ void sweep(const TriangleSurface& surface, const Grid& grid, int axis, std::vect
         const size_t index = grid.index(cell[0], cell[1], cell[2]);
         if (i > 0 && k > k0) {
           cell[a] = i - 1;
-          flags[grid.index(cell[0], cell[1], cell[2])] |= static_cast<uint8_t>(kCut << a);
+          const size_t previous = grid.index(cell[0], cell[1], cell[2]);
+          // A crossing of sign +1 leaves the inside: the winding number drops by 1.
+          int running = 0, drop = 0;
+          for (size_t x = k0; x < k; ++x) drop = std::max(drop, running += crossings[x].sign);
+          if (!winding || (*winding)[previous] - drop <= 0) flags[previous] |= static_cast<uint8_t>(kCut << a);
         }
-        if (axis == 0 && total - behind > 0) flags[index] |= kInside;
+        if (count_inside && total - behind > 0) flags[index] |= kInside;
       }
     }
 }
@@ -233,13 +245,23 @@ constexpr int kHexCorners[8] = {0, 1, 3, 2, 4, 5, 7, 6};
 
 }  // namespace
 
-Voxelization voxelize(const TriangleSurface& surface, double cell, const VoxelizeOptions& options) {
+Voxelization voxelize(const TriangleSurface& input, double cell, const VoxelizeOptions& options) {
+  const std::string& name = options.name;
   if (!(cell > 0.0) || !std::isfinite(cell)) {
     std::ostringstream s;
-    s << "voxelize: the cell size must be positive and finite, got " << cell;
+    s << name << ": voxelize: the cell size must be positive and finite, got " << cell;
     throw Error(s.str());
   }
-  validate_closed_surface(surface);
+  if (input.triangles.empty()) throw Error(name + ": the surface has no triangles");
+  Voxelization out;
+  // Strict: the surface must be closed as it is. Otherwise its defects are
+  // counted (after welding) and warned, and the welded surface is the one
+  // swept, so that the triangles of a seam share their edge's vertices and
+  // the crossing predicates agree along it.
+  if (options.strict) validate_closed_surface(input, name);
+  out.report = surface_report(input, name, options.weld_tolerance);
+  out.warnings = out.report.warnings;
+  const TriangleSurface surface = options.strict ? input : weld_vertices(input, options.weld_tolerance).surface;
 
   std::array<double, 3> lo, hi;
   for (int d = 0; d < 3; ++d) lo[d] = hi[d] = surface.positions[d];
@@ -256,9 +278,9 @@ Voxelization voxelize(const TriangleSurface& surface, double cell, const Voxeliz
     // loses nothing: cells beyond it have their centres outside the box.
     const double n = std::max(1.0, std::ceil((hi[d] - lo[d]) / cell - 1e-9));
     total *= n;
-    if (n > double(std::numeric_limits<int32_t>::max()) || total > double(options.max_grid_cells)) {
+    if (!(n <= double(std::numeric_limits<int32_t>::max())) || !(total <= double(options.max_grid_cells))) {
       std::ostringstream s;
-      s << "voxelize: a cell of " << cell << " makes a grid of " << std::ceil((hi[0] - lo[0]) / cell) << " x "
+      s << name << ": voxelize: a cell of " << cell << " makes a grid of " << std::ceil((hi[0] - lo[0]) / cell) << " x "
         << std::ceil((hi[1] - lo[1]) / cell) << " x " << std::ceil((hi[2] - lo[2]) / cell)
         << " cells for the bounding box " << hi[0] - lo[0] << " x " << hi[1] - lo[1] << " x " << hi[2] - lo[2]
         << ", more than the limit of " << options.max_grid_cells
@@ -271,11 +293,25 @@ Voxelization voxelize(const TriangleSurface& surface, double cell, const Voxeliz
 
   const size_t cells = size_t(grid.dims[0]) * grid.dims[1] * grid.dims[2];
   std::vector<uint8_t> flags(cells, 0);
-  for (int axis = 0; axis < 3; ++axis) sweep(surface, grid, axis, flags);
+  std::vector<int8_t> rounded;
+  if (!options.strict) {
+    // Inside: the generalized winding number of the centre is at least 1/2.
+    const fem::FastWindingNumber winding(surface, options.winding_beta);
+    rounded.resize(cells);
+    for (int k = 0; k < grid.dims[2]; ++k)
+      for (int j = 0; j < grid.dims[1]; ++j)
+        for (int i = 0; i < grid.dims[0]; ++i) {
+          const double w = winding({grid.centre(0, i), grid.centre(1, j), grid.centre(2, k)});
+          const size_t index = grid.index(i, j, k);
+          if (w >= 0.5) flags[index] |= kInside;
+          rounded[index] = static_cast<int8_t>(std::max(-100.0, std::min(100.0, std::round(w))));
+        }
+  }
+  for (int axis = 0; axis < 3; ++axis)
+    sweep(surface, grid, axis, options.strict && axis == 0, options.strict ? nullptr : &rounded, flags);
   if (options.cover_surface) mark_crossed(surface, grid, flags);
   const uint8_t keep = options.cover_surface ? (kInside | kCrossed) : kInside;
 
-  Voxelization out;
   out.cell = cell;
   out.origin = grid.origin;
   out.dims = grid.dims;
@@ -285,15 +321,16 @@ Voxelization voxelize(const TriangleSurface& surface, double cell, const Voxeliz
       for (int i = 0; i < grid.dims[0]; ++i)
         if (flags[grid.index(i, j, k)] & keep) {
           if (out.element_cell.size() >= size_t(std::numeric_limits<int32_t>::max() / 8))
-            throw Error("voxelize: the lattice would have more vertices than 32-bit indices can address");
+            throw Error(name + ": voxelize: the lattice would have more vertices than 32-bit indices can address");
           kept[grid.index(i, j, k)] = static_cast<int32_t>(out.element_cell.size());
           out.element_cell.push_back({i, j, k});
         }
   const size_t elements = out.element_cell.size();
   if (elements == 0) {
     std::ostringstream s;
-    s << "voxelize: no cell centre lies inside the surface with a cell of " << cell << " (bounding box "
-      << hi[0] - lo[0] << " x " << hi[1] - lo[1] << " x " << hi[2] - lo[2] << "); use a smaller cell";
+    s << name << ": voxelize: no cell centre lies inside the surface (it encloses nothing) with a cell of " << cell
+      << " (bounding box " << hi[0] - lo[0] << " x " << hi[1] - lo[1] << " x " << hi[2] - lo[2]
+      << "): use a smaller cell, or check that the surface encloses a volume with its normals facing outwards";
     throw Error(s.str());
   }
 

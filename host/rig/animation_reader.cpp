@@ -56,7 +56,8 @@ Animation parse_animation_json(const std::string& text, const std::string& name)
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double's range.
     throw Error(name + ": not valid JSON (" + e.what() + ")");
   }
   auto fail = [&](const std::string& key, const std::string& what) -> Error {
@@ -181,6 +182,12 @@ Animation parse_animation_csv(const std::string& text, const std::string& name) 
   size_t frames = 0;
   for (const Row& r : rows) {
     bone_index(a, r.bone);
+    // Frames are numbered from 0 without gaps, each with a line per bone: a
+    // number beyond the line count is a gap (and must not size the tables).
+    if (r.frame >= rows.size())
+      throw Error(name + ":" + std::to_string(r.line) + ": frame " + std::to_string(r.frame) + ", but the file has " +
+                  std::to_string(rows.size()) +
+                  " animation lines (frames are numbered from 0 without gaps, every frame gives every bone)");
     frames = std::max(frames, r.frame + 1);
   }
   a.times.resize(frames);

@@ -253,7 +253,16 @@ SceneFile::Embedded read_embed(const Reader& r, const json& e, const std::filesy
       r.fail("embed.pieces", error.what());
     }
   }
-  out.voxels = voxelize(out.surface, cell, options);
+  if (e.contains("strict_surface")) {
+    if (!e["strict_surface"].is_boolean()) r.fail("embed.strict_surface", "expected true or false");
+    options.strict = e["strict_surface"].get<bool>();
+  }
+  options.name = (folder / r.text(e, "embed", "surface", "")).string();
+  try {
+    out.voxels = voxelize(out.surface, cell, options);
+  } catch (const Error& error) {
+    r.fail("embed.surface", error.what());
+  }
   out.embedding = embed(out.voxels, out.surface);
   return out;
 }
@@ -326,7 +335,8 @@ SceneFile load_scene(const std::string& path) {
   json doc;
   try {
     doc = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double's range.
     throw Error(path + ": not valid JSON (" + e.what() + ")");
   }
   const Reader r{path};

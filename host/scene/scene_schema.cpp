@@ -46,7 +46,7 @@ std::map<std::string, Keys> make_table() {
   t[""] = {"name",       "description", "mesh",     "embed",     "material", "regions", "constraints", "rig",
            "body_force", "initial",     "dynamics", "obstacles", "contact",  "solver",  "output",      "character"};
   t["mesh"] = {"file", "generator", "cells", "size", "radius", "length", "element", "allow_coincident_vertices"};
-  t["embed"] = {"surface", "cell", "cover_surface", "pieces"};
+  t["embed"] = {"surface", "cell", "cover_surface", "pieces", "strict_surface"};
   t["material"] = kMaterial;
   t["regions[]"] = {"name", "select", "material"};
   add_element_selector(t, "regions[].select");

@@ -1,4 +1,4 @@
-// From a character's surface to simulated flesh: closed triangle surfaces
+// From a character's surface to simulated flesh: triangle surfaces
 // (read from OBJ, PLY or STL), their voxelization into a hex8 lattice, the
 // embedding of the surface in that lattice (each surface vertex follows the
 // trilinear interpolation of its cell), and the deformed surface written per
@@ -30,6 +30,39 @@ TriangleSurface read_surface(const std::string& path);
 // as OBJ.
 void write_obj(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x = {});
 
+// Coincident vertices merged: the vertices within `tolerance` of a kept one
+// (taken in vertex order; the first of a cluster is kept) become that one.
+// `tolerance` is relative to the bounding box's diagonal; 0 merges only
+// exactly equal positions. Triangles keep their order and count.
+struct WeldedSurface {
+  TriangleSurface surface;         // the kept vertices (in their original order) and the renumbered triangles
+  std::vector<int32_t> vertex_of;  // per original vertex: its vertex in `surface`
+  size_t merged() const { return vertex_of.size() - surface.vertex_count(); }
+};
+WeldedSurface weld_vertices(const TriangleSurface& surface, double tolerance = 1e-7);
+
+// What an artist's surface holds that a closed, consistently oriented
+// surface does not, counted after welding (weld_vertices): the input a
+// winding-number voxelization tolerates, reported so that a user can fix it.
+struct SurfaceReport {
+  size_t vertices = 0, triangles = 0;
+  size_t welded_vertices = 0;       // vertices merged into a coincident one (UV or normal seams)
+  size_t open_edges = 0;            // edges of one triangle (holes, cracks)
+  size_t non_manifold_edges = 0;    // edges of more than two triangles
+  size_t inconsistent_edges = 0;    // edges of two triangles that traverse them in the same direction (a flipped one)
+  size_t degenerate_triangles = 0;  // triangles of zero area, or with two corners welded together
+  size_t shells = 0;                // pieces connected through shared (welded) vertices
+  double enclosed_volume = 0.0;     // by the divergence theorem, of the welded surface
+  // One line per defect class present, each starting with the surface's
+  // name; also a line for several shells and one for a negative volume.
+  std::vector<std::string> warnings;
+  bool closed() const { return open_edges == 0 && non_manifold_edges == 0 && inconsistent_edges == 0; }
+};
+// `name` (the file) starts every warning. Throws snh::Error naming it for
+// malformed arrays, indices out of range and non-finite positions.
+SurfaceReport surface_report(const TriangleSurface& surface, const std::string& name = "surface",
+                             double weld_tolerance = 1e-7);
+
 // Throws snh::Error unless the surface is closed and consistently oriented:
 // every edge is shared by exactly two triangles that traverse it in opposite
 // directions. The message counts the open edges (used by one triangle),
@@ -37,8 +70,8 @@ void write_obj(const std::string& path, const TriangleSurface& surface, const st
 // direction (a flipped triangle), and names the first few of each with
 // their vertex indices and positions. Also rejects indices out of range,
 // non-finite positions, and a surface whose enclosed volume is not positive
-// (triangles facing inwards).
-void validate_closed_surface(const TriangleSurface& surface);
+// (triangles facing inwards). Messages start with `name` (the file).
+void validate_closed_surface(const TriangleSurface& surface, const std::string& name = "surface");
 
 // The volume a closed surface encloses, by the divergence theorem:
 // sum over triangles of x0 . (x1 x x2) / 6 (negative when it faces inwards).
@@ -59,6 +92,10 @@ struct Voxelization {
   // for a connected shape; more where parts touch only across a cut or
   // along a cell edge or corner (see voxelize).
   int components = 0;
+  // The surface's defects (surface_report) and one line per defect class,
+  // naming the file (VoxelizeOptions::name); empty for a clean surface.
+  SurfaceReport report;
+  std::vector<std::string> warnings;
 };
 
 struct VoxelizeOptions {
@@ -73,6 +110,21 @@ struct VoxelizeOptions {
   // lies in it; a cell whose centre is in the gap is kept and glues its
   // two sides (see voxelize).
   bool cover_surface = false;
+  // Refuse any surface that is not closed and consistently oriented
+  // (validate_closed_surface) and decide inside by crossing counts, as the
+  // voxelizer did before it took winding numbers. Off: artist surfaces with
+  // seams, holes, non-manifold edges or several (intersecting) shells are
+  // voxelized by their generalized winding number, their defects warned.
+  bool strict = false;
+  // Vertices closer than this times the bounding box's diagonal are one
+  // (weld_vertices) before the surface is checked and voxelized.
+  double weld_tolerance = 1e-7;
+  // Accuracy of the hierarchical winding number (fast_winding_number): a
+  // cluster of triangles is summarized when the query is farther than beta
+  // times its radius from its centre.
+  double winding_beta = 2.0;
+  // The surface's file, to name it in errors and warnings.
+  std::string name = "surface";
 };
 
 // The grid: dims[d] = ceil(extent_d / cell) (at least 1; an extent a
@@ -80,14 +132,24 @@ struct VoxelizeOptions {
 // side `cell` per axis from the bounding box's lowest corner (a box-shaped
 // surface whose sides are multiples of the cell is filled exactly).
 //
+// First the surface is welded (weld_vertices with options.weld_tolerance)
+// and its defects counted (surface_report; Voxelization::warnings), unless
+// options.strict, which requires it closed as given.
+//
 // Which cells: a grid cell becomes an element when its centre is inside the
-// surface: its winding number is positive (nested or overlapping closed
-// pieces count as long as the count is positive). With cover_surface, also
-// when a triangle meets the open cube (separating axes, Akenine-Moeller
-// 2001, on the cube shrunk by 1e-9 cells, so that a cell the surface only
-// touches along its boundary stays out). The winding number is
-// counted along rays parallel to +x from every cell centre, crossing by
-// crossing, with exact tie handling: a ray through a triangle's edge or
+// surface: its generalized winding number is at least 1/2 (Jacobson et al.
+// 2013; evaluated hierarchically with accuracy options.winding_beta, Barill
+// et al. 2018): 1 inside a closed surface, 2 where shells overlap, about
+// 1/2 across a hole, so that seams, holes, non-manifold edges and several
+// or intersecting shells give the solid a user means. On a watertight
+// surface this keeps the same cells as the crossing count below, except a
+// centre within rounding of the surface (where the winding number is 1/2).
+// With cover_surface, also when a triangle meets the open cube (separating
+// axes, Akenine-Moeller 2001, on the cube shrunk by 1e-9 cells, so that a
+// cell the surface only touches along its boundary stays out).
+// With options.strict the winding number is instead counted along rays
+// parallel to +x from every cell centre, crossing by crossing (positive:
+// inside), with exact tie handling: a ray through a triangle's edge or
 // vertex is decided as if moved by an infinitesimal (0, e, e^2), each edge
 // evaluated once in a fixed vertex order so that the triangles sharing it
 // agree, and a centre lying exactly on the surface as if moved by +x.
@@ -106,8 +168,11 @@ struct VoxelizeOptions {
 // corner joins them; otherwise they get separate vertices (the piece then
 // counts as its own component).
 //
-// Throws snh::Error for a surface that is not closed (validate_closed_surface),
-// cell <= 0, or a lattice that would be empty or too large.
+// Throws snh::Error, starting with options.name, for a surface without
+// triangles, with non-finite coordinates or indices out of range, with
+// options.strict one that is not closed (validate_closed_surface), for
+// cell <= 0, or a lattice that would be empty (nothing enclosed) or too
+// large.
 Voxelization voxelize(const TriangleSurface& surface, double cell, const VoxelizeOptions& options = {});
 
 // Each surface vertex's element and its 8 trilinear weights (hex8 node

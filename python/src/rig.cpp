@@ -72,15 +72,21 @@ void bind_rig(py::module_& m) {
                                x.is_none() ? std::vector<double>{} : to_doubles(x, "positions", 3, s.vertex_count()));
       },
       py::arg("path"), py::arg("surface"), py::arg("positions") = py::none(), "Writes the surface as .vtu.");
-  m.def("validate_closed_surface", &snh::validate_closed_surface, py::arg("surface"),
-        "snh.Error unless closed and consistently oriented.");
+  m.def("validate_closed_surface", &snh::validate_closed_surface, py::arg("surface"), py::arg("name") = "surface",
+        "snh.Error (starting with name) unless closed and consistently oriented.");
   m.def("enclosed_volume", &snh::enclosed_volume, py::arg("surface"), "Volume by the divergence theorem.");
   m.def("surface_area", &snh::surface_area, py::arg("surface"), "Sum of the triangles' areas.");
 
   py::class_<snh::VoxelizeOptions>(m, "VoxelizeOptions", "Voxelizer settings.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::VoxelizeOptions>(kw); }))
       .def_readwrite("max_grid_cells", &snh::VoxelizeOptions::max_grid_cells, "Refuse larger grids.")
-      .def_readwrite("cover_surface", &snh::VoxelizeOptions::cover_surface, "Also keep cells the surface crosses.");
+      .def_readwrite("cover_surface", &snh::VoxelizeOptions::cover_surface, "Also keep cells the surface crosses.")
+      .def_readwrite("strict", &snh::VoxelizeOptions::strict,
+                     "Refuse surfaces that are not closed; inside by crossing counts.")
+      .def_readwrite("weld_tolerance", &snh::VoxelizeOptions::weld_tolerance,
+                     "Weld vertices closer than this times the bounding box's diagonal.")
+      .def_readwrite("winding_beta", &snh::VoxelizeOptions::winding_beta, "Accuracy of the fast winding number.")
+      .def_readwrite("name", &snh::VoxelizeOptions::name, "The surface's file, for errors and warnings.");
   py::class_<snh::Voxelization>(m, "Voxelization", "A hex8 lattice covering a closed surface's interior.")
       .def_readonly("lattice", &snh::Voxelization::lattice, "The hex8 Mesh.")
       .def_readonly("cell", &snh::Voxelization::cell, "Cube side.")
@@ -95,7 +101,8 @@ void bind_rig(py::module_& m) {
             return to_array(std::move(cells), {static_cast<py::ssize_t>(v.element_cell.size()), 3});
           },
           "Grid cell (i, j, k) per element, int32 (m, 3).")
-      .def_readonly("components", &snh::Voxelization::components, "Connected pieces.");
+      .def_readonly("components", &snh::Voxelization::components, "Connected pieces.")
+      .def_readonly("warnings", &snh::Voxelization::warnings, "The surface's defects, one line per class.");
   m.def(
       "voxelize",
       [](const snh::TriangleSurface& surface, double cell, std::optional<snh::VoxelizeOptions> options) {
