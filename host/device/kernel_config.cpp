@@ -100,6 +100,10 @@ const Switch kSwitches[] = {
      [](KernelConfig& c, int v) { return set_count(c.stencil_lower, v); }},
     {"SNH_FMA_CHAINS", [](const KernelConfig& c) { return count(c.fma_chains); },
      [](KernelConfig& c, int v) { return set_count(c.fma_chains, v); }},
+    {"SNH_CG_CHECK", [](const KernelConfig& c) { return count(c.cg_check); },
+     [](KernelConfig& c, int v) { return set_count(c.cg_check, v); }},
+    {"SNH_CG_SPAN", [](const KernelConfig& c) { return count(c.cg_span); },
+     [](KernelConfig& c, int v) { return set_count(c.cg_span, v); }},
     {"SNH_GPU", [](const KernelConfig& c) { return flag(c.gpu); },
      [](KernelConfig& c, int v) { return set_flag(c.gpu, v); }},
 };

@@ -30,10 +30,10 @@ struct KernelConfig {
   int cache_tile = 0;                         // SNH_CACHE_TILE (0: untiled)
   int stencil_tile = 0;                       // SNH_STENCIL_TILE (0: untiled)
   // The per-vertex terms (solver/vertex_terms.h, solver/self_contact_terms.h).
-  bool inertia = false;       // SNH_INERTIA
-  int obstacles = 0;          // SNH_OBSTACLES
-  bool self_contact = false;  // SNH_SELF_CONTACT
-  bool friction = false;      // SNH_FRICTION
+  bool inertia = false;          // SNH_INERTIA
+  int obstacles = 0;             // SNH_OBSTACLES
+  bool self_contact = false;     // SNH_SELF_CONTACT
+  bool friction = false;         // SNH_FRICTION
   bool surface_contact = false;  // SNH_SURFACE_CONTACT: an embedded surface's points in obstacle contact
   // Switches of single programs.
   int lanes = 0;              // SNH_LANES: fem_lanes.cl's width (8 or 16)
@@ -43,6 +43,8 @@ struct KernelConfig {
   int stencil_width = 0;      // SNH_STENCIL_WIDTH (0: an argument)
   int stencil_lower = 0;      // SNH_STENCIL_LOWER
   int fma_chains = 0;         // SNH_FMA_CHAINS (the benchmark's roofline)
+  int cg_check = 0;           // SNH_CG_CHECK: cg.cl's iterations per convergence check (0: its default)
+  int cg_span = 0;            // SNH_CG_SPAN: cg.cl's entries per reduction group (0: its default)
   bool gpu = false;           // SNH_GPU: the GPUs' build on any device (the context adds it on GPUs)
   // SNH_DOUBLE: set by the context that builds; not part of defines().
   std::optional<Precision> precision;

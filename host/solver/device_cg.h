@@ -52,8 +52,10 @@ class DeviceCg {
     if (!available(cl)) throw Error("solver: the device CG needs fp64 on the device for its sums");
     const size_t span = cl.info().is_gpu ? 512 : 4096;  // SNH_CG_SPAN
     groups_ = std::max<size_t>(1, (n + span - 1) / span);
-    std::string defines = "-DSNH_CG_CHECK=" + std::to_string(check_every_) + " -DSNH_CG_SPAN=" + std::to_string(span);
-    if (sizeof(Real) == 4 && cl.precision() == Precision::double_) defines += " -DSNH_FLOAT=1";
+    device::KernelConfig defines;
+    defines.cg_check = check_every_;
+    defines.cg_span = static_cast<int>(span);
+    defines.float_cycle = sizeof(Real) == 4 && cl.precision() == Precision::double_;
     dot_ = cl.kernel("cg.cl", defines, "snh_cg_dot");
     start_ = cl.kernel("cg.cl", defines, "snh_cg_start");
     first_ = cl.kernel("cg.cl", defines, "snh_cg_first_direction");

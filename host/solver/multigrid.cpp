@@ -236,14 +236,18 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
   const device::KernelConfig cycle = kNarrow ? coarse.with_float_cycle() : coarse;
   prolong_k_ = cl_.kernel("multigrid.cl", cycle, "snh_prolong_add");
   if (cl_.info().has_fp64) {
-    const std::string power =
-        (kNarrow ? std::string("-DSNH_FLOAT=1 ") : std::string()) + "-DSNH_CG_SPAN=" + std::to_string(kPowerSpan);
+    device::KernelConfig power;
+    power.float_cycle = kNarrow;
+    power.cg_span = static_cast<int>(kPowerSpan);
     power_dot_k_ = cl_.kernel("cg.cl", power, "snh_cg_dot");
     power_normalize_k_ = cl_.kernel("cg.cl", power, "snh_cg_normalize");
   }
   coarse_on_device_ = options_.coarse_solve_on_device;
-  if (coarse_on_device_)
-    coarse_inverse_k_ = cl_.kernel("coarse_solve.cl", kNarrow ? "-DSNH_FLOAT=1" : "", "snh_coarse_inverse_apply");
+  if (coarse_on_device_) {
+    device::KernelConfig narrow;
+    narrow.float_cycle = kNarrow;
+    coarse_inverse_k_ = cl_.kernel("coarse_solve.cl", narrow, "snh_coarse_inverse_apply");
+  }
   restrict_k_ = cl_.kernel("multigrid.cl", cycle, "snh_restrict");
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", cycle, "snh_chebyshev_start");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
