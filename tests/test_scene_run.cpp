@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -81,7 +82,12 @@ TEST(SceneRun, LoadsAndRunsAFileWithRecordsProgressAndOutputs) {
   const std::vector<Reaction>& last = *run.steps.back().reactions;
   EXPECT_LT(last[0].force[0], 0.0);
   EXPECT_GT(last[1].force[0], 0.0);
-  EXPECT_NEAR(last[0].force[0] + last[1].force[0], 0.0, 1e-6 * std::abs(last[1].force[0]));
+  // They balance up to what Newton left: the x-residuals of the 8 free
+  // vertices sum to minus the imbalance, so |sum| <= sqrt(8) |r|.
+  const double residual = run.result.final_residual_norm;
+  EXPECT_GT(residual, 0.0);
+  EXPECT_LE(std::abs(last[0].force[0] + last[1].force[0]),
+            std::sqrt(8.0) * residual + 1e-12 * std::abs(last[1].force[0]));
 
   write_scene_json((dir / "out" / "bar.json").string(), file, run);
   nlohmann::json j;
