@@ -467,8 +467,17 @@ TEST(VoxelizeCommand, WritesALatticeThatReadMeshReadsBack) {
   TriangleSurface box = test::box_surface({0, 0, 0}, {1, 1, 1});
   box.triangles.resize(box.triangles.size() - 3);
   write_obj(hole.string(), box);
-  EXPECT_NE(run("voxelize " + hole.string() + " --cell 0.1 --out " + (dir / "hole.vtu").string(), open), 0);
+  // By default the hole is tolerated with a warning naming the file;
+  // --strict refuses it.
+  EXPECT_EQ(run("voxelize " + hole.string() + " --cell 0.1 --out " + (dir / "hole.vtu").string(), open), 0) << open;
   EXPECT_NE(open.find("open edges"), std::string::npos) << open;
+  EXPECT_NE(open.find("hole.obj"), std::string::npos) << open;
+  EXPECT_TRUE(fs::exists(dir / "hole.vtu"));
+  std::string strict;
+  EXPECT_NE(run("voxelize " + hole.string() + " --cell 0.1 --strict --out " + (dir / "strict.vtu").string(), strict),
+            0);
+  EXPECT_NE(strict.find("open edges"), std::string::npos) << strict;
+  EXPECT_FALSE(fs::exists(dir / "strict.vtu"));
   fs::remove_all(dir);
 }
 #endif

@@ -183,8 +183,9 @@ Animation parse_animation_csv(const std::string& text, const std::string& name) 
   for (const Row& r : rows) {
     bone_index(a, r.bone);
     // Frames are numbered from 0 without gaps, each with a line per bone: a
-    // number beyond the line count is a gap (and must not size the tables).
-    if (r.frame >= rows.size())
+    // number beyond the line count is a gap (and must not size the tables;
+    // one past it still names the missing frame below).
+    if (r.frame > rows.size())
       throw Error(name + ":" + std::to_string(r.line) + ": frame " + std::to_string(r.frame) + ", but the file has " +
                   std::to_string(rows.size()) +
                   " animation lines (frames are numbered from 0 without gaps, every frame gives every bone)");
