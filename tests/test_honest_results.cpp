@@ -24,6 +24,7 @@
 #include "snh/simulation.h"
 #include "snh/surface.h"
 #include "stability.h"
+#include "support/cli_run.h"
 #include "surface_shapes.h"
 
 namespace snh::test {
@@ -159,23 +160,6 @@ TEST(HonestResults, FramesCarryWarningsReactionsAndFailOnInverted) {
 // table and progress line show min J and the inverted count, the warning is
 // printed and written to the JSON, and --fail-on-inverted (or the file's
 // solver.fail_on_inverted) fails the run naming the step.
-struct CliRun {
-  int status = -1;
-  std::string output;
-};
-
-CliRun run_cli(const std::string& arguments) {
-  CliRun r;
-  FILE* pipe = popen((std::string(SNH_CLI_BINARY) + " " + arguments + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
 TEST(HonestResults, CommandLineShowsAndFailsOnInvertedElements) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("snh_honest_" + std::to_string(::getpid()));

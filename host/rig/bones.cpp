@@ -14,7 +14,8 @@ namespace {
 
 using Point = std::array<double, 3>;
 
-bool in_capsule(const Capsule& c, const Point& p) {
+// The squared distance from p to the capsule's axis segment.
+double capsule_axis_distance2(const Capsule& c, const Point& p) {
   double ab[3], ap[3];
   for (int d = 0; d < 3; ++d) {
     ab[d] = c.b[d] - c.a[d];
@@ -28,8 +29,10 @@ bool in_capsule(const Capsule& c, const Point& p) {
     const double off = ap[d] - along * ab[d];
     distance2 += off * off;
   }
-  return distance2 <= c.radius * c.radius;
+  return distance2;
 }
+
+bool in_capsule(const Capsule& c, const Point& p) { return capsule_axis_distance2(c, p) <= c.radius * c.radius; }
 
 // Axis-aligned bounds of a surface bone, to skip the winding number far away.
 struct Bounds {
@@ -105,22 +108,7 @@ double triangle_distance(const Point& p, const double* a, const double* b, const
   return at(vb / denom, vc / denom);
 }
 
-double capsule_axis_distance(const Capsule& c, const Point& p) {
-  double ab[3], ap[3];
-  for (int d = 0; d < 3; ++d) {
-    ab[d] = c.b[d] - c.a[d];
-    ap[d] = p[d] - c.a[d];
-  }
-  const double length2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
-  const double along =
-      length2 > 0.0 ? std::clamp((ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / length2, 0.0, 1.0) : 0.0;
-  double distance2 = 0.0;
-  for (int d = 0; d < 3; ++d) {
-    const double off = ap[d] - along * ab[d];
-    distance2 += off * off;
-  }
-  return std::sqrt(distance2);
-}
+double capsule_axis_distance(const Capsule& c, const Point& p) { return std::sqrt(capsule_axis_distance2(c, p)); }
 
 }  // namespace
 
