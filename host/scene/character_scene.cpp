@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "scene/scene_progress.h"
 #include "snh/error.h"
 
 namespace snh::scene_io {
@@ -94,22 +95,8 @@ SceneRun run_character_scene(const SceneFile& file, const SolveOptions& options,
                            [&](const CharacterFrame& f, const std::vector<double>& x,
                                const std::vector<double>& surface, const std::vector<double>&) {
                              const FrameRecord& r = f.record;
-                             if (run.progress) {
-                               SceneProgress p;
-                               p.frame = true;
-                               p.index = ++done;
-                               p.count = frames;
-                               p.newton_iterations = r.newton_iterations;
-                               p.cg_iterations = r.cg_iterations;
-                               p.residual_norm = r.residual_norm;
-                               p.status = r.status;
-                               p.seconds = r.seconds;
-                               p.time = r.time;
-                               p.min_j = r.min_j;
-                               run.progress(p);
-                             } else {
-                               ++done;
-                             }
+                             ++done;
+                             if (run.progress) run.progress(frame_progress(r, done, frames));
                              for (const SceneStepWriter& w : run.writers)
                                if (w) w(r.frame, r.time, x, surface);
                              return done < frames;

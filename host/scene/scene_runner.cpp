@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "scene/character_scene.h"
+#include "scene/scene_progress.h"
 #include "snh/error.h"
 #include "snh/scene.h"
 #include "snh/shape.h"
@@ -57,20 +58,7 @@ SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const
   out.frames = run_frames(simulation, animation, embedding, frame_options,
                           [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>& surface) {
                             if (run.progress) {
-                              SceneProgress p;
-                              p.frame = true;
-                              p.index = r.frame + 1;
-                              p.count = frames;
-                              p.newton_iterations = r.newton_iterations;
-                              p.cg_iterations = r.cg_iterations;
-                              p.residual_norm = r.residual_norm;
-                              p.status = r.status;
-                              p.seconds = r.seconds;
-                              p.time = r.time;
-                              p.min_j = r.min_j;
-                              p.inverted_elements = r.inverted_elements;
-                              p.warnings = r.warnings;
-                              run.progress(p);
+                              run.progress(scene_io::frame_progress(r, r.frame + 1, frames));
                             }
                             write_all(run, r.frame, r.time, x, surface);
                             return true;
