@@ -69,7 +69,7 @@ for f in "${targets[@]}"; do
       host/rig/bone_transform.cpp ;;
     scene)
       [ -f build/libsnh.a ] || { echo "fuzz: build/libsnh.a is missing: build the library first" >&2; exit 1; }
-      link_after=(build/libsnh.a -lOpenCL)
+      link_after=(build/libsnh.a -lOpenCL -lassimp)
       link scene fuzz/fuzz_load_scene.cpp -DSNH_DATA_DIR="\"$PWD/data\"" -- "${scene_sources[@]}"
       link_after=() ;;
     *) echo "fuzz: unknown target $f" >&2; exit 2 ;;
