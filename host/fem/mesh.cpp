@@ -10,6 +10,7 @@
 
 #include "fem/rest_state.h"
 #include "snh/error.h"
+#include "snh/surface.h"
 #include "solver/name_table.h"
 
 namespace snh {
@@ -156,6 +157,17 @@ void check_lattice(int nx, int ny, int nz, double h, const std::array<double, 3>
         << "xyz"[d] << " coordinate is not finite (" << origin[d] << ")";
       throw Error(s.str());
     }
+  // The voxelizer's grid limit (VoxelizeOptions::max_grid_cells) holds for
+  // the generators too: a lattice beyond it (a typo such as a radius of 115
+  // for 1.15) is refused before anything is allocated.
+  const double cells = double(nx) * double(ny) * double(nz);
+  const int64_t max_cells = VoxelizeOptions{}.max_grid_cells;
+  if (cells > double(max_cells)) {
+    std::ostringstream s;
+    s << generator << ": a " << nx << " x " << ny << " x " << nz << " lattice has " << std::llround(cells)
+      << " cells, more than the limit of " << max_cells << "; use a larger cell size or a smaller body";
+    throw Error(s.str());
+  }
   const double vertices = (nx + 1.0) * (ny + 1.0) * (nz + 1.0);
   if (vertices > double(std::numeric_limits<int32_t>::max())) {
     std::ostringstream s;

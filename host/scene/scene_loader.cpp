@@ -70,9 +70,18 @@ Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path
         if (!m["cells"][i].is_number_integer()) r.fail("mesh.cells", "expected an array of 3 integers");
         n[i] = m["cells"][i].get<int>();
       }
-      mesh = make_box_lattice(n[0], n[1], n[2], h);
+      try {
+        mesh = make_box_lattice(n[0], n[1], n[2], h);
+      } catch (const Error& error) {
+        r.fail("mesh.cells", error.what());
+      }
     } else if (generator == "cylinder") {
-      mesh = make_voxel_cylinder(r.number(m, "mesh", "radius", 0.5), r.number(m, "mesh", "length", 2.0), h);
+      const double radius = r.number(m, "mesh", "radius", 0.5), length = r.number(m, "mesh", "length", 2.0);
+      try {
+        mesh = make_voxel_cylinder(radius, length, h);
+      } catch (const Error& error) {
+        r.fail("mesh.radius", error.what());
+      }
     } else {
       r.fail("mesh.generator", "expected box or cylinder, got '" + generator + "'");
     }
