@@ -1,10 +1,9 @@
 // libFuzzer entry point for the scene-file loader (snh/scene.h): the input
 // is written to scenes/fuzz.json in a private temporary folder whose
 // meshes/, surfaces/ and arm/ link to data/ (so that the seed scenes' files
-// resolve), then load_scene reads it. Anything but snh::Error escaping it
-// (a crash, a sanitizer report, another exception such as one of
-// nlohmann::json's, a hang) is a bug. SNH_DATA_DIR is the repository's
-// data/ folder.
+// resolve), then load_scene reads it; fuzz_entry.h says what counts as a
+// bug (also an exception such as one of nlohmann::json's). SNH_DATA_DIR is
+// the repository's data/ folder.
 #include <unistd.h>
 
 #include <cstddef>
@@ -14,7 +13,7 @@
 #include <fstream>
 #include <string>
 
-#include "snh/error.h"
+#include "fuzz_entry.h"
 #include "snh/scene.h"
 
 #ifndef SNH_DATA_DIR
@@ -39,15 +38,12 @@ std::string scene_path() {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string path = scene_path();
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  }
-  try {
+  return snh::fuzz::read_input(data, size, [](const std::string& input) {
+    const std::string path = scene_path();
+    {
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);
+      out << input;
+    }
     snh::load_scene(path);
-  } catch (const snh::Error&) {
-    // The documented outcome for bad input.
-  }
-  return 0;
+  });
 }
