@@ -30,6 +30,7 @@
 #include "snh/selection.h"
 #include "support/errors.h"
 #include "support/lattices.h"
+#include "support/scratch.h"
 
 namespace snh {
 namespace {
@@ -45,12 +46,7 @@ namespace fs = std::filesystem;
 const fs::path kData = fs::path(SNH_DATA_DIR) / "meshes";
 
 // A fresh folder for the files a test writes.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("snh_mesh_io_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return test::scratch_dir("snh_mesh_io", name); }
 
 std::string read_error(const fs::path& path) {
   return error_of([&] { read_mesh(path.string()); });

@@ -17,6 +17,7 @@
 #include "snh/error.h"
 #include "snh/surface.h"
 #include "support/errors.h"
+#include "support/scratch.h"
 #include "surface_shapes.h"
 
 namespace snh {
@@ -30,12 +31,7 @@ namespace fs = std::filesystem;
 #error "SNH_DATA_DIR must name the data/ folder"
 #endif
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("snh_surface_io_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return test::scratch_dir("snh_surface_io", name); }
 
 fs::path write_text(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
