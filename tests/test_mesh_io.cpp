@@ -28,6 +28,7 @@
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
 #include "snh/selection.h"
+#include "support/data_dir.h"
 #include "support/errors.h"
 #include "support/lattices.h"
 #include "support/scratch.h"
@@ -39,11 +40,7 @@ using test::error_of;
 
 namespace fs = std::filesystem;
 
-#ifndef SNH_DATA_DIR
-#error "SNH_DATA_DIR must name the data/ folder"
-#endif
-
-const fs::path kData = fs::path(SNH_DATA_DIR) / "meshes";
+const fs::path kData = test::data_dir() / "meshes";
 
 // A fresh folder for the files a test writes.
 fs::path scratch(const std::string& name) { return test::scratch_dir("snh_mesh_io", name); }

@@ -16,6 +16,7 @@
 
 #include "snh/error.h"
 #include "snh/surface.h"
+#include "support/data_dir.h"
 #include "support/errors.h"
 #include "support/scratch.h"
 #include "surface_shapes.h"
@@ -26,10 +27,6 @@ namespace {
 using test::error_of;
 
 namespace fs = std::filesystem;
-
-#ifndef SNH_DATA_DIR
-#error "SNH_DATA_DIR must name the data/ folder"
-#endif
 
 fs::path scratch(const std::string& name) { return test::scratch_dir("snh_surface_io", name); }
 
@@ -189,7 +186,7 @@ TEST(SurfaceReaders, StlAsciiAndBinaryMergeCoincidentCorners) {
 }
 
 TEST(SurfaceReaders, DataFilesFromGmshAndMeshioAgree) {
-  const fs::path data = fs::path(SNH_DATA_DIR) / "surfaces";
+  const fs::path data = test::data_dir() / "surfaces";
   const TriangleSurface ascii = read_surface((data / "sphere.stl").string());
   EXPECT_EQ(ascii.vertex_count(), 192u);
   EXPECT_EQ(ascii.triangle_count(), 380u);
