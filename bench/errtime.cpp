@@ -29,6 +29,7 @@
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
+#include "warm_up.h"
 
 namespace snh::bench {
 namespace {
@@ -240,19 +241,12 @@ Series run_device_series(const Scene& scene, const SceneParameters& parameters, 
   options.preconditioner = preconditioner;
   try {
     {
-      // Warm-up on a small copy of the scene (same kernel specialization):
-      // one Newton iteration compiles the element kernels and ViennaCL's
-      // into pocl's cache, so that the timed solve loads them instead of
-      // compiling them. (Each solver has its own OpenCL context; loading
-      // its programs stays in the timings, as in any solve.)
       SceneParameters small = parameters;
       small.resolution = std::min(parameters.resolution, 3);
       const Scene tiny = make_scene(scene.name, small);
       SolveOptions warm = options;
       warm.initial_positions = tiny.options.initial_positions;
-      warm.max_newton_iterations = 1;
-      warm.load_steps = 1;
-      QuasistaticSolver(tiny.mesh, tiny.material, tiny.constraints, warm).solve();
+      warm_up_kernels(tiny, warm);
     }
     Recorder recorder(scene, ref);
     options.on_iteration = [&recorder](const NewtonIteration& rec, const std::vector<double>& x) { recorder(rec, x); };

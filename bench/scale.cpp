@@ -22,6 +22,7 @@
 #include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
+#include "warm_up.h"
 
 namespace snh::bench {
 namespace {
@@ -79,16 +80,8 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
   r.load_steps = scene.options.load_steps;
   try {
     const SolveOptions options = solve_options(scene, o, parse_preconditioner(preconditioner));
-    {
-      // Warm-up on a small copy (same kernels): one Newton iteration
-      // compiles the element kernels and ViennaCL's into pocl's cache, so
-      // that the timed solve does not compile them (as errtime does).
-      const Scene tiny = make_scene(name, scene_parameters(std::min(resolution, 3), o));
-      SolveOptions warm = solve_options(tiny, o, options.preconditioner);
-      warm.max_newton_iterations = 1;
-      warm.load_steps = 1;
-      QuasistaticSolver(tiny.mesh, tiny.material, tiny.constraints, warm).solve();
-    }
+    const Scene tiny = make_scene(name, scene_parameters(std::min(resolution, 3), o));
+    warm_up_kernels(tiny, solve_options(tiny, o, options.preconditioner));
     QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
     const SolveResult result = solver.solve();
     for (const StepResult& s : result.steps) {
