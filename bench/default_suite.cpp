@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "errtime.h"
+#include "record_writer.h"
 #include "reference/element_reference.h"
 #include "scale.h"
 #include "snh/device.h"
@@ -126,9 +127,8 @@ int run_element_check(const std::string& out_dir, int samples, json& summary_out
   summary["samples"] = samples;
   summary["error_metric"] =
       "max over F of ||X_device - X_reference||_F / max(||X_reference||_F, mu); reference: host, double";
-  std::ostringstream md;
-  md << "| precision | barrier | F per second | max rel. error P | max rel. error H | all finite |\n"
-     << "|---|---|---|---|---|---|\n";
+  Table table;
+  table.columns = {"precision", "barrier", "F per second", "max rel. error P", "max rel. error H", "all finite"};
   std::cout << "element kernel on " << device_name << " (" << samples << " deformation gradients per case)\n";
   std::cout << std::left << std::setw(10) << "precision" << std::setw(9) << "barrier" << std::setw(14) << "F/s"
             << std::setw(14) << "err P" << std::setw(14) << "err H"
@@ -146,14 +146,13 @@ int run_element_check(const std::string& out_dir, int samples, json& summary_out
     std::cout << std::left << std::setw(10) << c.precision << std::setw(9) << (c.barrier ? "on" : "off")
               << std::setw(14) << std::setprecision(4) << rate << std::setw(14) << std::setprecision(3)
               << c.max_error_pk1 << std::setw(14) << c.max_error_hessian << (c.all_finite ? "yes" : "NO") << '\n';
-    md << "| " << c.precision << " | " << (c.barrier ? "on" : "off") << " | " << std::setprecision(4) << rate << " | "
-       << std::setprecision(3) << c.max_error_pk1 << " | " << c.max_error_hessian << " | "
-       << (c.all_finite ? "yes" : "NO") << " |\n";
+    table.add_row({c.precision, c.barrier ? "on" : "off", number(rate, 4), number(c.max_error_pk1, 3),
+                   number(c.max_error_hessian, 3), c.all_finite ? "yes" : "NO"});
   }
-  std::ofstream(out_dir + "/element.json") << summary.dump(2) << '\n';
-  std::ofstream(out_dir + "/element.md") << "# Element kernel\n\nDevice: " << device_name << "\n\n" << md.str();
+  write_json(out_dir + "/element.json", summary);
+  write_text(out_dir + "/element.md", "# Element kernel\n\nDevice: " + device_name + "\n\n" + markdown_text(table));
   summary_out = summary;
-  md_out = md.str();
+  md_out = markdown_text(table);
   bool ok = !cases.empty();
   for (const CaseResult& c : cases) ok = ok && c.all_finite;
   return ok ? 0 : 1;
@@ -219,15 +218,12 @@ int run_default_suite(const std::string& out_dir, int samples, bool quick) {
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary["suite_seconds"] = seconds;
-  std::ofstream(out_dir + "/summary.json") << summary.dump(2) << '\n';
-  std::ofstream(out_dir + "/summary.md") << "# snh-gpu-bench default suite\n\nDevice: "
-                                         << summary["element"].value("device", std::string("?")) << "; "
-                                         << std::setprecision(3) << seconds << " s in all.\n\n## Element kernel\n\n"
-                                         << element_md << "\n"
-                                         << read_file(out_dir + "/throughput.md") << "\n"
-                                         << read_file(out_dir + "/specialization.md") << "\n"
-                                         << read_file(out_dir + "/errtime.md") << "\n"
-                                         << read_file(out_dir + "/scale.md");
+  write_json(out_dir + "/summary.json", summary);
+  write_text(out_dir + "/summary.md",
+             "# snh-gpu-bench default suite\n\nDevice: " + summary["element"].value("device", std::string("?")) + "; " +
+                 number(seconds, 3) + " s in all.\n\n## Element kernel\n\n" + element_md + "\n" +
+                 read_file(out_dir + "/throughput.md") + "\n" + read_file(out_dir + "/specialization.md") + "\n" +
+                 read_file(out_dir + "/errtime.md") + "\n" + read_file(out_dir + "/scale.md"));
   std::cout << "wrote " << out_dir
             << "/summary.{json,md} (and element, throughput, specialization, errtime, scale files) in "
             << std::setprecision(3) << seconds << " s\n";

@@ -22,12 +22,14 @@
 #include <utility>
 
 #include "commands.h"
+#include "enum_names.h"
 #include "host_baseline.h"
 #include "record_writer.h"
 #include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
+#include "warm_up.h"
 
 namespace snh::bench {
 namespace {
@@ -239,19 +241,12 @@ Series run_device_series(const Scene& scene, const SceneParameters& parameters, 
   options.preconditioner = preconditioner;
   try {
     {
-      // Warm-up on a small copy of the scene (same kernel specialization):
-      // one Newton iteration compiles the element kernels and ViennaCL's
-      // into pocl's cache, so that the timed solve loads them instead of
-      // compiling them. (Each solver has its own OpenCL context; loading
-      // its programs stays in the timings, as in any solve.)
       SceneParameters small = parameters;
       small.resolution = std::min(parameters.resolution, 3);
       const Scene tiny = make_scene(scene.name, small);
       SolveOptions warm = options;
       warm.initial_positions = tiny.options.initial_positions;
-      warm.max_newton_iterations = 1;
-      warm.load_steps = 1;
-      QuasistaticSolver(tiny.mesh, tiny.material, tiny.constraints, warm).solve();
+      warm_up_kernels(tiny, warm);
     }
     Recorder recorder(scene, ref);
     options.on_iteration = [&recorder](const NewtonIteration& rec, const std::vector<double>& x) { recorder(rec, x); };
@@ -325,23 +320,7 @@ double best_residual(const Series& s, int last_step) {
   return best;
 }
 
-std::string fmt(double v, int digits = 3) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream s;
-  s << std::setprecision(digits) << v;
-  return s.str();
-}
-
-std::string fmt_seconds(const std::optional<double>& v) { return v ? fmt(*v, 3) : "never"; }
-
-std::string thousands(long long n) {
-  std::string digits = std::to_string(n), out;
-  for (size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
+std::string fmt_seconds(const std::optional<double>& v) { return v ? significant(*v, 3) : "never"; }
 
 // "21 + 22" for up to two load steps (the paper's twist reports per step), else the total.
 std::string per_step(const Series& s, bool cg) {
@@ -462,11 +441,11 @@ int default_errtime_resolution(const std::string& scene) {
   return 0;
 }
 
-int run_errtime(const ErrtimeOptions& o) {
-  const auto start = Clock::now();
-  std::filesystem::create_directories(o.out_dir);
+namespace {
+
+// Every scene's reference and series; `device` the references' device.
+std::vector<SceneRun> run_errtime_series(const ErrtimeOptions& o, std::string& device) {
   std::vector<SceneRun> runs;
-  std::string device;
   for (const std::string& name : o.scenes) {
     SceneRun run;
     SceneParameters p;
@@ -475,7 +454,7 @@ int run_errtime(const ErrtimeOptions& o) {
     p.youngs_modulus = o.youngs_modulus;
     p.poisson_ratio = o.poisson_ratio;
     p.seed = o.seed;
-    p.element_type = o.element == "tet4" ? ElementType::tet4 : ElementType::hex8;
+    p.element_type = cli::element_type_named(o.element);
     run.scene = make_scene(name, p);
     const Scene& scene = run.scene;
     std::cerr << "errtime: " << name << " (" << scene.mesh.element_count() << " " << to_string(scene.mesh.type) << ", "
@@ -519,24 +498,23 @@ int run_errtime(const ErrtimeOptions& o) {
     }
     runs.push_back(std::move(run));
   }
+  return runs;
+}
 
+// errtime.csv, errtime.json and errtime.md from the runs.
+void write_errtime(const ErrtimeOptions& o, const std::string& device, const std::vector<SceneRun>& runs) {
   // CSV: one row per step start and per Newton update.
-  {
-    std::ostringstream csv;
-    csv << "scene,series,precision,preconditioner,step,newton_iteration,newton_total,cg_total,seconds,residual,error,"
-           "projected\n";
-    csv << std::setprecision(9);
-    for (const SceneRun& run : runs)
-      for (const Series& s : run.series)
-        for (const Row& r : s.rows) {
-          csv << run.scene.name << ',' << s.name << ',' << s.precision << ',' << s.preconditioner << ',' << r.step
-              << ',' << r.newton_iteration << ',' << r.newton_total << ',' << r.cg_total << ',' << r.seconds << ','
-              << r.residual << ',' << r.error << ',';
-          if (r.projected >= 0) csv << r.projected;
-          csv << '\n';
-        }
-    write_text(o.out_dir + "/errtime.csv", csv.str());
-  }
+  Table csv;
+  csv.columns = {"scene",        "series",   "precision", "preconditioner", "step",  "newton_iteration",
+                 "newton_total", "cg_total", "seconds",   "residual",       "error", "projected"};
+  for (const SceneRun& run : runs)
+    for (const Series& s : run.series)
+      for (const Row& r : s.rows)
+        csv.add_row({run.scene.name, s.name, s.precision, s.preconditioner, std::to_string(r.step),
+                     std::to_string(r.newton_iteration), std::to_string(r.newton_total), std::to_string(r.cg_total),
+                     csv_number(r.seconds), csv_number(r.residual), csv_number(r.error),
+                     r.projected >= 0 ? std::to_string(r.projected) : std::string()});
+  write_text(o.out_dir + "/errtime.csv", csv_text(csv));
 
   // JSON summary.
   json summary;
@@ -578,72 +556,83 @@ int run_errtime(const ErrtimeOptions& o) {
   md << "# snh-gpu-bench errtime\n\n"
      << "Device: " << device << ". E = " << o.youngs_modulus << ", nu = " << o.poisson_ratio << ", product "
      << o.variant << ", Hessian " << o.hessian << ".\n\n"
-     << "Series stop at an absolute residual of " << fmt(o.absolute_tolerance)
+     << "Series stop at an absolute residual of " << significant(o.absolute_tolerance)
      << " (or when they stagnate at their precision floor). References: double, block-Jacobi, adaptive Hessian, "
         "solved to a relative residual of "
-     << fmt(o.reference_tolerance) << " per load step.\n\n"
+     << significant(o.reference_tolerance) << " per load step.\n\n"
      << "- t(r <= x): " << kTimeDefinition << ".\n"
      << "- error: " << kErrorMetric << ".\n"
      << "- Newton and CG: per load step when the scene has two (as the paper reports the twist), else totals.\n\n"
-     << "## References\n\n"
-     << "| scene | res | elements / dofs | steps | Newton | CG | wall s | worst reached relative residual | status |\n"
-     << "|---|---|---|---|---|---|---|---|---|\n";
+     << "## References\n\n";
+  Table references;
+  references.columns = {"scene",  "res", "elements / dofs", "steps",
+                        "Newton", "CG",  "wall s",          "worst reached relative residual",
+                        "status"};
   for (const SceneRun& run : runs) {
-    md << "| " << run.scene.name << " | " << run.resolution << " | "
-       << thousands(static_cast<long long>(run.scene.mesh.element_count())) << " / "
-       << thousands(static_cast<long long>(3 * run.scene.mesh.vertex_count())) << " | " << run.scene.options.load_steps
-       << " | ";
+    std::vector<std::string> row{run.scene.name, std::to_string(run.resolution),
+                                 thousands(static_cast<long long>(run.scene.mesh.element_count())) + " / " +
+                                     thousands(static_cast<long long>(3 * run.scene.mesh.vertex_count())),
+                                 std::to_string(run.scene.options.load_steps)};
     if (!run.skipped.empty()) {
-      md << "- | - | - | - | skipped: " << run.skipped << " |\n";
-      continue;
+      row.insert(row.end(), {"-", "-", "-", "-", "skipped: " + run.skipped});
+    } else {
+      Series as_series;
+      as_series.steps = run.reference.result.steps;
+      row.insert(row.end(),
+                 {per_step(as_series, false), per_step(as_series, true), significant(run.reference.result.seconds),
+                  significant(worst_reached(run.reference), 2), stop_status(as_series)});
     }
-    Series as_series;
-    as_series.steps = run.reference.result.steps;
-    md << per_step(as_series, false) << " | " << per_step(as_series, true) << " | " << fmt(run.reference.result.seconds)
-       << " | " << fmt(worst_reached(run.reference), 2) << " | " << stop_status(as_series) << " |\n";
+    references.add_row(std::move(row));
   }
-  md << "\n## Series\n\n"
-     << "| scene | series | Newton | CG | wall s | t(r <= 1e-2) s | t(r <= 1e-4) s | t(r <= 1e-6) s | final residual "
-        "| final error | stop | paper |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  Table series;
+  series.columns = {"scene",          "series",         "Newton",         "CG",          "wall s", "t(r <= 1e-2) s",
+                    "t(r <= 1e-4) s", "t(r <= 1e-6) s", "final residual", "final error", "stop",   "paper"};
   for (const SceneRun& run : runs) {
     if (!run.skipped.empty()) continue;
     const int last = run.scene.options.load_steps;
     bool first = true;
     for (const Series& s : run.series) {
-      md << "| " << run.scene.name << " | " << s.name << " | ";
-      if (!s.skipped.empty()) {
-        md << "- | - | - | - | - | - | - | - | skipped: " << s.skipped << " | " << (first ? paper_figures(run) : "")
-           << " |\n";
-      } else {
-        md << per_step(s, false) << " | " << per_step(s, true) << " | " << fmt(s.seconds) << " | "
-           << fmt_seconds(time_to(s, last, 1e-2)) << " | " << fmt_seconds(time_to(s, last, 1e-4)) << " | "
-           << fmt_seconds(time_to(s, last, 1e-6)) << " | " << fmt(s.rows.back().residual, 2) << " | "
-           << fmt(s.rows.back().error, 2) << " | " << stop_status(s) << " | " << (first ? paper_figures(run) : "")
-           << " |\n";
-      }
+      const std::string paper = first ? paper_figures(run) : "";
+      if (!s.skipped.empty())
+        series.add_row(
+            {run.scene.name, s.name, "-", "-", "-", "-", "-", "-", "-", "-", "skipped: " + s.skipped, paper});
+      else
+        series.add_row({run.scene.name, s.name, per_step(s, false), per_step(s, true), significant(s.seconds),
+                        fmt_seconds(time_to(s, last, 1e-2)), fmt_seconds(time_to(s, last, 1e-4)),
+                        fmt_seconds(time_to(s, last, 1e-6)), significant(s.rows.back().residual, 2),
+                        significant(s.rows.back().error, 2), stop_status(s), paper});
       first = false;
     }
   }
-  md << "\n## Where the time went\n\n"
-     << "Seconds per phase of each series' solve (SolveProfile; callbacks excluded, so `total` may exceed the wall "
-        "seconds above by the final statistics). host-eigen: Eigen's CG solve is one call whose parts cannot be told "
-        "apart; its time is in `other`.\n\n"
-     << "| scene | series";
-  for (const auto& part : profile_parts(SolveProfile{})) md << " | " << part.first;
-  md << " |\n|---|---";
-  for (size_t k = 0; k < profile_parts(SolveProfile{}).size(); ++k) md << "|---";
-  md << "|\n";
+  Table phases;
+  phases.columns = {"scene", "series"};
+  for (const auto& part : profile_parts(SolveProfile{})) phases.columns.push_back(part.first);
   for (const SceneRun& run : runs) {
     if (!run.skipped.empty()) continue;
     for (const Series& s : run.series) {
       if (!s.skipped.empty()) continue;
-      md << "| " << run.scene.name << " | " << s.name;
-      for (const auto& part : profile_parts(s.profile)) md << " | " << fmt(part.second);
-      md << " |\n";
+      std::vector<std::string> row{run.scene.name, s.name};
+      for (const auto& part : profile_parts(s.profile)) row.push_back(significant(part.second));
+      phases.add_row(std::move(row));
     }
   }
+  md << markdown_text(references) << "\n## Series\n\n"
+     << markdown_text(series) << "\n## Where the time went\n\n"
+     << "Seconds per phase of each series' solve (SolveProfile; callbacks excluded, so `total` may exceed the wall "
+        "seconds above by the final statistics). host-eigen: Eigen's CG solve is one call whose parts cannot be told "
+        "apart; its time is in `other`.\n\n"
+     << markdown_text(phases);
   write_text(o.out_dir + "/errtime.md", md.str());
+}
+
+}  // namespace
+
+int run_errtime(const ErrtimeOptions& o) {
+  const auto start = Clock::now();
+  std::filesystem::create_directories(o.out_dir);
+  std::string device;
+  const std::vector<SceneRun> runs = run_errtime_series(o, device);
+  write_errtime(o, device, runs);
 
   // Short table on stdout.
   std::cout << std::left << std::setw(10) << "scene" << std::setw(20) << "series" << std::setw(8) << "newton"
@@ -657,10 +646,11 @@ int run_errtime(const ErrtimeOptions& o) {
       any = true;
       const int last = run.scene.options.load_steps;
       std::cout << std::left << std::setw(10) << run.scene.name << std::setw(20) << s.name << std::setw(8)
-                << total_newton(s) << std::setw(8) << total_cg(s) << std::setw(9) << fmt(s.seconds) << std::setw(9)
-                << fmt_seconds(time_to(s, last, 1e-2)) << std::setw(9) << fmt_seconds(time_to(s, last, 1e-4))
-                << std::setw(9) << fmt_seconds(time_to(s, last, 1e-6)) << std::setw(11)
-                << fmt(s.rows.back().residual, 2) << fmt(s.rows.back().error, 2) << '\n';
+                << total_newton(s) << std::setw(8) << total_cg(s) << std::setw(9) << significant(s.seconds)
+                << std::setw(9) << fmt_seconds(time_to(s, last, 1e-2)) << std::setw(9)
+                << fmt_seconds(time_to(s, last, 1e-4)) << std::setw(9) << fmt_seconds(time_to(s, last, 1e-6))
+                << std::setw(11) << significant(s.rows.back().residual, 2) << significant(s.rows.back().error, 2)
+                << '\n';
     }
   if (o.plots) draw_plots("errtime", "plot_errtime.py", o.out_dir + "/errtime.csv", o.out_dir);
   std::cout << "wrote " << o.out_dir << "/errtime.csv, errtime.json, errtime.md (" << std::setprecision(3)
@@ -681,27 +671,27 @@ void add_errtime_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember(lattice_scene_names()))
       ->capture_default_str();
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
-      ->check(CLI::IsMember({"hex8", "tet4"}))
+      ->check(CLI::IsMember(cli::element_type_names()))
       ->capture_default_str();
   cmd->add_option("--res", o->resolution,
                   "cells across each scene's thickness (0: stretch 6, twist 8, scramble 5, flex 3)")
       ->check(CLI::Range(0, 400))
       ->capture_default_str();
   cmd->add_option("--precision", o->precision, "float, double or both")
-      ->check(CLI::IsMember({"float", "double", "both"}))
+      ->check(CLI::IsMember(cli::names_with(cli::precision_names(), {"both"})))
       ->capture_default_str();
   cmd->add_option("--preconditioner", o->preconditioner,
                   "block-jacobi, multigrid (hex8 lattices), none, both (block-jacobi and none) or all three")
-      ->check(CLI::IsMember({"block-jacobi", "multigrid", "none", "both", "all"}))
+      ->check(CLI::IsMember(cli::names_with(cli::preconditioner_names(), {"both", "all"}, {"automatic"})))
       ->capture_default_str();
   cmd->add_option("--variant", o->variant,
                   "Hessian product of the device series: automatic (measured default), cached, recompute, "
                   "element-matrices, assembled (the reference always uses cached)")
-      ->check(CLI::IsMember({"automatic", "cached", "recompute", "element-matrices", "assembled"}))
+      ->check(CLI::IsMember(cli::product_variant_names()))
       ->capture_default_str();
   cmd->add_option("--hessian", o->hessian,
                   "projected (always the PSD projection) or adaptive (true Hessian near convergence)")
-      ->check(CLI::IsMember({"adaptive", "projected"}))
+      ->check(CLI::IsMember(cli::hessian_mode_names()))
       ->capture_default_str();
   cmd->add_option("--host-baseline", *host, "also solve on the host with Eigen (double) as series host-eigen: on, off")
       ->check(CLI::IsMember({"on", "off"}))

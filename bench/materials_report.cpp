@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "enum_names.h"
 #include "material_options.h"
+#include "record_writer.h"
 #include "reference/element_reference.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
@@ -65,13 +67,14 @@ int run_materials(const MaterialsOptions& o) {
   std::ostringstream md;
   md << "# Materials\n\nStretch scene (3.4x, resolution " << o.resolution << ", E = 1), volume change and CG "
      << "iterations per model and Poisson's ratio. Paper (nu = 0.49, 306,406 hexes): Stable Neo-Hookean +4.3%, "
-        "filtered Neo-Hookean +4.9%, fixed co-rotational +4.5%, co-rotational -83%.\n\n| model |";
-  for (double nu : o.poisson) md << " nu " << nu << " |";
-  md << "\n|---|";
-  for (size_t i = 0; i < o.poisson.size(); ++i) md << "---|";
-  md << '\n';
-  std::ofstream csv(o.out + "/materials_stretch.csv");
-  csv << "model,nu,converged,volume_change,cg_iterations,newton_iterations,min_j,inverted_elements,seconds\n";
+        "filtered Neo-Hookean +4.9%, fixed co-rotational +4.5%, co-rotational -83%.\n\n";
+  Table stretch;
+  stretch.columns = {"model"};
+  for (double nu : o.poisson) stretch.columns.push_back("nu " + number(nu, 6));
+  Table csv;
+  csv.columns = {
+      "model",  "nu", "converged", "volume_change", "cg_iterations", "newton_iterations", "min_j", "inverted_elements",
+      "seconds"};
   struct Row {
     std::string label;
     MaterialModel model;
@@ -95,7 +98,7 @@ int run_materials(const MaterialsOptions& o) {
   }
   for (const Row& row : rows) {
     const std::string& name = row.label;
-    md << "| " << name << " |";
+    std::vector<std::string> cells{name};
     for (double nu : o.poisson) {
       SceneParameters p;
       p.resolution = o.resolution;
@@ -119,8 +122,9 @@ int run_materials(const MaterialsOptions& o) {
         c << std::showpos << std::fixed << std::setprecision(1) << change << "%" << std::noshowpos << ", " << cg
           << " CG" << (r.converged ? "" : " (not converged)");
         cell = c.str();
-        csv << '"' << name << "\"," << nu << ',' << r.converged << ',' << change << ',' << cg << ',' << newton << ','
-            << r.min_j << ',' << r.inverted_elements << ',' << r.seconds << '\n';
+        csv.add_row({'"' + name + '"', number(nu, 6), r.converged ? "1" : "0", number(change, 6), std::to_string(cg),
+                     std::to_string(newton), number(r.min_j, 6), std::to_string(r.inverted_elements),
+                     number(r.seconds, 6)});
         report["stretch"].push_back({{"model", name},
                                      {"nu", nu},
                                      {"converged", r.converged},
@@ -132,15 +136,17 @@ int run_materials(const MaterialsOptions& o) {
       } catch (const Error& e) {
         cell = std::string("error: ") + e.what();
       }
-      md << ' ' << cell << " |";
+      cells.push_back(cell);
       std::cerr << "  stretch " << name << " nu " << nu << ": " << cell << '\n';
     }
-    md << '\n';
+    stretch.add_row(std::move(cells));
   }
+  md << markdown_text(stretch);
+  write_text(o.out + "/materials_stretch.csv", csv_text(csv));
   // Uniaxial curves (host reference, double): per model, and per
   // nonlinearity setting for the hardening models.
-  std::ofstream curves(o.out + "/materials_uniaxial.csv");
-  curves << "curve,stretch,nominal_stress,lateral_stretch\n";
+  Table curves;
+  curves.columns = {"curve", "stretch", "nominal_stress", "lateral_stretch"};
   struct Curve {
     std::string label;
     Material material;
@@ -164,12 +170,12 @@ int run_materials(const MaterialsOptions& o) {
     for (int i = 0; i <= 60; ++i) {
       const double s = 0.5 + 2.5 * i / 60.0;
       const auto [stress, t] = uniaxial(c.material, s);
-      curves << '"' << c.label << "\"," << s << ',' << stress << ',' << t << '\n';
+      curves.add_row({'"' + c.label + '"', number(s, 6), number(stress, 6), number(t, 6)});
     }
-  curves.close();
+  write_text(o.out + "/materials_uniaxial.csv", csv_text(curves));
   // Chen and Barbic 2024, Fig. 3: each model's curve per alpha (same slope at stretch 1).
-  std::ofstream alpha_curves(o.out + "/materials_alpha.csv");
-  alpha_curves << "model,alpha,stretch,nominal_stress,lateral_stretch\n";
+  Table alpha_curves;
+  alpha_curves.columns = {"model", "alpha", "stretch", "nominal_stress", "lateral_stretch"};
   for (const std::string& name : o.models)
     for (double alpha : o.curve_alphas) {
       snh::MaterialOptions mo;
@@ -178,15 +184,16 @@ int run_materials(const MaterialsOptions& o) {
       for (int i = 0; i <= 60; ++i) {
         const double s = 0.5 + 2.5 * i / 60.0;
         const auto [stress, t] = uniaxial(m, s);
-        alpha_curves << name << ',' << alpha << ',' << s << ',' << stress << ',' << t << '\n';
+        alpha_curves.add_row({name, number(alpha, 6), number(s, 6), number(stress, 6), number(t, 6)});
       }
     }
-  alpha_curves.close();
-  std::ofstream(o.out + "/materials.json") << report.dump(2) << '\n';
-  std::ofstream(o.out + "/materials.md") << md.str() << "\nUniaxial force-stretch curves (E = 1, nu = 0.45): "
-                                         << "materials_uniaxial.csv, materials_uniaxial.png; per model and "
-                                         << "nonlinearity alpha (Chen and Barbic 2024, Fig. 3): materials_alpha.csv, "
-                                         << "materials_alpha.png.\n";
+  write_text(o.out + "/materials_alpha.csv", csv_text(alpha_curves));
+  write_json(o.out + "/materials.json", report);
+  write_text(o.out + "/materials.md", md.str() +
+                                          "\nUniaxial force-stretch curves (E = 1, nu = 0.45): "
+                                          "materials_uniaxial.csv, materials_uniaxial.png; per model and "
+                                          "nonlinearity alpha (Chen and Barbic 2024, Fig. 3): materials_alpha.csv, "
+                                          "materials_alpha.png.\n");
   std::cout << md.str();
   if (o.plots) {
     const std::string cmd = "/usr/bin/python3 " + std::string(SNH_BENCH_SCRIPT_DIR) + "/plot_materials.py " + o.out +
@@ -222,7 +229,7 @@ void add_materials_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--res", o->resolution, "stretch scene resolution")->capture_default_str();
   cmd->add_option("--precision", o->precision, "float or double")
-      ->check(CLI::IsMember({"float", "double"}))
+      ->check(CLI::IsMember(cli::precision_names()))
       ->capture_default_str();
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();

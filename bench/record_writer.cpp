@@ -1,9 +1,12 @@
 #include "record_writer.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "snh/error.h"
 
@@ -18,6 +21,64 @@ namespace {
 constexpr const char* kPython = "/usr/bin/python3";
 
 }  // namespace
+
+std::string csv_text(const Table& table) {
+  std::string out;
+  auto line = [&out](const std::vector<std::string>& cells) {
+    for (size_t k = 0; k < cells.size(); ++k) out += (k == 0 ? "" : ",") + cells[k];
+    out += '\n';
+  };
+  line(table.columns);
+  for (const auto& row : table.rows) line(row);
+  return out;
+}
+
+std::string markdown_text(const Table& table) {
+  std::string out;
+  auto line = [&out](const std::vector<std::string>& cells) {
+    out += '|';
+    for (const std::string& cell : cells) out += " " + cell + " |";
+    out += '\n';
+  };
+  line(table.columns);
+  for (size_t k = 0; k < table.columns.size(); ++k) out += "|---";
+  out += "|\n";
+  for (const auto& row : table.rows) line(row);
+  return out;
+}
+
+std::string number(double value, int digits) {
+  std::ostringstream s;
+  s << std::setprecision(digits) << value;
+  return s.str();
+}
+
+std::string significant(double value, int digits) { return std::isfinite(value) ? number(value, digits) : "-"; }
+
+std::string fixed_digits(double value, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << value;
+  return s.str();
+}
+
+std::string csv_number(double value) { return number(value, 9); }
+
+std::string thousands(long long n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+std::string mebibytes(size_t bytes) { return significant(static_cast<double>(bytes) / (1024.0 * 1024.0), 3); }
+
+std::string csv_quoted(std::string text) {
+  for (char& c : text)
+    if (c == '"') c = '\'';
+  return '"' + text + '"';
+}
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream file(path, std::ios::binary | std::ios::trunc);

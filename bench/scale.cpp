@@ -16,11 +16,13 @@
 #include <sstream>
 
 #include "commands.h"
+#include "enum_names.h"
 #include "product_precision_flag.h"
 #include "record_writer.h"
 #include "scene/profile_json.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
+#include "warm_up.h"
 
 namespace snh::bench {
 namespace {
@@ -42,7 +44,7 @@ SceneParameters scene_parameters(int resolution, const ScaleOptions& o) {
   p.poisson_ratio = o.poisson_ratio;
   // Float resolves J - alpha only to about FLT_EPSILON lambda / mu: its
   // stopping strain is 1e-4, as `scene --precision float` uses.
-  if (o.precision == "float") p.strain_tolerance = 1e-4;
+  if (parse_precision(o.precision) == Precision::single) p.strain_tolerance = 1e-4;
   return p;
 }
 
@@ -78,16 +80,8 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
   r.load_steps = scene.options.load_steps;
   try {
     const SolveOptions options = solve_options(scene, o, parse_preconditioner(preconditioner));
-    {
-      // Warm-up on a small copy (same kernels): one Newton iteration
-      // compiles the element kernels and ViennaCL's into pocl's cache, so
-      // that the timed solve does not compile them (as errtime does).
-      const Scene tiny = make_scene(name, scene_parameters(std::min(resolution, 3), o));
-      SolveOptions warm = solve_options(tiny, o, options.preconditioner);
-      warm.max_newton_iterations = 1;
-      warm.load_steps = 1;
-      QuasistaticSolver(tiny.mesh, tiny.material, tiny.constraints, warm).solve();
-    }
+    const Scene tiny = make_scene(name, scene_parameters(std::min(resolution, 3), o));
+    warm_up_kernels(tiny, solve_options(tiny, o, options.preconditioner));
     QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
     const SolveResult result = solver.solve();
     for (const StepResult& s : result.steps) {
@@ -114,24 +108,6 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
   }
   return r;
 }
-
-std::string fmt(double v, int digits = 3) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream s;
-  s << std::setprecision(digits) << v;
-  return s.str();
-}
-
-std::string thousands(long long n) {
-  std::string digits = std::to_string(n), out;
-  for (size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
-std::string mebibytes(size_t bytes) { return fmt(static_cast<double>(bytes) / (1024.0 * 1024.0), 3); }
 
 json record_json(const ScaleRecord& r) {
   json j;
@@ -218,8 +194,8 @@ std::vector<ScaleRecord> run_scale(const ScaleOptions& o) {
         if (!r.skipped.empty())
           std::cerr << "skipped: " << r.skipped << '\n';
         else
-          std::cerr << r.newton_iterations << " Newton, " << fmt(r.cg_per_newton) << " CG per Newton, "
-                    << fmt(r.seconds_per_step) << " s per step (" << r.status << ")\n";
+          std::cerr << r.newton_iterations << " Newton, " << significant(r.cg_per_newton) << " CG per Newton, "
+                    << significant(r.seconds_per_step) << " s per step (" << r.status << ")\n";
       }
   return records;
 }
@@ -258,29 +234,36 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
   const std::vector<std::pair<std::string, double>> parts = profile_parts(SolveProfile{});
 
   // CSV: one row per record; skipped rows keep their reason.
-  {
-    std::ostringstream csv;
-    csv << "scene,res,elements,dofs,preconditioner,newton_iterations,cg_per_newton,seconds_per_step,"
-           "device_memory_bytes,converged";
-    for (const auto& part : parts) csv << ",profile_" << part.first;
-    csv << ",skipped\n" << std::setprecision(9);
-    for (const ScaleRecord& r : records) {
-      csv << r.scene << ',' << r.resolution << ',' << r.elements << ',' << r.dofs << ',' << r.preconditioner << ',';
-      if (r.skipped.empty()) {
-        csv << r.newton_iterations << ',' << r.cg_per_newton << ',' << r.seconds_per_step << ','
-            << r.device_memory_bytes << ',' << (r.converged ? 1 : 0);
-        for (const auto& part : profile_parts(r.profile)) csv << ',' << part.second;
-        csv << ",\n";
-      } else {
-        std::string reason = r.skipped;
-        std::replace(reason.begin(), reason.end(), '"', '\'');
-        csv << ",,,,";
-        for (size_t k = 0; k < parts.size(); ++k) csv << ',';
-        csv << ",\"" << reason << "\"\n";
-      }
+  Table csv;
+  csv.columns = {"scene",
+                 "res",
+                 "elements",
+                 "dofs",
+                 "preconditioner",
+                 "newton_iterations",
+                 "cg_per_newton",
+                 "seconds_per_step",
+                 "device_memory_bytes",
+                 "converged"};
+  for (const auto& part : parts) csv.columns.push_back("profile_" + part.first);
+  csv.columns.push_back("skipped");
+  for (const ScaleRecord& r : records) {
+    std::vector<std::string> row{r.scene, std::to_string(r.resolution), std::to_string(r.elements),
+                                 std::to_string(r.dofs), r.preconditioner};
+    if (r.skipped.empty()) {
+      for (const std::string& cell :
+           {std::to_string(r.newton_iterations), csv_number(r.cg_per_newton), csv_number(r.seconds_per_step),
+            std::to_string(r.device_memory_bytes), std::string(r.converged ? "1" : "0")})
+        row.push_back(cell);
+      for (const auto& part : profile_parts(r.profile)) row.push_back(csv_number(part.second));
+      row.push_back("");
+    } else {
+      row.resize(csv.columns.size() - 1);
+      row.push_back(csv_quoted(r.skipped));
     }
-    write_text(o.out_dir + "/scale.csv", csv.str());
+    csv.add_row(std::move(row));
   }
+  write_text(o.out_dir + "/scale.csv", csv_text(csv));
 
   json summary;
   summary["command"] = "scale";
@@ -304,34 +287,37 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
      << "Device: " << (device.empty() ? "none ran" : device) << ". " << o.precision << ", E = " << o.youngs_modulus
      << ", nu = " << o.poisson_ratio
      << "; each scene's own load steps and tolerance (strain 1e-6 in double, 1e-4 in float).\n\n"
-     << "Paper: " << kPaper << ". Ours, same quantity (seconds per load step):\n\n"
-     << "| scene | res | elements | DOF | preconditioner | Newton | CG per Newton | s per step | device MiB | "
-        "converged |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|\n";
+     << "Paper: " << kPaper << ". Ours, same quantity (seconds per load step):\n\n";
+  Table runs;
+  runs.columns = {"scene",  "res",           "elements",   "DOF",        "preconditioner",
+                  "Newton", "CG per Newton", "s per step", "device MiB", "converged"};
   for (const ScaleRecord& r : records) {
-    md << "| " << r.scene << " | " << r.resolution << " | " << thousands(static_cast<long long>(r.elements)) << " | "
-       << thousands(static_cast<long long>(r.dofs)) << " | " << r.preconditioner << " | ";
+    std::vector<std::string> row{r.scene, std::to_string(r.resolution), thousands(static_cast<long long>(r.elements)),
+                                 thousands(static_cast<long long>(r.dofs)), r.preconditioner};
     if (!r.skipped.empty())
-      md << "- | - | - | - | skipped: " << r.skipped << " |\n";
+      row.insert(row.end(), {"-", "-", "-", "-", "skipped: " + r.skipped});
     else
-      md << r.newton_iterations << " | " << fmt(r.cg_per_newton) << " | " << fmt(r.seconds_per_step) << " | "
-         << mebibytes(r.device_memory_bytes) << " | " << (r.converged ? "yes" : "no (" + r.status + ")") << " |\n";
+      row.insert(row.end(),
+                 {std::to_string(r.newton_iterations), significant(r.cg_per_newton), significant(r.seconds_per_step),
+                  mebibytes(r.device_memory_bytes), r.converged ? "yes" : "no (" + r.status + ")"});
+    runs.add_row(std::move(row));
   }
-  md << "\n## Fitted slopes (seconds per step ~ DOF^slope)\n\n| scene | preconditioner | slope | points |\n"
-     << "|---|---|---|---|\n";
+  Table fitted;
+  fitted.columns = {"scene", "preconditioner", "slope", "points"};
   for (const ScaleSlope& s : slopes)
-    md << "| " << s.scene << " | " << s.preconditioner << " | " << fmt(s.slope, 3) << " | " << s.points << " |\n";
-  md << "\n## Where the time went (seconds, whole solve)\n\n| scene | res | preconditioner";
-  for (const auto& part : parts) md << " | " << part.first;
-  md << " |\n|---|---|---";
-  for (size_t k = 0; k < parts.size(); ++k) md << "|---";
-  md << "|\n";
+    fitted.add_row({s.scene, s.preconditioner, significant(s.slope, 3), std::to_string(s.points)});
+  Table phases;
+  phases.columns = {"scene", "res", "preconditioner"};
+  for (const auto& part : parts) phases.columns.push_back(part.first);
   for (const ScaleRecord& r : records) {
     if (!r.skipped.empty()) continue;
-    md << "| " << r.scene << " | " << r.resolution << " | " << r.preconditioner;
-    for (const auto& part : profile_parts(r.profile)) md << " | " << fmt(part.second);
-    md << " |\n";
+    std::vector<std::string> row{r.scene, std::to_string(r.resolution), r.preconditioner};
+    for (const auto& part : profile_parts(r.profile)) row.push_back(significant(part.second));
+    phases.add_row(std::move(row));
   }
+  md << markdown_text(runs) << "\n## Fitted slopes (seconds per step ~ DOF^slope)\n\n"
+     << markdown_text(fitted) << "\n## Where the time went (seconds, whole solve)\n\n"
+     << markdown_text(phases);
   write_text(o.out_dir + "/scale.md", md.str());
   if (o.plots) draw_plots("scale", "plot_scale.py", o.out_dir + "/scale.json", o.out_dir);
 }
@@ -353,8 +339,8 @@ int run_scale_command(const ScaleOptions& o) {
       continue;
     }
     any = true;
-    std::cout << std::setw(8) << r.newton_iterations << std::setw(10) << fmt(r.cg_per_newton) << std::setw(11)
-              << fmt(r.seconds_per_step) << std::setw(11) << mebibytes(r.device_memory_bytes)
+    std::cout << std::setw(8) << r.newton_iterations << std::setw(10) << significant(r.cg_per_newton) << std::setw(11)
+              << significant(r.seconds_per_step) << std::setw(11) << mebibytes(r.device_memory_bytes)
               << (r.converged ? "yes" : "no") << '\n';
   }
   std::cout << "wrote " << o.out_dir << "/scale.csv, scale.json, scale.md" << (o.plots ? ", scale.png" : "") << " ("
@@ -380,7 +366,7 @@ void add_scale_command(CLI::App& app, int& exit_code) {
                   "comma-separated: none, block-jacobi, multigrid (one that is not built or does not apply is "
                   "reported as skipped)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"none", "block-jacobi", "multigrid"}))
+      ->check(CLI::IsMember(cli::names_with(cli::preconditioner_names(), {}, {"automatic"})))
       ->capture_default_str();
   cmd->add_option("--max-dofs", o->max_dofs,
                   "grow the resolution past --res (DOF about x2 per row) while DOF <= N, e.g. 1000000 for the "
@@ -390,7 +376,7 @@ void add_scale_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--E", o->youngs_modulus, "Young's modulus")->capture_default_str();
   cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();
   cmd->add_option("--precision", o->precision, "float or double")
-      ->check(CLI::IsMember({"float", "double"}))
+      ->check(CLI::IsMember(cli::precision_names()))
       ->capture_default_str();
   cli::add_product_precision_option(cmd, o->product_precision);
   cmd->add_option("--cg-check-every", o->cg_check_every,

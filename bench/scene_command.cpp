@@ -9,6 +9,7 @@
 #include <string>
 
 #include "commands.h"
+#include "enum_names.h"
 #include "material_options.h"
 #include "product_precision_flag.h"
 #include "scene_run.h"
@@ -52,16 +53,12 @@ int run_scene(const SceneOptions& given) {
     // A scene file carries its own material and solver settings; --json,
     // --vtu and --surface on the command line override its outputs.
     const SceneFile f = load_scene(o.file);
-    if (f.embedded)
-      for (const std::string& warning : f.embedded->voxels.warnings) std::cerr << "warning: " << warning << "\n";
+    cli::warn_surface_defects(f);
     if (!o.outputs.surface_prefix.empty() && !f.embedded) throw Error("scene: --surface needs a scene with \"embed\"");
-    SolveOptions options = f.scene.options;
-    options.device.match = o.device;
     for (const char* flag : kSceneBuildingFlags)
       if (o.given.count(flag))
         throw Error(std::string("scene: ") + flag + " builds a named scene; with --file set it in the file");
-    o.solver.apply_to_file(f, options);
-    return cli::run_scene_file(f, options, o.outputs);
+    return cli::run_scene_file(f, o.solver.file_options(f, o.device), o.outputs);
   }
   if (!o.outputs.surface_prefix.empty()) throw Error("scene: --surface needs a scene file with \"embed\"");
   // The material the scene is meant to run with unless --E / --nu say otherwise.
@@ -76,7 +73,7 @@ int run_scene(const SceneOptions& given) {
   p.barrier = parse_barrier(o.barrier);
   p.steps = flags.steps;
   p.seed = o.seed;
-  p.element_type = o.element == "tet4" ? ElementType::tet4 : ElementType::hex8;
+  p.element_type = cli::element_type_named(o.element);
   p.strain_tolerance =
       o.strain_tolerance > 0.0 ? o.strain_tolerance : strain_tolerance_default(parse_precision(flags.precision));
   SceneFile f;
@@ -116,7 +113,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--res", o->resolution,
                   "cells across the scene's thickness (0: scene default; drop: 1 the coarse mesh, 2 the default)");
   cmd->add_option("--element", o->element, "hex8 (the paper's lattices) or tet4 (each lattice hex split in six)")
-      ->check(CLI::IsMember({"hex8", "tet4"}))
+      ->check(CLI::IsMember(cli::element_type_names()))
       ->capture_default_str();
   cmd->add_option("--E", o->youngs_modulus, "Young's modulus (default: the scene's; 1, drop 5e4 Pa)");
   cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio (default: the scene's; 0.49, drop 0.46)");

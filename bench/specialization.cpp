@@ -15,8 +15,10 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "enum_names.h"
 #include "fem/rest_state.h"
 #include "material_options.h"
+#include "record_writer.h"
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/simulation.h"
@@ -52,8 +54,18 @@ struct Timing {
   double energy = 0, residual = 0, linearize = 0, product = 0;  // seconds per call
 };
 
+// One element type, material and operation: seconds per call of each build.
+struct SpecializationRecord {
+  std::string element_type, material, operation;
+  size_t elements = 0;
+  double specialized = 0, general_material = 0, fully_general = 0, all_terms = 0;
+  bool bitwise_equal = false;
+  double all_terms_relative_difference = 0;
+};
+
 template <typename Real>
-int run(const SpecializationOptions& o, json& report, std::ostringstream& md) {
+int run(const SpecializationOptions& o, json& report, std::ostringstream& md,
+        std::vector<SpecializationRecord>& records) {
   const Precision precision = parse_precision(o.precision);
   device::OpenClContext cl(DeviceOptions{o.device}, precision);
   device::bind_viennacl(cl);
@@ -66,13 +78,12 @@ int run(const SpecializationOptions& o, json& report, std::ostringstream& md) {
      << "path and, on lattices, the shared rest shape fixed at build time), general material (model, barrier and "
      << "path read at run time), fully general (that and per-element rest data), all terms (specialized to the "
      << "model but always through the alpha/mixing parts, as a kernel carrying every term computes). Gains are "
-     << "time(build) / time(specialized): above 1 the specialization wins.\n\n"
-     << "| element | material | op | specialized ms | general material ms | fully general ms | all terms ms | "
-        "gain (material) | gain (all) | gain (terms) |\n|---|---|---|---|---|---|---|---|---|---|\n";
+     << "time(build) / time(specialized): above 1 the specialization wins.\n\n";
   int status = 0;
   for (const std::string& type : o.element_types) {
     const int n = o.size;
-    const Mesh mesh = type == "hex8" ? make_box_lattice(n, n, n, 1.0 / n) : make_tet_box(n, n, n, 1.0 / n);
+    const Mesh mesh = cli::element_type_named(type) == ElementType::hex8 ? make_box_lattice(n, n, n, 1.0 / n)
+                                                                         : make_tet_box(n, n, n, 1.0 / n);
     const fem::RestState rest = fem::compute_rest_state(mesh);
     const fem::RestState rest_general = per_element(rest, mesh.element_count());
     std::mt19937_64 rng(7);
@@ -124,22 +135,7 @@ int run(const SpecializationOptions& o, json& report, std::ostringstream& md) {
                                                               {"product (recompute)", &Timing::product}};
       for (const auto& [op, field] : ops) {
         const double s = t[0].*field, g = t[1].*field, a = t[2].*field, all = t[3].*field;
-        md << "| " << type << " | " << material.description() << " | " << op << " | " << std::fixed
-           << std::setprecision(3) << 1e3 * s << " | " << 1e3 * g << " | " << 1e3 * a << " | " << 1e3 * all << " | "
-           << std::setprecision(2) << g / s << " | " << a / s << " | " << all / s << " |\n";
-        report["rows"].push_back({{"element_type", type},
-                                  {"material", material.description()},
-                                  {"operation", op},
-                                  {"elements", mesh.element_count()},
-                                  {"specialized_ms", 1e3 * s},
-                                  {"general_material_ms", 1e3 * g},
-                                  {"fully_general_ms", 1e3 * a},
-                                  {"all_terms_ms", 1e3 * all},
-                                  {"gain_material", g / s},
-                                  {"gain_all", a / s},
-                                  {"gain_terms", all / s},
-                                  {"bitwise_equal", same},
-                                  {"all_terms_relative_difference", parts_error}});
+        records.push_back({type, material.description(), op, mesh.element_count(), s, g, a, all, same, parts_error});
       }
       std::cerr << "  " << type << " " << material.description() << ": linearize gain " << std::fixed
                 << std::setprecision(2) << t[1].linearize / t[0].linearize << " (material), "
@@ -156,7 +152,33 @@ int run_specialization(const SpecializationOptions& o) {
   std::filesystem::create_directories(o.out);
   json report;
   std::ostringstream md;
-  const int status = o.precision == "float" ? run<float>(o, report, md) : run<double>(o, report, md);
+  std::vector<SpecializationRecord> records;
+  const int status = parse_precision(o.precision) == Precision::single ? run<float>(o, report, md, records)
+                                                                       : run<double>(o, report, md, records);
+  Table table;
+  table.columns = {
+      "element",      "material",        "op",         "specialized ms", "general material ms", "fully general ms",
+      "all terms ms", "gain (material)", "gain (all)", "gain (terms)"};
+  for (const SpecializationRecord& r : records) {
+    const double s = r.specialized, g = r.general_material, a = r.fully_general, all = r.all_terms;
+    table.add_row({r.element_type, r.material, r.operation, fixed_digits(1e3 * s, 3), fixed_digits(1e3 * g, 3),
+                   fixed_digits(1e3 * a, 3), fixed_digits(1e3 * all, 3), fixed_digits(g / s, 2), fixed_digits(a / s, 2),
+                   fixed_digits(all / s, 2)});
+    report["rows"].push_back({{"element_type", r.element_type},
+                              {"material", r.material},
+                              {"operation", r.operation},
+                              {"elements", r.elements},
+                              {"specialized_ms", 1e3 * s},
+                              {"general_material_ms", 1e3 * g},
+                              {"fully_general_ms", 1e3 * a},
+                              {"all_terms_ms", 1e3 * all},
+                              {"gain_material", g / s},
+                              {"gain_all", a / s},
+                              {"gain_terms", all / s},
+                              {"bitwise_equal", r.bitwise_equal},
+                              {"all_terms_relative_difference", r.all_terms_relative_difference}});
+  }
+  md << markdown_text(table);
   // Geometric mean of the gains per operation, over materials and elements
   // (the all-terms gain over the materials as written only).
   struct Mean {
@@ -176,19 +198,20 @@ int run_specialization(const SpecializationOptions& o) {
     if (row["material"].get<std::string>().find_first_of("+ ") == std::string::npos)
       terms_gain[op].add(row["gain_terms"].get<double>());
   }
-  md << "\nGeometric mean of the gains per operation:\n\n| op | gain (material) | gain (all) | gain (terms, models as "
-        "written) |\n|---|---|---|---|\n";
+  Table means;
+  means.columns = {"op", "gain (material)", "gain (all)", "gain (terms, models as written)"};
   for (const auto& [op, g] : material_gain) {
-    md << "| " << op << " | " << std::fixed << std::setprecision(2) << g.value() << " | " << all_gain[op].value()
-       << " | " << terms_gain[op].value() << " |\n";
+    means.add_row({op, fixed_digits(g.value(), 2), fixed_digits(all_gain[op].value(), 2),
+                   fixed_digits(terms_gain[op].value(), 2)});
     report["geometric_mean_gain"][op] = {
         {"material", g.value()}, {"all", all_gain[op].value()}, {"terms", terms_gain[op].value()}};
   }
+  md << "\nGeometric mean of the gains per operation:\n\n" << markdown_text(means);
   if (status != 0)
     md << "\n**The builds' results differ** (see bitwise_equal and all_terms_relative_difference in "
           "specialization.json).\n";
-  std::ofstream(o.out + "/specialization.json") << report.dump(2) << '\n';
-  std::ofstream(o.out + "/specialization.md") << md.str();
+  write_json(o.out + "/specialization.json", report);
+  write_text(o.out + "/specialization.md", md.str());
   std::cout << md.str() << "wrote " << o.out << "/specialization.{md,json}\n";
   return status;
 }
@@ -202,11 +225,11 @@ void add_specialization_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--element", o->element_types, "hex8, tet4 (comma list)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"hex8", "tet4"}))
+      ->check(CLI::IsMember(cli::element_type_names()))
       ->capture_default_str();
   cmd->add_option("--size", o->size, "cells per side of the box lattice")->capture_default_str();
   cmd->add_option("--precision", o->precision, "float or double")
-      ->check(CLI::IsMember({"float", "double"}))
+      ->check(CLI::IsMember(cli::precision_names()))
       ->capture_default_str();
   cmd->add_option("--min-seconds", o->min_seconds, "time per measured operation")->capture_default_str();
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");

@@ -17,8 +17,10 @@
 #include "device/kernel_source.h"
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "enum_names.h"
 #include "fem/rest_state.h"
 #include "host_baseline.h"
+#include "record_writer.h"
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/simulation.h"
@@ -246,7 +248,8 @@ Counts csr_counts(double nonzeros, double elements, double vertices) {
 }
 
 Mesh make_mesh(const std::string& type, int n) {
-  return type == "hex8" ? make_box_lattice(n, n, n, 1.0 / n) : make_tet_box(n, n, n, 1.0 / n);
+  return cli::element_type_named(type) == ElementType::hex8 ? make_box_lattice(n, n, n, 1.0 / n)
+                                                            : make_tet_box(n, n, n, 1.0 / n);
 }
 
 // A deformed state with varied, some indefinite, element Hessians.
@@ -361,12 +364,6 @@ double peak_ceiling(const Counts& c, const Roofline& roof) {
   return flop_seconds / std::max(flop_seconds, slow_seconds);
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::setprecision(digits) << v;
-  return s.str();
-}
-
 }  // namespace
 
 int run_throughput(const ThroughputOptions& o) {
@@ -393,13 +390,28 @@ int run_throughput(const ThroughputOptions& o) {
       "adds, square roots and divisions counted in pocl's compiled kernel; peak_ceiling: the fraction of the FMA "
       "peak reachable with the kernel's square roots and divisions at their measured 8-wide rates, one after the "
       "other";
-  std::ofstream csv(o.out + "/throughput.csv");
-  csv << "element_type,precision,size,elements,dofs,variant,product_seconds,elements_per_second,setup_seconds,"
-         "assembly_seconds,memory_bytes,flops_per_element,bytes_per_element,fraction_of_peak,fraction_of_bandwidth,"
-         "sqrts_per_element,divisions_per_element,peak_ceiling\n";
-  std::ostringstream md;
-  md << "| element | precision | cells | variant | product ms | Melem/s | setup ms | memory MB | flop/elem | "
-        "byte/elem | % peak | % bandwidth | % peak ceiling |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  Table csv;
+  csv.columns = {"element_type",
+                 "precision",
+                 "size",
+                 "elements",
+                 "dofs",
+                 "variant",
+                 "product_seconds",
+                 "elements_per_second",
+                 "setup_seconds",
+                 "assembly_seconds",
+                 "memory_bytes",
+                 "flops_per_element",
+                 "bytes_per_element",
+                 "fraction_of_peak",
+                 "fraction_of_bandwidth",
+                 "sqrts_per_element",
+                 "divisions_per_element",
+                 "peak_ceiling"};
+  Table variants;
+  variants.columns = {"element",   "precision", "cells",     "variant", "product ms",  "Melem/s",       "setup ms",
+                      "memory MB", "flop/elem", "byte/elem", "% peak",  "% bandwidth", "% peak ceiling"};
   std::cout << std::left << std::setw(6) << "elem" << std::setw(8) << "prec" << std::setw(7) << "cells" << std::setw(23)
             << "variant" << std::setw(12) << "product ms" << std::setw(10) << "Melem/s" << std::setw(11) << "setup ms"
             << std::setw(11) << "memory MB" << std::setw(8) << "%peak"
@@ -411,10 +423,11 @@ int run_throughput(const ThroughputOptions& o) {
     const double fbw = r.counts.bytes * rate / roof.bandwidth;
     const bool slow_ops = r.counts.sqrts > 0.0 || r.counts.divisions > 0.0;
     const double ceiling = peak_ceiling(r.counts, roof);
-    csv << r.element_type << ',' << r.precision << ',' << r.size << ',' << r.elements << ',' << r.dofs << ','
-        << r.variant << ',' << r.product_seconds << ',' << rate << ',' << r.setup_seconds << ',' << r.assembly_seconds
-        << ',' << r.memory_bytes << ',' << r.counts.flops << ',' << r.counts.bytes << ',' << fpeak << ',' << fbw << ','
-        << r.counts.sqrts << ',' << r.counts.divisions << ',' << ceiling << '\n';
+    csv.add_row({r.element_type, r.precision, std::to_string(r.size), std::to_string(r.elements),
+                 std::to_string(r.dofs), r.variant, number(r.product_seconds, 6), number(rate, 6),
+                 number(r.setup_seconds, 6), number(r.assembly_seconds, 6), std::to_string(r.memory_bytes),
+                 number(r.counts.flops, 6), number(r.counts.bytes, 6), number(fpeak, 6), number(fbw, 6),
+                 number(r.counts.sqrts, 6), number(r.counts.divisions, 6), number(ceiling, 6)});
     report["products"].push_back({{"element_type", r.element_type},
                                   {"precision", r.precision},
                                   {"cells_per_side", r.size},
@@ -434,16 +447,17 @@ int run_throughput(const ThroughputOptions& o) {
                                   {"divisions_per_element", r.counts.divisions},
                                   {"peak_ceiling", ceiling},
                                   {"material_lanes", r.material_lanes}});
-    md << "| " << r.element_type << " | " << r.precision << " | " << r.size << "^3 | " << r.variant << " | "
-       << fixed(1e3 * r.product_seconds, 3) << " | " << fixed(rate / 1e6, 3) << " | " << fixed(1e3 * r.setup_seconds, 3)
-       << " | " << fixed(static_cast<double>(r.memory_bytes) / 1e6, 3) << " | " << fixed(r.counts.flops, 4) << " | "
-       << fixed(r.counts.bytes, 4) << " | " << fixed(100 * fpeak, 3) << " | " << fixed(100 * fbw, 3) << " | "
-       << (slow_ops ? fixed(100 * ceiling, 3) : "") << " |\n";
+    variants.add_row({r.element_type, r.precision, std::to_string(r.size) + "^3", r.variant,
+                      number(1e3 * r.product_seconds, 3), number(rate / 1e6, 3), number(1e3 * r.setup_seconds, 3),
+                      number(static_cast<double>(r.memory_bytes) / 1e6, 3), number(r.counts.flops, 4),
+                      number(r.counts.bytes, 4), number(100 * fpeak, 3), number(100 * fbw, 3),
+                      slow_ops ? number(100 * ceiling, 3) : ""});
     std::cout << std::left << std::setw(6) << r.element_type << std::setw(8) << r.precision << std::setw(7)
               << (std::to_string(r.size) + "^3") << std::setw(23) << r.variant << std::setw(12)
-              << fixed(1e3 * r.product_seconds, 3) << std::setw(10) << fixed(rate / 1e6, 3) << std::setw(11)
-              << fixed(1e3 * r.setup_seconds, 3) << std::setw(11) << fixed(static_cast<double>(r.memory_bytes) / 1e6, 3)
-              << std::setw(8) << fixed(100 * fpeak, 3) << fixed(100 * fbw, 3) << '\n';
+              << number(1e3 * r.product_seconds, 3) << std::setw(10) << number(rate / 1e6, 3) << std::setw(11)
+              << number(1e3 * r.setup_seconds, 3) << std::setw(11)
+              << number(static_cast<double>(r.memory_bytes) / 1e6, 3) << std::setw(8) << number(100 * fpeak, 3)
+              << number(100 * fbw, 3) << '\n';
   }
   // The winner per element type and precision: the least time per Newton
   // iteration for a typical 50 products per setup.
@@ -455,16 +469,18 @@ int run_throughput(const ThroughputOptions& o) {
     auto it = winners.find(key);
     if (it == winners.end() || cost < it->second.first) winners[key] = {cost, r.variant};
   }
-  md << "\nWinner (setup + 50 products per Newton iteration):\n\n";
+  std::ostringstream md;
+  md << markdown_text(variants) << "\nWinner (setup + 50 products per Newton iteration):\n\n";
   for (const auto& [key, w] : winners) {
     md << "- " << key << "^3: " << w.second << '\n';
     report["winners"][key] = w.second;
     std::cout << "winner " << key << "^3: " << w.second << '\n';
   }
-  md << "\n| element | precision | cells | operation | ms | Melem/s |\n|---|---|---|---|---|---|\n";
+  Table operations;
+  operations.columns = {"element", "precision", "cells", "operation", "ms", "Melem/s"};
   for (const OperationRow& r : ops) {
-    md << "| " << r.element_type << " | " << r.precision << " | " << r.size << "^3 | " << r.operation << " | "
-       << fixed(1e3 * r.seconds, 3) << " | " << fixed(static_cast<double>(r.elements) / r.seconds / 1e6, 3) << " |\n";
+    operations.add_row({r.element_type, r.precision, std::to_string(r.size) + "^3", r.operation,
+                        number(1e3 * r.seconds, 3), number(static_cast<double>(r.elements) / r.seconds / 1e6, 3)});
     report["operations"].push_back({{"element_type", r.element_type},
                                     {"precision", r.precision},
                                     {"cells_per_side", r.size},
@@ -472,20 +488,20 @@ int run_throughput(const ThroughputOptions& o) {
                                     {"seconds", r.seconds},
                                     {"elements_per_second", static_cast<double>(r.elements) / r.seconds}});
   }
-  std::ostringstream roof_md;
-  roof_md
-      << "| precision | triad GB/s | scalar triad GB/s | 4-wide triad GB/s | FMA scalar GFLOP/s | FMA 8-wide GFLOP/s "
-         "| sqrt 8-wide G/s | div 8-wide G/s | sqrt+div 8-wide G/s |\n|---|---|---|---|---|---|---|---|---|\n";
+  md << '\n' << markdown_text(operations);
+  Table roof_table;
+  roof_table.columns = {"precision",         "triad GB/s",         "scalar triad GB/s",
+                        "4-wide triad GB/s", "FMA scalar GFLOP/s", "FMA 8-wide GFLOP/s",
+                        "sqrt 8-wide G/s",   "div 8-wide G/s",     "sqrt+div 8-wide G/s"};
   for (const auto& [p, r] : rooflines)
-    roof_md << "| " << p << " | " << fixed(r.bandwidth / 1e9, 4) << " | " << fixed(r.bandwidth_scalar / 1e9, 4) << " | "
-            << fixed(r.bandwidth_vector / 1e9, 4) << " | " << fixed(r.peak_scalar / 1e9, 4) << " | "
-            << fixed(r.peak_vector / 1e9, 4) << " | " << fixed(r.sqrt_rate / 1e9, 4) << " | "
-            << fixed(r.div_rate / 1e9, 4) << " | " << fixed(r.sqrt_div_rate / 1e9, 4) << " |\n";
-  std::ofstream(o.out + "/throughput.json") << report.dump(2) << '\n';
-  std::ofstream(o.out + "/throughput.md")
-      << "# Throughput\n\nDevice: " << report.value("device", std::string("?")) << "\n\n"
-      << roof_md.str() << '\n'
-      << md.str();
+    roof_table.add_row({p, number(r.bandwidth / 1e9, 4), number(r.bandwidth_scalar / 1e9, 4),
+                        number(r.bandwidth_vector / 1e9, 4), number(r.peak_scalar / 1e9, 4),
+                        number(r.peak_vector / 1e9, 4), number(r.sqrt_rate / 1e9, 4), number(r.div_rate / 1e9, 4),
+                        number(r.sqrt_div_rate / 1e9, 4)});
+  write_text(o.out + "/throughput.csv", csv_text(csv));
+  write_json(o.out + "/throughput.json", report);
+  write_text(o.out + "/throughput.md", "# Throughput\n\nDevice: " + report.value("device", std::string("?")) + "\n\n" +
+                                           markdown_text(roof_table) + '\n' + md.str());
   std::cout << "wrote " << o.out << "/throughput.{json,csv,md}\n";
   return rows.empty() ? 1 : 0;
 }
@@ -497,11 +513,11 @@ void add_throughput_command(CLI::App& app, int& exit_code) {
       "Device roofline (triad bandwidth, FMA peak) and the engine's kernels against it: every Hessian-product "
       "variant side by side, residual, energy, linearization, and the host Eigen CSR product");
   cmd->add_option("--element", o->element_types, "element types: hex8, tet4")
-      ->check(CLI::IsMember({"hex8", "tet4"}))
+      ->check(CLI::IsMember(cli::element_type_names()))
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--precision", o->precisions, "float, double")
-      ->check(CLI::IsMember({"float", "double"}))
+      ->check(CLI::IsMember(cli::precision_names()))
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--size", o->sizes, "cells per side of the box lattice (comma list)")

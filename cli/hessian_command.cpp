@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cli_commands.h"
+#include "enum_names.h"
 #include "hessian_export.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
@@ -34,7 +35,7 @@ int run_hessian(const HessianCommand& o) {
   p.resolution = o.resolution;
   p.youngs_modulus = o.youngs_modulus;
   p.poisson_ratio = o.poisson_ratio;
-  p.element_type = o.element == "tet4" ? ElementType::tet4 : ElementType::hex8;
+  p.element_type = element_type_named(o.element);
   const Scene scene = make_scene(o.name, p);
   const MaterialMap materials = uniform_material(scene.mesh, scene.material);
   const auto t0 = Clock::now();
@@ -81,7 +82,7 @@ void add_hessian_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", o->name, "built-in scene (twist, stretch, ...)")->capture_default_str();
   cmd->add_option("--res", o->resolution, "cells across the scene's thickness (0: scene default)");
   cmd->add_option("--element", o->element, "hex8 or tet4 (each lattice hex split in six)")
-      ->check(CLI::IsMember({"hex8", "tet4"}))
+      ->check(CLI::IsMember(element_type_names()))
       ->capture_default_str();
   cmd->add_option("--E", o->youngs_modulus, "Young's modulus")->capture_default_str();
   cmd->add_option("--nu", o->poisson_ratio, "Poisson's ratio")->capture_default_str();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "enum_names.h"
 #include "snh/device.h"
 #include "snh/material.h"
 
@@ -84,7 +85,7 @@ struct MaterialOptions {
     command.add_option("--alpha-lambda", alpha_lambda,
                        "nonlinearity of the lambda_Lame part (Eq. 20; default --alpha)");
     command.add_option("--precision", precision, "float or double")
-        ->check(CLI::IsMember({"float", "double"}))
+        ->check(CLI::IsMember(precision_names()))
         ->capture_default_str();
     command.add_option("--device", device,
                        "substring of '<platform> / <device>' (default: $SNH_DEVICE, first GPU, first device)");

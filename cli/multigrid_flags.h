@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "enum_names.h"
 #include "snh/simulation.h"
 
 namespace snh::cli {
@@ -33,7 +34,7 @@ struct MultigridFlags {
                     "lambda_max), fourth or optimized-fourth (Lottes 2023, on [0, 1.1] x lambda_max; optimized: "
                     "degrees 1-4), or automatic (default: optimized-fourth of degree 1 under 600,000 DOFs and "
                     "nu < 0.495, else first of degree 2; MultigridOptions::chebyshev_kind)")
-        ->check(CLI::IsMember({"automatic", "first", "fourth", "optimized-fourth"}));
+        ->check(CLI::IsMember(chebyshev_kind_names()));
     cmd->add_option("--multigrid-coarsest-dofs", coarsest_dofs,
                     "multigrid: coarsen until a level has at most this many DOFs, solved directly (default: "
                     "MultigridOptions::coarsest_dofs)")
@@ -42,7 +43,7 @@ struct MultigridFlags {
                     "multigrid: the V-cycle's fine level, built (the build's element matrices, frozen with the "
                     "coarse levels), current (the product of each linearization) or automatic (built unless the "
                     "scene has inertia or obstacles)")
-        ->check(CLI::IsMember({"automatic", "built", "current"}))
+        ->check(CLI::IsMember(multigrid_fine_level_names()))
         ->capture_default_str();
     cmd->add_option("--multigrid-fine-float", fine_float,
                     "multigrid, double with a built fine level: its element matrices in float (on) or in double "

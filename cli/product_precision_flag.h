@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "enum_names.h"
 #include "snh/simulation.h"
 
 namespace snh::cli {
@@ -13,7 +14,7 @@ inline void add_product_precision_option(CLI::App* cmd, std::string& value) {
   cmd->add_option("--product-precision", value,
                   "double solves: CG's Hessian products (cached variant) in float with double vectors (automatic), "
                   "or in double (SolveOptions::product_precision)")
-      ->check(CLI::IsMember({"automatic", "float", "double"}))
+      ->check(CLI::IsMember(names_with({"automatic"}, precision_names())))
       ->capture_default_str();
 }
 

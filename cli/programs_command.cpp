@@ -45,10 +45,7 @@ void add_programs_command(CLI::App& app, int& exit_code) {
   cmd->callback([o, cmd, &exit_code] {
     o->solver.note_given(cmd);
     const SceneFile file = load_scene(o->file);
-    SolveOptions options = file.scene.options;
-    options.device.match = o->device;
-    o->solver.apply_to_file(file, options);
-    print_programs(std::cout, scene_programs(file, options));
+    print_programs(std::cout, scene_programs(file, o->solver.file_options(file, o->device)));
     exit_code = 0;
   });
 }

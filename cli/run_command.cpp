@@ -38,12 +38,8 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->callback([o, cmd, &exit_code] {
     o->solver.note_given(cmd);
     const SceneFile file = load_scene(o->file);
-    // The embedded surface's defects (seams, holes, flipped triangles, ...).
-    if (file.embedded)
-      for (const std::string& warning : file.embedded->voxels.warnings) std::cerr << "warning: " << warning << "\n";
-    SolveOptions options = file.scene.options;
-    options.device.match = o->device;
-    o->solver.apply_to_file(file, options);
+    warn_surface_defects(file);
+    SolveOptions options = o->solver.file_options(file, o->device);
     if (o->fail_on_inverted) options.fail_on_inverted = true;
     exit_code = run_scene_file(file, options, o->outputs);
   });

@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "enum_names.h"
 #include "product_precision_flag.h"
 #include "snh/error.h"
 
@@ -106,16 +107,16 @@ void print_steps(const SceneRun& run) {
 
 void SolverFlags::add_to(CLI::App* cmd, const std::string& steps_help) {
   cmd->add_option("--precision", precision, "float or double")
-      ->check(CLI::IsMember({"float", "double"}))
+      ->check(CLI::IsMember(precision_names()))
       ->capture_default_str();
   cmd->add_option("--steps", steps, steps_help);
   cmd->add_option("--variant", variant,
                   "Hessian product: automatic (measured default), cached, recompute, element-matrices, assembled")
-      ->check(CLI::IsMember({"automatic", "cached", "recompute", "element-matrices", "assembled"}))
+      ->check(CLI::IsMember(product_variant_names()))
       ->capture_default_str();
   cmd->add_option("--preconditioner", preconditioner,
                   "automatic (measured default), block-jacobi, multigrid (hex8 lattices) or none")
-      ->check(CLI::IsMember({"automatic", "block-jacobi", "multigrid", "none"}))
+      ->check(CLI::IsMember(preconditioner_names()))
       ->capture_default_str();
   add_product_precision_option(cmd, product_precision);
   multigrid.add_to(cmd);
@@ -128,7 +129,7 @@ void SolverFlags::add_to(CLI::App* cmd, const std::string& steps_help) {
   cmd->add_option("--forcing-max", forcing_max, "cap of the Eisenstat-Walker forcing term (default 0.5)");
   cmd->add_option("--hessian", hessian,
                   "projected (always the PSD projection) or adaptive (true Hessian near convergence)")
-      ->check(CLI::IsMember({"projected", "adaptive"}))
+      ->check(CLI::IsMember(hessian_mode_names()))
       ->capture_default_str();
 }
 
@@ -159,6 +160,18 @@ void SolverFlags::apply_to_file(const SceneFile& file, SolveOptions& options) co
   apply_limits(options);
   multigrid.apply(options.multigrid);
   apply_product_precision(product_precision, options);  // the file's unless given
+}
+
+SolveOptions SolverFlags::file_options(const SceneFile& file, const std::string& device) const {
+  SolveOptions options = file.scene.options;
+  options.device.match = device;
+  apply_to_file(file, options);
+  return options;
+}
+
+void warn_surface_defects(const SceneFile& file) {
+  if (file.embedded)
+    for (const std::string& warning : file.embedded->voxels.warnings) std::cerr << "warning: " << warning << "\n";
 }
 
 void add_output_options(CLI::App* cmd, SceneOutputs& outputs) {

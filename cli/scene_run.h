@@ -35,6 +35,10 @@ struct SolverFlags {
   // The flags given override the file's settings in `options`; without a
   // tolerance in the file, --precision sets its default strain tolerance.
   void apply_to_file(const SceneFile& file, SolveOptions& options) const;
+  // The file's solve options on the device matching `device`, with the flags
+  // given applied (apply_to_file): what `run`, `programs` and `scene --file`
+  // solve with.
+  SolveOptions file_options(const SceneFile& file, const std::string& device) const;
   // --rtol, --atol, --max-newton, --forcing-max where given.
   void apply_limits(SolveOptions& options) const;
 };
@@ -46,6 +50,10 @@ struct SceneOutputs {
   int frames = 0;              // a rig: only the first frames (0: all)
   bool quiet = false;          // no progress lines
 };
+
+// The embedded surface's defects (seams, holes, flipped triangles, ...) as
+// warnings on stderr.
+void warn_surface_defects(const SceneFile& file);
 
 // Registers --json, --vtu, --surface and --frames.
 void add_output_options(CLI::App* cmd, SceneOutputs& outputs);

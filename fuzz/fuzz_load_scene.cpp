@@ -1,12 +1,12 @@
 // libFuzzer entry point for the scene-file loader (snh/scene.h): the input
 // is written to scenes/fuzz.json in a private temporary folder whose
 // meshes/, surfaces/ and arm/ link to data/ (so that the seed scenes' files
-// resolve), then load_scene reads it. Anything but snh::Error escaping it
-// (a crash, a sanitizer report, another exception such as one of
-// nlohmann::json's, a hang) is a bug. SNH_DATA_DIR is the repository's
-// data/ folder. Scenes that ask for a large body (a generated lattice of
-// more than kMaxFuzzCells cells, or an embedding cell under kMinFuzzCell)
-// are skipped: they are valid, and only slow to build under the sanitizers.
+// resolve), then load_scene reads it; fuzz_entry.h says what counts as a
+// bug (also an exception such as one of nlohmann::json's). SNH_DATA_DIR is
+// the repository's data/ folder. Scenes that ask for a large body (a
+// generated lattice of more than kMaxFuzzCells cells, or an embedding cell
+// under kMinFuzzCell) are skipped: they are valid, and only slow to build
+// under the sanitizers.
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,7 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "snh/error.h"
+#include "fuzz_entry.h"
 #include "snh/scene.h"
 
 #ifndef SNH_DATA_DIR
@@ -81,15 +81,12 @@ std::string scene_path() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (too_large(data, size)) return 0;
-  const std::string path = scene_path();
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  }
-  try {
+  return snh::fuzz::read_input(data, size, [](const std::string& input) {
+    const std::string path = scene_path();
+    {
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);
+      out << input;
+    }
     snh::load_scene(path);
-  } catch (const snh::Error&) {
-    // The documented outcome for bad input.
-  }
-  return 0;
+  });
 }

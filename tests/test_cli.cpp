@@ -17,18 +17,12 @@
 
 #include "snh/mesh_io.h"
 #include "support/cli_run.h"
+#include "support/scratch.h"
 
 namespace snh::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 std::vector<std::string> shipped_scenes() {
   std::vector<std::string> names;

@@ -18,6 +18,8 @@
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
 #include "solver/obstacles.h"
+#include "support/contact_options.h"
+#include "support/finite_differences.h"
 
 namespace snh::test {
 namespace {
@@ -78,28 +80,13 @@ TEST(Friction, ForceIsMinusTheEnergyGradientAndTheHessianItsDerivative) {
       const auto at = friction_at(l, c.start, x);
       const Eigen::Vector3d force(at.force[0], at.force[1], at.force[2]);
       ASSERT_GT(force.norm(), 0.0) << c.name;
-      double best = 1e300;
-      for (double h = 1e-4; h >= 1e-9; h /= 10) {
-        Eigen::Vector3d fd;
-        for (int d = 0; d < 3; ++d) {
-          Eigen::Vector3d a = x, b = x;
-          a[d] += h;
-          b[d] -= h;
-          fd[d] = -(friction_at(l, c.start, a).energy - friction_at(l, c.start, b).energy) / (2 * h);
-        }
-        best = std::min(best, (fd - force).norm() / force.norm());
-      }
-      EXPECT_LT(best, 1e-7) << c.name;
+      EXPECT_LT(
+          best_gradient_error([&](const Eigen::Vector3d& y) { return friction_at(l, c.start, y).energy; }, x, force),
+          1e-7)
+          << c.name;
       const Eigen::Matrix3d hessian = Eigen::Map<const Eigen::Matrix3d>(at.hessian.data());
-      Eigen::Matrix3d fd;
-      const double h = 1e-7;
-      for (int d = 0; d < 3; ++d) {
-        Eigen::Vector3d a = x, b = x;
-        a[d] += h;
-        b[d] -= h;
-        const auto fa = friction_at(l, c.start, a).force, fb = friction_at(l, c.start, b).force;
-        for (int i = 0; i < 3; ++i) fd(i, d) = -(fa[i] - fb[i]) / (2 * h);
-      }
+      const Eigen::Matrix3d fd =
+          force_derivative([&](const Eigen::Vector3d& y) { return friction_at(l, c.start, y).force; }, x, 1e-7);
       EXPECT_LT((fd - hessian).norm(), 1e-6 * hessian.norm()) << c.name;
       EXPECT_LT((hessian - hessian.transpose()).norm(), 1e-12 * hessian.norm()) << c.name;
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(hessian);
@@ -358,19 +345,7 @@ TEST(Friction, MovingPlaneDragsABlockToItsSpeed) {
 }
 
 TEST(Friction, OptionsAreChecked) {
-  const Mesh mesh = make_box_lattice(1, 1, 1, 1.0);
-  const Material material = StableNeoHookean::from_youngs_modulus(1.0, 0.3);
-  auto message = [&](Obstacle o, ContactOptions contact) {
-    SolveOptions options;
-    options.obstacles = {o};
-    options.contact = contact;
-    try {
-      Simulation(mesh, material, {}, options);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+  auto message = [](const Obstacle& o, const ContactOptions& contact) { return contact_options_error({o}, contact); };
   ContactOptions contact;
   contact.stiffness = 1.0;
   Obstacle o = Obstacle::plane({0, 0, 0}, {0, 0, 1});

@@ -25,6 +25,7 @@
 #include "snh/surface.h"
 #include "stability.h"
 #include "support/cli_run.h"
+#include "support/scenes.h"
 #include "surface_shapes.h"
 
 namespace snh::test {
@@ -111,9 +112,7 @@ TEST(HonestResults, CleanStepHasNoWarnings) {
 }
 
 TEST(HonestResults, NewtonLimitWarns) {
-  SceneParameters p;
-  p.resolution = 2;
-  const Scene s = make_scene("twist", p);
+  const Scene s = scene_at("twist", 2);
   SolveOptions options = s.options;
   options.load_steps = 1;
   options.max_newton_iterations = 1;

@@ -28,8 +28,10 @@
 #include "snh/mesh.h"
 #include "snh/mesh_io.h"
 #include "snh/selection.h"
+#include "support/data_dir.h"
 #include "support/errors.h"
 #include "support/lattices.h"
+#include "support/scratch.h"
 
 namespace snh {
 namespace {
@@ -38,19 +40,10 @@ using test::error_of;
 
 namespace fs = std::filesystem;
 
-#ifndef SNH_DATA_DIR
-#error "SNH_DATA_DIR must name the data/ folder"
-#endif
-
-const fs::path kData = fs::path(SNH_DATA_DIR) / "meshes";
+const fs::path kData = test::data_dir() / "meshes";
 
 // A fresh folder for the files a test writes.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("snh_mesh_io_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return test::scratch_dir("snh_mesh_io", name); }
 
 std::string read_error(const fs::path& path) {
   return error_of([&] { read_mesh(path.string()); });

@@ -21,6 +21,8 @@
 #include "snh/simulation.h"
 #include "solver/elastic_model.h"
 #include "solver/obstacles.h"
+#include "support/contact_options.h"
+#include "support/finite_differences.h"
 
 namespace snh::test {
 namespace {
@@ -82,19 +84,10 @@ TEST(Obstacles, ForceIsMinusTheEnergyGradient) {
     for (const Eigen::Vector3d& x : c.points) {
       const auto at = contact_at(records, x);
       ASSERT_GT(at.depth, 0.0) << c.name;
-      double best = 1e300;
-      for (double h = 1e-4; h >= 1e-9; h /= 10) {
-        Eigen::Vector3d fd;
-        for (int d = 0; d < 3; ++d) {
-          Eigen::Vector3d a = x, b = x;
-          a[d] += h;
-          b[d] -= h;
-          fd[d] = -(contact_at(records, a).energy - contact_at(records, b).energy) / (2 * h);
-        }
-        const Eigen::Vector3d force(at.force[0], at.force[1], at.force[2]);
-        best = std::min(best, (fd - force).norm() / force.norm());
-      }
-      EXPECT_LT(best, 1e-7) << c.name;
+      const Eigen::Vector3d force(at.force[0], at.force[1], at.force[2]);
+      EXPECT_LT(best_gradient_error([&](const Eigen::Vector3d& y) { return contact_at(records, y).energy; }, x, force),
+                1e-7)
+          << c.name;
     }
   }
 }
@@ -110,15 +103,8 @@ TEST(Obstacles, GaussNewtonHessianIsTheTrueHessianWithoutTheCurvatureTerm) {
     for (const Eigen::Vector3d& x : c.points) {
       const auto at = contact_at(records, x);
       const Eigen::Matrix3d kept = Eigen::Map<const Eigen::Matrix3d>(at.hessian.data());
-      Eigen::Matrix3d fd;
-      const double h = 1e-6;
-      for (int d = 0; d < 3; ++d) {
-        Eigen::Vector3d a = x, b = x;
-        a[d] += h;
-        b[d] -= h;
-        const auto fa = contact_at(records, a).force, fb = contact_at(records, b).force;
-        for (int i = 0; i < 3; ++i) fd(i, d) = -(fa[i] - fb[i]) / (2 * h);
-      }
+      const Eigen::Matrix3d fd =
+          force_derivative([&](const Eigen::Vector3d& y) { return contact_at(records, y).force; }, x, 1e-6);
       const Eigen::Vector3d p(records[1], records[2], records[3]), axis(records[4], records[5], records[6]);
       Eigen::Vector3d r = x - p;
       Eigen::Matrix3d curvature = Eigen::Matrix3d::Zero();
@@ -312,18 +298,8 @@ TEST(Obstacles, BlockDroppedOnAPlaneComesToRest) {
 }
 
 TEST(Obstacles, OptionsAreChecked) {
-  const Mesh mesh = make_box_lattice(1, 1, 1, 1.0);
-  const Material material = StableNeoHookean::from_youngs_modulus(1.0, 0.3);
-  auto message = [&](std::vector<Obstacle> obstacles, ContactOptions contact) {
-    SolveOptions o;
-    o.obstacles = std::move(obstacles);
-    o.contact = contact;
-    try {
-      Simulation(mesh, material, {}, o);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+  auto message = [](std::vector<Obstacle> obstacles, const ContactOptions& contact) {
+    return contact_options_error(std::move(obstacles), contact);
   };
   EXPECT_NE(message({Obstacle::plane({0, 0, 0}, {0, 0, 1})}, {0.0, 0.0}).find("stiffness"), std::string::npos);
   EXPECT_NE(message({Obstacle::plane({0, 0, 0}, {0, 0, 1})}, {1.0, -1.0}).find("thickness"), std::string::npos);

@@ -13,18 +13,12 @@
 #include "snh/error.h"
 #include "snh/scene.h"
 #include "support/errors.h"
+#include "support/scratch.h"
 
 namespace snh::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 // A 3x1x1 bar pulled along x by a tenth of its length in two load steps.
 const char* const kBar = R"({

@@ -9,6 +9,7 @@
 #include "snh/scenes.h"
 #include "snh/simulation.h"
 #include "support/lattices.h"
+#include "support/scenes.h"
 
 namespace snh::test {
 namespace {
@@ -151,9 +152,7 @@ TEST(Solver, FailedLineSearchRetriesAlongSteepestDescentAndReportsIt) {
   // A line search allowed no halving fails where the twist needs a half
   // step (iteration 3 of the first step at this size); the solver retries
   // along the preconditioned steepest descent.
-  SceneParameters p;
-  p.resolution = 6;
-  const Scene scene = make_scene("twist", p);
+  const Scene scene = scene_at("twist", 6);
   SolveOptions options = scene.options;
   options.line_search_halvings = 0;
   options.max_newton_iterations = 30;
@@ -233,9 +232,7 @@ TEST(Scenes, FlexBendsWithoutInversion) {
 }
 
 TEST(Solver, AdaptiveHessianUsesTrueHessianNearSolutionAndNeedsFewerIterations) {
-  SceneParameters p;
-  p.resolution = 4;
-  const Scene scene = make_scene("twist", p);
+  const Scene scene = scene_at("twist", 4);
   int iterations[2] = {0, 0};
   for (HessianMode mode : {HessianMode::projected, HessianMode::adaptive}) {
     SolveOptions options = scene.options;

@@ -16,7 +16,9 @@
 
 #include "snh/error.h"
 #include "snh/surface.h"
+#include "support/data_dir.h"
 #include "support/errors.h"
+#include "support/scratch.h"
 #include "surface_shapes.h"
 
 namespace snh {
@@ -26,16 +28,7 @@ using test::error_of;
 
 namespace fs = std::filesystem;
 
-#ifndef SNH_DATA_DIR
-#error "SNH_DATA_DIR must name the data/ folder"
-#endif
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("snh_surface_io_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return test::scratch_dir("snh_surface_io", name); }
 
 fs::path write_text(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
@@ -193,7 +186,7 @@ TEST(SurfaceReaders, StlAsciiAndBinaryMergeCoincidentCorners) {
 }
 
 TEST(SurfaceReaders, DataFilesFromGmshAndMeshioAgree) {
-  const fs::path data = fs::path(SNH_DATA_DIR) / "surfaces";
+  const fs::path data = test::data_dir() / "surfaces";
   const TriangleSurface ascii = read_surface((data / "sphere.stl").string());
   EXPECT_EQ(ascii.vertex_count(), 192u);
   EXPECT_EQ(ascii.triangle_count(), 380u);
