@@ -2,8 +2,12 @@
 """Writes the closed surfaces of the self-contact scenes (data/scenes/
 limbs_pressed.json, hand_head.json) as OBJ: capsules and a sphere as
 latitude-longitude meshes, outward facing. Run from this folder:
-/usr/bin/python3 make_bodies.py"""
+/usr/bin/python3 make_bodies.py
+With --spheres N PATH instead: two interpenetrating spheres of N rings and
+2N meridians each (about 8 N^2 triangles in all) to PATH, for timing
+`snh intersections` (docs/performance.md)."""
 import math
+import sys
 
 
 def capsule(a, b, radius, around=16, cap_rings=4, length_rings=6):
@@ -73,6 +77,11 @@ def write(path, shells, comment):
             base += len(v)
 
 
+if len(sys.argv) == 4 and sys.argv[1] == "--spheres":
+    n = int(sys.argv[2])
+    write(sys.argv[3], [sphere((0.0, 0.0, 0.0), 1.0, 2 * n, n), sphere((1.2, 0.1, 0.05), 0.9, 2 * n, n)],
+          "two interpenetrating spheres")
+    sys.exit(0)
 # Two parallel limbs 0.2 apart, radius 0.2, 1.2 long between their caps' centres.
 write("two_limbs.obj", [capsule((0.0, -0.3, 0.0), (1.2, -0.3, 0.0), 0.2), capsule((0.0, 0.3, 0.0), (1.2, 0.3, 0.0), 0.2)],
       "two limbs side by side")
