@@ -15,6 +15,8 @@
 
 #include "record_writer.h"
 #include "snh/error.h"
+#include "snh/surface.h"
+#include "snh/surface_intersections.h"
 
 namespace snh::bench {
 namespace {
@@ -165,6 +167,20 @@ Scene make_case(const std::string& name, Precision precision, int resolution, do
     s.description = "scramble, seed " + name.substr(13);
     return s;
   }
+  // squash_h<H>_nu<nu>: the frictionless squash with the lid closed to H
+  // whatever --squash-height says: the heights where the body folds through
+  // itself, each step's exact self-intersection count in the record.
+  if (name.rfind("squash_h", 0) == 0 && name.find("_nu") != std::string::npos) {
+    const size_t nu_at = name.find("_nu");
+    double height = 0.0, nu = 0.0;
+    try {
+      height = std::stod(name.substr(8, nu_at - 8));
+      nu = std::stod(name.substr(nu_at + 3));
+    } catch (const std::exception&) {
+      throw Error("stability: case '" + name + "' is not squash_h<height>_nu<poisson ratio>");
+    }
+    return squash(nu, res_or(4), precision, 0.0, height);
+  }
   if (name.rfind("squash_nu", 0) == 0)
     return squash(std::stod(name.substr(9)), res_or(4), precision, 0.0, squash_height);
   if (name.rfind("squash_rough_nu", 0) == 0)
@@ -281,6 +297,9 @@ json run_json(const StabilityRun& r, const std::string& note) {
   }
   j["inverted_elements_at_start"] = r.initially_inverted_elements;
   j["inverted_elements"] = r.inverted_elements;
+  j["surface_intersections"] = r.surface_intersections;
+  j["max_surface_intersections"] = r.max_surface_intersections();
+  j["degenerate_surface_triangles"] = r.degenerate_surface_triangles;
   j["non_finite_positions"] = r.non_finite_positions;
   j["nan_in_history"] = r.nan_in_history;
   j["recoveries"] = r.recoveries;
@@ -351,11 +370,13 @@ int run_stability(const StabilityOptions& o) {
   all["runs"] = json::array();
   std::ostringstream csv;
   csv << "case,precision,converged,status,newton,cg,seconds,min_j,max_j,inverted_at_start,inverted,volume_ratio,"
-         "min_volume_ratio,max_penetration,contact_thickness,non_finite_positions,nan_in_history,recovery,note\n";
+         "min_volume_ratio,max_penetration,contact_thickness,non_finite_positions,nan_in_history,recovery,"
+         "max_surface_intersections,note\n";
   std::ostringstream md;
   md << "| case | precision | converged | status | Newton | CG | s | min J | max J | inverted (start → end) | "
-        "volume | min volume | penetration / thickness | NaN | recovery | note |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+        "volume | min volume | penetration / thickness | NaN | recovery | self-intersections (most in a step) | note "
+        "|\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& [r, note] : rows) {
     const int nan = r.non_finite_positions + r.nan_in_history;
     if (nan > 0 || !r.error.empty()) ++problems;
@@ -369,7 +390,7 @@ int run_stability(const StabilityOptions& o) {
         << fixed(r.volume_ratio, 6) << ',' << fixed(r.min_volume_ratio, 6) << ','
         << (r.contact_thickness > 0.0 ? fixed(r.max_penetration, 6) : "") << ','
         << (r.contact_thickness > 0.0 ? fixed(r.contact_thickness, 6) : "") << ',' << r.non_finite_positions << ','
-        << r.nan_in_history << ',' << csv_rec << ',' << note << '\n';
+        << r.nan_in_history << ',' << csv_rec << ',' << r.max_surface_intersections() << ',' << note << '\n';
     std::string status = r.error.empty() ? r.status : "error: " + r.error;
     md << "| " << r.name << " | " << r.precision << " | " << (r.converged ? "yes" : "**no**") << " | " << status
        << " | " << r.newton_iterations << " | " << r.cg_iterations << " | " << fixed(r.seconds, 2) << " | "
@@ -378,7 +399,9 @@ int run_stability(const StabilityOptions& o) {
        << (r.contact_thickness > 0.0 ? fixed(r.max_penetration, 5) + " / " + fixed(r.contact_thickness, 5) +
                                            (r.max_penetration > r.contact_thickness ? " **deeper**" : "")
                                      : "-")
-       << " | " << (nan > 0 ? "**YES**" : "none") << " | " << rec << " | " << note << " |\n";
+       << " | " << (nan > 0 ? "**YES**" : "none") << " | " << rec << " | "
+       << (r.max_surface_intersections() != 0 ? "**" + std::to_string(r.max_surface_intersections()) + "**" : "0")
+       << " | " << note << " |\n";
   }
   all["runs_with_nan_or_error"] = problems;
   write_text(o.out_dir + "/stability.csv", csv.str());
@@ -415,7 +438,13 @@ std::vector<std::string> stability_case_names() {
           "squash_nu0.499",
           "squash_rough_nu0.46",
           "squash_rough_nu0.49",
-          "squash_rough_nu0.499"};
+          "squash_rough_nu0.499",
+          "squash_h0.05_nu0.46",
+          "squash_h0.05_nu0.49",
+          "squash_h0.05_nu0.499",
+          "squash_h0.03_nu0.46",
+          "squash_h0.03_nu0.49",
+          "squash_h0.03_nu0.499"};
 }
 
 Scene make_stability_case(const std::string& name, Precision precision, int resolution, double squash_height) {
@@ -441,6 +470,9 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
   r.description = scene.description;
   r.elements = scene.mesh.element_count();
   r.initially_inverted_elements = deformation_statistics(scene.mesh, first_step_start(scene)).inverted_elements;
+  // The boundary surface: its exact self-intersection count at each step's end.
+  const MeshBoundary boundary = boundary_surface(scene.mesh);
+  std::vector<double> surface(3 * boundary.vertices.size());
   SolveOptions options = scene.options;
   options.device.match = device;
   options.fallback_to_double = fallback_to_double;
@@ -449,7 +481,15 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
     r.min_volume_ratio = std::numeric_limits<double>::infinity();
     const SolveResult s = solver.solve([&](int, const std::vector<double>& x) {
       for (double v : x)
-        if (!std::isfinite(v)) return;
+        if (!std::isfinite(v)) {
+          r.surface_intersections.push_back(-1);
+          return;
+        }
+      for (size_t i = 0; i < boundary.vertices.size(); ++i)
+        for (int d = 0; d < 3; ++d) surface[3 * i + d] = x[3 * size_t(boundary.vertices[i]) + d];
+      const SelfIntersections count = count_self_intersections(surface, boundary.surface.triangles);
+      r.surface_intersections.push_back(int64_t(count.intersecting_pairs));
+      r.degenerate_surface_triangles = std::max(r.degenerate_surface_triangles, count.degenerate_triangles);
       r.min_volume_ratio = std::min(r.min_volume_ratio, deformation_statistics(scene.mesh, x).volume_ratio);
     });
     r.converged = s.converged;
@@ -479,6 +519,9 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
     r.volume_ratio = s.volume_ratio;
     r.inverted_elements = s.inverted_elements;
     r.warnings = s.warnings;
+    if (r.degenerate_surface_triangles > 0)
+      r.warnings.push_back("degenerate_surface_triangles: up to " + std::to_string(r.degenerate_surface_triangles) +
+                           " boundary triangles of zero area at a step's end (left out of the intersection count)");
   } catch (const Error& e) {
     r.status = "error";
     r.error = e.what();

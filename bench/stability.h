@@ -2,13 +2,16 @@
 // and double: nu up to 0.4999, scrambled starts, crushes to a plane, a line
 // and a point, a 2 pi twist, 3.4x and 5x stretches, and elements inverted
 // mid-solve, and a squash to a tenth of the volume between planes (the lid of
-// a box closing and opening) and release at nu = 0.46, 0.49, 0.499. Per case and precision: converged or not, Newton
+// a box closing and opening) and release at nu = 0.46, 0.49, 0.499, also to
+// 5% and 3% (squash_h0.05_nu*, squash_h0.03_nu*). Per case and precision: converged or not, Newton
 // and CG iterations, time, min/max J, inverted elements, volume ratio, non-finite positions (there must be none) and
-// the solver's recovery events. Where float fails and double succeeds, float is run again with
-// SolveOptions::fallback_to_double to show the switch. Writes
+// the solver's recovery events, and per step the exact self-intersection count of the boundary surface. Where float
+// fails and double succeeds, float is run again with SolveOptions::fallback_to_double to show the switch. Writes
 // stability.{json,csv,md}.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -67,6 +70,20 @@ struct StabilityRun {
   std::vector<std::string> unconverged_steps;
   std::vector<std::string> warnings;
   std::string error;  // an snh::Error, if the run threw
+  // Per step: the exact number of intersecting triangle pairs of the
+  // boundary surface at the step's end (surface_intersections.h); -1 where
+  // the positions were not finite. And the most degenerate (zero-area)
+  // boundary triangles at any step's end, which that count leaves out.
+  std::vector<int64_t> surface_intersections;
+  size_t degenerate_surface_triangles = 0;
+  int64_t max_surface_intersections() const {
+    int64_t most = 0;  // -1 when a step was not counted
+    for (int64_t c : surface_intersections) {
+      if (c < 0) return -1;
+      most = std::max(most, c);
+    }
+    return most;
+  }
 };
 
 // Runs one case in one precision (fallback: SolveOptions::fallback_to_double).

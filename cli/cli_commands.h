@@ -15,5 +15,8 @@ void add_hessian_command(CLI::App& app, int& exit_code);  // hessian_export.h
 void add_run_command(CLI::App& app, int& exit_code);
 // `snh programs SCENE.json`: the kernel programs the scene builds (programs.h).
 void add_programs_command(CLI::App& app, int& exit_code);
+// `snh intersections FILE`: the exact self-intersection count of a surface
+// or of a mesh's boundary (surface_intersections.h).
+void add_intersections_command(CLI::App& app, int& exit_code);
 
 }  // namespace snh::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   snh::cli::add_probe_command(app, exit_code);
   snh::cli::add_hessian_command(app, exit_code);
   snh::cli::add_programs_command(app, exit_code);
+  snh::cli::add_intersections_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

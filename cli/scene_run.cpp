@@ -1,5 +1,6 @@
 #include "scene_run.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -46,20 +47,43 @@ void print_progress(const SceneProgress& p) {
   std::cerr << '\n';
 }
 
+// "output.check_intersections": the most intersecting pairs at any step's or
+// frame's end, and how many steps or frames had any.
+void print_intersections_summary(const SceneRun& run) {
+  if (run.surface_intersections.empty()) return;
+  size_t most = 0, damaged = 0;
+  for (const SelfIntersections& c : run.surface_intersections) {
+    most = std::max(most, c.intersecting_pairs);
+    damaged += c.clean() ? 0 : 1;
+  }
+  std::cout << ", surface intersections " << most << " (most in a " << (run.frames.empty() ? "step" : "frame") << "; "
+            << damaged << " of " << run.surface_intersections.size() << " not clean)";
+}
+
 void print_frames(const SceneRun& run) {
   double seconds = 0.0;
-  std::cout << "frame  newton  cg      status                 residual   min J       inverted  warnings\n";
-  for (const FrameRecord& r : run.frames) {
+  const bool checked = !run.surface_intersections.empty();
+  std::cout << "frame  newton  cg      status                 residual   min J       inverted  warnings"
+            << (checked ? "  intersections" : "") << "\n";
+  for (size_t k = 0; k < run.frames.size(); ++k) {
+    const FrameRecord& r = run.frames[k];
     seconds += r.seconds;
     std::cout << std::left << std::setw(7) << r.frame << std::setw(8) << r.newton_iterations << std::setw(8)
               << r.cg_iterations << std::setw(23) << r.status << std::setw(11) << std::setprecision(3)
               << r.residual_norm << std::setw(12) << std::setprecision(4) << r.min_j << std::setw(10)
-              << r.inverted_elements << r.warnings.size() << '\n';
+              << r.inverted_elements;
+    if (checked && k < run.surface_intersections.size())
+      std::cout << std::setw(10) << r.warnings.size() << run.surface_intersections[k].intersecting_pairs;
+    else
+      std::cout << r.warnings.size();
+    std::cout << '\n';
   }
   for (const FrameRecord& r : run.frames)
     for (const std::string& w : r.warnings) std::cerr << "warning: frame " << r.frame << ": " << w << '\n';
   std::cout << "all frames converged " << (run.converged ? "yes" : "no") << ", " << std::setprecision(4) << seconds
-            << " s solving, " << run.frames.size() << " frames\n";
+            << " s solving, " << run.frames.size() << " frames";
+  print_intersections_summary(run);
+  std::cout << "\n";
 }
 
 void print_steps(const SceneRun& run) {
@@ -74,7 +98,7 @@ void print_steps(const SceneRun& run) {
             << (options.contact.self ? "  self_contacts  max_self_penetration"
                 : measured           ? "  unresolved_self_contacts  max_self_penetration"
                                      : "")
-            << '\n';
+            << (run.surface_intersections.empty() ? "" : "  intersections") << '\n';
   for (size_t k = 0; k < r.steps.size(); ++k) {
     const StepResult& s = r.steps[k];
     static const SceneStep none;
@@ -96,11 +120,14 @@ void print_steps(const SceneRun& run) {
       const double d = options.contact.self ? s.max_self_penetration : record.max_self_penetration;
       std::cout << "  " << std::setw(13) << n << std::setprecision(3) << d;
     }
+    if (k < run.surface_intersections.size()) std::cout << "  " << run.surface_intersections[k].intersecting_pairs;
     std::cout << '\n';
   }
   std::cout << "converged " << (r.converged ? "yes" : "no") << ", " << std::setprecision(4) << r.seconds
             << " s, volume ratio " << std::setprecision(6) << r.volume_ratio << ", min J " << std::setprecision(4)
-            << r.min_j << ", inverted elements " << r.inverted_elements << '\n';
+            << r.min_j << ", inverted elements " << r.inverted_elements;
+  print_intersections_summary(run);
+  std::cout << '\n';
 }
 
 }  // namespace

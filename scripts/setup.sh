@@ -10,7 +10,8 @@ packages=(cmake g++ make pkg-config clang-format
           libviennacl-dev libeigen3-dev libgtest-dev
           nlohmann-json3-dev libcli11-dev python3-matplotlib
           gmsh python3-meshio libassimp-dev
-          python3-dev pybind11-dev python3-numpy python3-pytest)
+          python3-dev pybind11-dev python3-numpy python3-pytest
+          libboost-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -97,6 +97,24 @@ TEST(Stability, SquashHeightSetsTheLid) {
     EXPECT_THROW(bench::make_stability_case("squash_nu0.49", Precision::double_, 2, bad), snh::Error) << bad;
 }
 
+// squash_h<H>_nu<nu>: the frictionless squash at its own lid height H,
+// whatever --squash-height says, at 5% and 3% for nu 0.46, 0.49, 0.499.
+TEST(Stability, SquashHeightCasesCloseTheLidToTheirOwnHeight) {
+  int cases = 0;
+  for (const std::string& name : bench::stability_case_names()) {
+    if (name.rfind("squash_h", 0) != 0) continue;
+    ++cases;
+    const double height = std::stod(name.substr(8, name.find("_nu") - 8));
+    const Scene s = bench::make_stability_case(name, Precision::double_, 2, bench::kDefaultSquashHeight);
+    const Obstacle& lid = s.options.obstacles.back();
+    ASSERT_TRUE(static_cast<bool>(lid.motion)) << name;
+    EXPECT_NEAR(lid.motion(0.35).apply(lid.point)[2] - s.options.contact.thickness, height, 1e-12) << name;
+    EXPECT_FALSE(lid.friction.has_value()) << name;  // frictionless
+  }
+  EXPECT_EQ(cases, 6);
+  EXPECT_THROW(bench::make_stability_case("squash_hx_nu0.49", Precision::double_, 2), snh::Error);
+}
+
 TEST(Stability, SmallCasesConvergeInDouble) {
   for (const char* name : {"nu0.4999", "crush_point", "twist_2pi", "inverted_start"}) {
     const bench::StabilityRun r = bench::run_stability_case(name, Precision::double_, 2);

@@ -532,6 +532,12 @@ SceneFile load_scene(const std::string& path) {
   out.pc2_path = r.text(output, "output", "pc2", "");
   out.mdd_path = r.text(output, "output", "mdd", "");
   out.lbs_path = r.text(output, "output", "lbs", "");
+  if (output.contains("check_intersections")) {
+    if (!output["check_intersections"].is_boolean()) r.fail("output.check_intersections", "expected true or false");
+    out.check_intersections = output["check_intersections"].get<bool>();
+    if (out.check_intersections && out.character)
+      r.fail("output.check_intersections", "is not available for \"character\" scenes");
+  }
   for (const char* key : {"pc2", "mdd", "lbs"})
     if (output.contains(key) && !out.character)
       r.fail(std::string("output.") + key, "needs \"character\" (a skinned surface to cache)");

@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "scene/character_scene.h"
+#include "scene/output_surface_check.h"
 #include "scene/scene_progress.h"
 #include "snh/error.h"
 #include "snh/scene.h"
@@ -55,14 +57,25 @@ SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const
   frame_options.load_steps = options.load_steps;
   frame_options.fail_on_inverted = options.fail_on_inverted;
   const int frames = static_cast<int>(animation.frame_count());
+  std::optional<scene_io::OutputSurfaceCheck> check;
+  if (file.check_intersections) check.emplace(file, file.scene.mesh);
   out.frames = run_frames(simulation, animation, embedding, frame_options,
                           [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>& surface) {
+                            if (check) out.surface_intersections.push_back(check->count(x, surface));
                             if (run.progress) {
-                              run.progress(scene_io::frame_progress(r, r.frame + 1, frames));
+                              SceneProgress p = scene_io::frame_progress(r, r.frame + 1, frames);
+                              const std::string w =
+                                  check ? scene_io::OutputSurfaceCheck::warning(out.surface_intersections.back()) : "";
+                              if (!w.empty()) p.warnings.push_back(w);
+                              run.progress(p);
                             }
                             write_all(run, r.frame, r.time, x, surface);
                             return true;
                           });
+  for (size_t k = 0; k < out.frames.size() && k < out.surface_intersections.size(); ++k) {
+    const std::string w = scene_io::OutputSurfaceCheck::warning(out.surface_intersections[k]);
+    if (!w.empty()) out.frames[k].warnings.push_back(w);
+  }
   out.converged = std::all_of(out.frames.begin(), out.frames.end(), [](const FrameRecord& r) { return r.converged; });
   return out;
 }
@@ -71,8 +84,9 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
   const Scene& scene = file.scene;
   // The embedded surface, only for writers to write.
   const auto surface_of = [&](const Mesh& mesh, const std::vector<double>& x) {
-    return file.embedded && !run.writers.empty() ? embedded_positions(file.embedded->embedding, mesh, x)
-                                                 : std::vector<double>{};
+    return file.embedded && (!run.writers.empty() || file.check_intersections)
+               ? embedded_positions(file.embedded->embedding, mesh, x)
+               : std::vector<double>{};
   };
   const std::vector<double>& x0 = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
   write_all(run, 0, 0.0, x0, surface_of(scene.mesh, x0));
@@ -80,6 +94,8 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
   QuasistaticSolver solver(scene.mesh, file.materials, scene.constraints, options);
   if (file.embedded && !options.obstacles.empty()) solver.simulation().set_contact_surface(file.embedded->embedding);
   const Mesh& mesh = solver.mesh();
+  std::optional<scene_io::OutputSurfaceCheck> check;
+  if (file.check_intersections) check.emplace(file, mesh);
   SceneRun out;
   out.options = options;
   // Each step's positions and applied force (ramped with the load), for the
@@ -114,6 +130,13 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
             record.max_self_penetration = std::max(record.max_self_penetration, solver::self_contact_length(c, x));
         }
         out.steps.push_back(std::move(record));
+        const std::vector<double> surface = surface_of(mesh, x);
+        std::string intersections;
+        if (check) {
+          out.surface_intersections.push_back(check->count(x, surface));
+          intersections = scene_io::OutputSurfaceCheck::warning(out.surface_intersections.back());
+          if (!intersections.empty()) out.warnings.push_back("step " + std::to_string(step) + ": " + intersections);
+        }
         if (run.reactions) {
           step_positions.push_back(x);
           step_forces.push_back(solver.simulation().applied_force());
@@ -126,11 +149,12 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
           progress.min_j = done.min_j;
           progress.inverted_elements = done.inverted_elements;
           progress.warnings = done.warnings;
+          if (!intersections.empty()) progress.warnings.push_back(intersections);
           progress.seconds = std::chrono::duration<double>(Clock::now() - step_start).count();
           progress.time = options.dynamics ? time : 0.0;
           run.progress(progress);
         }
-        write_all(run, step, time, x, surface_of(mesh, x));
+        write_all(run, step, time, x, surface);
         progress.newton_iterations = progress.cg_iterations = 0;
         step_start = Clock::now();
       },

@@ -72,7 +72,7 @@ std::map<std::string, Keys> make_table() {
   t["contact"] = {"stiffness", "thickness", "self", "self_stiffness", "friction", "friction_slip"};
   t["solver"] = {"steps",          "precision", "strain_tolerance",  "absolute_tolerance", "max_newton_iterations",
                  "preconditioner", "hessian",   "product_precision", "fail_on_inverted"};
-  t["output"] = {"vtu", "json", "surface", "pc2", "mdd", "lbs"};
+  t["output"] = {"vtu", "json", "surface", "pc2", "mdd", "lbs", "check_intersections"};
   return t;
 }
 

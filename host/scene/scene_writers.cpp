@@ -156,6 +156,17 @@ json regions_json(const MaterialMap& materials) {
   return out;
 }
 
+// "output.check_intersections": each step's or frame's count.
+void add_intersections_json(json& records, const std::vector<SelfIntersections>& counts) {
+  for (size_t i = 0; i < counts.size() && i < records.size(); ++i) {
+    records[i]["surface_intersections"] = counts[i].intersecting_pairs;
+    records[i]["surface_degenerate_triangles"] = counts[i].degenerate_triangles;
+    json pairs = json::array();
+    for (const auto& p : counts[i].first_pairs) pairs.push_back({p[0], p[1]});
+    records[i]["surface_intersection_pairs"] = pairs;
+  }
+}
+
 json load_steps_json(const SceneFile& file, const SceneRun& run) {
   const SolveResult& r = run.result;
   const Material& material = file.material;
@@ -176,6 +187,7 @@ json load_steps_json(const SceneFile& file, const SceneRun& run) {
   if (!file.materials.uniform()) j["regions"] = regions_json(file.materials);
   for (size_t i = 0; i < run.steps.size() && i < j["steps"].size(); ++i)
     if (run.steps[i].reactions) j["steps"][i]["reactions"] = reactions_json(*run.steps[i].reactions);
+  add_intersections_json(j["steps"], run.surface_intersections);
   return j;
 }
 
@@ -231,6 +243,7 @@ json frames_json(const SceneFile& file, const SceneRun& run) {
       j["frames"][k]["lbs_mean_distance"] = run.skin_deviation[k].mean_distance;
     }
   }
+  add_intersections_json(j["frames"], run.surface_intersections);
   return j;
 }
 

@@ -30,6 +30,7 @@
 #include "snh/scenes.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
+#include "snh/surface_intersections.h"
 
 namespace snh {
 
@@ -48,6 +49,10 @@ struct SceneFile {
   // <folder>/<scene>_NNNN.obj, else a prefix for <prefix>_NNNN.obj; empty
   // for none. Needs "embed".
   std::string surface_prefix;
+  // "output.check_intersections": count the output surface's intersecting
+  // triangle pairs exactly at the end of each step or frame
+  // (SceneRun::surface_intersections).
+  bool check_intersections = false;
 
   // "embed": the surface, the lattice's grid (scene.mesh is its lattice) and
   // the surface's embedding in it.
@@ -154,6 +159,11 @@ struct SceneRun {
   bool converged = false;  // every step or frame
   // What could not be computed or written, e.g. a step without reactions.
   std::vector<std::string> warnings;
+  // "output.check_intersections": per step or frame, in their order, the
+  // exact self-intersection count of the output surface at its end (the
+  // embedded surface, else the mesh's boundary); empty when not asked. One
+  // that is not clean is also a warning of its step (run.warnings) or frame.
+  std::vector<SelfIntersections> surface_intersections;
 };
 
 // Reported after each load step or frame.
