@@ -95,8 +95,8 @@ __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_
  * index order (0 for no groups),
  * by one work-item: the order, and so the value, the host's loop over the
  * same partials gives, while only the total crosses to the host. */
-__kernel void snh_partial_total(__global const double* partial, const int offset, const int groups,
-                                const int minimum, __global double* total, const int slot) {
+__kernel void snh_partial_total(__global const double* partial, const int offset, const int groups, const int minimum,
+                                __global double* total, const int slot) {
   if (get_global_id(0) != 0) return;
   double s = groups > 0 ? partial[offset] : 0.0;
   for (int g = 1; g < groups; ++g) {

@@ -384,7 +384,6 @@ void expect_constant_newton_reads(Preconditioner preconditioner, int small, int 
   EXPECT_GE(b.bytes_per_read, a.bytes_per_read / 1.1);
 }
 
-
 TEST(DeviceTraffic, NewtonReadsAFewDoublesPerIterationWhateverTheSizeWithBlockJacobi) {
   expect_constant_newton_reads(Preconditioner::block_jacobi, 3, 14, {0.0, 0.0, 0.0});
 }

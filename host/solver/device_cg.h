@@ -32,7 +32,7 @@
 namespace snh::solver {
 
 struct CgResult {
-  int iterations = 0;  // up to the one that met the tolerance or stopped (at most max_iterations)
+  int iterations = 0;              // up to the one that met the tolerance or stopped (at most max_iterations)
   double relative_residual = 0.0;  // sqrt(r.z / r0.z0) there, as ViennaCL's CG reports it
   bool negative_curvature = false;
   bool breakdown = false;
