@@ -1,10 +1,14 @@
 /* Preconditioned conjugate gradients with its scalars on the device
  * (host/solver/device_cg.h): inner products are reduced to per-group partial
  * sums, and the kernel that needs a product's value (alpha in the update,
- * beta in the new direction) adds that product's partials itself, in index
- * order, in every work-group; no value crosses to the host inside an
- * iteration. The host reads the residual norms' partials (a ring of
- * SNH_CG_CHECK iterations) and the status once per convergence check.
+ * beta and the convergence test in the new direction) adds that product's
+ * partials itself, in index order, in every work-group; no value crosses to
+ * the host inside an iteration. The convergence test is the device's own, in
+ * every iteration: the preconditioned residual (r.z) against tolerance^2
+ * times r0.z0, ViennaCL's test; once it is met, or p.Ap <= 0, or a value is
+ * not finite, alpha is 0 in every later update, so x and r stay those of
+ * the iteration that stopped whenever the host reads the status. The host
+ * reads a ring of SNH_CG_CHECK iterations' r.z and statuses once per check.
  *
  * Deterministic: each work-group g covers the entries [g SPAN, (g+1) SPAN),
  * its item l adds l, l + GROUP, ... in that order, and the group folds its
@@ -14,11 +18,13 @@
  * and updates are in `real` (float and double from this one source;
  * SNH_FLOAT = 1 builds the float variant in a double context).
  *
- * The check buffer (doubles): [SNH_CG_CHECK rings of `groups` partials of
- * r.r][`groups` partials of r0.r0][SNH_CG_CHECK statuses][the live status].
- * Status: 0 running, 1 p.Ap <= 0 (negative curvature), 2 alpha not finite
- * (breakdown). Once it is set, alpha is 0 in every later update: x and r
- * stay where they were until the host sees the status. */
+ * The check buffer (doubles), K = SNH_CG_CHECK: [K totals of r.z, one per
+ * iteration of the ring][K statuses][the live status][r0.z0][`groups`
+ * partials of r0.z0]. Status: 0 running, 1 p.Ap <= 0 (negative curvature),
+ * 2 alpha not finite (breakdown), 3 converged (or r0.z0 <= 0: x = 0),
+ * 4 the relative residual not finite. Every group computes the same status
+ * from the same totals, so a group that reads the live status another group
+ * of the same launch has just written gets the value it would compute. */
 #include "snh_portable.h"
 
 #if !SNH_DOUBLE
@@ -32,6 +38,11 @@
 #ifndef SNH_CG_SPAN
 #define SNH_CG_SPAN (SNH_CG_GROUP * 64)
 #endif
+
+#define SNH_CG_STATUS(k) (SNH_CG_CHECK + (k))
+#define SNH_CG_LIVE (2 * SNH_CG_CHECK)
+#define SNH_CG_R0Z0 (2 * SNH_CG_CHECK + 1)
+#define SNH_CG_R0_PARTIALS (2 * SNH_CG_CHECK + 2)
 
 /* Folds fold[0..GROUP) into fold[0] by a fixed tree; every item returns it. */
 SNH_FN double snh_cg_fold(__local double* fold, const int l) {
@@ -77,7 +88,7 @@ __kernel void snh_cg_start(__global const real* b, const int n, __global real* x
   z[i] = v;
 }
 
-/* p = z; partials of r.z (rz) and of r.r (the check buffer's r0 slot);
+/* p = z; partials of r.z into rz and the check buffer's r0.z0 slot;
  * clears the statuses. */
 __kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_first_direction(
     __global const real* r, __global const real* z, const int n, __global real* p, __global double* rz,
@@ -85,41 +96,39 @@ __kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_f
   __local double fold[SNH_CG_GROUP];
   const int l = (int)get_local_id(0), g = (int)get_group_id(0);
   const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
-  double srz = 0.0, srr = 0.0;
+  double srz = 0.0;
   for (int i = begin + l; i < end; i += SNH_CG_GROUP) {
     const real zi = z[i], ri = r[i];
     p[i] = zi;
     srz += (double)ri * (double)zi;
-    srr += (double)ri * (double)ri;
   }
   fold[l] = srz;
   srz = snh_cg_fold(fold, l);
-  fold[l] = srr;
-  srr = snh_cg_fold(fold, l);
-  __global double* status = check + (SNH_CG_CHECK + 1) * groups;
   if (l == 0) {
     rz[g] = srz;
-    check[SNH_CG_CHECK * groups + g] = srr;
+    check[SNH_CG_R0_PARTIALS + g] = srz;
   }
-  if (g == 0 && l <= SNH_CG_CHECK) status[l] = 0.0;
+  if (g == 0)
+    for (int k = l; k <= SNH_CG_CHECK; k += SNH_CG_GROUP) check[SNH_CG_STATUS(k)] = 0.0;
 }
 
 /* alpha = (r.z) / (p.Ap) from their partials; x += alpha p, r -= alpha Ap,
- * z = r (for the preconditioner); partials of the new r.r into the ring's
- * `slot`, and the status after this iteration. */
+ * z = r (for the preconditioner); the live status after this update. */
 __kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_update(
     __global const real* p, __global const real* q, const int n, __global const double* rz, __global const double* pq,
-    __global real* x, __global real* r, __global real* z, __global double* check, const int groups, const int slot) {
+    __global real* x, __global real* r, __global real* z, __global double* check, const int groups) {
   __local double fold[SNH_CG_GROUP];
   const int l = (int)get_local_id(0), g = (int)get_group_id(0);
-  __global double* status = check + (SNH_CG_CHECK + 1) * groups;
-  const double was = status[SNH_CG_CHECK];
+  const double was = check[SNH_CG_LIVE];
+  const double sum_r0z0 = snh_cg_total(check + SNH_CG_R0_PARTIALS, groups, fold, l);
   const double sum_rz = snh_cg_total(rz, groups, fold, l);
   const double sum_pq = snh_cg_total(pq, groups, fold, l);
   double state = was;
   double alpha = 0.0;
   if (was == 0.0) {
-    if (!(sum_pq > 0.0)) {
+    if (!(sum_r0z0 > 0.0)) {
+      state = 3.0; /* nothing to solve (ViennaCL returns x = 0) */
+    } else if (!(sum_pq > 0.0)) {
       state = isfinite(sum_pq) ? 1.0 : 2.0;
     } else {
       alpha = sum_rz / sum_pq;
@@ -129,7 +138,6 @@ __kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_u
   }
   const real a = (real)alpha;
   const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
-  double srr = 0.0;
   /* Stopped: x and r stay (0 times a non-finite p would not). */
   const int moving = state == 0.0;
   for (int i = begin + l; i < end; i += SNH_CG_GROUP) {
@@ -140,31 +148,40 @@ __kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_u
       r[i] = ri;
     }
     z[i] = ri;
-    srr += (double)ri * (double)ri;
   }
-  fold[l] = srr;
-  srr = snh_cg_fold(fold, l);
-  if (l == 0) check[slot * groups + g] = srr;
-  if (g == 0 && l == 0) {
-    status[slot] = state;
-    status[SNH_CG_CHECK] = state;
-  }
+  if (g == 0 && l == 0) check[SNH_CG_LIVE] = state;
 }
 
-/* beta = (r.z)_new / (r.z)_old from their partials; p = z + beta p (kept
- * once stopped). */
+/* The convergence test on (r.z)_new / r0.z0; beta = (r.z)_new / (r.z)_old
+ * from their partials; p = z + beta p (kept once stopped). The ring's
+ * `slot` gets this iteration's r.z and status. */
 __kernel __attribute__((reqd_work_group_size(SNH_CG_GROUP, 1, 1))) void snh_cg_direction(
     __global const real* z, const int n, __global const double* rz_new, __global const double* rz_old,
-    __global const double* check, const int groups, __global real* p) {
+    __global double* check, const int groups, const int slot, const double tolerance_squared, __global real* p) {
   __local double fold[SNH_CG_GROUP];
   const int l = (int)get_local_id(0), g = (int)get_group_id(0);
   /* No early return: every item reaches the barriers below (pocl). */
-  const int moving = check[(SNH_CG_CHECK + 1) * groups + SNH_CG_CHECK] == 0.0;
-  const double beta = snh_cg_total(rz_new, groups, fold, l) / snh_cg_total(rz_old, groups, fold, l);
-  const real b = (real)beta;
+  double state = check[SNH_CG_LIVE];
+  const double sum_r0z0 = snh_cg_total(check + SNH_CG_R0_PARTIALS, groups, fold, l);
+  const double sum_new = snh_cg_total(rz_new, groups, fold, l);
+  const double sum_old = snh_cg_total(rz_old, groups, fold, l);
+  if (state == 0.0) {
+    const double relative = fabs(sum_new / sum_r0z0);
+    if (!isfinite(relative))
+      state = 4.0;
+    else if (relative < tolerance_squared)
+      state = 3.0;
+  }
+  const real b = (real)(sum_new / sum_old);
   const int begin = g * SNH_CG_SPAN, end = min(begin + SNH_CG_SPAN, n);
-  if (moving)
+  if (state == 0.0)
     for (int i = begin + l; i < end; i += SNH_CG_GROUP) p[i] = z[i] + b * p[i];
+  if (g == 0 && l == 0) {
+    check[slot] = sum_new;
+    check[SNH_CG_STATUS(slot)] = state;
+    check[SNH_CG_LIVE] = state;
+    check[SNH_CG_R0Z0] = sum_r0z0;
+  }
 }
 
 /* y = x + alpha p (the line search's trial points; alpha in double). */

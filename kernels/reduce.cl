@@ -59,3 +59,49 @@ __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_
   }
   if (l == 0) partial[g] = fold[0];
 }
+
+/* sum f x and sum |f x| over each span into partial[g] and partial[groups + g]:
+ * the external forces' work at x, f kept in double as the host holds it. */
+__kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_partial_work(
+    __global const real* x, __global const double* f, const int n, const int groups, __global double* partial) {
+  __local double fold[SNH_REDUCE_GROUP];
+  __local double size[SNH_REDUCE_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  const int begin = g * SNH_REDUCE_SPAN;
+  const int end = min(begin + SNH_REDUCE_SPAN, n);
+  double s = 0.0, m = 0.0;
+  for (int i = begin + l; i < end; i += SNH_REDUCE_GROUP) {
+    const double w = f[i] * (double)x[i];
+    s += w;
+    m += fabs(w);
+  }
+  fold[l] = s;
+  size[l] = m;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int h = SNH_REDUCE_GROUP / 2; h > 0; h >>= 1) {
+    if (l < h) {
+      fold[l] += fold[l + h];
+      size[l] += size[l + h];
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0) {
+    partial[g] = fold[0];
+    partial[groups + g] = size[0];
+  }
+}
+
+/* total[slot] = the sum (minimum: 1) of partial[offset..offset + groups) in
+ * index order (0 for no groups),
+ * by one work-item: the order, and so the value, the host's loop over the
+ * same partials gives, while only the total crosses to the host. */
+__kernel void snh_partial_total(__global const double* partial, const int offset, const int groups, const int minimum,
+                                __global double* total, const int slot) {
+  if (get_global_id(0) != 0) return;
+  double s = groups > 0 ? partial[offset] : 0.0;
+  for (int g = 1; g < groups; ++g) {
+    const double p = partial[offset + g];
+    s = minimum ? (p < s ? p : s) : s + p;
+  }
+  total[slot] = s;
+}

@@ -14,6 +14,7 @@
 #include <CL/cl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -100,8 +101,9 @@ struct Traced {
 };
 
 Traced run(const Scene& scene, Preconditioner preconditioner, int check_every,
-           HessianMode hessian = HessianMode::adaptive) {
+           HessianMode hessian = HessianMode::adaptive, const std::array<double, 3>& body_force = {0.0, 0.0, 0.0}) {
   SolveOptions o = scene.options;
+  if (body_force != std::array<double, 3>{0.0, 0.0, 0.0}) o.body_force = body_force;
   o.hessian = hessian;
   o.preconditioner = preconditioner;
   o.cg_check_every = check_every;
@@ -207,7 +209,8 @@ void expect_reads_per_check(Preconditioner preconditioner, int resolution, int k
   const Traced r = run(twist(resolution), preconditioner, k, HessianMode::projected);
   ASSERT_TRUE(r.result.converged);
   const SolveProfile& p = r.result.profile;
-  const long long run_iterations = cg_iterations(r.result);  // past convergence included
+  // Those reported (up to each solve's stop) and those run past them.
+  const long long run_iterations = cg_iterations(r.result) + p.cg_iterations_past_convergence;
   const long long solves = linear_solves(r.result);
   ASSERT_GT(solves, 0);
   // ceil(iterations / k) per linear solve.
@@ -263,6 +266,136 @@ TEST(DeviceTraffic, DeviceCgFindsViennaClsEquilibriumInTheStretch) {
   SceneParameters p;
   p.resolution = 3;
   expect_same_equilibrium(make_scene("stretch", p), Preconditioner::block_jacobi);
+}
+
+// The device stops CG itself at the iteration that met the tolerance (x and
+// r stay from then on), so the check interval changes only how many
+// iterations run past it: the same solution, bit for bit, and the same
+// reported iterations and relative residuals for every k.
+void expect_independent_of_check_interval(const Scene& scene, Preconditioner preconditioner) {
+  const Traced every = run(scene, preconditioner, 1);
+  ASSERT_TRUE(every.result.converged);
+  EXPECT_EQ(every.result.profile.cg_iterations_past_convergence, 0);
+  for (int k : {2, 5, 8}) {
+    const Traced r = run(scene, preconditioner, k);
+    ASSERT_TRUE(r.result.converged) << k;
+    EXPECT_EQ(r.result.positions, every.result.positions) << k;
+    ASSERT_EQ(r.result.history.size(), every.result.history.size()) << k;
+    for (size_t i = 0; i < r.result.history.size(); ++i) {
+      EXPECT_EQ(r.result.history[i].cg_iterations, every.result.history[i].cg_iterations) << k << " " << i;
+      EXPECT_EQ(r.result.history[i].cg_relative_residual, every.result.history[i].cg_relative_residual)
+          << k << " " << i;
+      EXPECT_EQ(r.result.history[i].energy, every.result.history[i].energy) << k << " " << i;
+    }
+  }
+}
+
+TEST(DeviceTraffic, DeviceCgResultDoesNotDependOnTheCheckIntervalWithBlockJacobi) {
+  expect_independent_of_check_interval(twist(), Preconditioner::block_jacobi);
+}
+
+TEST(DeviceTraffic, DeviceCgResultDoesNotDependOnTheCheckIntervalWithMultigrid) {
+  expect_independent_of_check_interval(twist(4), Preconditioner::multigrid);
+}
+
+// On the first Newton iteration both CGs solve the same system from the same
+// start: the device CG stops where ViennaCL's does (its test: the
+// preconditioned residual r.z against r0.z0) and reports that residual,
+// which differs only by the rounding of the two CGs' inner products.
+TEST(DeviceTraffic, DeviceCgStopsWhereViennaClsCgStops) {
+  for (Preconditioner preconditioner : {Preconditioner::block_jacobi, Preconditioner::multigrid}) {
+    const Scene scene = twist(4);
+    const Traced old = run(scene, preconditioner, 0);
+    const Traced now = run(scene, preconditioner, 4);
+    ASSERT_FALSE(old.result.history.empty());
+    ASSERT_FALSE(now.result.history.empty());
+    const NewtonIteration &a = old.result.history.front(), &b = now.result.history.front();
+    EXPECT_EQ(a.residual_norm, b.residual_norm);
+    EXPECT_EQ(b.cg_iterations, a.cg_iterations);
+    EXPECT_NEAR(b.cg_relative_residual, a.cg_relative_residual, 1e-6 * a.cg_relative_residual);
+  }
+}
+
+// The Newton loop's own reads (norms, dots, the energy with its minimum J
+// and its external work) are a few doubles each, whatever the DOF count,
+// and a constant number per Newton iteration; CG reads once per k
+// iterations; the V-cycle (its coarsest solve on the device) never.
+struct NewtonReads {
+  double reads_per_newton = 0.0;  // outside the linear solves and the preconditioner's set-up
+  double bytes_per_read = 0.0;    // of those
+  long long dofs = 0;
+};
+
+NewtonReads newton_reads(int resolution, Preconditioner preconditioner, int k, const std::array<double, 3>& force) {
+  SceneParameters parameters;
+  parameters.resolution = resolution;
+  parameters.steps = 1;
+  const Traced r = run(make_scene("twist", parameters), preconditioner, k, HessianMode::projected, force);
+  EXPECT_TRUE(r.result.converged) << resolution;
+  const SolveProfile& p = r.result.profile;
+  DeviceTraffic outside;
+  for (const auto& [phase, t] : p.traffic)
+    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
+        phase != "preconditioner_setup")
+      outside += t;
+  int newton = 0;
+  for (const StepResult& s : r.result.steps) newton += s.newton_iterations;
+  EXPECT_GT(newton, 0);
+  // CG: one read of 2 k + 2 doubles per k iterations; none in a V-cycle.
+  const DeviceTraffic cg = cg_traffic(p);
+  const long long run_iterations = cg_iterations(r.result) + p.cg_iterations_past_convergence;
+  EXPECT_LE(cg.blocking_readbacks * k, run_iterations + linear_solves(r.result) * (k - 1)) << resolution;
+  EXPECT_EQ(cg.bytes_to_host, cg.blocking_readbacks * static_cast<long long>((2 * k + 2) * sizeof(double)));
+  if (p.traffic.count("preconditioner_apply")) EXPECT_EQ(p.traffic.at("preconditioner_apply").blocking_readbacks, 0);
+  // Less each step's result, read once at its end (double here).
+  NewtonReads out;
+  out.dofs = static_cast<long long>(r.result.positions.size());
+  const long long steps = static_cast<long long>(r.result.steps.size());
+  const long long reads = outside.blocking_readbacks - steps;
+  const long long bytes = outside.bytes_to_host - steps * out.dofs * static_cast<long long>(sizeof(double));
+  EXPECT_GT(reads, 0);
+  out.reads_per_newton = static_cast<double>(reads) / newton;
+  out.bytes_per_read = static_cast<double>(bytes) / std::max<long long>(1, reads);
+  return out;
+}
+
+void expect_constant_newton_reads(Preconditioner preconditioner, int small, int large,
+                                  const std::array<double, 3>& force) {
+  const int k = 4;
+  const NewtonReads a = newton_reads(small, preconditioner, k, force);
+  const NewtonReads b = newton_reads(large, preconditioner, k, force);
+  // More than two reduction groups (4,096 entries) at the larger size, so a
+  // read of per-group partials or of whole vectors would grow.
+  ASSERT_GT(b.dofs, 2 * 4096);
+  ASSERT_GT(b.dofs, 4 * a.dofs);
+  for (const NewtonReads& r : {a, b}) {
+    // The residual norm, the slope, one energy and one residual norm per
+    // line-search trial, the descent at the accepted step: with full steps
+    // about five, and never more than the line search's trials allow.
+    EXPECT_GT(r.reads_per_newton, 2.0);
+    EXPECT_LE(r.reads_per_newton, 8.0);
+    // At most the energy's five doubles in one read.
+    EXPECT_LE(r.bytes_per_read, 5.0 * sizeof(double));
+  }
+  // The same reads at both sizes (the mix of energies, norms and dots
+  // shifts a little with the line search's trials); per-group partials
+  // would make the larger size's reads three times as large.
+  EXPECT_LE(b.bytes_per_read, 1.1 * a.bytes_per_read);
+  EXPECT_GE(b.bytes_per_read, a.bytes_per_read / 1.1);
+}
+
+TEST(DeviceTraffic, NewtonReadsAFewDoublesPerIterationWhateverTheSizeWithBlockJacobi) {
+  expect_constant_newton_reads(Preconditioner::block_jacobi, 3, 14, {0.0, 0.0, 0.0});
+}
+
+TEST(DeviceTraffic, NewtonReadsAFewDoublesPerIterationWhateverTheSizeWithMultigrid) {
+  expect_constant_newton_reads(Preconditioner::multigrid, 4, 14, {0.0, 0.0, 0.0});
+}
+
+// The external forces' work is a dot product on the device: the energy with
+// a body force reads no vector either.
+TEST(DeviceTraffic, EnergyWithExternalForceReadsNoVector) {
+  expect_constant_newton_reads(Preconditioner::multigrid, 4, 14, {0.0, 0.0, -0.2});
 }
 
 TEST(DeviceTraffic, NegativeCheckIntervalIsRefused) {

@@ -1,21 +1,22 @@
 // Preconditioned conjugate gradients that keep their scalars on the device
 // (kernels/cg.cl): r.z and p.Ap are reduced to per-group partials that the
-// next kernel adds itself, so an iteration queues its kernels without a read
-// and the host reads only the convergence check, once every `check_every`
-// iterations (SolverTuning::cg_check_every): the residual norms of those
-// iterations and the status, in one read. CG may so run up to check_every - 1
-// iterations past the one that met the tolerance; the solve reports how many
-// (CgResult::past_convergence) and returns the last iterate, which is at
-// least as good. Negative curvature (p.Ap <= 0) or a non-finite step stops
-// the iteration on the device (alpha 0 from then on: x and r stay as they
-// were, as ViennaCL's CG left them when its curvature monitor stopped it).
+// next kernel adds itself, so an iteration queues its kernels without a read.
+// The device tests convergence in every iteration as ViennaCL's CG does
+// (the preconditioned residual, r.z < tolerance^2 r0.z0) and from the
+// iteration that met it (or stopped: p.Ap <= 0, a non-finite step or
+// residual) leaves x and r as they are, so the solution and the reported
+// iterations and relative residual are those of a CG that checks every
+// iteration, whatever the check interval. The host reads the status once
+// every `check_every` iterations (SolverTuning::cg_check_every): the ring of
+// those iterations' r.z and statuses, in one read of 2 k + 2 doubles. Up to
+// check_every - 1 iterations run past the one that stopped, their products
+// and preconditioner applications spent for nothing (CgResult::past_convergence).
 //
 // Per iteration: the product, one partial-sum kernel (p.Ap), the update
-// (x, r, z = r and the partials of r.r in one pass), the preconditioner, one
-// partial-sum kernel (r.z) and the new direction. The relative residual is
-// |r| / |b|, as in ViennaCL's CG. Deterministic: fixed reduction trees, no
-// atomics. Needs fp64 on the device for its sums (DeviceCg::available).
-// Internal.
+// (x, r and z = r in one pass), the preconditioner, one partial-sum kernel
+// (r.z) and the new direction with the test. Deterministic: fixed reduction
+// trees, no atomics. Needs fp64 on the device for its sums
+// (DeviceCg::available). Internal.
 #pragma once
 
 #include <algorithm>
@@ -31,12 +32,12 @@
 namespace snh::solver {
 
 struct CgResult {
-  int iterations = 0;  // iterations run (at most max_iterations), past_convergence included
-  double relative_residual = 0.0;
+  int iterations = 0;              // up to the one that met the tolerance or stopped (at most max_iterations)
+  double relative_residual = 0.0;  // sqrt(r.z / r0.z0) there, as ViennaCL's CG reports it
   bool negative_curvature = false;
   bool breakdown = false;
-  // Of those, the iterations run after the one that met the tolerance or
-  // stopped (between it and the next check; at most check_every - 1).
+  // Iterations run after `iterations` before the host saw the stop (at most
+  // check_every - 1), x and r unchanged by them.
   int past_convergence = 0;
 };
 
@@ -70,15 +71,17 @@ class DeviceCg {
     pq_ = cl.buffer(CL_MEM_READ_WRITE, groups_ * sizeof(double));
     rz_ = cl.buffer(CL_MEM_READ_WRITE, groups_ * sizeof(double));
     rz_next_ = cl.buffer(CL_MEM_READ_WRITE, groups_ * sizeof(double));
-    check_values_ = (check_every_ + 1) * groups_ + check_every_ + 1;
-    check_ = cl.buffer(CL_MEM_READ_WRITE, check_values_ * sizeof(double));
+    // kernels/cg.cl: the ring's r.z and statuses, the live status, r0.z0,
+    // then r0.z0's partials, which the host does not read.
+    check_values_ = 2 * check_every_ + 2;
+    check_ = cl.buffer(CL_MEM_READ_WRITE, (check_values_ + groups_) * sizeof(double));
     host_.resize(check_values_);
   }
 
   int check_every() const { return check_every_; }
-  size_t memory_bytes() const { return 4 * n_ * sizeof(Real) + (3 * groups_ + check_values_) * sizeof(double); }
+  size_t memory_bytes() const { return 4 * n_ * sizeof(Real) + (4 * groups_ + check_values_) * sizeof(double); }
 
-  // x = the CG solution of A x = b from x = 0, to |r| <= tolerance |b| or
+  // x = the CG solution of A x = b from x = 0, to r.z < tolerance^2 r0.z0 or
   // max_iterations; product(p, q): q = A p; precondition(z): z = M^-1 z in
   // place. Both queue device work only.
   template <typename Product, typename Precondition>
@@ -99,11 +102,9 @@ class DeviceCg {
             groups_ * kGroup);
     CgResult result;
     const double tolerance_squared = tolerance * tolerance;
-    double rr0 = -1.0;  // read at the first check
     for (int it = 1; it <= max_iterations; ++it) {
       product(p_, q_);
       cl_.run(device::KernelArgs(dot_.get()).add(mem(p_)).add(mem(q_)).add(n).add(pq_.get()).bind(), groups_ * kGroup);
-      const int slot = (it - 1) % check_every_;
       cl_.run(device::KernelArgs(update_.get())
                   .add(mem(p_))
                   .add(mem(q_))
@@ -115,41 +116,31 @@ class DeviceCg {
                   .add(mem(z_))
                   .add(check_.get())
                   .add(groups)
-                  .add(slot)
                   .bind(),
               groups_ * kGroup);
-      const bool check = slot == check_every_ - 1 || it == max_iterations;
-      if (!check) next_direction(precondition, n, groups);
-      if (!check) continue;
-      // The check: one blocking read of the ring, r0's partials and statuses.
+      const int slot = (it - 1) % check_every_;
+      next_direction(precondition, n, groups, slot, tolerance_squared);
+      if (slot != check_every_ - 1 && it != max_iterations) continue;
+      // The check: one blocking read of the ring, the live status and r0.z0.
       cl_.read(check_.get(), check_values_ * sizeof(double), host_.data());
-      if (rr0 < 0.0) rr0 = sum(check_every_ * groups_);
-      const int first = it - slot;  // the iteration in the ring's slot 0
-      const double* status = host_.data() + (check_every_ + 1) * groups_;
-      for (int s = 0; s <= slot; ++s) {
-        const double rr = sum(static_cast<size_t>(s) * groups_);
-        const int at = first + s;
-        result.iterations = it;
-        result.relative_residual = rr0 > 0.0 ? std::sqrt(std::fabs(rr / rr0)) : 0.0;
-        result.past_convergence = it - at;
-        if (status[s] != 0.0) {  // stopped in this iteration (where ViennaCL's monitor stopped); x and r stayed
-          result.negative_curvature = status[s] == 1.0;
-          result.breakdown = status[s] == 2.0;
-          return result;
-        }
-        if (!(rr0 > 0.0)) {  // b = 0: x = 0
-          result.past_convergence = it;
-          return result;
-        }
-        if (!std::isfinite(result.relative_residual)) return result;
-        if (rr < tolerance_squared * rr0) {
-          // Met at `at`; x holds iteration it, no worse: its residual.
-          const double last = sum(static_cast<size_t>(slot) * groups_);
-          result.relative_residual = std::sqrt(std::fabs(last / rr0));
-          return result;
-        }
+      const double r0z0 = host_[2 * check_every_ + 1];
+      if (!(r0z0 > 0.0)) {  // b = 0 (or M^-1 not positive on it): x = 0, as ViennaCL returns
+        result.iterations = 0;
+        result.relative_residual = std::isfinite(r0z0) ? 0.0 : r0z0;
+        result.past_convergence = it;
+        return result;
       }
-      if (it < max_iterations) next_direction(precondition, n, groups);
+      const int first = it - slot;  // the iteration in the ring's slot 0
+      for (int s = 0; s <= slot; ++s) {
+        const double status = host_[check_every_ + s];
+        result.iterations = first + s;
+        result.relative_residual = std::sqrt(std::fabs(host_[s] / r0z0));
+        if (status == 0.0) continue;
+        result.negative_curvature = status == 1.0;
+        result.breakdown = status == 2.0;
+        result.past_convergence = it - result.iterations;
+        return result;
+      }
     }
     return result;
   }
@@ -168,9 +159,10 @@ class DeviceCg {
   static constexpr size_t kGroup = 64;  // SNH_CG_GROUP
   static cl_mem mem(const VectorBase& v) { return v.handle().opencl_handle().get(); }
 
-  // z = M^-1 r (update left z = r), the partials of the new r.z, p = z + beta p.
+  // z = M^-1 r (update left z = r), the partials of the new r.z, the
+  // convergence test and p = z + beta p.
   template <typename Precondition>
-  void next_direction(Precondition& precondition, int n, int groups) {
+  void next_direction(Precondition& precondition, int n, int groups, int slot, double tolerance_squared) {
     precondition(z_);
     cl_.run(device::KernelArgs(dot_.get()).add(mem(r_)).add(mem(z_)).add(n).add(rz_next_.get()).bind(),
             groups_ * kGroup);
@@ -181,16 +173,12 @@ class DeviceCg {
                 .add(rz_.get())
                 .add(check_.get())
                 .add(groups)
+                .add(slot)
+                .add(tolerance_squared)
                 .add(mem(p_))
                 .bind(),
             groups_ * kGroup);
     std::swap(rz_, rz_next_);
-  }
-  // The sum of host_[from, from + groups) in index order.
-  double sum(size_t from) const {
-    double s = 0.0;
-    for (size_t g = 0; g < groups_; ++g) s += host_[from + g];
-    return s;
   }
 
   device::OpenClContext& cl_;

@@ -139,8 +139,9 @@ class DeviceProblem {
     PhaseScope timed(&model_.profiler(), Phase::cg_vector_work);
     if (device_cg_) {
       PhaseProfiler* profiler = &model_.profiler();
+      // The tolerance ViennaCL's CG would use (its tag holds it in Real).
       const CgResult c = device_cg_->solve(
-          r, p, eta, max_iterations,
+          r, p, static_cast<double>(static_cast<Real>(eta)), max_iterations,
           [this, profiler](const viennacl::vector_base<Real>& d, viennacl::vector_base<Real>& q) {
             PhaseScope product(profiler, Phase::products);
             model_.product(d, q);

@@ -18,22 +18,81 @@ DeviceReduction::DeviceReduction(device::OpenClContext& cl, size_t real_bytes, P
   if (on_device_) {
     sums_ = cl.kernel("reduce.cl", "", "snh_partial_sums");
     minima_ = cl.kernel("reduce.cl", "", "snh_partial_minima");
+    work_ = cl.kernel("reduce.cl", "", "snh_partial_work");
+    total_ = cl.kernel("reduce.cl", "", "snh_partial_total");
+    totals_ = cl.buffer(CL_MEM_READ_WRITE, kSlots * sizeof(double));
   }
 }
 
 size_t DeviceReduction::partials_for(size_t n) const {
   const size_t groups = (n + kSpan - 1) / kSpan;
-  if (groups > partial_capacity_) {
-    partial_ = cl_.buffer(CL_MEM_READ_WRITE, groups * sizeof(double));
-    partial_capacity_ = groups;
+  if (2 * groups > partial_capacity_) {  // two partials per group for queue_work
+    partial_ = cl_.buffer(CL_MEM_READ_WRITE, 2 * groups * sizeof(double));
+    partial_capacity_ = 2 * groups;
   }
   return groups;
 }
 
-void DeviceReduction::read_partials(size_t groups) const {
-  host_.resize(groups);
-  PhaseScope transfer(profiler_, Phase::transfers);
-  cl_.read(partial_.get(), groups * sizeof(double), host_.data());
+void DeviceReduction::queue_total(size_t groups, bool minimum, int slot, size_t offset) const {
+  if (slot < 0 || slot >= kSlots) throw Error("solver: a reduction's total slot out of range");
+  cl_.run(device::KernelArgs(total_.get())
+              .add(partial_.get())
+              .add(static_cast<int>(offset))
+              .add(static_cast<int>(groups))
+              .add(minimum ? 1 : 0)
+              .add(totals_.get())
+              .add(slot)
+              .bind(),
+          1);
+}
+
+void DeviceReduction::queue(cl_mem a, cl_mem b, size_t n, int mode, int slot) const {
+  if (!on_device_) {
+    totals_host_[slot] = reduce(a, b, n, mode);
+    return;
+  }
+  const size_t groups = partials_for(n);
+  if (groups > 0)
+    cl_.run(device::KernelArgs(sums_.get()).add(a).add(b).add(static_cast<int>(n)).add(mode).add(partial_.get()).bind(),
+            groups * kGroup);
+  queue_total(groups, false, slot);
+}
+
+void DeviceReduction::queue_min(cl_mem a, size_t n, int slot) const {
+  if (!on_device_) {
+    totals_host_[slot] = min(a, n);
+    return;
+  }
+  const size_t groups = partials_for(n);
+  if (groups > 0)
+    cl_.run(device::KernelArgs(minima_.get()).add(a).add(static_cast<int>(n)).add(partial_.get()).bind(),
+            groups * kGroup);
+  queue_total(groups, true, slot);
+}
+
+void DeviceReduction::queue_work(cl_mem x, cl_mem f, size_t n, int slot) const {
+  if (!on_device_) throw Error("solver: the device reduction of a force's work needs fp64 on the device");
+  const size_t groups = partials_for(n);
+  if (groups > 0)
+    cl_.run(device::KernelArgs(work_.get())
+                .add(x)
+                .add(f)
+                .add(static_cast<int>(n))
+                .add(static_cast<int>(groups))
+                .add(partial_.get())
+                .bind(),
+            groups * kGroup);
+  queue_total(groups, false, slot);
+  queue_total(groups, false, slot + 1, groups);
+}
+
+const double* DeviceReduction::read_totals(int count) const {
+  if (count < 0 || count > kSlots) throw Error("solver: a reduction's total slot out of range");
+  if (on_device_ && count > 0) {
+    PhaseScope transfer(profiler_, Phase::transfers);
+    cl_.read(totals_.get(), count * sizeof(double), totals_host_);
+  }
+  return totals_host_;
 }
 
 std::vector<double> DeviceReduction::read_all(cl_mem a, size_t n) const {
@@ -58,14 +117,8 @@ double DeviceReduction::reduce(cl_mem a, cl_mem b, size_t n, int mode) const {
     for (size_t i = 0; i < n; ++i) s += mode == 0 ? x[i] : mode == 1 ? x[i] * x[i] : x[i] * y[i];
     return s;
   }
-  const size_t groups = partials_for(n);
-  const int count = static_cast<int>(n);
-  cl_.run(device::KernelArgs(sums_.get()).add(a).add(b).add(count).add(mode).add(partial_.get()).bind(),
-          groups * kGroup);
-  read_partials(groups);
-  double s = 0.0;
-  for (double p : host_) s += p;
-  return s;
+  queue(a, b, n, mode, 0);
+  return read_totals(1)[0];
 }
 
 double DeviceReduction::min(cl_mem a, size_t n) const {
@@ -74,11 +127,8 @@ double DeviceReduction::min(cl_mem a, size_t n) const {
     const std::vector<double> x = read_all(a, n);
     return *std::min_element(x.begin(), x.end());
   }
-  const size_t groups = partials_for(n);
-  const int count = static_cast<int>(n);
-  cl_.run(device::KernelArgs(minima_.get()).add(a).add(count).add(partial_.get()).bind(), groups * kGroup);
-  read_partials(groups);
-  return *std::min_element(host_.begin(), host_.end());
+  queue_min(a, n, 0);
+  return read_totals(1)[0];
 }
 
 }  // namespace snh::solver

@@ -201,6 +201,10 @@ void ElasticModel<Real>::set_external_force(const std::vector<double>& force) {
   const std::vector<Real> f(force.begin(), force.end());
   PhaseScope transfer(&profiler_, Phase::transfers);
   data_.cl.write(external_.get(), f.size() * sizeof(Real), f.data());
+  if (reduction_.on_device()) {
+    if (!external_work_) external_work_ = data_.cl.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(double));
+    data_.cl.write(external_work_.get(), force.size() * sizeof(double), force.data());
+  }
 }
 
 template <typename Real>
@@ -357,20 +361,32 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   args.add(mem(x)).add(data_.elements.get()).add(data_.gradients.get()).add(data_.weights.get()).add(count);
   material_.add_to(args).add(energies_.get()).add(min_j_.get());
   data_.run_element_kernel(args.bind());
-  double sum = reduction_.sum(energies_.get(), data_.element_count) * elastic_scale_;
-  last_min_j_ = reduction_.min(min_j_.get(), data_.element_count);
-  last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
+  // One read for the sums and the minimum (slots: elastic, min J, contact,
+  // external work and its magnitude).
+  const bool work_on_device = has_external_ && reduction_.on_device();
+  reduction_.queue_sum(energies_.get(), data_.element_count, 0);
+  reduction_.queue_min(min_j_.get(), data_.element_count, 1);
   if (terms_.obstacles > 0) {
     contact(x);
-    sum += reduction_.sum(vertex_terms_->contact_energy(), data_.vertex_count);
+    reduction_.queue_sum(vertex_terms_->contact_energy(), data_.vertex_count, 2);
   }
-  if (has_external_ || terms_.inertia || terms_.self_contact) {
+  if (work_on_device) reduction_.queue_work(mem(x), external_work_.get(), dofs(), 3);
+  const double* totals = reduction_.read_totals(work_on_device ? 5 : terms_.obstacles > 0 ? 3 : 2);
+  double sum = totals[0] * elastic_scale_;
+  last_min_j_ = totals[1];
+  last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
+  if (terms_.obstacles > 0) sum += totals[2];
+  if (work_on_device) {
+    sum -= totals[3];
+    last_energy_magnitude_ += totals[4];
+  }
+  if ((has_external_ && !work_on_device) || terms_.inertia || terms_.self_contact) {
     std::vector<Real> xh(dofs());
     {
       PhaseScope transfer(&profiler_, Phase::transfers);
       device::read_back(data_.cl, x, xh);
     }
-    if (has_external_)
+    if (has_external_ && !work_on_device)
       for (size_t i = 0; i < xh.size(); ++i) {
         sum -= external_host_[i] * static_cast<double>(xh[i]);
         last_energy_magnitude_ += std::abs(external_host_[i] * static_cast<double>(xh[i]));

@@ -319,6 +319,7 @@ class ElasticModel {
   int projected_ = 1;
   double last_min_j_ = 0.0;
   std::vector<double> external_host_;
+  device::Buffer external_work_;  // external_host_ on the device, for the energy's work term
   ModelTerms terms_;
   double elastic_scale_ = 1.0;
   double max_poisson_ratio_ = 0.0;

@@ -383,10 +383,10 @@ namespace defaults {
 inline constexpr int max_newton_iterations = 200;
 // CG iterations (operator applications) per Newton iteration.
 inline constexpr int max_cg_iterations = 20000;
-// 0: ViennaCL's CG. The device CG (k >= 1) takes other Newton paths on
-// tangled starts (the scramble at 4^3 ends with an inverted element where
-// ViennaCL's CG recovers the rest shape), so it is opt-in until it does not.
-inline constexpr int cg_check_every = 0;  // SolverTuning::cg_check_every (docs/performance.md)
+// The device CG, its status read every 2 iterations: it stops where
+// ViennaCL's CG stops and returns the same iterate for every interval
+// (docs/performance.md); 0 selects ViennaCL's CG.
+inline constexpr int cg_check_every = 2;  // SolverTuning::cg_check_every (docs/performance.md)
 // Load steps (time steps with dynamics) per solve.
 inline constexpr int load_steps = 1;
 // The stopping strain (SolveOptions::strain_tolerance) in double and in
@@ -430,11 +430,13 @@ struct SolverTuning {
   // Reported in SolveResult::product_precision.
   std::optional<Precision> product_precision;
   HessianMode hessian = HessianMode::adaptive;
-  // CG with its inner products on the device reads its convergence test
-  // back once every cg_check_every iterations (a read the host waits for);
-  // it may run up to cg_check_every - 1 iterations past convergence
-  // (SolveProfile::cg_iterations_past_convergence). 0: ViennaCL's CG, which
-  // reads its inner products every iteration (the previous solver, kept for
+  // CG with its inner products on the device tests convergence on the
+  // device in every iteration and keeps the iterate that met it; the host
+  // reads the status once every cg_check_every iterations (a read it waits
+  // for), so up to cg_check_every - 1 iterations run past convergence for
+  // nothing (SolveProfile::cg_iterations_past_convergence) and the result
+  // does not depend on the interval. 0: ViennaCL's CG, which reads its
+  // inner products every iteration (the previous solver, kept for
   // comparison; also what devices without fp64 use).
   int cg_check_every = defaults::cg_check_every;
 };
@@ -552,9 +554,10 @@ struct SolveProfile {
   // iterations, the traffic per CG iteration.
   std::map<std::string, DeviceTraffic> traffic;
   // CG iterations run after the iteration at which CG had already met its
-  // tolerance: convergence is checked every SolverTuning::cg_check_every
-  // iterations, so at most that less one per linear solve (included in the
-  // CG iteration counts).
+  // tolerance (or stopped), before the host read that: the status is read
+  // every SolverTuning::cg_check_every iterations, so at most that less one
+  // per linear solve. Not in the CG iteration counts, which end at the
+  // iteration that stopped.
   long long cg_iterations_past_convergence = 0;
   SolveProfile& operator+=(const SolveProfile& o);
 };
