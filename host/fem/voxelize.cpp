@@ -236,17 +236,16 @@ Voxelization voxelize(const TriangleSurface& input, double cell, const VoxelizeO
   std::vector<uint8_t> flags(cells, 0);
   std::vector<int8_t> rounded;
   if (!options.strict) {
-    // Inside: the generalized winding number of the centre is at least 1/2.
-    const fem::FastWindingNumber winding(surface, options.winding_beta);
+    // Inside: the generalized winding number of the centre is at least 1/2
+    // (evaluated where it can change: fem::winding_at_cell_centres).
+    const std::vector<double> winding =
+        fem::winding_at_cell_centres(surface, grid.origin, grid.h, grid.dims, options.winding_beta);
     rounded.resize(cells);
-    for (int k = 0; k < grid.dims[2]; ++k)
-      for (int j = 0; j < grid.dims[1]; ++j)
-        for (int i = 0; i < grid.dims[0]; ++i) {
-          const double w = winding({grid.centre(0, i), grid.centre(1, j), grid.centre(2, k)});
-          const size_t index = grid.index(i, j, k);
-          if (w >= 0.5) flags[index] |= kInside;
-          rounded[index] = static_cast<int8_t>(std::max(-100.0, std::min(100.0, std::round(w))));
-        }
+    for (size_t index = 0; index < cells; ++index) {
+      const double w = winding[index];
+      if (w >= 0.5) flags[index] |= kInside;
+      rounded[index] = static_cast<int8_t>(std::max(-100.0, std::min(100.0, std::round(w))));
+    }
   }
   for (int axis = 0; axis < 3; ++axis)
     sweep(surface, grid, axis, options.strict && axis == 0, options.strict ? nullptr : &rounded, flags);
