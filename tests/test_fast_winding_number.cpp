@@ -108,6 +108,64 @@ TEST(FastWindingNumber, IsOneInsideAndZeroOutsideAClosedSurface) {
   EXPECT_NEAR(fem::FastWindingNumber(two)({0.0, 0.7, 0.0}), 1.0, 0.1);
 }
 
+// What the voxelizer takes from each centre's winding number: inside
+// (>= 1/2) and the rounded value.
+void expect_same_rounding(const TriangleSurface& s, double h, const char* what) {
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (size_t v = 0; v < s.vertex_count(); ++v)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], s.positions[3 * v + d]);
+      hi[d] = std::max(hi[d], s.positions[3 * v + d]);
+    }
+  std::array<int, 3> dims;
+  for (int d = 0; d < 3; ++d) {
+    lo[d] -= 3 * h;  // a margin of outside cells, as a grid about several shells has
+    dims[d] = static_cast<int>(std::ceil((hi[d] + 3 * h - lo[d]) / h));
+  }
+  const auto fast = fem::winding_at_cell_centres(s, lo, h, dims, 2.0);
+  const auto full = fem::winding_at_cell_centres(s, lo, h, dims, 2.0, true);
+  ASSERT_EQ(fast.size(), full.size());
+  size_t evaluated = 0, differ = 0;
+  for (size_t i = 0; i < fast.size(); ++i) {
+    ASSERT_FALSE(std::isnan(fast[i])) << what << ": cell " << i;
+    evaluated += fast[i] != std::round(fast[i]) || fast[i] == full[i];
+    differ += (fast[i] >= 0.5) != (full[i] >= 0.5) || std::round(fast[i]) != std::round(full[i]);
+  }
+  std::printf("%s: %zu cells, %zu evaluated or equal, %zu differ\n", what, fast.size(), evaluated, differ);
+  EXPECT_EQ(differ, 0u) << what;
+  EXPECT_LT(evaluated, fast.size()) << what << ": nothing was filled";
+}
+
+TEST(FastWindingNumber, CellCentresFilledOffTheSurfaceRoundAsEveryCentreDoes) {
+  // Closed: a sphere.
+  const TriangleSurface sphere = test::icosphere(4, 1.0);
+  expect_same_rounding(sphere, 0.05, "sphere");
+  // Opened: the sphere without its upper cap (winding numbers near 1/2 over
+  // the hole, smoothly varying off the surface).
+  TriangleSurface open;
+  open.positions = sphere.positions;
+  for (size_t t = 0; t < sphere.triangle_count(); ++t) {
+    double z = 0.0;
+    for (int k = 0; k < 3; ++k) z += sphere.positions[3 * sphere.triangles[3 * t + k] + 2] / 3.0;
+    if (z > 0.6) continue;
+    for (int k = 0; k < 3; ++k) open.triangles.push_back(sphere.triangles[3 * t + k]);
+  }
+  expect_same_rounding(open, 0.05, "opened sphere");
+  // Several shells: nested spheres (winding 2 in the inner one), one apart,
+  // and an overlapping box.
+  TriangleSurface shells = sphere;
+  const auto add = [&shells](const TriangleSurface& b, double dx) {
+    const int32_t base = static_cast<int32_t>(shells.vertex_count());
+    for (size_t v = 0; v < b.vertex_count(); ++v)
+      for (int d = 0; d < 3; ++d) shells.positions.push_back(b.positions[3 * v + d] + (d == 0 ? dx : 0.0));
+    for (int32_t i : b.triangles) shells.triangles.push_back(base + i);
+  };
+  add(test::icosphere(3, 0.5), 0.0);
+  add(test::icosphere(3, 0.7), 2.5);
+  add(test::box_surface({0.5, -0.3, -0.3}, {1.8, 0.3, 0.3}), 0.0);
+  expect_same_rounding(shells, 0.05, "shells");
+}
+
 TEST(FastWindingNumber, BadBetaIsAnError) {
   const TriangleSurface box = test::box_surface({0, 0, 0}, {1, 1, 1});
   for (const double beta : {0.0, -1.0, std::nan("")})

@@ -177,6 +177,7 @@ TEST(Pieces, AttachedOrDroppedFingertipStretchesNoMoreThanTheArm) {
   EXPECT_EQ(attached.voxels.components, 1);
   EXPECT_EQ(attached.pieces[1].outcome, "attached");
   EXPECT_EQ(attached.pieces[1].added_cells, 1);  // the empty cell (8, 1, 1) between (7, 1, 1) and (9, 1, 1)
+  EXPECT_EQ(attached.pieces[1].joined_through, "surface");
   ASSERT_EQ(attached.voxels.lattice.element_count(), 137u);
   EXPECT_EQ(attached.voxels.element_cell.back(), (std::array<int, 3>{8, 1, 1}));
   // The given lattice's vertices keep their indices (the line glues no two of them).
@@ -205,6 +206,89 @@ TEST(Pieces, AttachedOrDroppedFingertipStretchesNoMoreThanTheArm) {
   for (size_t i = 0; i < rest.size(); ++i) ASSERT_NEAR(rest[i], s.positions[i], 1e-12) << i;
   const Stretch d = run_arm(dropped.voxels, dropped.embedding, dropped_sets, s);
   EXPECT_LE(d.piece, d.rest + 0.01) << d.piece << " vs " << d.rest;
+}
+
+// The arm and the fingertip of finger(), joined not straight across the
+// empty cell column x in [2, 2.25] but by a bridge thinner than a cell (no
+// cell centre in it) that runs below the tip, at z in [0.15, 0.24] (the
+// lowest cell row), and rises into the tip's underside at x in [2.3, 2.4]:
+// the straight line between the pieces' nearest cells, (7, 1, 1) to
+// (9, 1, 1), crosses empty space; the bridge's skin crosses (8, 1, 0) and
+// (9, 1, 0).
+TriangleSurface bridged_tip() {
+  TriangleSurface s = box_surface(16, 8, 8, 0.125, {0, 0, 0});
+  append(s, box_surface(4, 4, 4, 0.125, {2.25, 0.25, 0.25}));
+  TriangleSurface under = boundary_surface(make_box_lattice(1, 1, 1, 1.0, {0, 0, 0})).surface;
+  for (size_t v = 0; v < under.vertex_count(); ++v) {  // [1.9, 2.4] x [0.45, 0.55] x [0.15, 0.24]
+    under.positions[3 * v] = 1.9 + 0.5 * under.positions[3 * v];
+    under.positions[3 * v + 1] = 0.45 + 0.1 * under.positions[3 * v + 1];
+    under.positions[3 * v + 2] = 0.15 + 0.09 * under.positions[3 * v + 2];
+  }
+  append(s, under);
+  append(s, box_surface(2, 2, 3, 0.05, {2.3, 0.45, 0.15}));  // up into the tip, to z = 0.3
+  return s;
+}
+
+TEST(Pieces, AttachFollowsTheSurfaceAroundTheStraightLine) {
+  const TriangleSurface s = bridged_tip();
+  const Voxelization v = voxelize(s, kCell);
+  ASSERT_EQ(v.components, 2);
+  const auto pieces = mesh_pieces(v.lattice);
+  ASSERT_EQ(pieces.size(), 2u);
+  ASSERT_EQ(pieces[1].size(), 8u);
+  // The cells the surface crosses, by the voxelizer's own cover.
+  VoxelizeOptions cover;
+  cover.cover_surface = true;
+  const Voxelization covered = voxelize(s, kCell, cover);
+  ASSERT_EQ(covered.dims, v.dims);
+  const std::set<std::array<int, 3>> crossed_or_inside(covered.element_cell.begin(), covered.element_cell.end());
+  EXPECT_FALSE(crossed_or_inside.count({8, 1, 1}));  // the straight line's cell: empty space
+
+  const Embedding e = embed(v, s);
+  const std::vector<ConstraintSet> sets = bone_constraints(v.lattice, {arm_bone()});
+  PieceOptions attach;
+  attach.rule = PieceRule::attach;
+  std::vector<ConstraintSet> attached_sets = sets;
+  const PiecedLattice attached = resolve_pieces(v, e, s, attached_sets, {arm_bone()}, attach);
+  EXPECT_EQ(attached.voxels.components, 1);
+  EXPECT_EQ(attached.pieces[1].joined_through, "surface");
+  EXPECT_EQ(attached.pieces[1].added_cells, 2);
+  ASSERT_EQ(attached.voxels.element_cell.size(), v.element_cell.size() + 2);
+  EXPECT_EQ(attached.voxels.element_cell[v.element_cell.size()], (std::array<int, 3>{9, 1, 0}));
+  EXPECT_EQ(attached.voxels.element_cell[v.element_cell.size() + 1], (std::array<int, 3>{8, 1, 0}));
+  for (size_t k = v.element_cell.size(); k < attached.voxels.element_cell.size(); ++k)
+    EXPECT_TRUE(crossed_or_inside.count(attached.voxels.element_cell[k]));
+  // Along the bridge the skin follows the arm like the rest of it.
+  const Stretch a = run_arm(attached.voxels, attached.embedding, attached_sets, s);
+  EXPECT_LE(a.piece, a.rest + 0.01) << a.piece << " vs " << a.rest;
+  EXPECT_LT(a.rest, 1.01);
+
+  // Without a bridge the surface offers no path: the straight line, said so.
+  TriangleSurface apart = box_surface(16, 8, 8, 0.125, {0, 0, 0});
+  append(apart, box_surface(4, 4, 4, 0.125, {2.25, 0.25, 0.25}));
+  const Voxelization va = voxelize(apart, kCell);
+  std::vector<ConstraintSet> apart_sets = bone_constraints(va.lattice, {arm_bone()});
+  const PiecedLattice line = resolve_pieces(va, embed(va, apart), apart, apart_sets, {arm_bone()}, attach);
+  EXPECT_EQ(line.pieces[1].joined_through, "straight line");
+  EXPECT_EQ(line.pieces[1].added_cells, 1);
+  EXPECT_EQ(line.voxels.element_cell.back(), (std::array<int, 3>{8, 1, 1}));
+  EXPECT_EQ(line.voxels.components, 1);
+}
+
+// A set that prescribes nothing holds nothing: when it lies wholly in a
+// dropped piece, drop would leave it with no vertex; the error names it.
+TEST(Pieces, DropRefusesToEmptyAConstraintSet) {
+  const TriangleSurface s = finger();
+  const Voxelization v = voxelize(s, kCell);
+  std::vector<ConstraintSet> sets = bone_constraints(v.lattice, {arm_bone()});
+  const auto pieces = mesh_pieces(v.lattice);
+  sets.push_back(ConstraintSet::fixed("tip_marker", {v.lattice.elements[8 * pieces[1][0]]}, {false, false, false}));
+  PieceOptions drop;
+  drop.rule = PieceRule::drop;
+  drop.rule_name = "embed.pieces";
+  const std::string what = error_of([&] { resolve_pieces(v, embed(v, s), s, sets, {arm_bone()}, drop); });
+  EXPECT_TRUE(contains(what, "constraint set 'tip_marker': all its 1 vertices are in dropped pieces")) << what;
+  EXPECT_TRUE(contains(what, "embed.pieces \"drop\"")) << what;
 }
 
 TEST(Pieces, RigidMotionCheckNamesAFreePieceUnderALoad) {
@@ -310,7 +394,9 @@ TEST(Pieces, SceneFileRefusesAttachesOrDropsAndReportsPiecesAndBones) {
   for (const std::string& line : report) all += line + "\n";
   EXPECT_TRUE(contains(all, "lattice: 2 pieces (embed.pieces attach), now 1")) << all;
   EXPECT_TRUE(contains(all, "piece 1: 128 cells, held by constraint set 'arm'")) << all;
-  EXPECT_TRUE(contains(all, "piece 2: 8 cells, held by nothing, attached (cells added: 1); nearest bone 'arm' at 1.24"))
+  EXPECT_TRUE(contains(all,
+                       "piece 2: 8 cells, held by nothing, attached (cells added: 1, along the surface); nearest "
+                       "bone 'arm' at 1.24"))
       << all;
   EXPECT_TRUE(contains(all, "bone 'arm': 125 lattice vertices")) << all;
 

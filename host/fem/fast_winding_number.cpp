@@ -2,8 +2,11 @@
 #include "fem/fast_winding_number.h"
 
 #include <algorithm>
+#include <limits>
 #include <sstream>
+#include <unordered_map>
 
+#include "fem/surface_cells.h"
 #include "snh/error.h"
 
 namespace snh::fem {
@@ -139,6 +142,147 @@ double FastWindingNumber::operator()(const std::array<double, 3>& q) const {
       stack[top++] = n.child[1];
       stack[top++] = n.child[0];
     }
+  }
+  return w;
+}
+
+namespace {
+
+// Whether every edge is traversed as often in one direction as in the other
+// (a closed surface, manifold or not): the winding number is then an
+// integer off the surface, constant between its sheets.
+bool boundary_free(const TriangleSurface& surface) {
+  std::unordered_map<uint64_t, int> balance;
+  for (size_t t = 0; t < surface.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = static_cast<uint32_t>(surface.triangles[3 * t + k]);
+      const uint32_t b = static_cast<uint32_t>(surface.triangles[3 * t + (k + 1) % 3]);
+      if (a == b) continue;
+      balance[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)] += a < b ? 1 : -1;
+    }
+  return std::all_of(balance.begin(), balance.end(), [](const auto& e) { return e.second == 0; });
+}
+
+}  // namespace
+
+std::vector<double> winding_at_cell_centres(const TriangleSurface& surface, const std::array<double, 3>& origin,
+                                            double h, const std::array<int, 3>& dims, double beta, bool every_cell) {
+  const FastWindingNumber winding(surface, beta);
+  const size_t nx = dims[0], ny = dims[1], nz = dims[2];
+  std::vector<double> w(nx * ny * nz, std::numeric_limits<double>::quiet_NaN());
+  const auto at = [&](int i, int j, int k) -> double {
+    double& x = w[size_t(i) + nx * (size_t(j) + ny * size_t(k))];
+    if (std::isnan(x)) x = winding({origin[0] + (i + 0.5) * h, origin[1] + (j + 0.5) * h, origin[2] + (k + 0.5) * h});
+    return x;
+  };
+  const auto evaluate_all = [&](const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+    for (int k = lo[2]; k < hi[2]; ++k)
+      for (int j = lo[1]; j < hi[1]; ++j)
+        for (int i = lo[0]; i < hi[0]; ++i) at(i, j, k);
+  };
+  if (every_cell || w.empty()) {
+    evaluate_all({0, 0, 0}, dims);
+    return w;
+  }
+  // Cells whose slightly grown cubes a triangle meets, counted over boxes by
+  // a summed-volume table.
+  const std::vector<char> near = surface_crossed_cells(surface, origin, h, dims, 1.0 + 1e-6);
+  const size_t sx = nx + 1, sy = ny + 1;
+  std::vector<int32_t> sum(sx * sy * (nz + 1), 0);
+  const auto S = [&](size_t i, size_t j, size_t k) -> int32_t& { return sum[i + sx * (j + sy * k)]; };
+  for (size_t k = 0; k < nz; ++k)
+    for (size_t j = 0; j < ny; ++j)
+      for (size_t i = 0; i < nx; ++i)
+        S(i + 1, j + 1, k + 1) = near[i + nx * (j + ny * k)] + S(i, j + 1, k + 1) + S(i + 1, j, k + 1) +
+                                 S(i + 1, j + 1, k) - S(i, j, k + 1) - S(i, j + 1, k) - S(i + 1, j, k) + S(i, j, k);
+  const auto near_in = [&](const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+    return S(hi[0], hi[1], hi[2]) - S(lo[0], hi[1], hi[2]) - S(hi[0], lo[1], hi[2]) - S(hi[0], hi[1], lo[2]) +
+               S(lo[0], lo[1], hi[2]) + S(lo[0], hi[1], lo[2]) + S(hi[0], lo[1], lo[2]) - S(lo[0], lo[1], lo[2]) >
+           0;
+  };
+  if (boundary_free(surface)) {
+    // Closed: one integer per face-connected region of cells clear of the
+    // surface (a segment between two such centres meets no triangle).
+    std::vector<int32_t> region(w.size(), -1);
+    std::vector<size_t> members;
+    const size_t stride[3] = {1, nx, nx * ny};
+    for (size_t seed = 0; seed < w.size(); ++seed) {
+      if (near[seed] || region[seed] >= 0) continue;
+      members.assign(1, seed);
+      region[seed] = static_cast<int32_t>(seed);
+      for (size_t m = 0; m < members.size(); ++m) {
+        const size_t c = members[m];
+        const size_t cell[3] = {c % nx, (c / nx) % ny, c / (nx * ny)};
+        for (int d = 0; d < 3; ++d)
+          for (int step : {-1, 1}) {
+            if ((step < 0 && cell[d] == 0) || (step > 0 && cell[d] + 1 == size_t(dims[d]))) continue;
+            const size_t n = step < 0 ? c - stride[d] : c + stride[d];
+            if (near[n] || region[n] >= 0) continue;
+            region[n] = static_cast<int32_t>(seed);
+            members.push_back(n);
+          }
+      }
+      const double x = at(int(seed % nx), int((seed / nx) % ny), int(seed / (nx * ny))), r = std::round(x);
+      for (size_t c : members) {
+        if (std::abs(x - r) < 0.25)
+          w[c] = r;
+        else  // not an integer as it should be: no shortcut
+          at(int(c % nx), int((c / nx) % ny), int(c / (nx * ny)));
+      }
+    }
+    for (size_t c = 0; c < w.size(); ++c)
+      if (near[c]) at(int(c % nx), int((c / nx) % ny), int(c / (nx * ny)));
+    return w;
+  }
+  // Open: boxes [lo, hi) depth first; a stack, so that depth is no concern.
+  std::vector<std::pair<std::array<int, 3>, std::array<int, 3>>> boxes{{{0, 0, 0}, dims}};
+  while (!boxes.empty()) {
+    const auto [lo, hi] = boxes.back();
+    boxes.pop_back();
+    const int side_min = std::min({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    const int side_max = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    if (side_min < 3) {  // no interior
+      evaluate_all(lo, hi);
+      continue;
+    }
+    if (!near_in(lo, hi)) {
+      bool agree = true;
+      double k0 = 0.0;
+      bool first = true;
+      for (int k = lo[2]; k < hi[2] && agree; ++k)
+        for (int j = lo[1]; j < hi[1] && agree; ++j) {
+          const bool face = k == lo[2] || k == hi[2] - 1 || j == lo[1] || j == hi[1] - 1;
+          for (int i = lo[0]; i < hi[0] && agree; i += face ? 1 : std::max(1, hi[0] - lo[0] - 1)) {
+            const double x = at(i, j, k), r = std::round(x);
+            if (first) k0 = r, first = false;
+            agree = r == k0 && std::abs(x - r) < 0.25;
+          }
+        }
+      if (agree) {
+        for (int k = lo[2] + 1; k < hi[2] - 1; ++k)
+          for (int j = lo[1] + 1; j < hi[1] - 1; ++j)
+            for (int i = lo[0] + 1; i < hi[0] - 1; ++i) w[size_t(i) + nx * (size_t(j) + ny * size_t(k))] = k0;
+        continue;
+      }
+    }
+    if (side_max <= 4) {
+      evaluate_all(lo, hi);
+      continue;
+    }
+    // Halve every side longer than 4 (the others stay whole).
+    int cuts[3][3];
+    int parts[3];
+    for (int d = 0; d < 3; ++d) {
+      const int n = hi[d] - lo[d];
+      parts[d] = n > 4 ? 2 : 1;
+      cuts[d][0] = lo[d];
+      cuts[d][1] = n > 4 ? lo[d] + n / 2 : hi[d];
+      cuts[d][2] = hi[d];
+    }
+    for (int c = parts[2] - 1; c >= 0; --c)
+      for (int b = parts[1] - 1; b >= 0; --b)
+        for (int a = parts[0] - 1; a >= 0; --a)
+          boxes.push_back({{cuts[0][a], cuts[1][b], cuts[2][c]}, {cuts[0][a + 1], cuts[1][b + 1], cuts[2][c + 1]}});
   }
   return w;
 }

@@ -1,14 +1,20 @@
 // The pieces of a voxelized lattice, what holds each, and the rule for the
 // ones nothing holds (snh/pieces.h): refuse them, join them to the body with
-// a line of cells, or leave them out.
+// a path of cells along the surface, or leave them out.
 //
-// Joining. The lattice's vertices are classes of element corners joined
-// across shared faces (voxelize). The added cells' corners are new nodes; the
-// line's consecutive cells are joined across their common face, corner to
-// corner, with a union-find over the given vertices and the new corners, so
-// a given vertex keeps its index unless the line glues it to another (two
-// sides of a cut the line crosses), and the added cells share vertices with
-// nothing but their neighbours on the line.
+// Joining. The path runs through the grid cells the surface crosses (a thin
+// finger joined to the hand along its own skin); only where no such path
+// exists is it the straight line of cells. The lattice's vertices are
+// classes of element corners joined across shared faces (voxelize). The
+// added cells' corners are new nodes; the path's consecutive cells are
+// joined across their common face, corner to corner, with a union-find over
+// the given vertices and the new corners, so a given vertex keeps its index
+// unless the path glues it to another (where two paths meet, or a path turns
+// beside a cut), and the added cells share vertices with nothing but their
+// neighbours on the path. Two given vertices prescribed by different
+// constraint sets are never glued: the corner joins the first of them and
+// the sets stay apart (a cut remains there, as the voxelizer leaves one
+// between two fingers pressed together).
 #include "snh/pieces.h"
 
 #include <algorithm>
@@ -17,6 +23,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "fem/surface_cells.h"
 #include "fem/union_find.h"
 #include "snh/error.h"
 
@@ -125,6 +132,49 @@ std::vector<Cell> cell_line(const Cell& a, const Cell& b) {
   return line;
 }
 
+// The fewest face-connected cells from a cell of `from` to a cell marked in
+// `target` through cells marked in `passable`, both ends included: a
+// breadth-first search whose layers are taken in ascending grid index, each
+// cell reached from the lowest-index cell of the layer before, the lowest-
+// index target of the first layer that holds one; empty when none is reached.
+std::vector<Cell> shortest_cell_path(const std::vector<Cell>& from, const std::vector<char>& passable,
+                                     const std::vector<char>& target, const std::array<int, 3>& dims) {
+  std::vector<int64_t> parent(passable.size(), -2);  // -2: not reached; -1: a source
+  std::vector<int64_t> layer;
+  for (const Cell& c : from) layer.push_back(grid_index(dims, c));
+  std::sort(layer.begin(), layer.end());
+  for (int64_t c : layer) parent[c] = -1;
+  const int64_t stride[3] = {1, dims[0], int64_t(dims[0]) * dims[1]};
+  std::vector<int64_t> next;
+  while (!layer.empty()) {
+    next.clear();
+    for (int64_t c : layer) {
+      const int64_t at[3] = {c % dims[0], (c / dims[0]) % dims[1], c / stride[2]};
+      for (int d = 0; d < 3; ++d)
+        for (int step : {-1, 1}) {
+          if (at[d] + step < 0 || at[d] + step >= dims[d]) continue;
+          const int64_t n = c + step * stride[d];
+          if (parent[n] != -2 || !(passable[n] || target[n])) continue;
+          parent[n] = c;
+          next.push_back(n);
+        }
+    }
+    std::sort(next.begin(), next.end());
+    for (int64_t n : next) {
+      if (!target[n]) continue;
+      std::vector<Cell> path;
+      for (int64_t c = n; c >= 0; c = parent[c])
+        path.push_back({int(c % dims[0]), int((c / dims[0]) % dims[1]), int(c / stride[2])});
+      std::reverse(path.begin(), path.end());
+      return path;
+    }
+    // Targets end a path; they are not passed through.
+    next.erase(std::remove_if(next.begin(), next.end(), [&](int64_t n) { return target[n] != 0; }), next.end());
+    layer.swap(next);
+  }
+  return {};
+}
+
 std::array<double, 8> trilinear_weights(const double local[3]) {
   constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                  {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
@@ -148,7 +198,9 @@ struct Joined {
   std::vector<int32_t> vertex_map, element_source;
 };
 
-Joined join_lines(const Voxelization& given, const std::vector<std::vector<Cell>>& lines) {
+// set_of[v]: the constraint set prescribing given vertex v, or -1.
+Joined join_lines(const Voxelization& given, const std::vector<std::vector<Cell>>& lines,
+                  const std::vector<int32_t>& set_of) {
   const Mesh& old = given.lattice;
   const size_t vertices = old.vertex_count(), elements = old.element_count();
   std::unordered_map<int64_t, int32_t> element_of;
@@ -177,6 +229,15 @@ Joined join_lines(const Voxelization& given, const std::vector<std::vector<Cell>
                         : static_cast<int32_t>(vertices + 8 * (e - elements) + corner);
   };
   fem::UnionFind classes(vertices + 8 * (total - elements));
+  std::vector<int32_t> class_set(classes.parent.size(), -1);  // per representative
+  for (size_t v = 0; v < vertices; ++v) class_set[v] = set_of[v];
+  const auto unite = [&](int32_t x, int32_t y) {
+    x = classes.find(x);
+    y = classes.find(y);
+    if (x == y || (class_set[x] >= 0 && class_set[y] >= 0 && class_set[x] != class_set[y])) return;
+    classes.unite(x, y);
+    class_set[std::min(x, y)] = std::max(class_set[x], class_set[y]);
+  };
   for (const std::vector<int32_t>& ids : line_elements)
     for (size_t k = 0; k + 1 < ids.size(); ++k) {
       size_t p = ids[k], q = ids[k + 1];
@@ -185,7 +246,7 @@ Joined join_lines(const Voxelization& given, const std::vector<std::vector<Cell>
       while (cp[axis] == cq[axis]) ++axis;
       if (cq[axis] < cp[axis]) std::swap(p, q);  // p below q along the axis
       for (int corner = 0; corner < 8; ++corner)
-        if (corner & (1 << axis)) classes.unite(node(p, corner), node(q, corner ^ (1 << axis)));
+        if (corner & (1 << axis)) unite(node(p, corner), node(q, corner ^ (1 << axis)));
     }
   std::vector<int32_t> id(classes.parent.size(), -1);
   Mesh& lattice = out.voxels.lattice;
@@ -377,7 +438,8 @@ PiecedLattice resolve_pieces(const Voxelization& voxels, const Embedding& embedd
          "no equilibrium under a load";
     for (size_t p : free_pieces) s << "\n  " << describe(p);
     s << "\nremedies: a bone that reaches into each piece; " << options.rule_name
-      << " \"attach\" (join each to its nearest held piece with a line of cells) or \"drop\" (leave it out; its "
+      << " \"attach\" (join each to its nearest held piece through the cells its surface crosses) or \"drop\" (leave "
+         "it out; its "
          "surface follows the nearest kept cell); or another cell size (a larger cell bridges the gap, a smaller "
          "one resolves the thin part)";
     throw Error(s.str());
@@ -401,14 +463,30 @@ PiecedLattice resolve_pieces(const Voxelization& voxels, const Embedding& embedd
     std::vector<std::vector<Cell>> lines;
     std::unordered_map<int64_t, char> occupied;
     for (const Cell& c : voxels.element_cell) occupied.emplace(grid_index(voxels.dims, c), 1);
+    // Passable: cells the surface crosses that no element occupies.
+    std::vector<char> passable = fem::surface_crossed_cells(surface, voxels.origin, voxels.cell, voxels.dims);
+    std::vector<char> target(passable.size(), 0);
+    for (const Cell& c : voxels.element_cell) passable[grid_index(voxels.dims, c)] = 0;
+    for (const Cell& c : held_cells) target[grid_index(voxels.dims, c)] = 1;
     for (size_t p : free_pieces) {
-      const auto [a, b] = nearest_cells(cells_of(p), held_cells, voxels.dims);
-      lines.push_back(cell_line(a, b));
+      std::vector<Cell> path = shortest_cell_path(cells_of(p), passable, target, voxels.dims);
+      out.pieces[p].joined_through = "surface";
+      if (path.empty()) {
+        const auto [a, b] = nearest_cells(cells_of(p), held_cells, voxels.dims);
+        path = cell_line(a, b);
+        out.pieces[p].joined_through = "straight line";
+      }
+      lines.push_back(std::move(path));
       out.pieces[p].outcome = "attached";
       for (const Cell& c : lines.back())
         out.pieces[p].added_cells += occupied.emplace(grid_index(voxels.dims, c), 1).second;
     }
-    Joined joined = join_lines(voxels, lines);
+    std::vector<int32_t> set_of(lattice.vertex_count(), -1);
+    for (size_t k = 0; k < constraints.size(); ++k)
+      if (constraints[k].components[0] || constraints[k].components[1] || constraints[k].components[2])
+        for (int32_t v : constraints[k].vertices)
+          if (v >= 0 && static_cast<size_t>(v) < set_of.size() && set_of[v] < 0) set_of[v] = static_cast<int32_t>(k);
+    Joined joined = join_lines(voxels, lines, set_of);
     out.voxels = std::move(joined.voxels);
     out.vertex_map = std::move(joined.vertex_map);
     out.element_source = std::move(joined.element_source);
@@ -482,6 +560,15 @@ PiecedLattice resolve_pieces(const Voxelization& voxels, const Embedding& embedd
         if (!taken[v]) taken[v] = 1, unique.push_back(v);
       vertices = std::move(unique);
     }
+    // Only a set that prescribes nothing can lie wholly in dropped pieces
+    // (a prescribed vertex holds its piece); emptied, it would select no
+    // vertex: refused here, where the cause is known.
+    if (vertices.empty() && !set.vertices.empty())
+      throw Error("constraint set '" + set.name + "': all its " + std::to_string(set.vertices.size()) +
+                  " vertices are in dropped pieces (it prescribes no component, so it holds none of them); with " +
+                  options.rule_name +
+                  " \"drop\" it would select no vertex: give it a component, or select "
+                  "vertices of a kept piece");
     set.vertices = std::move(vertices);
   }
   return out;

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "fem/fast_winding_number.h"
+#include "fem/surface_cells.h"
 #include "fem/union_find.h"
 #include "snh/error.h"
 #include "snh/surface.h"
@@ -171,71 +172,11 @@ void sweep(const TriangleSurface& surface, const Grid& grid, int axis, bool coun
     }
 }
 
-// Whether triangle (v0, v1, v2) meets the axis-aligned box of half-size r
-// about `centre`: no separating axis among the box's 3 normals, the
-// triangle's normal and the 9 cross products of box and triangle edges
-// (Akenine-Moeller, "Fast 3D triangle-box overlap testing", 2001).
-bool triangle_meets_box(const double* v0, const double* v1, const double* v2, const double centre[3], double r) {
-  double v[3][3];
-  for (int d = 0; d < 3; ++d) {
-    v[0][d] = v0[d] - centre[d];
-    v[1][d] = v1[d] - centre[d];
-    v[2][d] = v2[d] - centre[d];
-  }
-  double e[3][3];
-  for (int d = 0; d < 3; ++d) {
-    e[0][d] = v[1][d] - v[0][d];
-    e[1][d] = v[2][d] - v[1][d];
-    e[2][d] = v[0][d] - v[2][d];
-  }
-  const auto separated = [&](const double axis[3]) {
-    double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (const auto& p : v) {
-      const double x = axis[0] * p[0] + axis[1] * p[1] + axis[2] * p[2];
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
-    }
-    const double reach = r * (std::abs(axis[0]) + std::abs(axis[1]) + std::abs(axis[2]));
-    return lo > reach || hi < -reach;
-  };
-  for (int d = 0; d < 3; ++d) {
-    const double axis[3] = {double(d == 0), double(d == 1), double(d == 2)};
-    if (separated(axis)) return false;
-  }
-  const double normal[3] = {e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
-                            e[0][0] * e[1][1] - e[0][1] * e[1][0]};
-  if (separated(normal)) return false;
-  for (int d = 0; d < 3; ++d)
-    for (const auto& edge : e) {
-      const double unit[3] = {double(d == 0), double(d == 1), double(d == 2)};
-      const double axis[3] = {unit[1] * edge[2] - unit[2] * edge[1], unit[2] * edge[0] - unit[0] * edge[2],
-                              unit[0] * edge[1] - unit[1] * edge[0]};
-      if (separated(axis)) return false;
-    }
-  return true;
-}
-
 // Marks kCrossed on every cell whose open cube a triangle meets.
 void mark_crossed(const TriangleSurface& surface, const Grid& grid, std::vector<uint8_t>& flags) {
-  const double r = 0.5 * grid.h * (1.0 - 1e-9);
-  for (size_t t = 0; t < surface.triangle_count(); ++t) {
-    const double* v[3];
-    for (int k = 0; k < 3; ++k) v[k] = &surface.positions[3 * surface.triangles[3 * t + k]];
-    int lo[3], hi[3];
-    for (int d = 0; d < 3; ++d) {
-      const double mn = std::min({v[0][d], v[1][d], v[2][d]}), mx = std::max({v[0][d], v[1][d], v[2][d]});
-      lo[d] = std::max(0, static_cast<int>(std::floor((mn - grid.origin[d]) / grid.h)) - 1);
-      hi[d] = std::min(grid.dims[d] - 1, static_cast<int>(std::floor((mx - grid.origin[d]) / grid.h)) + 1);
-    }
-    for (int k = lo[2]; k <= hi[2]; ++k)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i) {
-          uint8_t& f = flags[grid.index(i, j, k)];
-          if (f & kCrossed) continue;
-          const double centre[3] = {grid.centre(0, i), grid.centre(1, j), grid.centre(2, k)};
-          if (triangle_meets_box(v[0], v[1], v[2], centre, r)) f |= kCrossed;
-        }
-  }
+  const std::vector<char> crossed = fem::surface_crossed_cells(surface, grid.origin, grid.h, grid.dims);
+  for (size_t i = 0; i < flags.size(); ++i)
+    if (crossed[i]) flags[i] |= kCrossed;
 }
 
 using fem::UnionFind;
@@ -295,17 +236,16 @@ Voxelization voxelize(const TriangleSurface& input, double cell, const VoxelizeO
   std::vector<uint8_t> flags(cells, 0);
   std::vector<int8_t> rounded;
   if (!options.strict) {
-    // Inside: the generalized winding number of the centre is at least 1/2.
-    const fem::FastWindingNumber winding(surface, options.winding_beta);
+    // Inside: the generalized winding number of the centre is at least 1/2
+    // (evaluated where it can change: fem::winding_at_cell_centres).
+    const std::vector<double> winding =
+        fem::winding_at_cell_centres(surface, grid.origin, grid.h, grid.dims, options.winding_beta);
     rounded.resize(cells);
-    for (int k = 0; k < grid.dims[2]; ++k)
-      for (int j = 0; j < grid.dims[1]; ++j)
-        for (int i = 0; i < grid.dims[0]; ++i) {
-          const double w = winding({grid.centre(0, i), grid.centre(1, j), grid.centre(2, k)});
-          const size_t index = grid.index(i, j, k);
-          if (w >= 0.5) flags[index] |= kInside;
-          rounded[index] = static_cast<int8_t>(std::max(-100.0, std::min(100.0, std::round(w))));
-        }
+    for (size_t index = 0; index < cells; ++index) {
+      const double w = winding[index];
+      if (w >= 0.5) flags[index] |= kInside;
+      rounded[index] = static_cast<int8_t>(std::max(-100.0, std::min(100.0, std::round(w))));
+    }
   }
   for (int axis = 0; axis < 3; ++axis)
     sweep(surface, grid, axis, options.strict && axis == 0, options.strict ? nullptr : &rounded, flags);

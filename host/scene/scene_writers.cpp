@@ -260,7 +260,10 @@ void add_setup_json(json& j, const SceneFile& file) {
                     {"held", to_string(p.hold)},
                     {"held_by", p.held_by},
                     {"outcome", p.outcome.empty() ? "kept" : p.outcome}};
-      if (p.outcome == "attached") piece["added_cells"] = p.added_cells;
+      if (p.outcome == "attached") {
+        piece["added_cells"] = p.added_cells;
+        piece["joined_through"] = p.joined_through;
+      }
       if (!p.nearest_bone.empty())
         piece["nearest_bone"] = {{"name", p.nearest_bone}, {"distance", p.nearest_bone_distance}};
       pieces.push_back(piece);
@@ -317,7 +320,11 @@ std::vector<std::string> scene_setup_report(const SceneFile& file) {
             l << "held by nothing";
             break;
         }
-        if (pieces[p].outcome == "attached") l << ", attached (cells added: " << pieces[p].added_cells << ")";
+        if (pieces[p].outcome == "attached")
+          l << ", attached (cells added: " << pieces[p].added_cells << ", "
+            << (pieces[p].joined_through == "surface" ? "along the surface"
+                                                      : "straight line: no path along the surface")
+            << ")";
         if (pieces[p].outcome == "dropped") l << ", dropped";
         if (!pieces[p].nearest_bone.empty())
           l << "; nearest bone '" << pieces[p].nearest_bone << "' at " << pieces[p].nearest_bone_distance;

@@ -9,7 +9,7 @@
 // resolve_pieces finds the pieces, decides which are held, and by the rule
 // either refuses the unheld ones (an snh::Error naming each, its size, place
 // and nearest bone, and the remedies), joins each to its nearest held piece
-// with a line of cells, or leaves it out of the lattice.
+// through the cells the surface crosses, or leaves it out of the lattice.
 #pragma once
 
 #include <array>
@@ -26,7 +26,7 @@ namespace snh {
 // What to do with a piece nothing holds ("embed.pieces" in scene files).
 enum class PieceRule {
   error,   // an snh::Error naming each unheld piece (quasistatic scenes; a dynamic one warns)
-  attach,  // add the straight line of grid cells to its nearest held piece, so that the two are one
+  attach,  // add the cells the surface crosses between it and its nearest held piece, so that the two are one
   drop,    // leave its elements out; the surface they carried follows the nearest kept cell
 };
 
@@ -59,6 +59,9 @@ struct LatticePiece {
   // What the rule did: "" (kept as it is), "attached" or "dropped".
   std::string outcome;
   int added_cells = 0;  // attach: the cells added to join it
+  // attach: "surface" (through cells the surface crosses) or "straight line"
+  // (no such path: the straight line of cells to the nearest held cell).
+  std::string joined_through;
 };
 
 // The pieces of a mesh: elements joined through shared vertices, each piece's
@@ -98,17 +101,24 @@ struct PiecedLattice {
 //   error:  snh::Error naming every such piece (cells, bounding box, nearest
 //           bone and its distance) and the remedies, unless the scene is
 //           dynamic (PieceHold::inertia; a warning when a load acts);
-//   attach: joined to the nearest held piece through the straight line of
-//           grid cells between their nearest cells (a 6-connected line, 3D
-//           DDA from centre to centre); the added cells share vertices only
-//           with the cells before and after them on the line; the embedding
-//           is computed again on the new lattice (snh::embed);
+//   attach: joined to the nearest held piece along the surface: the fewest
+//           face-connected grid cells that the surface's triangles cross
+//           (and no element occupies) from a cell of the piece to a held
+//           cell (breadth-first, ties to the lowest grid index); where no
+//           such path exists, the straight line of grid cells between their
+//           nearest cells (3D DDA from centre to centre; joined_through
+//           says which). The added cells share vertices only with the cells
+//           before and after them on the path, and never glue vertices of
+//           two different constraint sets (the sets stay apart); the
+//           embedding is computed again on the new lattice (snh::embed);
 //   drop:   its elements and the vertices only they use are left out; the
 //           surface vertices embedded in it follow the kept cell nearest to
 //           the piece, extrapolated (the cell's trilinear functions at their
 //           unclamped local coordinates: rigid and affine motions of that
 //           cell carry them exactly).
-// `constraints` are renumbered to the new lattice (vertex_map) in place.
+// `constraints` are renumbered to the new lattice (vertex_map) in place; a
+// set that drop would leave with no vertex (one that prescribes no
+// component, so held nothing) is an snh::Error naming it.
 // Vertices and elements of the given lattice keep their order; attached
 // cells and their new vertices come after them.
 PiecedLattice resolve_pieces(const Voxelization& voxels, const Embedding& embedding, const TriangleSurface& surface,
