@@ -1,0 +1,113 @@
+// Self-contact by the incremental-potential barrier (Li et al. 2020,
+// "Incremental Potential Contact"): the host side. The simulated surface (the
+// mesh's boundary faces, hex8 quads as two triangles) as points, edges and
+// triangles; a deterministic uniform-grid broad phase; the pairs within dhat
+// at x (point-triangle and edge-edge, those sharing a vertex excluded); the
+// barrier's energy kappa sum b, gradient and PSD-projected Hessian as 3x3
+// vertex blocks in a fixed order; and the largest step along x + alpha p that
+// continuous collision detection clears (kernels/contact/ccd.h). The per-pair
+// math is kernels/contact/ipc_*.h, written once for the host and a later
+// device port. Internal to the library.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "snh/mesh.h"
+#include "snh/regions.h"
+
+namespace snh::solver {
+
+// The default dhat as a fraction of the mean rest surface edge length h:
+// small enough that no pair of a lattice's rest surface is active (the
+// closest non-adjacent rest features, the quad diagonals of two faces
+// meeting at an edge, are h / sqrt(3) apart) and that a face compressed to 5% of its height
+// (rows 0.05 h apart, the squash of docs/validation.md) keeps its
+// non-adjacent features out of range; IPC's own default, 1e-3 of the
+// bounding box diagonal, is the same on a 6^3 lattice.
+inline constexpr double kDefaultSelfDistance = 0.01;
+// The default kappa, E h^2 / dhat^3 with E the largest Young's modulus over
+// the materials: at d = dhat / 2 a pair then pushes back with about
+// 4 E h^2 (the force of a 100% strain on a face of area h^2), so faces
+// pressed together stop near dhat / 2 under the pressures of a squash.
+double default_barrier_stiffness(const MaterialMap& materials, double edge, double dhat);
+
+// Projects a symmetric n x n matrix (row-major) to its nearest PSD matrix:
+// negative eigenvalues clamped to 0 (IPC sec. 4.2). On the host by Eigen's
+// SelfAdjointEigenSolver; a device port needs a Jacobi eigensolver for the
+// 12 x 12 pair Hessians.
+void project_psd(double* matrix, int n);
+
+// One pair within dhat: kind 0 point-triangle (vertex = p, t0, t1, t2), 1
+// edge-edge (a0, a1, b0, b1); mesh vertex indices. ex: the edge-edge
+// mollifier's threshold from the rest edges (ipc_barrier.h).
+struct BarrierPair {
+  int kind = 0;
+  std::array<int, 4> vertex{0, 0, 0, 0};
+  double ex = 0.0;
+  bool operator==(const BarrierPair& o) const { return kind == o.kind && vertex == o.vertex; }
+};
+
+// The barrier's Hessian as 3x3 blocks per vertex row (block CSR):
+// row v's blocks offsets[v] .. offsets[v + 1], at columns `columns`,
+// 9 values each row-major. Rows and columns ascend: assembled in a fixed
+// order, so bitwise deterministic.
+struct BarrierHessian {
+  std::vector<int> offsets, columns;
+  std::vector<double> blocks;
+};
+
+class BarrierContact {
+ public:
+  // The surface of a hex8 or tet4 mesh and its rest edge lengths.
+  explicit BarrierContact(const Mesh& mesh);
+
+  // dhat (> 0): the distance below which a pair is active.
+  void set_distance(double dhat) { dhat_ = dhat; }
+  double distance() const { return dhat_; }
+  // The mean rest length of the surface edges (the default dhat is a
+  // fraction of it, snh/simulation.h ContactOptions::self_distance).
+  double mean_edge_length() const { return mean_edge_; }
+
+  // The pairs closer than dhat at x (xyz per vertex): point-triangle pairs
+  // in point then triangle order, then edge-edge pairs in edge order.
+  std::vector<BarrierPair> near_pairs(const std::vector<double>& x) const;
+  // sum over pairs of b (without kappa), in pair order; *min_distance gets
+  // the smallest distance (not squared) over the pairs (dhat when none).
+  double energy(const std::vector<double>& x, const std::vector<BarrierPair>& pairs, double* min_distance) const;
+  // g += kappa d(sum b)/dx (xyz per vertex).
+  void add_gradient(const std::vector<double>& x, const std::vector<BarrierPair>& pairs, double kappa,
+                    std::vector<double>& g) const;
+  // kappa times the pairs' PSD-projected Hessians, assembled.
+  BarrierHessian hessian(const std::vector<double>& x, const std::vector<BarrierPair>& pairs, double kappa) const;
+  // The largest alpha in [0, 1] such that x + t p, t in [0, alpha], has no
+  // pair in contact: the smallest additive-CCD time of impact over the pairs
+  // whose swept boxes (inflated by dhat) overlap; 1 when none hits.
+  double step_bound(const std::vector<double>& x, const std::vector<double>& p) const;
+  // The smallest distance between any two non-adjacent surface primitives
+  // within `reach` of each other (reach when none).
+  double min_distance(const std::vector<double>& x, double reach) const;
+
+  size_t point_count() const { return points_.size(); }
+  size_t edge_count() const { return edges_.size() / 2; }
+  size_t triangle_count() const { return triangles_.size() / 3; }
+  const std::vector<int>& triangles() const { return triangles_; }
+
+ private:
+  // Candidate pairs whose boxes overlap: point-triangle (point, triangle)
+  // then edge-edge (edge a < edge b), no shared vertex. A primitive's box
+  // spans x and, with p, x + p, inflated by `inflate`.
+  void candidates(const std::vector<double>& x, const std::vector<double>* p, double inflate,
+                  std::vector<std::array<int, 2>>& point_triangle, std::vector<std::array<int, 2>>& edge_edge) const;
+  BarrierPair make_pair(int kind, int a, int b) const;
+
+  std::vector<int> points_;     // surface vertices (mesh indices, ascending)
+  std::vector<int> edges_;      // 2 per edge, ascending pairs, sorted
+  std::vector<int> triangles_;  // 3 per triangle
+  std::vector<double> edge_rest_squared_;
+  double mean_edge_ = 1.0;
+  double dhat_ = 0.0;
+};
+
+}  // namespace snh::solver
