@@ -21,6 +21,8 @@
  *   SNH_SELF_CONTACT  self-collision springs (solver/self_contact.h): the
  *                     per-contact differences d_c = a_c^T u and their
  *                     per-vertex gather k a_i d_c in the same kernels
+ *   SNH_SELF_BARRIER  barrier self-contact: block-Jacobi adds its diagonal
+ *                     blocks (the products: contact/barrier.cl)
  *   SNH_MIXED         a double solve's products in float (snh_portable.h):
  *                     the program holds snh_element_product_cached and
  *                     snh_element_matrices (the multigrid's float fine level
@@ -300,6 +302,10 @@ __kernel void snh_block_jacobi_setup(__global const real* element_blocks, __glob
                                      ,
                                      __global const real* self_diagonal
 #endif
+#if SNH_SELF_BARRIER
+                                     ,
+                                     __global const real* barrier_diagonal
+#endif
 ) {
   const int v = get_global_id(0);
   if (v >= vertex_count) return;
@@ -318,6 +324,10 @@ __kernel void snh_block_jacobi_setup(__global const real* element_blocks, __glob
 #if SNH_SELF_CONTACT
   /* the springs' diagonal blocks: sum over v's contacts of k a_v^2 I */
   for (int d = 0; d < 3; ++d) M3(b, d, d) += self_diagonal[v];
+#endif
+#if SNH_SELF_BARRIER
+  /* the barrier's projected diagonal block (symmetric: either order) */
+  for (int i = 0; i < 9; ++i) b.a[i] += barrier_diagonal[9 * v + i];
 #endif
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) M3(b, r, c) *= mask[3 * v + r] * mask[3 * v + c];

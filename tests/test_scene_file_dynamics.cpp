@@ -125,7 +125,13 @@ TEST(SceneFileDynamics, KeysNameTheirErrors) {
             std::string::npos);
   EXPECT_EQ(error(R"("contact": {"stiffness": 1, "self": true})"), "no error");
   EXPECT_EQ(error(R"("contact": {"self": true, "self_stiffness": 2})"), "no error");
-  EXPECT_NE(error(R"("contact": {"self": true})").find("contact.stiffness: missing"), std::string::npos);
+  EXPECT_NE(error(R"("contact": {"self": true, "self_method": "penalty"})").find("contact.stiffness: missing"),
+            std::string::npos);
+  EXPECT_EQ(error(R"("contact": {"self": true})"), "no error");  // the barrier needs no stiffness
+  EXPECT_NE(error(R"("contact": {"self": true, "self_method": "springs"})").find("contact.self_method"),
+            std::string::npos);
+  EXPECT_NE(error(R"("contact": {"self": true, "self_distance": -1})").find("contact.self_distance"),
+            std::string::npos);
   EXPECT_NE(error(R"("contact": {"stiffness": 1, "self": true, "self_stiffness": -1})").find("contact.self_stiffness"),
             std::string::npos);
   EXPECT_NE(error(R"("contact": {"stiffness": 1, "self": "no"})").find("contact.self: expected true or false"),

@@ -239,6 +239,7 @@ TEST(SelfContact, OptionsAreValidated) {
   const ConstraintSet fixed{"fixed", {0, 3, 6, 9}, {}, {}, {true, true, true}};
   SolveOptions options;
   options.contact.self = true;
+  options.contact.self_method = SelfContactMethod::penalty;
   EXPECT_THROW(Simulation(mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3), {fixed}, options), Error);
   options.contact.self_stiffness = -1.0;
   options.contact.stiffness = 1.0;
@@ -266,6 +267,7 @@ TEST(SelfContact, CombinesWithDynamicsAndObstacles) {
   const StableNeoHookean material = StableNeoHookean::from_youngs_modulus(1e5, 0.4);
   const SolveResult plain = QuasistaticSolver(mesh, material, {}, options).solve();
   options.contact.self = true;
+  options.contact.self_method = SelfContactMethod::penalty;
   const SolveResult with = QuasistaticSolver(mesh, material, {}, options).solve();
   ASSERT_TRUE(with.converged);
   for (const char* term : {"-DSNH_INERTIA=1", "-DSNH_OBSTACLES=1", "-DSNH_SELF_CONTACT=1"})

@@ -82,6 +82,8 @@ const Switch kSwitches[] = {
      [](KernelConfig& c, int v) { return set_count(c.obstacles, v); }},
     {"SNH_SELF_CONTACT", [](const KernelConfig& c) { return flag(c.self_contact); },
      [](KernelConfig& c, int v) { return set_flag(c.self_contact, v); }},
+    {"SNH_SELF_BARRIER", [](const KernelConfig& c) { return flag(c.self_barrier); },
+     [](KernelConfig& c, int v) { return set_flag(c.self_barrier, v); }},
     {"SNH_FRICTION", [](const KernelConfig& c) { return flag(c.friction); },
      [](KernelConfig& c, int v) { return set_flag(c.friction, v); }},
     {"SNH_SURFACE_CONTACT", [](const KernelConfig& c) { return flag(c.surface_contact); },
@@ -221,6 +223,7 @@ KernelConfig KernelConfig::elastic() const {
   c.inertia = false;
   c.obstacles = 0;
   c.self_contact = false;
+  c.self_barrier = false;
   c.friction = false;
   c.surface_contact = false;
   return c;

@@ -33,6 +33,7 @@ struct KernelConfig {
   bool inertia = false;          // SNH_INERTIA
   int obstacles = 0;             // SNH_OBSTACLES
   bool self_contact = false;     // SNH_SELF_CONTACT
+  bool self_barrier = false;     // SNH_SELF_BARRIER: barrier self-contact's blocks in block-Jacobi
   bool friction = false;         // SNH_FRICTION
   bool surface_contact = false;  // SNH_SURFACE_CONTACT: an embedded surface's points in obstacle contact
   // Switches of single programs.
@@ -73,8 +74,8 @@ struct KernelConfig {
   KernelConfig with_float_cycle() const;
   KernelConfig with_stencil(int width, int lower) const;
   KernelConfig with_surface_contact() const;
-  // Without the per-vertex terms (inertia, obstacles, self-contact, friction,
-  // surface contact).
+  // Without the per-vertex terms (inertia, obstacles, self-contact (both
+  // methods), friction, surface contact).
   KernelConfig elastic() const;
 
   bool operator==(const KernelConfig& o) const { return defines() == o.defines() && precision == o.precision; }

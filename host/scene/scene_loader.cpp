@@ -473,9 +473,18 @@ SceneFile load_scene(const std::string& path) {
       if (!c["self"].is_boolean()) r.fail("contact.self", "expected true or false");
       s.options.contact.self = c["self"].get<bool>();
     }
+    if (c.contains("self_method")) {
+      const json& m = c["self_method"];
+      if (!m.is_string() || (m != "barrier" && m != "penalty"))
+        r.fail("contact.self_method", "expected \"barrier\" or \"penalty\"");
+      s.options.contact.self_method = m == "penalty" ? SelfContactMethod::penalty : SelfContactMethod::barrier;
+    }
+    s.options.contact.self_distance = r.number(c, "contact", "self_distance", 0.0);
+    if (!(s.options.contact.self_distance >= 0.0)) r.fail("contact.self_distance", "must be >= 0 (0: automatic)");
     if (!(s.options.contact.self_stiffness >= 0.0)) r.fail("contact.self_stiffness", "must be >= 0");
-    if (s.options.contact.self && !(s.options.contact.stiffness > 0.0) && !(s.options.contact.self_stiffness > 0.0))
-      r.fail("contact.stiffness", "missing (self-contact needs stiffness or self_stiffness > 0)");
+    if (s.options.contact.self && s.options.contact.self_method == SelfContactMethod::penalty &&
+        !(s.options.contact.stiffness > 0.0) && !(s.options.contact.self_stiffness > 0.0))
+      r.fail("contact.stiffness", "missing (penalty self-contact needs stiffness or self_stiffness > 0)");
     if (!(s.options.contact.thickness >= 0.0)) r.fail("contact.thickness", "must be >= 0");
     if (s.options.contact.stiffness < 0.0) r.fail("contact.stiffness", "must be > 0");
   }

@@ -69,7 +69,8 @@ std::map<std::string, Keys> make_table() {
   // "keyframes": an array of keys, or an object as a constraint's motion.
   t["obstacles[].keyframes[]"] = {"t", "angle", "translation"};
   add_motion(t, "obstacles[].keyframes");
-  t["contact"] = {"stiffness", "thickness", "self", "self_stiffness", "friction", "friction_slip"};
+  t["contact"] = {"stiffness",     "thickness",      "self",     "self_method",
+                  "self_distance", "self_stiffness", "friction", "friction_slip"};
   t["solver"] = {"steps",          "precision", "strain_tolerance",  "absolute_tolerance", "max_newton_iterations",
                  "preconditioner", "hessian",   "product_precision", "fail_on_inverted"};
   t["output"] = {"vtu", "json", "surface", "pc2", "mdd", "lbs", "check_intersections"};

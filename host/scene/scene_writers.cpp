@@ -80,7 +80,10 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
     j["contact"] = {{"stiffness", options.contact.stiffness},
                     {"thickness", options.contact.thickness},
                     {"self", options.contact.self}};
-    if (options.contact.self) j["contact"]["self_stiffness"] = options.contact.self_stiffness;
+    if (options.contact.self && options.contact.self_method == SelfContactMethod::penalty)
+      j["contact"]["self_stiffness"] = options.contact.self_stiffness;
+    if (options.contact.self)
+      j["contact"]["self_method"] = options.contact.self_method == SelfContactMethod::penalty ? "penalty" : "barrier";
   }
   j["steps"] = json::array();
   for (const StepResult& s : r.steps) {
@@ -102,6 +105,11 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
     if (options.contact.self) {
       step["self_contacts"] = s.self_contacts;
       step["max_self_penetration"] = s.max_self_penetration;
+      if (options.contact.self_method == SelfContactMethod::barrier) {
+        step["self_contact_pairs"] = s.self_contact_pairs;
+        step["min_self_distance"] = s.min_self_distance;
+        step["self_contact_seconds"] = s.self_contact_seconds;
+      }
     }
     const size_t k = j["steps"].size();
     if (k < shapes.size() && shapes[k].shape.defined) {

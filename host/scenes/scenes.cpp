@@ -152,6 +152,7 @@ Scene elbow(const SceneParameters& p) {
   // 0.0267, with 120 E h 0.0185, with 160 E h 0.0128 (docs/performance.md), so tet4
   // gets 160 E h.
   s.options.contact.self = true;
+  s.options.contact.self_method = SelfContactMethod::penalty;
   s.options.contact.stiffness = (p.element_type == ElementType::tet4 ? 160.0 : 80.0) * p.youngs_modulus * h;
   s.options.contact.thickness = 0.1 * h;
   s.description = "6:1:1 limb flexed 140 degrees by two rigid bones, inner side folding onto itself (self-contact)";

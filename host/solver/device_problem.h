@@ -90,6 +90,9 @@ class DeviceProblem {
     return model_.refresh_self_contact(x, new_step);
   }
   bool has_true_hessian() const { return true; }
+  // Barrier self-contact: the largest step along p that continuous
+  // collision detection clears (infinity without it).
+  double step_bound(const Vector& x, const Vector& p) { return model_.step_bound(x, p); }
 
   double norm(const Vector& v) const { return std::sqrt(model_.reduction().sum_of_squares(mem(v), v.size())); }
   double dot(const Vector& u, const Vector& v) const { return model_.reduction().dot(mem(u), mem(v), u.size()); }

@@ -59,6 +59,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   config.inertia = terms.inertia;
   config.obstacles = terms.obstacles;
   config.self_contact = terms.self_contact;
+  config.self_barrier = terms.self_barrier;
   config.friction = terms.friction;
 
   const size_t vertex_count = data_.vertex_count, element_count = data_.element_count;
@@ -103,6 +104,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   block_jacobi_ = std::make_unique<BlockJacobi<Real>>(cl, vertex_count, config);
   mask_k_ = cl.kernel("fem.cl", config, "snh_apply_mask");
   if (terms.self_contact) self_contact_ = std::make_unique<SelfContactTerms<Real>>(cl, mesh, config, &profiler_);
+  if (terms.self_barrier) barrier_ = std::make_unique<BarrierTerms<Real>>(cl, mesh, &profiler_);
   for (size_t e = 0; e < element_count; ++e) {
     const Material& m = materials.of_element(e);
     double volume = 0.0;
@@ -349,6 +351,28 @@ const std::vector<SelfContactPair>& ElasticModel<Real>::self_contacts() const {
 }
 
 template <typename Real>
+std::vector<double> ElasticModel<Real>::host_positions(const VectorBase& x) const {
+  std::vector<double> xd;
+  PhaseScope transfer(&profiler_, Phase::transfers);
+  device::read_back(data_.cl, x, xd);
+  return xd;
+}
+
+template <typename Real>
+void ElasticModel<Real>::set_self_barrier(double dhat, double kappa) {
+  if (!barrier_) throw Error("solver: barrier self-contact parameters on a model built without it");
+  if (!(dhat > 0.0) || !std::isfinite(dhat)) throw Error("solver: self-contact distance not finite and > 0");
+  if (!(kappa > 0.0) || !std::isfinite(kappa)) throw Error("solver: barrier stiffness not finite and > 0");
+  barrier_->set_parameters(dhat, kappa);
+}
+
+template <typename Real>
+double ElasticModel<Real>::step_bound(const VectorBase& x, const VectorBase& p) {
+  if (!barrier_) return std::numeric_limits<double>::infinity();
+  return barrier_->step_bound(host_positions(x), host_positions(p));
+}
+
+template <typename Real>
 void ElasticModel<Real>::self_differences(const VectorBase& u) const {
   if (self_contact_) self_contact_->differences(mem(u));
 }
@@ -400,6 +424,11 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
       last_energy_magnitude_ += springs;
     }
   }
+  if (barrier_) {
+    const double barrier = barrier_->energy(host_positions(x));
+    sum += barrier;
+    last_energy_magnitude_ += barrier;
+  }
   return sum;
 }
 
@@ -432,6 +461,7 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
   if (terms_.obstacles > 0) contact(x);
   self_differences(x);
   gather(data_.element_scratch, r, true, &x, 1, elastic_scale_);
+  if (barrier_) barrier_->add_force(host_positions(x), data_.mask.get(), mem(r));
 }
 
 template <typename Real>
@@ -447,6 +477,7 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   if (sizeof(Real) > sizeof(float)) args.add(products_->float_cache_buffer());
   data_.run_point_kernel(args.bind(), material_lanes_);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
+  if (barrier_) barrier_->linearize(host_positions(x));
   products_->linearized(projected);
 }
 
@@ -455,7 +486,10 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
   PhaseScope timed(&profiler_, Phase::products);
   if (products_->stencil_product(p, y)) {
     // The per-vertex terms as after the element products (mask * mask = mask).
-    if (!vertex_terms()) return;
+    if (!vertex_terms()) {
+      if (barrier_) barrier_->add_product(data_.mask.get(), mem(p), mem(y));
+      return;
+    }
     const int size = static_cast<int>(dofs());
     KernelArgs terms(mask_k_.get());
     terms.add(data_.mask.get()).add(size).add(mem(y)).add(static_cast<Real>(elastic_scale_)).add(mem(p));
@@ -463,11 +497,13 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     self_differences(p);
     if (terms_.self_contact) self_contact_->add_args(terms);
     data_.cl.run(terms.bind(), dofs());
+    if (barrier_) barrier_->add_product(data_.mask.get(), mem(p), mem(y));
     return;
   }
   products_->element_product(p, linearized_x_, projected_);
   self_differences(p);
   gather(data_.element_scratch, y, false, &p, 2, elastic_scale_);
+  if (barrier_) barrier_->add_product(data_.mask.get(), mem(p), mem(y));
 }
 
 template <typename Real>
@@ -491,6 +527,7 @@ void ElasticModel<Real>::setup_preconditioner() {
                          if (vertex_terms()) args.add(static_cast<Real>(elastic_scale_));
                          if (vertex_terms_) vertex_terms_->add_block_args(args);
                          if (terms_.self_contact) args.add(self_contact_->diagonal());
+                         if (barrier_) args.add(barrier_->diagonal());
                        });
 }
 

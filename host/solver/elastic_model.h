@@ -20,6 +20,7 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
+#include "solver/barrier_terms.h"
 #include "solver/block_jacobi.h"
 #include "solver/block_stencil.h"
 #include "solver/device_reduction.h"
@@ -64,6 +65,7 @@ struct ModelTerms {
   int obstacles = 0;          // kinematic obstacles' contact penalty (SNH_OBSTACLES)
   bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
   bool friction = false;      // lagged Coulomb friction against the obstacles (SNH_FRICTION)
+  bool self_barrier = false;  // barrier self-contact (SNH_SELF_BARRIER, solver/barrier_terms.h)
   PointDataLayout hex8_point_data = PointDataLayout::automatic;  // SNH_POINT_MAJOR, SNH_CACHE_TILE (tet4 too)
 };
 
@@ -135,6 +137,16 @@ class ElasticModel {
   const SelfContactDetector* self_contact_detector() const {
     return self_contact_ ? &self_contact_->detector() : nullptr;
   }
+  // Barrier self-contact (ModelTerms::self_barrier): its dhat and kappa
+  // (snh::Error without the term or for values not finite and > 0). The
+  // energy, residual, linearization, products and block-Jacobi then carry
+  // kappa sum b over the surface pairs within dhat, detected at each x.
+  void set_self_barrier(double dhat, double kappa);
+  // The largest alpha <= 1 that continuous collision detection clears along
+  // x + alpha p; infinity without barrier self-contact.
+  double step_bound(const VectorBase& x, const VectorBase& p);
+  // Null without barrier self-contact.
+  const BarrierTerms<Real>* self_barrier() const { return barrier_.get(); }
 
   // Total potential energy: elastic energy minus external work, summed on the
   // host in double and in element order. Non-finite when any element's is.
@@ -333,6 +345,9 @@ class ElasticModel {
   // Self-contact (ModelTerms::self_contact; null without): detector, frozen
   // set and its device arrays.
   std::unique_ptr<SelfContactTerms<Real>> self_contact_;
+  // Barrier self-contact (ModelTerms::self_barrier; null without).
+  std::unique_ptr<BarrierTerms<Real>> barrier_;
+  std::vector<double> host_positions(const VectorBase& x) const;
   // Block-Jacobi's inverted blocks and kernels (setup_preconditioner).
   std::unique_ptr<BlockJacobi<Real>> block_jacobi_;
 };

@@ -27,6 +27,9 @@ void add_substep(const StepResult& sub, StepResult& total) {
   total.max_penetration = sub.max_penetration;
   total.self_contacts = sub.self_contacts;
   total.max_self_penetration = sub.max_self_penetration;
+  total.self_contact_pairs = sub.self_contact_pairs;
+  total.min_self_distance = sub.min_self_distance;
+  total.self_contact_seconds += sub.self_contact_seconds;
   if (!sub.fallback.empty()) total.fallback = sub.fallback;
 }
 

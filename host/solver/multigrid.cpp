@@ -221,8 +221,8 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
         std::to_string(options.rebuild_every));
   if (!(options.rebuild_growth >= 1.0))
     throw Error("multigrid: rebuild_growth must be at least 1, got " + std::to_string(options.rebuild_growth));
-  if (model.terms().self_contact)
-    throw Error("multigrid: its coarse levels do not carry the self-contact springs (use block-jacobi)");
+  if (model.terms().self_contact || model.terms().self_barrier)
+    throw Error("multigrid: its coarse levels do not carry self-contact (use block-jacobi)");
   hierarchy_ = build_lattice_hierarchy(mesh, mask, options.coarsest_dofs, options.max_levels);
   // The coarse levels carry the per-vertex terms inside their cell matrices
   // (snh_galerkin_vertex_terms): their products, gathers and smoothers are

@@ -33,7 +33,11 @@
 // the iteration's linearization, linear solve and line search. Returns
 // whether the set changed (the energy and residual are then recomputed), and
 //   void perturb(Vector& x, uint64_t seed);  // move the free DOFs a little
-// for tangled equilibria (below).
+// for tangled equilibria (below), and
+//   double step_bound(const Vector& x, const Vector& p);  // the largest safe alpha
+// for barriers that a step must not cross (self-contact's continuous
+// collision detection, solver/barrier_contact.h): the line search starts at
+// min(1, bound) and a step is never extended past it (infinity: no bound).
 //
 // Tangled equilibria: where the residual meets the tolerance with an element
 // inverted (J <= 0), the iterate may be a saddle that Newton reached by
@@ -51,6 +55,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -102,6 +107,21 @@ struct HasPerturb : std::false_type {};
 template <typename P>
 struct HasPerturb<P, std::void_t<decltype(std::declval<P&>().perturb(std::declval<typename P::Vector&>(), 1u))>>
     : std::true_type {};
+
+// The problem's step_bound(x, p), or infinity (no bound) when it has none.
+template <typename P, typename = void>
+struct HasStepBound : std::false_type {};
+template <typename P>
+struct HasStepBound<P, std::void_t<decltype(std::declval<P&>().step_bound(std::declval<const typename P::Vector&>(),
+                                                                          std::declval<const typename P::Vector&>()))>>
+    : std::true_type {};
+template <typename P>
+double step_bound_of(P& problem, const typename P::Vector& x, const typename P::Vector& p) {
+  if constexpr (HasStepBound<P>::value)
+    return problem.step_bound(x, p);
+  else
+    return std::numeric_limits<double>::infinity();
+}
 
 template <typename Problem>
 class NewtonDriver {
@@ -363,8 +383,11 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     // trial's residual.
     double trial_energy = energy, trial_rn = rn;
     bool non_finite_residual = false;
+    double bound = std::numeric_limits<double>::infinity();  // step_bound along this p
     auto line_search = [&]() -> double {
-      double alpha = 1.0;
+      bound = step_bound_of(problem_, x, p);
+      if (!(bound > 0.0)) return 0.0;
+      double alpha = std::min(1.0, bound);
       for (int h = 0; h <= max_halvings; ++h, alpha *= 0.5) {
         problem_.step(x, alpha, p, trial);
         trial_energy = problem_.energy(trial);
@@ -410,7 +433,8 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     if (accepted == 1.0) {
       double descent = problem_.dot(r_trial, p);  // -dE/dalpha at the accepted point
       int doublings = 0;
-      while (doublings < kMaxDoublings && std::isfinite(descent) && descent >= slope && descent > 0.0) {
+      while (doublings < kMaxDoublings && std::isfinite(descent) && descent >= slope && descent > 0.0 &&
+             2.0 * accepted <= bound) {
         const double next = 2.0 * accepted;
         problem_.step(x, next, p, far);
         const double far_energy = problem_.energy(far);

@@ -304,9 +304,16 @@ struct Simulation::Impl {
       engine.model->set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
     if (friction)
       engine.model->set_friction(friction_start, friction_anchor, friction_start_table, friction_table, friction_slip);
-    if (options.contact.self)
+    if (options.contact.self && options.contact.self_method == SelfContactMethod::penalty)
       engine.model->set_self_contact_stiffness(options.contact.self_stiffness > 0.0 ? options.contact.self_stiffness
                                                                                     : options.contact.stiffness);
+    if (engine.model->self_barrier()) {
+      const double edge = engine.model->self_barrier()->contact().mean_edge_length();
+      const double dhat =
+          options.contact.self_distance > 0.0 ? options.contact.self_distance : solver::kDefaultSelfDistance * edge;
+      engine.model->set_self_barrier(dhat, solver::default_barrier_stiffness(materials, edge, dhat));
+    }
+    const double barrier_seconds = engine.model->self_barrier() ? engine.model->self_barrier()->state().seconds : 0.0;
     const std::vector<Real> xr(x.begin(), x.end());
     // Wrapping a zero-filled buffer: ViennaCL's own sized vector would clear
     // it with a kernel behind the device counts.
@@ -336,6 +343,12 @@ struct Simulation::Impl {
     step.max_penetration = std::max(contact.max_penetration, contact.max_self_penetration);
     step.self_contacts = contact.self_contacts;
     step.max_self_penetration = contact.max_self_penetration;
+    if (auto* barrier = engine.model->self_barrier()) {
+      engine.model->energy(xd);  // the barrier's pairs at the end x
+      step.self_contact_pairs = barrier->state().pairs;
+      step.min_self_distance = barrier->state().min_distance;
+      step.self_contact_seconds = barrier->state().seconds - barrier_seconds;
+    }
     std::vector<double> back;
     {
       solver::PhaseScope download(&engine.model->profiler(), solver::Phase::transfers);

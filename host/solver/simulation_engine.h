@@ -66,7 +66,8 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
   ModelTerms terms;
   terms.inertia = options.dynamics.has_value();
   terms.obstacles = static_cast<int>(options.obstacles.size());
-  terms.self_contact = options.contact.self;
+  terms.self_contact = options.contact.self && options.contact.self_method == SelfContactMethod::penalty;
+  terms.self_barrier = options.contact.self && options.contact.self_method == SelfContactMethod::barrier;
   terms.friction = setup.friction;
   engine->model = std::make_unique<ElasticModel<Real>>(ctx, setup.mesh, setup.rest, setup.materials, variant,
                                                        device::MaterialKernel::specialized, terms);

@@ -338,7 +338,18 @@ struct Obstacle {
 // length): a body of weight W resting on n vertices sinks W / (n stiffness)
 // into the layer.
 //
-// self: self-collision by the reference-map penalty (Smith et al. 2018
+// self: self-collision, by self_method:
+//
+// barrier (the default): the incremental-potential barrier (Li et al. 2020,
+// "Incremental Potential Contact"; docs/design.md): kappa b(d^2) on every
+// pair of non-adjacent surface primitives (point-triangle, edge-edge; hex8
+// quads as two triangles) closer than self_distance (dhat; 0: 1% of the mean
+// rest surface edge length), kappa = E h^2 / dhat^3 (E the largest Young's
+// modulus, h that edge length), and every Newton step limited by continuous
+// collision detection, so that the surface never passes through itself.
+// Detection on the host. Not with the multigrid preconditioner.
+//
+// penalty: the reference-map penalty (Smith et al. 2018
 // sec. 6; docs/design.md): a surface vertex found inside a deformed
 // element not adjacent to it is pulled by a spring of self_stiffness (0: the
 // same as stiffness; force per length, like stiffness) to the deformed
@@ -359,11 +370,15 @@ struct Obstacle {
 // friction) up to a slip of friction_slip, the kinetic force beyond
 // (kernels/contact/obstacle.h). Kernels carry it (SNH_FRICTION) only
 // when some obstacle's coefficient is > 0.
+enum class SelfContactMethod { barrier, penalty };
+
 struct ContactOptions {
-  double stiffness = 0.0;  // > 0 when there are obstacles (or self without self_stiffness)
+  double stiffness = 0.0;  // > 0 when there are obstacles (or penalty self-contact without self_stiffness)
   double thickness = 0.0;  // >= 0
   bool self = false;
-  double self_stiffness = 0.0;  // >= 0; 0: stiffness
+  SelfContactMethod self_method = SelfContactMethod::barrier;
+  double self_distance = 0.0;   // barrier's dhat, >= 0; 0: 1% of the mean rest surface edge length
+  double self_stiffness = 0.0;  // penalty's, >= 0; 0: stiffness
   double friction = 0.0;        // >= 0, the obstacles' coefficient unless they set their own
   // The slip (length) below which friction sticks as a spring (> 0); 0:
   // 1% of the mesh's vertex spacing (rest volume / vertices)^(1/3).
@@ -592,6 +607,13 @@ struct StepResult {
   double max_penetration = 0.0;
   int self_contacts = 0;
   double max_self_penetration = 0.0;
+  // Barrier self-contact, at the end of the step: the surface pairs closer
+  // than dhat, their smallest distance (dhat when none; > 0: the surface
+  // does not pass through itself), and the host seconds the barrier took
+  // in this step (detection, CCD, assembly).
+  int self_contact_pairs = 0;
+  double min_self_distance = 0.0;
+  double self_contact_seconds = 0.0;
   // Multigrid hierarchies built in this step's linearizations (the others
   // reused one, MultigridOptions::rebuild_every); 0 with other
   // preconditioners.

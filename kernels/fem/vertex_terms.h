@@ -16,6 +16,11 @@
 #ifndef SNH_FRICTION
 #define SNH_FRICTION 0
 #endif
+/* Barrier self-contact (solver/barrier_terms.h): its products run in
+ * contact/barrier.cl; block-Jacobi's setup adds its diagonal blocks. */
+#ifndef SNH_SELF_BARRIER
+#define SNH_SELF_BARRIER 0
+#endif
 /* An embedded surface in contact with the obstacles (with SNH_OBSTACLES only;
  * solver/vertex_terms.h): snh_contact_vertices adds its points' shares. */
 #ifndef SNH_SURFACE_CONTACT

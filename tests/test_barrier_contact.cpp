@@ -1,0 +1,363 @@
+// Barrier self-contact (solver/barrier_contact.h, barrier_terms.h): the host
+// detection (no pair at rest, pairs sharing a vertex excluded, gradient
+// against differences, assembled Hessian symmetric and PSD, bitwise
+// repeatable), the CCD step bound on a lattice, the device terms against the
+// host reference, builds without it unchanged, and the squash to 5% that
+// folds through itself without it and holds with it.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "device_test_support.h"
+#include "fem/rest_state.h"
+#include "snh/error.h"
+#include "snh/scenes.h"
+#include "snh/simulation.h"
+#include "solver/barrier_contact.h"
+#include "solver/elastic_model.h"
+#include "solver/newton_driver.h"
+#include "stability.h"
+
+namespace snh::test {
+namespace {
+
+using V3 = std::array<double, 3>;
+V3 at(const std::vector<double>& x, int v) { return {x[3 * v], x[3 * v + 1], x[3 * v + 2]}; }
+double orient(const V3& a, const V3& b, const V3& c, const V3& d) {
+  const V3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]},
+      w{d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+// Segment pq properly crosses triangle abc (strict signs: touching is not
+// counted).
+bool segment_crosses(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  const double op = orient(a, b, c, p), oq = orient(a, b, c, q);
+  if (!(op * oq < 0.0)) return false;
+  const double s0 = orient(p, q, a, b), s1 = orient(p, q, b, c), s2 = orient(p, q, c, a);
+  return (s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0);
+}
+// Pairs of surface triangles sharing no vertex where an edge of one crosses
+// the other.
+int intersecting_triangle_pairs(const solver::BarrierContact& surface, const std::vector<double>& x) {
+  const std::vector<int>& t = surface.triangles();
+  const size_t n = t.size() / 3;
+  int count = 0;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j) {
+      bool shared = false;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) shared = shared || t[3 * i + a] == t[3 * j + b];
+      if (shared) continue;
+      bool hit = false;
+      for (int pass = 0; pass < 2 && !hit; ++pass) {
+        const size_t e = pass ? j : i, f = pass ? i : j;
+        const V3 a = at(x, t[3 * f]), b = at(x, t[3 * f + 1]), c = at(x, t[3 * f + 2]);
+        for (int k = 0; k < 3 && !hit; ++k)
+          hit = segment_crosses(at(x, t[3 * e + k]), at(x, t[3 * e + (k + 1) % 3]), a, b, c);
+      }
+      count += hit;
+    }
+  return count;
+}
+
+// Two 2 x 2 x 1 lattices of unit cells, one mesh: B above A, shifted by
+// (0.3, 0.2) and 0.07 clear of A's top face (z = 1): point-triangle and
+// edge-edge pairs (crossing and parallel edges) within dhat = 0.2, and a
+// step of B down through A.
+struct Fixture {
+  Mesh mesh = make_box_lattice(2, 2, 1, 1.0);
+  int first_b = 0;
+  std::vector<double> x;
+  Fixture() {
+    const Mesh b = make_box_lattice(2, 2, 1, 1.0, {0.3, 0.2, 1.07});
+    first_b = static_cast<int>(mesh.vertex_count());
+    mesh.positions.insert(mesh.positions.end(), b.positions.begin(), b.positions.end());
+    for (int32_t v : b.elements) mesh.elements.push_back(v + first_b);
+    x = mesh.positions;
+  }
+  // B's vertices moved by dz.
+  std::vector<double> b_down(double dz) const {
+    std::vector<double> p(x.size(), 0.0);
+    for (size_t v = first_b; v < mesh.vertex_count(); ++v) p[3 * v + 2] = dz;
+    return p;
+  }
+};
+
+TEST(BarrierContact, NoPairAtRestAndNearPairsExcludeNeighbours) {
+  const Mesh lattice = make_box_lattice(3, 2, 2, 1.0);
+  solver::BarrierContact rest(lattice);
+  EXPECT_EQ(rest.triangle_count(), 2u * (2 * 3 * 2 + 2 * 3 * 2 + 2 * 2 * 2));
+  rest.set_distance(solver::kDefaultSelfDistance * rest.mean_edge_length());
+  EXPECT_TRUE(rest.near_pairs(lattice.positions).empty());
+  // Even at 0.55 h nothing of the rest surface is in range: the closest
+  // non-adjacent rest features, the quad diagonals of two faces meeting at
+  // an edge, are h / sqrt(3) apart.
+  rest.set_distance(0.55);
+  EXPECT_TRUE(rest.near_pairs(lattice.positions).empty());
+  EXPECT_NEAR(rest.min_distance(lattice.positions, 2.0), std::sqrt(1.0 / 3.0), 1e-12);
+
+  const Fixture f;
+  solver::BarrierContact contact(f.mesh);
+  contact.set_distance(0.2);
+  const std::vector<solver::BarrierPair> pairs = contact.near_pairs(f.x);
+  ASSERT_FALSE(pairs.empty());
+  int kinds[2] = {0, 0};
+  for (const solver::BarrierPair& p : pairs) {
+    ++kinds[p.kind];
+    // Across the gap only: one side in A, the other in B.
+    const bool a0 = p.vertex[0] < f.first_b;
+    const int split = p.kind == 0 ? 1 : 2;
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(p.vertex[k] < f.first_b, k < split ? a0 : !a0) << "a pair within one body";
+  }
+  EXPECT_GT(kinds[0], 0);
+  EXPECT_GT(kinds[1], 0);
+  double smallest = 0.0;
+  contact.energy(f.x, pairs, &smallest);
+  EXPECT_NEAR(smallest, 0.07, 1e-12);
+  EXPECT_NEAR(contact.min_distance(f.x, 0.2), 0.07, 1e-12);
+  EXPECT_EQ(pairs, contact.near_pairs(f.x));  // the same order every time
+}
+
+TEST(BarrierContact, GradientMatchesDifferencesAndHessianIsSymmetricPsdAndRepeatable) {
+  const Fixture f;
+  solver::BarrierContact contact(f.mesh);
+  contact.set_distance(0.2);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  std::vector<double> x = f.x;
+  for (double& e : x) e += jitter(rng);
+  const double kappa = 3.0;
+  auto energy = [&](const std::vector<double>& y) { return kappa * contact.energy(y, contact.near_pairs(y), nullptr); };
+  std::vector<double> g(x.size(), 0.0);
+  contact.add_gradient(x, contact.near_pairs(x), kappa, g);
+  double scale = 0.0;
+  for (double e : g) scale = std::max(scale, std::abs(e));
+  ASSERT_GT(scale, 0.0);
+  for (size_t i = 0; i < x.size(); ++i) {
+    std::vector<double> plus = x, minus = x;
+    plus[i] += 1e-7;
+    minus[i] -= 1e-7;
+    EXPECT_NEAR((energy(plus) - energy(minus)) / 2e-7, g[i], 1e-6 * scale) << i;
+  }
+  const solver::BarrierHessian h = contact.hessian(x, contact.near_pairs(x), kappa);
+  const size_t n = x.size();
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (size_t v = 0; v + 1 < h.offsets.size(); ++v)
+    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k) {
+      if (k > h.offsets[v]) {
+        EXPECT_LT(h.columns[k - 1], h.columns[k]);
+      }
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) dense(3 * v + i, 3 * h.columns[k] + j) = h.blocks[9 * k + 3 * i + j];
+    }
+  EXPECT_LT((dense - dense.transpose()).norm(), 1e-12 * dense.norm());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (dense + dense.transpose()));
+  EXPECT_GE(eigen.eigenvalues().minCoeff(), -1e-10 * dense.norm());
+  EXPECT_GT(eigen.eigenvalues().maxCoeff(), 0.0);
+  const solver::BarrierHessian again = contact.hessian(x, contact.near_pairs(x), kappa);
+  EXPECT_EQ(again.blocks, h.blocks);  // bitwise
+  EXPECT_EQ(again.columns, h.columns);
+}
+
+TEST(BarrierContact, StepBoundStopsAStepThroughTheSurface) {
+  const Fixture f;
+  solver::BarrierContact contact(f.mesh);
+  contact.set_distance(0.02);
+  // B down by 0.57: its bottom meets A's top at alpha = 0.07 / 0.57.
+  const std::vector<double> p = f.b_down(-0.57);
+  const double bound = contact.step_bound(f.x, p);
+  EXPECT_GT(bound, 0.0);
+  EXPECT_LT(bound, 0.07 / 0.57);
+  std::vector<double> y = f.x;
+  for (size_t i = 0; i < y.size(); ++i) y[i] += bound * p[i];
+  EXPECT_GT(contact.min_distance(y, 0.2), 0.0);
+  EXPECT_EQ(intersecting_triangle_pairs(contact, y), 0);
+  // Without the bound, the full step crosses.
+  std::vector<double> full = f.x;
+  for (size_t i = 0; i < full.size(); ++i) full[i] += p[i];
+  EXPECT_GT(intersecting_triangle_pairs(contact, full), 0);
+  // A step sideways stays whole.
+  std::vector<double> along(f.x.size(), 0.0);
+  for (size_t v = f.first_b; v < f.mesh.vertex_count(); ++v) along[3 * v] = 0.3;
+  EXPECT_EQ(contact.step_bound(f.x, along), 1.0);
+}
+
+// The SNH_SELF_BARRIER model against the host reference: energy, residual,
+// products (cached and assembled) and block-Jacobi's diagonal gain exactly
+// kappa sum b, its force and its projected Hessian.
+TEST(BarrierContact, DeviceTermsMatchTheHostReference) {
+  const Fixture f;
+  const fem::RestState rest = fem::compute_rest_state(f.mesh);
+  const MaterialMap map = uniform_material(f.mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3));
+  solver::ModelTerms terms;
+  terms.self_barrier = true;
+  solver::ElasticModel<double> with(device_for(Precision::double_), f.mesh, rest, map, ProductVariant::cached,
+                                    device::MaterialKernel::specialized, terms);
+  solver::ElasticModel<double> without(device_for(Precision::double_), f.mesh, rest, map, ProductVariant::cached);
+  EXPECT_NE(with.specialization().find("-DSNH_SELF_BARRIER=1"), std::string::npos) << with.specialization();
+  EXPECT_EQ(without.specialization().find("SNH_SELF_BARRIER"), std::string::npos);
+  EXPECT_EQ(with.elastic_specialization(), without.specialization());
+  EXPECT_THROW(without.set_self_barrier(0.2, 1.0), Error);
+  EXPECT_THROW(with.set_self_barrier(0.0, 1.0), Error);
+  const double dhat = 0.2, kappa = 2.0;
+  with.set_self_barrier(dhat, kappa);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  std::vector<double> x = f.x, p(x.size());
+  for (double& e : x) e += jitter(rng);
+  for (double& e : p) e = jitter(rng);
+  viennacl::vector<double> xd(x.size()), pd(x.size());
+  viennacl::copy(x.begin(), x.end(), xd.begin());
+  viennacl::copy(p.begin(), p.end(), pd.begin());
+  solver::BarrierContact host(f.mesh);
+  host.set_distance(dhat);
+  const std::vector<solver::BarrierPair> pairs = host.near_pairs(x);
+  ASSERT_FALSE(pairs.empty());
+  const double energy = kappa * host.energy(x, pairs, nullptr);
+  EXPECT_GT(energy, 0.0);
+  std::vector<double> force(x.size(), 0.0);
+  host.add_gradient(x, pairs, kappa, force);
+  for (double& e : force) e = -e;
+  const solver::BarrierHessian h = host.hessian(x, pairs, kappa);
+  std::vector<double> product(x.size(), 0.0);
+  for (size_t v = 0; v + 1 < h.offsets.size(); ++v)
+    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) product[3 * v + i] += h.blocks[9 * k + 3 * i + j] * p[3 * h.columns[k] + j];
+  expect_vertex_term_matches(with, without, xd, pd, energy, force, product);
+  EXPECT_EQ(with.self_barrier()->state().pairs, static_cast<int>(pairs.size()));
+  // Block-Jacobi: the inverted diagonal blocks of (elastic + barrier).
+  with.set_variant(ProductVariant::cached);
+  without.set_variant(ProductVariant::cached);
+  with.linearize(xd, true);
+  without.linearize(xd, true);
+  with.setup_preconditioner();
+  without.setup_preconditioner();
+  const std::vector<double> bw = with.preconditioner_blocks(), bo = without.preconditioner_blocks();
+  for (size_t v = 0; v < f.mesh.vertex_count(); ++v) {
+    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
+    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k)
+      if (h.columns[k] == static_cast<int>(v))
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) block(i, j) = h.blocks[9 * k + 3 * i + j];
+    const Eigen::Matrix3d inv_with = Eigen::Map<const Eigen::Matrix3d>(&bw[9 * v]);
+    const Eigen::Matrix3d inv_without = Eigen::Map<const Eigen::Matrix3d>(&bo[9 * v]);
+    const Eigen::Matrix3d expected = inv_without.inverse() + block;
+    EXPECT_LT((inv_with.inverse() - expected).norm(), 1e-9 * expected.norm()) << v;
+  }
+  // The step bound through the device model: as the host's.
+  const std::vector<double> down = f.b_down(-0.57);
+  viennacl::vector<double> downd(x.size());
+  viennacl::copy(down.begin(), down.end(), downd.begin());
+  EXPECT_EQ(with.step_bound(xd, downd), host.step_bound(x, down));
+  EXPECT_EQ(without.step_bound(xd, downd), std::numeric_limits<double>::infinity());
+}
+
+// A problem without the hook and the same problem with an unbounded one:
+// the driver runs them bit for bit alike (problems without barrier
+// self-contact are untouched).
+struct Quartic {
+  using Vector = std::vector<double>;
+  size_t dofs() const { return 2; }
+  double epsilon() const { return 1e-16; }
+  Vector vector() const { return Vector(2, 0.0); }
+  double energy(const Vector& x) { return std::pow(x[0] - 1, 4) + 0.5 * x[1] * x[1] + x[0] * x[1] * 0.1; }
+  double last_min_j() const { return 1.0; }
+  void residual(const Vector& x, Vector& r) {
+    r[0] = -(4 * std::pow(x[0] - 1, 3) + 0.1 * x[1]);
+    r[1] = -(x[1] + 0.1 * x[0]);
+  }
+  double norm(const Vector& v) const { return std::sqrt(dot(v, v)); }
+  double dot(const Vector& a, const Vector& b) const { return a[0] * b[0] + a[1] * b[1]; }
+  Vector x_lin;
+  void linearize(const Vector& x, bool) { x_lin = x; }
+  solver::LinearSolve solve(const Vector& r, Vector& p, double, int) {
+    const double a = std::max(12 * std::pow(x_lin[0] - 1, 2), 1e-3), b = 0.1, c = 1.0, det = a * c - b * b;
+    p[0] = (c * r[0] - b * r[1]) / det;
+    p[1] = (a * r[1] - b * r[0]) / det;
+    return {1, 0.0, false, false};
+  }
+  void precondition(const Vector& r, Vector& p) { p = r; }
+  void step(const Vector& x, double alpha, const Vector& p, Vector& out) {
+    for (int i = 0; i < 2; ++i) out[i] = x[i] + alpha * p[i];
+  }
+  void swap(Vector& a, Vector& b) { a.swap(b); }
+  bool has_true_hessian() const { return false; }
+};
+struct UnboundedQuartic : Quartic {
+  double step_bound(const Vector&, const Vector&) { return std::numeric_limits<double>::infinity(); }
+};
+struct BoundedQuartic : Quartic {
+  double step_bound(const Vector&, const Vector&) { return 0.25; }
+};
+
+TEST(BarrierContact, DriverWithoutABoundIsUnchangedAndABoundCapsEveryStep) {
+  static_assert(!solver::HasStepBound<Quartic>::value && solver::HasStepBound<UnboundedQuartic>::value);
+  SolveOptions options;
+  auto run = [&](auto& problem) {
+    solver::NewtonDriver<std::decay_t<decltype(problem)>> driver(problem, options);
+    std::vector<double> x{-2.0, 3.0};
+    std::vector<NewtonIteration> history;
+    const StepResult r = driver.solve_step(0, x, 1e-10, history, std::chrono::steady_clock::now());
+    return std::make_pair(history, x);
+  };
+  Quartic plain;
+  UnboundedQuartic unbounded;
+  BoundedQuartic bounded;
+  const auto [h0, x0] = run(plain);
+  const auto [h1, x1] = run(unbounded);
+  const auto [h2, x2] = run(bounded);
+  EXPECT_EQ(x0, x1);  // bitwise
+  ASSERT_EQ(h0.size(), h1.size());
+  for (size_t i = 0; i < h0.size(); ++i) {
+    EXPECT_EQ(h0[i].residual_norm, h1[i].residual_norm);
+    EXPECT_EQ(h0[i].step_length, h1[i].step_length);
+  }
+  for (const NewtonIteration& it : h2) EXPECT_LE(it.step_length, 0.25);
+}
+
+// The stability suite's frictionless squash at nu = 0.46, 4^3 hexes, the
+// lid closing to 5% of the height: without self-contact the surface passes
+// through itself; with barrier self-contact every step converges, no two
+// non-adjacent surface triangles cross at the end of any step, the closest
+// pair stays apart and no element inverts.
+TEST(BarrierContact, SquashToFivePercentHoldsWithoutIntersection) {
+  Scene scene = bench::make_stability_case("squash_nu0.46", Precision::double_, 4, 0.05);
+  scene.options.load_steps = 32;  // the lid's closing (to t = 0.3 of 80 steps) and its hold to t = 0.4
+  const solver::BarrierContact surface(scene.mesh);
+  auto run = [&](bool self, int& crossings, double& min_distance, int& inverted, bool& converged) {
+    SolveOptions options = scene.options;
+    options.contact.self = self;
+    Simulation sim(scene.mesh, uniform_material(scene.mesh, scene.material), scene.constraints, options);
+    crossings = 0;
+    inverted = 0;
+    min_distance = std::numeric_limits<double>::infinity();
+    converged = true;
+    sim.solve(0, {}, [&](int, const std::vector<double>& x) {
+      crossings = std::max(crossings, intersecting_triangle_pairs(surface, x));
+      const StepResult& step = sim.last_step();
+      converged = converged && step.converged;
+      inverted = std::max(inverted, step.inverted_elements);
+      if (self) min_distance = std::min(min_distance, step.min_self_distance);
+    });
+  };
+  int crossings = 0, inverted = 0;
+  double min_distance = 0.0;
+  bool converged = false;
+  run(false, crossings, min_distance, inverted, converged);
+  EXPECT_GT(crossings, 0) << "the squash without self-contact no longer folds through itself: the test shows nothing";
+  run(true, crossings, min_distance, inverted, converged);
+  EXPECT_TRUE(converged);
+  EXPECT_EQ(crossings, 0);
+  EXPECT_GT(min_distance, 0.0);
+  EXPECT_EQ(inverted, 0);
+}
+
+}  // namespace
+}  // namespace snh::test
