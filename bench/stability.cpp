@@ -169,7 +169,8 @@ Scene make_case(const std::string& name, Precision precision, int resolution, do
   }
   // squash_h<H>_nu<nu>: the frictionless squash with the lid closed to H
   // whatever --squash-height says: the heights where the body folds through
-  // itself, each step's exact self-intersection count in the record.
+  // itself without self-contact, here with it on; each step's exact
+  // self-intersection count in the record.
   if (name.rfind("squash_h", 0) == 0 && name.find("_nu") != std::string::npos) {
     const size_t nu_at = name.find("_nu");
     double height = 0.0, nu = 0.0;
@@ -179,7 +180,10 @@ Scene make_case(const std::string& name, Precision precision, int resolution, do
     } catch (const std::exception&) {
       throw Error("stability: case '" + name + "' is not squash_h<height>_nu<poisson ratio>");
     }
-    return squash(nu, res_or(4), precision, 0.0, height);
+    Scene s = squash(nu, res_or(4), precision, 0.0, height);
+    s.options.contact.self = true;  // barrier self-contact (ContactOptions::self_method)
+    s.description += ", self-contact";
+    return s;
   }
   if (name.rfind("squash_nu", 0) == 0)
     return squash(std::stod(name.substr(9)), res_or(4), precision, 0.0, squash_height);

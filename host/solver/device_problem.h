@@ -205,14 +205,23 @@ class DeviceProblem {
     PhaseScope timed(&model_.profiler(), Phase::transfers);
     std::vector<Real> host(x.size());
     viennacl::copy(x.begin(), x.end(), host.begin());
+    std::vector<double> move(host.size(), 0.0);
     for (size_t i = 0; i < host.size(); ++i) {
       uint64_t z = (seed += 0x9e3779b97f4a7c15ull);
       z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
       z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
       z ^= z >> 31;
       const double unit = static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;  // [-1, 1)
-      if (i < free_.size() && free_[i] != Real(0)) host[i] += static_cast<Real>(perturbation_ * unit);
+      if (i < free_.size() && free_[i] != Real(0)) move[i] = perturbation_ * unit;
     }
+    // With barrier self-contact the move is cut to what continuous collision
+    // detection clears: a perturbation never passes the surface through itself.
+    double alpha = 1.0;
+    if (const auto* barrier = model_.self_barrier()) {
+      const std::vector<double> from(host.begin(), host.end());
+      alpha = std::min(1.0, barrier->contact().step_bound(from, move));
+    }
+    for (size_t i = 0; i < host.size(); ++i) host[i] += static_cast<Real>(alpha * move[i]);
     viennacl::copy(host.begin(), host.end(), x.begin());
   }
 

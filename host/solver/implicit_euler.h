@@ -6,6 +6,7 @@
 // then v = (x - x_n) / h.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "device/readback.h"
@@ -36,21 +37,30 @@ void add_substep(const StepResult& sub, StepResult& total);
 // Time step s of n: `substeps` minimizations of the incremental potential,
 // the constraint targets interpolated linearly within the step. Newton
 // starts from x~ = x_n + h v_n when `predict` (from x_n where a material is
-// undefined for inverted elements and x~ could invert one).
+// undefined for inverted elements and x~ could invert one), or from
+// x_n + alpha h v_n where bound(x_n, h v_n) = alpha < 1: the largest
+// fraction of the move that a barrier's continuous collision detection
+// clears (infinity without a barrier).
 // prepare(euler, t0, t1) places the substep's targets and obstacles for load
 // parameters t0 to t1; solve(euler) runs its Newton solve from x.
-template <typename Prepare, typename Solve>
+template <typename Bound, typename Prepare, typename Solve>
 StepResult implicit_euler_step(const DynamicsOptions& d, int s, int steps, bool predict, std::vector<double>& x,
-                               std::vector<double>& v, const std::vector<double>& mass, double& time, Prepare&& prepare,
-                               Solve&& solve) {
+                               std::vector<double>& v, const std::vector<double>& mass, double& time, Bound&& bound,
+                               Prepare&& prepare, Solve&& solve) {
   const double h = d.time_step / d.substeps;
   StepResult total;
   total.step = s;
   total.converged = true;
   for (int j = 1; j <= d.substeps; ++j) {
     const EulerStep euler = euler_step(d, x, v, mass, h);
-    if (predict)
-      for (size_t i = 0; i < x.size(); ++i) x[i] += h * v[i];
+    if (predict) {
+      // A barrier must not be crossed by the predictor either: it moves the
+      // fraction of h v that continuous collision detection clears.
+      std::vector<double> dx(x.size());
+      for (size_t i = 0; i < x.size(); ++i) dx[i] = h * v[i];
+      const double alpha = std::min(1.0, bound(x, dx));
+      for (size_t i = 0; i < x.size(); ++i) x[i] += alpha * dx[i];
+    }
     prepare(euler, substep_fraction(s, j - 1, d.substeps, steps), substep_fraction(s, j, d.substeps, steps));
     const StepResult sub = solve(euler);
     for (size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - euler.start[i]) / h;

@@ -434,6 +434,7 @@ struct Simulation::Impl {
     force_applied = force_to;
     StepResult total = solver::implicit_euler_step(
         *options.dynamics, s, steps, defined_for_inversion, x, v, mass, time,
+        [&](const std::vector<double>& from, const std::vector<double>& move) { return barrier_bound(from, move); },
         [&](const solver::EulerStep& euler, double t0, double t1) {
           if (friction) lag_friction(euler.start, t0, t1);
           place_targets(t1);
@@ -446,6 +447,16 @@ struct Simulation::Impl {
   }
 
   solver::PrecisionFallback precision_fallback;
+
+  // The largest fraction of `move` from `from` that barrier self-contact's
+  // continuous collision detection clears (infinity without it).
+  double barrier_bound(const std::vector<double>& from, const std::vector<double>& move) const {
+    const solver::BarrierTerms<double>* barrier = dual ? dual->model->self_barrier() : nullptr;
+    if (!barrier && single) {
+      if (const auto* b = single->model->self_barrier()) return b->contact().step_bound(from, move);
+    }
+    return barrier ? barrier->contact().step_bound(from, move) : std::numeric_limits<double>::infinity();
+  }
 
   // One Newton solve from x at its step's targets and forces, with the
   // float-to-double fallback.
