@@ -488,6 +488,12 @@ SceneFile load_scene(const std::string& path) {
     if (!(s.options.contact.thickness >= 0.0)) r.fail("contact.thickness", "must be >= 0");
     if (s.options.contact.stiffness < 0.0) r.fail("contact.stiffness", "must be > 0");
   }
+  // An embedded surface is what the user sees, and it reaches outside the
+  // lattice's boundary (snh/surface.h embed): barrier self-contact acts on it.
+  if (out.embedded && s.options.contact.self && s.options.contact.self_method == SelfContactMethod::barrier) {
+    s.options.contact.self_surface = out.embedded->surface;
+    s.options.contact.self_embedding = out.embedded->embedding;
+  }
   if (!s.options.obstacles.empty() && !(s.options.contact.stiffness > 0.0))
     r.fail("contact.stiffness", "missing (the obstacles need a contact stiffness > 0)");
   try {

@@ -164,6 +164,39 @@ BarrierContact::BarrierContact(const Mesh& mesh) {
     if (faces.corners == 4) add(0, 2, 3);
   }
   points_.assign(faces.vertices.begin(), faces.vertices.end());
+  build_edges(mesh.positions);
+}
+
+BarrierContact::BarrierContact(const Mesh& lattice, const TriangleSurface& surface, const Embedding& embedding) {
+  const size_t n = surface.vertex_count();
+  if (lattice.type != ElementType::hex8)
+    throw Error("barrier contact: an embedded self-contact surface needs a hex8 lattice");
+  if (surface.positions.size() != 3 * n || embedding.element.size() != n || embedding.weights.size() != 8 * n)
+    throw Error("barrier contact: the self-contact surface has " + std::to_string(n) +
+                " vertices but its embedding has " + std::to_string(embedding.element.size()) + " elements and " +
+                std::to_string(embedding.weights.size()) + " weights (8 per vertex)");
+  for (int32_t v : surface.triangles)
+    if (v < 0 || static_cast<size_t>(v) >= n)
+      throw Error("barrier contact: self-contact surface triangle vertex " + std::to_string(v) + " out of range");
+  lattice_vertices_ = lattice.vertex_count();
+  carrier_.resize(8 * n);
+  weight_ = embedding.weights;
+  for (size_t v = 0; v < n; ++v) {
+    const int32_t e = embedding.element[v];
+    if (e < 0 || static_cast<size_t>(e) >= lattice.element_count())
+      throw Error("barrier contact: self-contact surface vertex " + std::to_string(v) + " embedded in element " +
+                  std::to_string(e) + ", not in the lattice");
+    for (int k = 0; k < 8; ++k) carrier_[8 * v + k] = lattice.elements[8 * static_cast<size_t>(e) + k];
+  }
+  triangles_.assign(surface.triangles.begin(), surface.triangles.end());
+  std::vector<char> used(n, 0);
+  for (int v : triangles_) used[v] = 1;
+  for (size_t v = 0; v < n; ++v)
+    if (used[v]) points_.push_back(static_cast<int>(v));
+  build_edges(surface.positions);
+}
+
+void BarrierContact::build_edges(const std::vector<double>& rest) {
   std::vector<std::pair<int, int>> edges;
   for (size_t t = 0; t < triangles_.size() / 3; ++t)
     for (int k = 0; k < 3; ++k) {
@@ -178,13 +211,26 @@ BarrierContact::BarrierContact(const Mesh& mesh) {
     edges_.push_back(b);
     double l2 = 0.0;
     for (int d = 0; d < 3; ++d) {
-      const double e = mesh.positions[3 * b + d] - mesh.positions[3 * a + d];
+      const double e = rest[3 * b + d] - rest[3 * a + d];
       l2 += e * e;
     }
     edge_rest_squared_.push_back(l2);
     sum += std::sqrt(l2);
   }
   if (!edges.empty()) mean_edge_ = sum / static_cast<double>(edges.size());
+}
+
+const std::vector<double>& BarrierContact::lift(const std::vector<double>& x, std::vector<double>& storage) const {
+  if (carrier_.empty()) return x;
+  const size_t n = weight_.size() / 8;
+  storage.assign(3 * n, 0.0);
+  for (size_t v = 0; v < n; ++v)
+    for (int k = 0; k < 8; ++k) {
+      const double w = weight_[8 * v + k];
+      const size_t c = static_cast<size_t>(carrier_[8 * v + k]);
+      for (int d = 0; d < 3; ++d) storage[3 * v + d] += w * x[3 * c + d];
+    }
+  return storage;
 }
 
 void BarrierContact::candidates(const std::vector<double>& x, const std::vector<double>* p, double inflate,
@@ -232,7 +278,9 @@ BarrierPair BarrierContact::make_pair(int kind, int a, int b) const {
   return pair;
 }
 
-std::vector<BarrierPair> BarrierContact::near_pairs(const std::vector<double>& x) const {
+std::vector<BarrierPair> BarrierContact::near_pairs(const std::vector<double>& lattice_x) const {
+  std::vector<double> storage;
+  const std::vector<double>& x = lift(lattice_x, storage);
   std::vector<std::array<int, 2>> pt, ee;
   candidates(x, nullptr, dhat_, pt, ee);
   std::vector<BarrierPair> pairs;
@@ -252,8 +300,10 @@ std::vector<BarrierPair> BarrierContact::near_pairs(const std::vector<double>& x
   return pairs;
 }
 
-double BarrierContact::energy(const std::vector<double>& x, const std::vector<BarrierPair>& pairs,
+double BarrierContact::energy(const std::vector<double>& lattice_x, const std::vector<BarrierPair>& pairs,
                               double* min_distance) const {
+  std::vector<double> storage;
+  const std::vector<double>& x = lift(lattice_x, storage);
   const double sh = dhat_ * dhat_;
   double sum = 0.0, smallest = sh;
   double q[12];
@@ -268,8 +318,10 @@ double BarrierContact::energy(const std::vector<double>& x, const std::vector<Ba
   return sum;
 }
 
-void BarrierContact::add_gradient(const std::vector<double>& x, const std::vector<BarrierPair>& pairs, double kappa,
-                                  std::vector<double>& g) const {
+void BarrierContact::add_gradient(const std::vector<double>& lattice_x, const std::vector<BarrierPair>& pairs,
+                                  double kappa, std::vector<double>& g) const {
+  std::vector<double> storage;
+  const std::vector<double>& x = lift(lattice_x, storage);
   const double sh = dhat_ * dhat_;
   double q[12], pg[12], ph[144], s;
   for (const BarrierPair& pair : pairs) {
@@ -278,13 +330,23 @@ void BarrierContact::add_gradient(const std::vector<double>& x, const std::vecto
       kernel::ipc_pt_potential(q, sh, &s, pg, ph);
     else
       kernel::ipc_ee_potential(q, sh, pair.ex, &s, pg, ph);
-    for (int v = 0; v < 4; ++v)
-      for (int d = 0; d < 3; ++d) g[3 * pair.vertex[v] + d] += kappa * pg[3 * v + d];
+    for (int v = 0; v < 4; ++v) {
+      if (carrier_.empty()) {
+        for (int d = 0; d < 3; ++d) g[3 * pair.vertex[v] + d] += kappa * pg[3 * v + d];
+        continue;
+      }
+      for (int k = 0; k < 8; ++k) {  // W^T: to the carrying cell's corners
+        const size_t at = 8 * static_cast<size_t>(pair.vertex[v]) + k;
+        for (int d = 0; d < 3; ++d) g[3 * carrier_[at] + d] += kappa * weight_[at] * pg[3 * v + d];
+      }
+    }
   }
 }
 
-BarrierHessian BarrierContact::hessian(const std::vector<double>& x, const std::vector<BarrierPair>& pairs,
+BarrierHessian BarrierContact::hessian(const std::vector<double>& lattice_x, const std::vector<BarrierPair>& pairs,
                                        double kappa) const {
+  std::vector<double> storage;
+  const std::vector<double>& x = lift(lattice_x, storage);
   const double sh = dhat_ * dhat_;
   // Summed in pair order into blocks kept sorted by (row, column).
   std::map<std::pair<int, int>, std::array<double, 9>> blocks;
@@ -296,16 +358,28 @@ BarrierHessian BarrierContact::hessian(const std::vector<double>& x, const std::
     else
       kernel::ipc_ee_potential(q, sh, pair.ex, &s, pg, ph);
     project_psd(ph, 12);
+    auto add = [&](int row, int column, int v, int w, double scale) {
+      auto [it, fresh] = blocks.try_emplace({row, column});
+      if (fresh) it->second.fill(0.0);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) it->second[3 * i + j] += scale * ph[12 * (3 * v + i) + 3 * w + j];
+    };
     for (int v = 0; v < 4; ++v)
       for (int w = 0; w < 4; ++w) {
-        auto [it, fresh] = blocks.try_emplace({pair.vertex[v], pair.vertex[w]});
-        if (fresh) it->second.fill(0.0);
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) it->second[3 * i + j] += kappa * ph[12 * (3 * v + i) + 3 * w + j];
+        if (carrier_.empty()) {
+          add(pair.vertex[v], pair.vertex[w], v, w, kappa);
+          continue;
+        }
+        for (int k = 0; k < 8; ++k)  // W^T H W
+          for (int l = 0; l < 8; ++l) {
+            const size_t a = 8 * static_cast<size_t>(pair.vertex[v]) + k,
+                         b = 8 * static_cast<size_t>(pair.vertex[w]) + l;
+            add(carrier_[a], carrier_[b], v, w, kappa * weight_[a] * weight_[b]);
+          }
       }
   }
   BarrierHessian h;
-  const int vertices = static_cast<int>(x.size() / 3);
+  const int vertices = static_cast<int>(lattice_x.size() / 3);
   h.offsets.assign(vertices + 1, 0);
   for (const auto& [key, block] : blocks) {
     ++h.offsets[key.first + 1];
@@ -316,7 +390,10 @@ BarrierHessian BarrierContact::hessian(const std::vector<double>& x, const std::
   return h;
 }
 
-double BarrierContact::step_bound(const std::vector<double>& x, const std::vector<double>& p) const {
+double BarrierContact::step_bound(const std::vector<double>& lattice_x, const std::vector<double>& lattice_p) const {
+  std::vector<double> x_storage, p_storage;
+  const std::vector<double>& x = lift(lattice_x, x_storage);
+  const std::vector<double>& p = lift(lattice_p, p_storage);  // linear: W p moves W x
   std::vector<std::array<int, 2>> pt, ee;
   candidates(x, &p, dhat_, pt, ee);
   double bound = 1.0;
@@ -332,7 +409,9 @@ double BarrierContact::step_bound(const std::vector<double>& x, const std::vecto
   return bound;
 }
 
-double BarrierContact::min_distance(const std::vector<double>& x, double reach) const {
+double BarrierContact::min_distance(const std::vector<double>& lattice_x, double reach) const {
+  std::vector<double> storage;
+  const std::vector<double>& x = lift(lattice_x, storage);
   std::vector<std::array<int, 2>> pt, ee;
   candidates(x, nullptr, reach, pt, ee);
   double smallest = reach * reach;

@@ -16,6 +16,7 @@
 
 #include "snh/mesh.h"
 #include "snh/regions.h"
+#include "snh/surface.h"
 
 namespace snh::solver {
 
@@ -62,6 +63,13 @@ class BarrierContact {
  public:
   // The surface of a hex8 or tet4 mesh and its rest edge lengths.
   explicit BarrierContact(const Mesh& mesh);
+  // A surface carried by the cells of a hex8 lattice: surface vertex s sits
+  // at sum_k w_sk x(v_sk) over its cell's 8 corners (snh/surface.h embed).
+  // Pairs, distances and CCD act on those positions (the map is linear, so
+  // a step x + t p moves them along W x + t W p); gradients and Hessians go
+  // back to the lattice as W^T g and W^T H W (PSD where H is). Throws
+  // snh::Error for an embedding that does not match the surface or mesh.
+  BarrierContact(const Mesh& lattice, const TriangleSurface& surface, const Embedding& embedding);
 
   // dhat (> 0): the distance below which a pair is active.
   void set_distance(double dhat) { dhat_ = dhat; }
@@ -101,6 +109,10 @@ class BarrierContact {
   void candidates(const std::vector<double>& x, const std::vector<double>* p, double inflate,
                   std::vector<std::array<int, 2>>& point_triangle, std::vector<std::array<int, 2>>& edge_edge) const;
   BarrierPair make_pair(int kind, int a, int b) const;
+  // The surface positions W x (x itself without an embedding).
+  const std::vector<double>& lift(const std::vector<double>& x, std::vector<double>& storage) const;
+  // The surface edges and their rest lengths from triangles_ and positions.
+  void build_edges(const std::vector<double>& rest);
 
   std::vector<int> points_;     // surface vertices (mesh indices, ascending)
   std::vector<int> edges_;      // 2 per edge, ascending pairs, sorted
@@ -108,6 +120,11 @@ class BarrierContact {
   std::vector<double> edge_rest_squared_;
   double mean_edge_ = 1.0;
   double dhat_ = 0.0;
+  // The embedding (empty: surface vertices are mesh vertices): 8 lattice
+  // vertices and weights per surface vertex, and the lattice's vertex count.
+  std::vector<int> carrier_;
+  std::vector<double> weight_;
+  size_t lattice_vertices_ = 0;
 };
 
 }  // namespace snh::solver

@@ -5,6 +5,7 @@
 // blocks. Internal to the library.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "device/opencl_context.h"
@@ -32,6 +33,12 @@ class BarrierTerms {
   double distance() const { return contact_.distance(); }
   double stiffness() const { return kappa_; }
   const BarrierContact& contact() const { return contact_; }
+  // Acts on `contact`'s surface from now on (an embedded surface over the
+  // same mesh's vertices); dhat is kept.
+  void set_surface(BarrierContact contact) {
+    contact.set_distance(contact_.distance());
+    contact_ = std::move(contact);
+  }
 
   // kappa sum b over the pairs within dhat at x (xyz per vertex, double).
   double energy(const std::vector<double>& x);

@@ -367,6 +367,13 @@ void ElasticModel<Real>::set_self_barrier(double dhat, double kappa) {
 }
 
 template <typename Real>
+void ElasticModel<Real>::set_self_barrier_surface(const Mesh& mesh, const TriangleSurface& surface,
+                                                  const Embedding& embedding) {
+  if (!barrier_) throw Error("solver: a barrier self-contact surface on a model built without it");
+  barrier_->set_surface(BarrierContact(mesh, surface, embedding));
+}
+
+template <typename Real>
 double ElasticModel<Real>::step_bound(const VectorBase& x, const VectorBase& p) {
   if (!barrier_) return std::numeric_limits<double>::infinity();
   return barrier_->step_bound(host_positions(x), host_positions(p));

@@ -142,6 +142,9 @@ class ElasticModel {
   // energy, residual, linearization, products and block-Jacobi then carry
   // kappa sum b over the surface pairs within dhat, detected at each x.
   void set_self_barrier(double dhat, double kappa);
+  // Barrier self-contact on a surface carried by the mesh's cells
+  // (ContactOptions::self_surface) instead of its boundary.
+  void set_self_barrier_surface(const Mesh& mesh, const TriangleSurface& surface, const Embedding& embedding);
   // The largest alpha <= 1 that continuous collision detection clears along
   // x + alpha p; infinity without barrier self-contact.
   double step_bound(const VectorBase& x, const VectorBase& p);

@@ -74,6 +74,8 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
   std::vector<Real> mask(setup.prescribed.size());
   for (size_t i = 0; i < mask.size(); ++i) mask[i] = setup.prescribed[i] ? Real(0) : Real(1);
   engine->model->set_mask(mask);
+  if (terms.self_barrier && !options.contact.self_surface.triangles.empty())
+    engine->model->set_self_barrier_surface(setup.mesh, options.contact.self_surface, options.contact.self_embedding);
   // Unset: float (the model keeps double for variants other than cached).
   engine->model->set_float_products(options.product_precision.value_or(Precision::single) == Precision::single);
   std::unique_ptr<MultigridPreconditioner<Real>> multigrid;

@@ -379,7 +379,13 @@ struct ContactOptions {
   SelfContactMethod self_method = SelfContactMethod::barrier;
   double self_distance = 0.0;   // barrier's dhat, >= 0; 0: 1% of the mean rest surface edge length
   double self_stiffness = 0.0;  // penalty's, >= 0; 0: stiffness
-  double friction = 0.0;        // >= 0, the obstacles' coefficient unless they set their own
+  // Barrier self-contact on a surface carried by a hex8 lattice's cells (an
+  // embedded surface, snh/surface.h embed) instead of the mesh's boundary
+  // faces: its triangles (positions at rest) and embedding. Empty: the
+  // boundary. Scene files with "embed" set it to their surface.
+  TriangleSurface self_surface;
+  Embedding self_embedding;
+  double friction = 0.0;  // >= 0, the obstacles' coefficient unless they set their own
   // The slip (length) below which friction sticks as a spring (> 0); 0:
   // 1% of the mesh's vertex spacing (rest volume / vertices)^(1/3).
   double friction_slip = 0.0;
