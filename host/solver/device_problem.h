@@ -93,6 +93,7 @@ class DeviceProblem {
   // Barrier self-contact: the largest step along p that continuous
   // collision detection clears (infinity without it).
   double step_bound(const Vector& x, const Vector& p) { return model_.step_bound(x, p); }
+  bool has_barrier() const { return model_.self_barrier() != nullptr; }
 
   double norm(const Vector& v) const { return std::sqrt(model_.reduction().sum_of_squares(mem(v), v.size())); }
   double dot(const Vector& u, const Vector& v) const { return model_.reduction().dot(mem(u), mem(v), u.size()); }

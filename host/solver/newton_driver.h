@@ -35,6 +35,7 @@
 //   void perturb(Vector& x, uint64_t seed);  // move the free DOFs a little
 // for tangled equilibria (below), and
 //   double step_bound(const Vector& x, const Vector& p);  // the largest safe alpha
+//   bool has_barrier() const;  // whether a barrier is on (tighter solves when crawling, below)
 // for barriers that a step must not cross (self-contact's continuous
 // collision detection, solver/barrier_contact.h): the line search starts at
 // min(1, bound) and a step is never extended past it (infinity: no bound).
@@ -121,6 +122,20 @@ double step_bound_of(P& problem, const typename P::Vector& x, const typename P::
     return problem.step_bound(x, p);
   else
     return std::numeric_limits<double>::infinity();
+}
+
+// Whether the problem carries a barrier (problem.has_barrier()), false when
+// it cannot say.
+template <typename P, typename = void>
+struct HasBarrierQuery : std::false_type {};
+template <typename P>
+struct HasBarrierQuery<P, std::void_t<decltype(std::declval<const P&>().has_barrier())>> : std::true_type {};
+template <typename P>
+bool has_barrier_of(const P& problem) {
+  if constexpr (HasBarrierQuery<P>::value)
+    return problem.has_barrier();
+  else
+    return false;
 }
 
 template <typename Problem>
@@ -319,6 +334,13 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
       eta = std::min(eta, options_.forcing_max);
       eta = std::max(eta, 0.5 * tolerance / rn);
     }
+    // With a barrier, full steps that each leave more than half the residual
+    // are the inexact solves' doing (the stiff pairs' curvature changes
+    // faster than a solve to eta = 0.5 follows; the elbow at 135 degrees
+    // crawled 200 iterations at 0.99 per iteration): each further crawling
+    // step solves ten times tighter, down to the tolerance's floor.
+    if (crawling >= kCrawling && has_barrier_of(problem_))
+      eta = std::max(std::min(eta, std::pow(0.1, crawling - kCrawling + 1)), 0.05 * tolerance / rn);
     eta = std::max(eta, 100.0 * eps);
 
     // The true Hessian only where Newton is converging (full steps, falling
