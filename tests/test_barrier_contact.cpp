@@ -5,11 +5,15 @@
 // host reference, builds without it unchanged, and the squash to 5% that
 // folds through itself without it and holds with it.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 #include <vector>
@@ -29,6 +33,8 @@
 
 namespace snh::test {
 namespace {
+
+namespace fs = std::filesystem;
 
 using V3 = std::array<double, 3>;
 V3 at(const std::vector<double>& x, int v) { return {x[3 * v], x[3 * v + 1], x[3 * v + 2]}; }
@@ -96,7 +102,7 @@ TEST(BarrierContact, NoPairAtRestAndNearPairsExcludeNeighbours) {
   const Mesh lattice = make_box_lattice(3, 2, 2, 1.0);
   solver::BarrierContact rest(lattice);
   EXPECT_EQ(rest.triangle_count(), 2u * (2 * 3 * 2 + 2 * 3 * 2 + 2 * 2 * 2));
-  rest.set_distance(solver::kDefaultSelfDistance * rest.mean_edge_length());
+  rest.set_distance(solver::kDefaultSelfDistance * rest.length_scale());
   EXPECT_TRUE(rest.near_pairs(lattice.positions).empty());
   // Even at 0.55 h nothing of the rest surface is in range: the closest
   // non-adjacent rest features, the quad diagonals of two faces meeting at
@@ -256,6 +262,58 @@ TEST(BarrierContact, EmbeddedSurfaceGradientHessianAndStepBoundAreCarriedByTheCe
       0u);
 }
 
+// Pairs closer than dhat at rest (B starts 0.07 above A, dhat 0.2) are
+// left out: none is near at rest, and a step down is no longer bounded by
+// them; a larger gap keeps every pair.
+TEST(BarrierContact, PairsCloserThanDhatAtRestAreLeftOut) {
+  const Fixture f;
+  solver::BarrierContact contact(f.mesh);
+  contact.set_distance(0.2);
+  const size_t near = contact.near_pairs(f.x).size();
+  ASSERT_GT(near, 0u);
+  EXPECT_EQ(contact.exclude_pairs_near(f.x), near);
+  EXPECT_TRUE(contact.near_pairs(f.x).empty());
+  EXPECT_EQ(contact.step_bound(f.x, f.b_down(-0.05)), 1.0);
+  contact.set_distance(0.05);
+  EXPECT_EQ(contact.exclude_pairs_near(f.x), 0u);
+  EXPECT_LT(contact.step_bound(f.x, f.b_down(-0.6)), 1.0);
+}
+
+// A rigged embedded scene turns barrier self-contact on by default, on its
+// embedded surface, and its frames report the barrier's pairs, distance and
+// time; "self": false turns it off.
+TEST(BarrierContact, RiggedScenesHaveSelfContactByDefaultAndFramesReportIt) {
+  const std::string path = std::string(SNH_DATA_DIR) + "/scenes/arm.json";
+  const SceneFile f = load_scene(path);
+  ASSERT_TRUE(f.rig);
+  EXPECT_TRUE(f.scene.options.contact.self);
+  EXPECT_EQ(f.scene.options.contact.self_method, SelfContactMethod::barrier);
+  EXPECT_EQ(f.scene.options.contact.self_surface.triangles, f.embedded->surface.triangles);
+  SceneRunOptions first;
+  first.max_frames = 3;
+  const SceneRun run = run_scene(f, f.scene.options, first);
+  ASSERT_EQ(run.frames.size(), 3u);
+  EXPECT_TRUE(run.converged);
+  double seconds = 0.0;
+  for (const FrameRecord& r : run.frames) {
+    EXPECT_GT(r.min_self_distance, 0.0);
+    seconds += r.self_contact_seconds;
+  }
+  EXPECT_GT(seconds, 0.0);
+
+  const fs::path dir = fs::temp_directory_path() / ("snh_rig_self_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  nlohmann::json doc;
+  std::ifstream(path) >> doc;
+  doc["contact"] = {{"self", false}};
+  doc["embed"]["surface"] = std::string(SNH_DATA_DIR) + "/arm/arm.obj";
+  doc["rig"]["animation"] = std::string(SNH_DATA_DIR) + "/arm/arm_flexion.json";
+  doc.erase("output");
+  std::ofstream(dir / "arm.json") << doc.dump();
+  EXPECT_FALSE(load_scene((dir / "arm.json").string()).scene.options.contact.self);
+  fs::remove_all(dir);
+}
+
 // The shipped embedded contact scenes with barrier self-contact: every step
 // converges and the embedded (output) surface never intersects itself.
 TEST(BarrierContact, EmbeddedScenesHoldWithoutIntersection) {
@@ -314,12 +372,15 @@ TEST(BarrierContact, DeviceTermsMatchTheHostReference) {
   EXPECT_EQ(with.elastic_specialization(), without.specialization());
   EXPECT_THROW(without.set_self_barrier(0.2, 1.0), Error);
   EXPECT_THROW(with.set_self_barrier(0.0, 1.0), Error);
-  const double dhat = 0.2, kappa = 2.0;
+  // dhat below the rest gap of 0.07 (pairs closer at rest are left out),
+  // B moved 0.04 closer.
+  const double dhat = 0.05, kappa = 2.0;
   with.set_self_barrier(dhat, kappa);
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  std::uniform_real_distribution<double> jitter(-0.005, 0.005);
   std::vector<double> x = f.x, p(x.size());
-  for (double& e : x) e += jitter(rng);
+  const std::vector<double> closer = f.b_down(-0.04);
+  for (size_t i = 0; i < x.size(); ++i) x[i] += closer[i] + jitter(rng);
   for (double& e : p) e = jitter(rng);
   viennacl::vector<double> xd(x.size()), pd(x.size());
   viennacl::copy(x.begin(), x.end(), xd.begin());
@@ -361,7 +422,7 @@ TEST(BarrierContact, DeviceTermsMatchTheHostReference) {
     EXPECT_LT((inv_with.inverse() - expected).norm(), 1e-9 * expected.norm()) << v;
   }
   // The step bound through the device model: as the host's.
-  const std::vector<double> down = f.b_down(-0.57);
+  const std::vector<double> down = f.b_down(-0.5);
   viennacl::vector<double> downd(x.size());
   viennacl::copy(down.begin(), down.end(), downd.begin());
   EXPECT_EQ(with.step_bound(xd, downd), host.step_bound(x, down));

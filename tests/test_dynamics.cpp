@@ -305,7 +305,7 @@ TEST(Dynamics, OptionsAreChecked) {
               o.contact.self = true;
               o.contact.stiffness = 1.0;
               o.contact.thickness = 0.01;
-            })).find("preconditioner multigrid: its coarse levels do not carry the self-contact springs"),
+            })).find("preconditioner multigrid: its coarse levels do not carry self-contact"),
             std::string::npos);
   SolveOptions quasistatic;
   quasistatic.initial_velocities.assign(24, 0.0);

@@ -52,6 +52,9 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     for (const StepResult& s : r.steps) {
       record.newton_iterations += s.newton_iterations;
       record.cg_iterations += s.cg_iterations;
+      record.self_contact_pairs = s.self_contact_pairs;
+      record.min_self_distance = s.min_self_distance;
+      record.self_contact_seconds += s.self_contact_seconds;
     }
     record.residual_norm = r.final_residual_norm;
     record.seconds = r.seconds;

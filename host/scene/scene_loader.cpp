@@ -488,6 +488,11 @@ SceneFile load_scene(const std::string& path) {
     if (!(s.options.contact.thickness >= 0.0)) r.fail("contact.thickness", "must be >= 0");
     if (s.options.contact.stiffness < 0.0) r.fail("contact.stiffness", "must be > 0");
   }
+  // A rigged or skinned character folds at its joints (an arm raised into
+  // the head, a bent elbow): self-contact is on unless the file says
+  // "contact": {"self": false}.
+  const bool self_given = doc.contains("contact") && doc["contact"].is_object() && doc["contact"].contains("self");
+  if (!self_given && (out.character || (out.embedded && out.rig))) s.options.contact.self = true;
   // An embedded surface is what the user sees, and it reaches outside the
   // lattice's boundary (snh/surface.h embed): barrier self-contact acts on it.
   if (out.embedded && s.options.contact.self && s.options.contact.self_method == SelfContactMethod::barrier) {

@@ -244,8 +244,13 @@ json frames_json(const SceneFile& file, const SceneRun& run) {
                            {"warnings", r.warnings},
                            {"reactions", reactions_json(r.reactions)},
                            {"history", history_json(r.history)}});
-    // A character's: the simulated surface against its skinned one.
     const size_t k = j["frames"].size() - 1;
+    if (options.contact.self && options.contact.self_method == SelfContactMethod::barrier) {
+      j["frames"][k]["self_contact_pairs"] = r.self_contact_pairs;
+      j["frames"][k]["min_self_distance"] = r.min_self_distance;
+      j["frames"][k]["self_contact_seconds"] = r.self_contact_seconds;
+    }
+    // A character's: the simulated surface against its skinned one.
     if (k < run.skin_deviation.size()) {
       j["frames"][k]["lbs_max_distance"] = run.skin_deviation[k].max_distance;
       j["frames"][k]["lbs_mean_distance"] = run.skin_deviation[k].mean_distance;

@@ -194,6 +194,48 @@ BarrierContact::BarrierContact(const Mesh& lattice, const TriangleSurface& surfa
   for (size_t v = 0; v < n; ++v)
     if (used[v]) points_.push_back(static_cast<int>(v));
   build_edges(surface.positions);
+  // The cell size: the mean length of the lattice cells' first edges.
+  double sum = 0.0;
+  for (size_t e = 0; e < lattice.element_count(); ++e) {
+    double l2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const double a =
+          lattice.positions[3 * lattice.elements[8 * e + 1] + d] - lattice.positions[3 * lattice.elements[8 * e] + d];
+      l2 += a * a;
+    }
+    sum += std::sqrt(l2);
+  }
+  if (lattice.element_count() > 0) mean_edge_ = sum / static_cast<double>(lattice.element_count());
+}
+
+namespace {
+uint64_t pair_key(int kind, int a, int b) {
+  return (static_cast<uint64_t>(kind) << 62) | (static_cast<uint64_t>(a) << 31) | static_cast<uint64_t>(b);
+}
+}  // namespace
+
+bool BarrierContact::excluded(int kind, int a, int b) const {
+  return !excluded_.empty() && std::binary_search(excluded_.begin(), excluded_.end(), pair_key(kind, a, b));
+}
+
+size_t BarrierContact::exclude_pairs_near(const std::vector<double>& rest) {
+  excluded_.clear();
+  std::vector<double> storage;
+  const std::vector<double>& x = lift(rest, storage);
+  std::vector<std::array<int, 2>> pt, ee;
+  candidates(x, nullptr, dhat_, pt, ee);
+  const double sh = dhat_ * dhat_;
+  double q[12];
+  int type;
+  for (int kind = 0; kind < 2; ++kind)
+    for (const auto& c : kind == 0 ? pt : ee) {
+      gather(make_pair(kind, c[0], c[1]), x, q);
+      const double d2 = kind == 0 ? kernel::ipc_pt_distance(q, &type, nullptr, nullptr)
+                                  : kernel::ipc_ee_distance(q, &type, nullptr, nullptr);
+      if (!(d2 >= sh)) excluded_.push_back(pair_key(kind, c[0], c[1]));
+    }
+  std::sort(excluded_.begin(), excluded_.end());
+  return excluded_.size();
 }
 
 void BarrierContact::build_edges(const std::vector<double>& rest) {
@@ -288,11 +330,13 @@ std::vector<BarrierPair> BarrierContact::near_pairs(const std::vector<double>& l
   double q[12];
   int type;
   for (const auto& c : pt) {
+    if (excluded(0, c[0], c[1])) continue;
     const BarrierPair pair = make_pair(0, c[0], c[1]);
     gather(pair, x, q);
     if (kernel::ipc_pt_distance(q, &type, nullptr, nullptr) < sh) pairs.push_back(pair);
   }
   for (const auto& c : ee) {
+    if (excluded(1, c[0], c[1])) continue;
     const BarrierPair pair = make_pair(1, c[0], c[1]);
     gather(pair, x, q);
     if (kernel::ipc_ee_distance(q, &type, nullptr, nullptr) < sh) pairs.push_back(pair);
@@ -400,6 +444,7 @@ double BarrierContact::step_bound(const std::vector<double>& lattice_x, const st
   double q[12], dq[12];
   for (int kind = 0; kind < 2; ++kind)
     for (const auto& c : kind == 0 ? pt : ee) {
+      if (excluded(kind, c[0], c[1])) continue;
       const BarrierPair pair = make_pair(kind, c[0], c[1]);
       gather(pair, x, q);
       gather(pair, p, dq);
@@ -419,6 +464,7 @@ double BarrierContact::min_distance(const std::vector<double>& lattice_x, double
   int type;
   for (int kind = 0; kind < 2; ++kind)
     for (const auto& c : kind == 0 ? pt : ee) {
+      if (excluded(kind, c[0], c[1])) continue;
       gather(make_pair(kind, c[0], c[1]), x, q);
       smallest = std::min(smallest, kind == 0 ? kernel::ipc_pt_distance(q, &type, nullptr, nullptr)
                                               : kernel::ipc_ee_distance(q, &type, nullptr, nullptr));

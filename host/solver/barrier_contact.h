@@ -74,9 +74,15 @@ class BarrierContact {
   // dhat (> 0): the distance below which a pair is active.
   void set_distance(double dhat) { dhat_ = dhat; }
   double distance() const { return dhat_; }
-  // The mean rest length of the surface edges (the default dhat is a
-  // fraction of it, snh/simulation.h ContactOptions::self_distance).
-  double mean_edge_length() const { return mean_edge_; }
+  // The length the default dhat is a fraction of (ContactOptions::
+  // self_distance): the cell size for an embedded surface, else the mean
+  // rest length of the surface edges (the cell size on a lattice).
+  double length_scale() const { return mean_edge_; }
+  // Leaves out, from now on, the pairs closer than dhat at the lattice
+  // positions `rest` (seams, surfaces touching or crossing at rest: a
+  // barrier on them would push the rest shape apart or be infinite there).
+  // Returns how many.
+  size_t exclude_pairs_near(const std::vector<double>& rest);
 
   // The pairs closer than dhat at x (xyz per vertex): point-triangle pairs
   // in point then triangle order, then edge-edge pairs in edge order.
@@ -122,6 +128,8 @@ class BarrierContact {
   double dhat_ = 0.0;
   // The embedding (empty: surface vertices are mesh vertices): 8 lattice
   // vertices and weights per surface vertex, and the lattice's vertex count.
+  bool excluded(int kind, int a, int b) const;
+  std::vector<uint64_t> excluded_;  // kind, a, b of the left-out pairs, sorted
   std::vector<int> carrier_;
   std::vector<double> weight_;
   size_t lattice_vertices_ = 0;

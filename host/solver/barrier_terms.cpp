@@ -21,7 +21,7 @@ struct Stopwatch {
 
 template <typename Real>
 BarrierTerms<Real>::BarrierTerms(device::OpenClContext& cl, const Mesh& mesh, PhaseProfiler* profiler)
-    : cl_(cl), profiler_(profiler), vertex_count_(mesh.vertex_count()), contact_(mesh) {
+    : cl_(cl), profiler_(profiler), vertex_count_(mesh.vertex_count()), contact_(mesh), rest_(mesh.positions) {
   product_k_ = cl_.kernel("contact/barrier.cl", device::KernelConfig{}, "snh_barrier_product");
   force_k_ = cl_.kernel("contact/barrier.cl", device::KernelConfig{}, "snh_barrier_force");
   const std::vector<int> offsets(vertex_count_ + 1, 0);
@@ -34,7 +34,11 @@ BarrierTerms<Real>::BarrierTerms(device::OpenClContext& cl, const Mesh& mesh, Ph
 
 template <typename Real>
 void BarrierTerms<Real>::set_parameters(double dhat, double kappa) {
-  contact_.set_distance(dhat);
+  if (!excluded_known_ || dhat != contact_.distance()) {
+    contact_.set_distance(dhat);
+    excluded_at_rest_ = contact_.exclude_pairs_near(rest_);
+    excluded_known_ = true;
+  }
   kappa_ = kappa;
 }
 

@@ -36,9 +36,12 @@ class BarrierTerms {
   // Acts on `contact`'s surface from now on (an embedded surface over the
   // same mesh's vertices); dhat is kept.
   void set_surface(BarrierContact contact) {
-    contact.set_distance(contact_.distance());
     contact_ = std::move(contact);
+    excluded_known_ = false;
   }
+  // The surface pairs closer than dhat at rest, left out (BarrierContact::
+  // exclude_pairs_near); known once set_parameters has run.
+  size_t excluded_at_rest() const { return excluded_at_rest_; }
 
   // kappa sum b over the pairs within dhat at x (xyz per vertex, double).
   double energy(const std::vector<double>& x);
@@ -60,6 +63,9 @@ class BarrierTerms {
   PhaseProfiler* profiler_;
   size_t vertex_count_;
   BarrierContact contact_;
+  std::vector<double> rest_;  // the mesh's rest positions
+  bool excluded_known_ = false;
+  size_t excluded_at_rest_ = 0;
   double kappa_ = 0.0;
   BarrierState state_;
   int rows_ = 0;

@@ -168,8 +168,8 @@ struct Simulation::Impl {
     // 16^3 and 24^3 hexes, docs/performance.md).
     if (options.contact.self && options.preconditioner == Preconditioner::multigrid)
       throw Error(
-          "preconditioner multigrid: its coarse levels do not carry the self-contact springs; use block-jacobi (or "
-          "automatic) with self-contact");
+          "preconditioner multigrid: its coarse levels do not carry self-contact (contact.self, on by default for "
+          "rigged and skinned characters); use block-jacobi or automatic with it, or turn it off");
     if (options.contact.self && options.preconditioner == Preconditioner::automatic &&
         preconditioner == Preconditioner::multigrid)
       preconditioner = Preconditioner::block_jacobi;
@@ -208,6 +208,23 @@ struct Simulation::Impl {
       dual = make_engine<double>(nullptr, product);
     else
       single = make_engine<float>(nullptr, product);
+    const size_t left_out = dual ? configure_barrier(*dual) : configure_barrier(*single);
+    if (left_out > 0)
+      warnings.push_back("contact: " + std::to_string(left_out) +
+                         " self-contact surface pairs are closer than its distance at rest (seams, or the surface "
+                         "touching or crossing itself); they are left out of self-contact");
+  }
+
+  // Barrier self-contact's dhat and kappa (ContactOptions::self_distance),
+  // and the pairs it leaves out at rest; returns how many.
+  template <typename Real>
+  size_t configure_barrier(Engine<Real>& engine) {
+    if (!engine.model->self_barrier()) return 0;
+    const double length = engine.model->self_barrier()->contact().length_scale();
+    const double dhat =
+        options.contact.self_distance > 0.0 ? options.contact.self_distance : solver::kDefaultSelfDistance * length;
+    engine.model->set_self_barrier(dhat, solver::default_barrier_stiffness(materials, length, dhat));
+    return engine.model->self_barrier()->excluded_at_rest();
   }
 
   void check_rigid_modes() {
@@ -307,12 +324,7 @@ struct Simulation::Impl {
     if (options.contact.self && options.contact.self_method == SelfContactMethod::penalty)
       engine.model->set_self_contact_stiffness(options.contact.self_stiffness > 0.0 ? options.contact.self_stiffness
                                                                                     : options.contact.stiffness);
-    if (engine.model->self_barrier()) {
-      const double edge = engine.model->self_barrier()->contact().mean_edge_length();
-      const double dhat =
-          options.contact.self_distance > 0.0 ? options.contact.self_distance : solver::kDefaultSelfDistance * edge;
-      engine.model->set_self_barrier(dhat, solver::default_barrier_stiffness(materials, edge, dhat));
-    }
+    configure_barrier(engine);
     const double barrier_seconds = engine.model->self_barrier() ? engine.model->self_barrier()->state().seconds : 0.0;
     const std::vector<Real> xr(x.begin(), x.end());
     // Wrapping a zero-filled buffer: ViennaCL's own sized vector would clear

@@ -30,6 +30,12 @@ struct FrameRecord {
   double volume_ratio = 0.0;
   double min_j = 0.0;
   int inverted_elements = 0;  // at the frame's end (J <= 0 at some quadrature point)
+  // Barrier self-contact (ContactOptions::self): the pairs within d-hat and
+  // their smallest distance at the frame's end, and the host time it took
+  // (StepResult's fields of the same names, summed over the load steps).
+  int self_contact_pairs = 0;
+  double min_self_distance = 0.0;
+  double self_contact_seconds = 0.0;
   // Damage the frame's solve or end state shows (StepResult::warnings of its
   // load steps; each begins with its ResultWarning's name, snh/outcomes.h).
   // Empty: a clean frame.
