@@ -315,6 +315,98 @@ json run_json(const StabilityRun& r, const std::string& note) {
   return j;
 }
 
+}  // namespace
+
+StabilityReport stability_report(const std::vector<std::pair<StabilityRun, std::string>>& rows, int resolution,
+                                 double squash_height) {
+  StabilityReport report;
+  json& all = report.document;
+  all["suite"] = "stability";
+  all["resolution"] = resolution;
+  all["squash_height"] = squash_height;
+  all["runs"] = json::array();
+  report.csv.columns = {"case",
+                        "precision",
+                        "converged",
+                        "status",
+                        "newton",
+                        "cg",
+                        "seconds",
+                        "min_j",
+                        "max_j",
+                        "inverted_at_start",
+                        "inverted",
+                        "volume_ratio",
+                        "min_volume_ratio",
+                        "max_penetration",
+                        "contact_thickness",
+                        "non_finite_positions",
+                        "nan_in_history",
+                        "recovery",
+                        "max_surface_intersections",
+                        "note"};
+  report.markdown.columns = {"case",
+                             "precision",
+                             "converged",
+                             "status",
+                             "Newton",
+                             "CG",
+                             "s",
+                             "min J",
+                             "max J",
+                             "inverted (start → end)",
+                             "volume",
+                             "min volume",
+                             "penetration / thickness",
+                             "NaN",
+                             "recovery",
+                             "self-intersections (most in a step)",
+                             "note"};
+  for (const auto& [r, note] : rows) {
+    const int nan = r.non_finite_positions + r.nan_in_history;
+    if (nan > 0 || !r.error.empty()) ++report.problems;
+    all["runs"].push_back(run_json(r, note));
+    const std::string rec = recovery_summary(r.recoveries);
+    std::string csv_rec = rec;
+    std::replace(csv_rec.begin(), csv_rec.end(), ',', ';');
+    const bool contact = r.contact_thickness > 0.0;
+    report.csv.add_row({r.name,
+                        r.precision,
+                        r.converged ? "yes" : "no",
+                        r.status,
+                        std::to_string(r.newton_iterations),
+                        std::to_string(r.cg_iterations),
+                        fixed(r.seconds, 3),
+                        fixed(r.min_j, 6),
+                        fixed(r.max_j, 6),
+                        std::to_string(r.initially_inverted_elements),
+                        std::to_string(r.inverted_elements),
+                        fixed(r.volume_ratio, 6),
+                        fixed(r.min_volume_ratio, 6),
+                        contact ? fixed(r.max_penetration, 6) : "",
+                        contact ? fixed(r.contact_thickness, 6) : "",
+                        std::to_string(r.non_finite_positions),
+                        std::to_string(r.nan_in_history),
+                        csv_rec,
+                        std::to_string(r.max_surface_intersections()),
+                        note});
+    const int64_t most = r.max_surface_intersections();
+    report.markdown.add_row(
+        {r.name, r.precision, r.converged ? "yes" : "**no**", r.error.empty() ? r.status : "error: " + r.error,
+         std::to_string(r.newton_iterations), std::to_string(r.cg_iterations), fixed(r.seconds, 2), fixed(r.min_j, 3),
+         fixed(r.max_j, 3), std::to_string(r.initially_inverted_elements) + " → " + std::to_string(r.inverted_elements),
+         fixed(r.volume_ratio, 4), fixed(r.min_volume_ratio, 4),
+         contact ? fixed(r.max_penetration, 5) + " / " + fixed(r.contact_thickness, 5) +
+                       (r.max_penetration > r.contact_thickness ? " **deeper**" : "")
+                 : "-",
+         nan > 0 ? "**YES**" : "none", rec, most != 0 ? "**" + std::to_string(most) + "**" : "0", note});
+  }
+  all["runs_with_nan_or_error"] = report.problems;
+  return report;
+}
+
+namespace {
+
 struct StabilityOptions {
   int resolution = 0;
   std::string precision = "both";
@@ -346,7 +438,6 @@ int run_stability(const StabilityOptions& o) {
   if (o.precision != "float") precisions.push_back(Precision::double_);
 
   std::vector<std::pair<StabilityRun, std::string>> rows;
-  int problems = 0;
   for (const std::string& name : names) {
     std::map<std::string, StabilityRun> by_precision;
     for (Precision p : precisions) {
@@ -367,51 +458,13 @@ int run_stability(const StabilityOptions& o) {
   }
 
   std::filesystem::create_directories(o.out_dir);
-  json all;
-  all["suite"] = "stability";
-  all["resolution"] = o.resolution;
-  all["squash_height"] = o.squash_height;
-  all["runs"] = json::array();
-  std::ostringstream csv;
-  csv << "case,precision,converged,status,newton,cg,seconds,min_j,max_j,inverted_at_start,inverted,volume_ratio,"
-         "min_volume_ratio,max_penetration,contact_thickness,non_finite_positions,nan_in_history,recovery,"
-         "max_surface_intersections,note\n";
-  std::ostringstream md;
-  md << "| case | precision | converged | status | Newton | CG | s | min J | max J | inverted (start → end) | "
-        "volume | min volume | penetration / thickness | NaN | recovery | self-intersections (most in a step) | note "
-        "|\n"
-     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  for (const auto& [r, note] : rows) {
-    const int nan = r.non_finite_positions + r.nan_in_history;
-    if (nan > 0 || !r.error.empty()) ++problems;
-    all["runs"].push_back(run_json(r, note));
-    std::string rec = recovery_summary(r.recoveries);
-    std::string csv_rec = rec;
-    std::replace(csv_rec.begin(), csv_rec.end(), ',', ';');
-    csv << r.name << ',' << r.precision << ',' << (r.converged ? "yes" : "no") << ',' << r.status << ','
-        << r.newton_iterations << ',' << r.cg_iterations << ',' << fixed(r.seconds, 3) << ',' << fixed(r.min_j, 6)
-        << ',' << fixed(r.max_j, 6) << ',' << r.initially_inverted_elements << ',' << r.inverted_elements << ','
-        << fixed(r.volume_ratio, 6) << ',' << fixed(r.min_volume_ratio, 6) << ','
-        << (r.contact_thickness > 0.0 ? fixed(r.max_penetration, 6) : "") << ','
-        << (r.contact_thickness > 0.0 ? fixed(r.contact_thickness, 6) : "") << ',' << r.non_finite_positions << ','
-        << r.nan_in_history << ',' << csv_rec << ',' << r.max_surface_intersections() << ',' << note << '\n';
-    std::string status = r.error.empty() ? r.status : "error: " + r.error;
-    md << "| " << r.name << " | " << r.precision << " | " << (r.converged ? "yes" : "**no**") << " | " << status
-       << " | " << r.newton_iterations << " | " << r.cg_iterations << " | " << fixed(r.seconds, 2) << " | "
-       << fixed(r.min_j, 3) << " | " << fixed(r.max_j, 3) << " | " << r.initially_inverted_elements << " → "
-       << r.inverted_elements << " | " << fixed(r.volume_ratio, 4) << " | " << fixed(r.min_volume_ratio, 4) << " | "
-       << (r.contact_thickness > 0.0 ? fixed(r.max_penetration, 5) + " / " + fixed(r.contact_thickness, 5) +
-                                           (r.max_penetration > r.contact_thickness ? " **deeper**" : "")
-                                     : "-")
-       << " | " << (nan > 0 ? "**YES**" : "none") << " | " << rec << " | "
-       << (r.max_surface_intersections() != 0 ? "**" + std::to_string(r.max_surface_intersections()) + "**" : "0")
-       << " | " << note << " |\n";
-  }
-  all["runs_with_nan_or_error"] = problems;
-  write_text(o.out_dir + "/stability.csv", csv.str());
-  write_json(o.out_dir + "/stability.json", all);
-  write_text(o.out_dir + "/stability.md", md.str());
-  std::cout << md.str();
+  const StabilityReport report = stability_report(rows, o.resolution, o.squash_height);
+  const std::string md = markdown_text(report.markdown);
+  write_text(o.out_dir + "/stability.csv", csv_text(report.csv));
+  write_json(o.out_dir + "/stability.json", report.document);
+  write_text(o.out_dir + "/stability.md", md);
+  const int problems = report.problems;
+  std::cout << md;
   std::cerr << "wrote " << o.out_dir << "/stability.{json,csv,md}" << (problems ? "; NaN or errors found!" : "")
             << '\n';
   return problems > 0 ? 3 : 0;

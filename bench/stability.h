@@ -13,9 +13,12 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "record_writer.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
 
@@ -93,5 +96,17 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
 
 // "a x2; b x1" from the recovery counts ("-" for none).
 std::string recovery_summary(const std::map<std::string, int>& recoveries);
+
+// What `snh-gpu-bench stability` writes for its runs (each with a note):
+// stability.csv and stability.md as tables (bench/record_writer.h renders
+// them), stability.json as a document, and how many runs saw a NaN or an
+// error.
+struct StabilityReport {
+  Table csv, markdown;
+  nlohmann::ordered_json document;
+  int problems = 0;
+};
+StabilityReport stability_report(const std::vector<std::pair<StabilityRun, std::string>>& runs, int resolution,
+                                 double squash_height);
 
 }  // namespace snh::bench

@@ -244,3 +244,59 @@ TEST(Stability, NoFallbackWhenFloatConverges) {
 
 }  // namespace
 }  // namespace snh::test
+
+namespace snh::test {
+namespace {
+
+// The stability command's files from its records: the CSV row and the
+// Markdown row of a run with obstacles (deeper than the layer, recoveries
+// with a comma-free CSV form) and of one that threw; the JSON's runs and
+// the count of runs with a NaN or an error.
+TEST(Stability, ReportWritesEachRunAsRecordsThroughTheTableWriter) {
+  bench::StabilityRun a;
+  a.name = "squash_nu0.49";
+  a.precision = "double";
+  a.converged = true;
+  a.status = "converged";
+  a.newton_iterations = 12;
+  a.cg_iterations = 345;
+  a.seconds = 1.5;
+  a.min_j = 0.25;
+  a.max_j = 1.5;
+  a.volume_ratio = 1.0;
+  a.min_volume_ratio = 0.1;
+  a.max_penetration = 0.02;
+  a.contact_thickness = 0.01;
+  a.recoveries = {{"x", 2}, {"y", 1}};
+  a.surface_intersections = {0, 3, 1};
+  bench::StabilityRun b;
+  b.name = "nu0.45";
+  b.precision = "float";
+  b.status = "stagnated";
+  b.error = "boom";
+  b.min_j = std::nan("");
+  const bench::StabilityReport r = bench::stability_report({{a, "a note"}, {b, ""}}, 4, 0.1);
+  EXPECT_EQ(bench::csv_text(r.csv),
+            "case,precision,converged,status,newton,cg,seconds,min_j,max_j,inverted_at_start,inverted,volume_ratio,"
+            "min_volume_ratio,max_penetration,contact_thickness,non_finite_positions,nan_in_history,recovery,"
+            "max_surface_intersections,note\n"
+            "squash_nu0.49,double,yes,converged,12,345,1.500,0.250000,1.500000,0,0,1.000000,0.100000,0.020000,"
+            "0.010000,0,0,x x2; y x1,3,a note\n"
+            "nu0.45,float,no,stagnated,0,0,0.000,NaN,0.000000,0,0,0.000000,0.000000,,,0,0,-,0,\n");
+  const std::string md = bench::markdown_text(r.markdown);
+  EXPECT_NE(md.find("| squash_nu0.49 | double | yes | converged | 12 | 345 | 1.50 | 0.250 | 1.500 | 0 → 0 | 1.0000 | "
+                    "0.1000 | 0.02000 / 0.01000 **deeper** | none | x x2; y x1 | **3** | a note |\n"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| nu0.45 | float | **no** | error: boom |"), std::string::npos) << md;
+  EXPECT_EQ(r.problems, 1);
+  EXPECT_EQ(r.document["runs_with_nan_or_error"], 1);
+  EXPECT_EQ(r.document["squash_height"], 0.1);
+  ASSERT_EQ(r.document["runs"].size(), 2u);
+  EXPECT_EQ(r.document["runs"][0]["max_surface_intersections"], 3);
+  EXPECT_EQ(r.document["runs"][0]["note"], "a note");
+  EXPECT_EQ(r.document["runs"][1]["min_j"], "NaN");
+}
+
+}  // namespace
+}  // namespace snh::test
