@@ -18,6 +18,8 @@
 #include "snh/character.h"
 #include "snh/error.h"
 #include "snh/scene.h"
+#include "support/errors.h"
+#include "support/scratch.h"
 
 namespace snh::test {
 namespace {
@@ -26,22 +28,6 @@ namespace fs = std::filesystem;
 
 const std::string kData = std::string(SNH_SOURCE_DIR) + "/tests/data/character/";
 const std::string kArm = std::string(SNH_SOURCE_DIR) + "/examples/character/arm.gltf";
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 void expect_matrix(const Matrix4& m, const Matrix4& expected, const std::string& what) {
   for (int k = 0; k < 16; ++k) EXPECT_NEAR(m[k], expected[k], 1e-6) << what << " entry " << k;

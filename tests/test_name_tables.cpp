@@ -9,6 +9,7 @@
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/simulation.h"
+#include "support/errors.h"
 
 namespace snh::test {
 namespace {
@@ -16,15 +17,6 @@ namespace {
 template <typename E, typename Parse>
 void expect_round_trip(std::initializer_list<E> values, Parse parse) {
   for (E v : values) EXPECT_EQ(parse(to_string(v)), v) << to_string(v);
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 TEST(NameTables, EveryNameParsesBackToItsValue) {
