@@ -35,6 +35,7 @@ BarrierTerms<Real>::BarrierTerms(device::OpenClContext& cl, const Mesh& mesh, Ph
   const char* file = "contact/barrier_pairs.cl";
   const device::KernelConfig config;
   lift_k_ = cl_.kernel(file, config, "snh_barrier_lift");
+  energy_k_ = cl_.kernel(file, config, "snh_barrier_pair_energy");
   pair_k_ = cl_.kernel(file, config, "snh_barrier_pair_terms");
   partials_k_ = cl_.kernel(file, config, "snh_barrier_partials");
   total_k_ = cl_.kernel(file, config, "snh_barrier_total");
@@ -42,7 +43,6 @@ BarrierTerms<Real>::BarrierTerms(device::OpenClContext& cl, const Mesh& mesh, Ph
   force_k_ = cl_.kernel(file, config, "snh_barrier_force");
   surface_blocks_k_ = cl_.kernel(file, config, "snh_barrier_surface_blocks");
   diagonal_k_ = cl_.kernel(file, config, "snh_barrier_diagonal");
-  lift_product_k_ = cl_.kernel(file, config, "snh_barrier_lift_product");
   surface_product_k_ = cl_.kernel(file, config, "snh_barrier_surface_product");
   spread_product_k_ = cl_.kernel(file, config, "snh_barrier_spread_product");
   ccd_k_ = cl_.kernel(file, config, "snh_barrier_ccd");
@@ -113,7 +113,6 @@ void BarrierTerms<Real>::upload_surface() {
   q_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * pair_bytes_);
   dq_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * pair_bytes_);
   surface_gradient_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * pair_bytes_);
-  u_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * sizeof(Real));
   z_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * sizeof(Real));
   pairs_ = BarrierPairBuffers{};
   near_valid_ = candidates_valid_ = false;
@@ -222,20 +221,31 @@ const std::vector<BarrierPair>& BarrierTerms<Real>::candidates(const std::vector
 template <typename Real>
 void BarrierTerms<Real>::run_pairs(int derivatives) {
   BarrierPairBuffers& b = pairs_;
-  const size_t slots = std::max<size_t>(b.count, 1);
-  if (!b.gradient) b.gradient = cl_.buffer(CL_MEM_READ_WRITE, 12 * slots * pair_bytes_);
-  if (derivatives > 1 && !b.hessian) b.hessian = cl_.buffer(CL_MEM_READ_WRITE, 144 * slots * pair_bytes_);
   if (b.count == 0) return;
   const double sh = contact_.distance() * contact_.distance();
+  auto add_real = [&](device::KernelArgs& args, double value) {
+    if (pair_bytes_ == sizeof(double))
+      args.add(value);
+    else
+      args.add(static_cast<float>(value));
+  };
+  const size_t count = static_cast<size_t>(b.count);
+  if (derivatives == 0) {
+    device::KernelArgs args(energy_k_.get());
+    args.add(q_.get()).add(b.vertex.get()).add(b.kind.get()).add(b.ex.get()).add(b.count);
+    add_real(args, sh);
+    args.add(b.energy.get()).add(b.distance.get());
+    cl_.run(args.bind(), count);
+    return;
+  }
+  if (!b.gradient) b.gradient = cl_.buffer(CL_MEM_READ_WRITE, 12 * count * pair_bytes_);
+  const int hessian = derivatives > 1 ? 1 : 0;
+  if (hessian && !b.hessian) b.hessian = cl_.buffer(CL_MEM_READ_WRITE, 144 * count * pair_bytes_);
   device::KernelArgs args(pair_k_.get());
   args.add(q_.get()).add(b.vertex.get()).add(b.kind.get()).add(b.ex.get()).add(b.count);
-  if (pair_bytes_ == sizeof(double))
-    args.add(sh);
-  else
-    args.add(static_cast<float>(sh));
-  args.add(derivatives).add(b.energy.get()).add(b.distance.get()).add(b.gradient.get());
-  args.add(derivatives > 1 ? b.hessian.get() : b.gradient.get());
-  cl_.run(args.bind(), static_cast<size_t>(b.count));
+  add_real(args, sh);
+  args.add(hessian).add(b.gradient.get()).add(hessian ? b.hessian.get() : b.gradient.get());
+  cl_.run(args.bind(), count);
 }
 
 template <typename Real>
@@ -382,13 +392,11 @@ void BarrierTerms<Real>::linearize(const std::vector<double>& x) {
 template <typename Real>
 void BarrierTerms<Real>::add_product(cl_mem mask, cl_mem p, cl_mem y) const {
   if (blocks_ == 0) return;
-  device::KernelArgs lift(lift_product_k_.get());
-  lift.add(mask).add(p).add(carrier_.get()).add(weight_store_.get()).add(carriers_).add(surface_count_).add(u_.get());
-  cl_.run(lift.bind(), static_cast<size_t>(surface_count_));
   device::KernelArgs surface(surface_product_k_.get());
-  surface.add(rows_.get()).add(columns_.get()).add(blocks_values_.get()).add(u_.get()).add(surface_count_);
-  surface.add(z_.get());
+  surface.add(rows_.get()).add(columns_.get()).add(blocks_values_.get()).add(carrier_.get());
+  surface.add(weight_store_.get()).add(carriers_).add(surface_count_).add(mask).add(p).add(z_.get()).add(y);
   cl_.run(surface.bind(), static_cast<size_t>(surface_count_));
+  if (carriers_ == 1) return;  // W = I: the first pass added to y
   const int n = static_cast<int>(vertex_count_);
   device::KernelArgs spread(spread_product_k_.get());
   spread.add(z_.get()).add(transpose_offsets_.get()).add(transpose_entries_.get()).add(weight_store_.get());

@@ -6,10 +6,11 @@
 // gradient and its PSD-projected Hessian, sums them per vertex through
 // those lists in a fixed order (no atomics), and runs the CCD with its
 // minimum. The Hessian stays on the device as 3x3 blocks per surface vertex
-// pair; products apply W^T H W in three passes, block-Jacobi gets its
-// diagonal blocks. What crosses to the host per evaluation: the candidate
-// pairs up, their squared distances down (to keep those within dhat), and
-// the energy's or the step bound's few totals. Internal to the library.
+// pair; products apply W^T H W in two passes (one for the mesh's own
+// boundary), block-Jacobi gets its diagonal blocks. What crosses to the
+// host per evaluation: the candidate pairs up, their squared distances
+// down (to keep those within dhat), and the energy's or the step bound's
+// few totals. Internal to the library.
 #pragma once
 
 #include <utility>
@@ -41,7 +42,7 @@ struct BarrierPairBuffers {
   // column corner), in pair order.
   std::vector<int> rows, columns;
   device::Buffer contribution_offsets, contributions;
-  // Per pair: energy, squared distance, gradient (12), Hessian (144).
+  // Per pair: energy, squared distance, gradient (12), projected Hessian (144).
   device::Buffer energy, distance, gradient, hessian;
   int count = 0, blocks = 0;
   bool lists = false;  // the index lists built for `pairs`
@@ -89,7 +90,9 @@ class BarrierTerms {
   void build_lists();
   // The candidate pairs at x (cached for the last x).
   const std::vector<BarrierPair>& candidates(const std::vector<double>& x);
-  // Runs the per-pair kernel over the current pair list at q_.
+  // Runs the per-pair kernel over the current pair list at q_: energy and
+  // squared distance (derivatives 0), gradient (1), gradient and projected
+  // Hessian (2).
   void run_pairs(int derivatives);
   // The pairs within dhat at x (cached for the last x), on the device.
   const std::vector<BarrierPair>& near_pairs(const std::vector<double>& x);
@@ -116,9 +119,9 @@ class BarrierTerms {
   // The linearization: surface blocks (block CSR over surface vertices), the
   // lattice diagonal blocks, and the product's surface vectors.
   int blocks_ = 0;
-  device::Buffer rows_, columns_, blocks_values_, diagonal_, u_, z_;
-  device::Kernel lift_k_, pair_k_, partials_k_, total_k_, surface_gradient_k_, force_k_, surface_blocks_k_, diagonal_k_,
-      lift_product_k_, surface_product_k_, spread_product_k_, ccd_k_, min_partials_k_, min_total_k_;
+  device::Buffer rows_, columns_, blocks_values_, diagonal_, z_;
+  device::Kernel lift_k_, energy_k_, pair_k_, partials_k_, total_k_, surface_gradient_k_, force_k_, surface_blocks_k_,
+      diagonal_k_, surface_product_k_, spread_product_k_, ccd_k_, min_partials_k_, min_total_k_;
 };
 
 }  // namespace snh::solver

@@ -58,26 +58,47 @@ __kernel void snh_barrier_lift(__global const real* x, __global const int* carri
   }
 }
 
-/* Per pair at q: energy b (without kappa) and squared distance; with
- * derivatives >= 1 the gradient (12 per pair), with 2 also the projected
- * Hessian (144 per pair, row-major). */
+/* Per pair at q: energy b (without kappa) and squared distance, by the
+ * distance alone (no derivatives): the energy's and the filter's pass over
+ * every candidate. The same functions, so the same values as the terms
+ * below and the host's ipc_*_potential. */
+__kernel void snh_barrier_pair_energy(__global const real* q, __global const int4* vertex, __global const int* kind,
+                                      __global const real* ex, const int count, const real sh, __global real* energy,
+                                      __global real* distance) {
+  const int i = get_global_id(0);
+  if (i >= count) return;
+  real y[12];
+  int type;
+  barrier_gather(q, vertex[i], y);
+  real s, e;
+  if (kind[i] == 0) {
+    s = ipc_pt_distance(y, &type, 0, 0);
+    e = ipc_barrier(s, sh);
+  } else {
+    s = ipc_ee_distance(y, &type, 0, 0);
+    e = ipc_mollifier(ipc_edge_cross_squared(y, 0, 0), ex[i]) * ipc_barrier(s, sh);
+  }
+  energy[i] = e;
+  distance[i] = s;
+}
+
+/* Per pair within dhat at q: the gradient (12 per pair) and, with
+ * `hessian` set, the projected Hessian (144 per pair, row-major). */
 __kernel void snh_barrier_pair_terms(__global const real* q, __global const int4* vertex, __global const int* kind,
-                                     __global const real* ex, const int count, const real sh, const int derivatives,
-                                     __global real* energy, __global real* distance, __global real* gradient,
-                                     __global real* hessian) {
+                                     __global const real* ex, const int count, const real sh, const int hessian,
+                                     __global real* gradient, __global real* projected) {
   const int i = get_global_id(0);
   if (i >= count) return;
   real y[12], g[12], h[144], s;
   barrier_gather(q, vertex[i], y);
-  real* gp = derivatives > 0 ? g : 0;
-  const real e = kind[i] == 0 ? ipc_pt_potential(y, sh, &s, gp, h) : ipc_ee_potential(y, sh, ex[i], &s, gp, h);
-  energy[i] = e;
-  distance[i] = s;
-  if (derivatives < 1) return;
+  if (kind[i] == 0)
+    ipc_pt_potential(y, sh, &s, g, h);
+  else
+    ipc_ee_potential(y, sh, ex[i], &s, g, h);
   for (int k = 0; k < 12; ++k) gradient[12 * i + k] = g[k];
-  if (derivatives < 2) return;
+  if (!hessian) return;
   if (s < sh) psd_project12(h); /* beyond dhat b and its derivatives are 0 */
-  for (int k = 0; k < 144; ++k) hessian[144 * i + k] = h[k];
+  for (int k = 0; k < 144; ++k) projected[144 * i + k] = h[k];
 }
 
 /* Span g's energy sum, smallest squared distance (from sh) and count of
@@ -195,38 +216,39 @@ __kernel void snh_barrier_diagonal(__global const int* rows, __global const int*
   for (int i = 0; i < 9; ++i) diagonal[9 * v + i] = (store_real)sum[i];
 }
 
-/* The product y += mask .* W^T H W (mask .* p) in three passes, in the
- * build's precision: u = W (mask .* p) per surface vertex, z = H u per
- * surface vertex (block CSR, columns ascending), y += mask .* W^T z per
- * lattice vertex. */
-__kernel void snh_barrier_lift_product(__global const store_real* mask, __global const store_real* p,
-                                       __global const int* carrier, __global const store_real* weight,
-                                       const int carriers, const int count, __global store_real* u) {
-  const int s = get_global_id(0);
-  if (s >= count) return;
-  for (int d = 0; d < 3; ++d) {
-    store_real sum = 0;
-    for (int k = 0; k < carriers; ++k) {
-      const int c = 3 * carrier[carriers * s + k] + d;
-      sum += weight[carriers * s + k] * (mask[c] * p[c]);
-    }
-    u[3 * s + d] = sum;
-  }
-}
-
+/* The product y += mask .* W^T H W (mask .* p), in the build's precision:
+ * z = H W (mask .* p) per surface vertex (block CSR, columns ascending;
+ * column t's W (mask .* p) gathered from its carriers), then y += mask .*
+ * W^T z per lattice vertex. With one carrier of weight 1 (the mesh's own
+ * boundary, W = I) the first pass adds to y itself: one launch. */
 __kernel void snh_barrier_surface_product(__global const int* rows, __global const int* columns,
-                                          __global const store_real* blocks, __global const store_real* u,
-                                          const int count, __global store_real* z) {
+                                          __global const store_real* blocks, __global const int* carrier,
+                                          __global const store_real* weight, const int carriers, const int count,
+                                          __global const store_real* mask, __global const store_real* p,
+                                          __global store_real* z, __global store_real* y) {
   const int s = get_global_id(0);
   if (s >= count) return;
   store_real s0 = 0, s1 = 0, s2 = 0;
   for (int k = rows[s]; k < rows[s + 1]; ++k) {
-    const int c = columns[k];
-    const store_real q0 = u[3 * c], q1 = u[3 * c + 1], q2 = u[3 * c + 2];
+    const int t = columns[k];
+    store_real q0 = 0, q1 = 0, q2 = 0;
+    for (int l = 0; l < carriers; ++l) {
+      const int c = 3 * carrier[carriers * t + l];
+      const store_real w = weight[carriers * t + l];
+      q0 += w * (mask[c] * p[c]);
+      q1 += w * (mask[c + 1] * p[c + 1]);
+      q2 += w * (mask[c + 2] * p[c + 2]);
+    }
     __global const store_real* b = blocks + 9 * k;
     s0 += b[0] * q0 + b[1] * q1 + b[2] * q2;
     s1 += b[3] * q0 + b[4] * q1 + b[5] * q2;
     s2 += b[6] * q0 + b[7] * q1 + b[8] * q2;
+  }
+  if (carriers == 1) {
+    y[3 * s] += mask[3 * s] * s0;
+    y[3 * s + 1] += mask[3 * s + 1] * s1;
+    y[3 * s + 2] += mask[3 * s + 2] * s2;
+    return;
   }
   z[3 * s] = s0;
   z[3 * s + 1] = s1;
