@@ -1,13 +1,15 @@
 // Self-contact by the incremental-potential barrier (Li et al. 2020,
-// "Incremental Potential Contact"): the host side. The simulated surface (the
-// mesh's boundary faces, hex8 quads as two triangles) as points, edges and
-// triangles; a deterministic uniform-grid broad phase; the pairs within dhat
+// "Incremental Potential Contact"): the host side, and the reference the
+// device's terms (solver/barrier_terms.h) are tested against. The simulated
+// surface (the mesh's boundary faces, hex8 quads as two triangles) as points,
+// edges and triangles; a deterministic uniform-grid broad phase; the pairs within dhat
 // at x (point-triangle and edge-edge, those sharing a vertex excluded); the
 // barrier's energy kappa sum b, gradient and PSD-projected Hessian as 3x3
 // vertex blocks in a fixed order; and the largest step along x + alpha p that
 // continuous collision detection clears (kernels/contact/ccd.h). The per-pair
-// math is kernels/contact/ipc_*.h, written once for the host and a later
-// device port. Internal to the library.
+// math is kernels/contact/ipc_*.h, ccd.h and psd_jacobi.h, written once for
+// the host and the device (kernels/contact/barrier_pairs.cl). Internal to
+// the library.
 #pragma once
 
 #include <array>
