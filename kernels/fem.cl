@@ -22,7 +22,7 @@
  *                     per-contact differences d_c = a_c^T u and their
  *                     per-vertex gather k a_i d_c in the same kernels
  *   SNH_SELF_BARRIER  barrier self-contact: block-Jacobi adds its diagonal
- *                     blocks (the products: contact/barrier.cl)
+ *                     blocks (the products: contact/barrier_pairs.cl)
  *   SNH_MIXED         a double solve's products in float (snh_portable.h):
  *                     the program holds snh_element_product_cached and
  *                     snh_element_matrices (the multigrid's float fine level

@@ -1,8 +1,9 @@
 // Barrier self-contact (solver/barrier_contact.h, barrier_terms.h): the host
 // detection (no pair at rest, pairs sharing a vertex excluded, gradient
 // against differences, assembled Hessian symmetric and PSD, bitwise
-// repeatable), the CCD step bound on a lattice, the device terms against the
-// host reference, builds without it unchanged, and the squash to 5% that
+// repeatable), the CCD step bound on a lattice, the device terms (the mesh's
+// boundary and an embedded surface, double and float) against the host
+// reference, builds without it unchanged, and the squash to 5% that
 // folds through itself without it and holds with it.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -355,6 +356,93 @@ TEST(BarrierContact, StepBoundStopsAStepThroughTheSurface) {
   EXPECT_EQ(contact.step_bound(f.x, along), 1.0);
 }
 
+// The SNH_SELF_BARRIER model `with` (dhat and kappa set, the surface of
+// `host`) against the host reference at jittered positions of f: energy,
+// residual, products (cached and assembled) and block-Jacobi's diagonal
+// gain exactly kappa sum b, its force and its projected Hessian, within
+// 1e-12; the pair count matches; evaluating again gives the same bits; the
+// step bound is the host's.
+void expect_barrier_matches(const Fixture& f, solver::ElasticModel<double>& with, solver::ElasticModel<double>& without,
+                            const solver::BarrierContact& host, double kappa) {
+  // B 0.04 closer than at rest, jittered: pairs within a dhat below the
+  // rest gap (pairs closer at rest are left out).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.005, 0.005);
+  std::vector<double> x = f.x, p(x.size());
+  const std::vector<double> closer = f.b_down(-0.04);
+  for (size_t i = 0; i < x.size(); ++i) x[i] += closer[i] + jitter(rng);
+  for (double& e : p) e = jitter(rng);
+  viennacl::vector<double> xd(x.size()), pd(x.size());
+  viennacl::copy(x.begin(), x.end(), xd.begin());
+  viennacl::copy(p.begin(), p.end(), pd.begin());
+  const std::vector<solver::BarrierPair> pairs = host.near_pairs(x);
+  ASSERT_FALSE(pairs.empty());
+  const double energy = kappa * host.energy(x, pairs, nullptr);
+  EXPECT_GT(energy, 0.0);
+  std::vector<double> force(x.size(), 0.0);
+  host.add_gradient(x, pairs, kappa, force);
+  for (double& e : force) e = -e;
+  const solver::BarrierHessian h = host.hessian(x, pairs, kappa);
+  std::vector<double> product(x.size(), 0.0);
+  for (size_t v = 0; v + 1 < h.offsets.size(); ++v)
+    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) product[3 * v + i] += h.blocks[9 * k + 3 * i + j] * p[3 * h.columns[k] + j];
+  expect_vertex_term_matches(with, without, xd, pd, energy, force, product);
+  with.energy(xd);
+  EXPECT_EQ(with.self_barrier()->state().pairs, static_cast<int>(pairs.size()));
+  double smallest = 0.0;
+  host.energy(x, pairs, &smallest);
+  EXPECT_NEAR(with.self_barrier()->state().min_distance, smallest, 1e-15);
+  // Repeatable: the same x and p give the same bits (no atomics).
+  auto twice = [&](auto run) {
+    viennacl::vector<double> a(x.size()), b(x.size());
+    a.clear();
+    b.clear();
+    run(a);
+    run(b);
+    EXPECT_EQ(download_raw(a), download_raw(b));
+  };
+  twice([&](viennacl::vector<double>& out) { with.residual(xd, out); });
+  twice([&](viennacl::vector<double>& out) {
+    with.linearize(xd, true);
+    out.clear();
+    with.product(pd, out);
+  });
+  // Block-Jacobi: the inverted diagonal blocks of (elastic + barrier).
+  with.set_variant(ProductVariant::cached);
+  without.set_variant(ProductVariant::cached);
+  with.linearize(xd, true);
+  without.linearize(xd, true);
+  with.setup_preconditioner();
+  without.setup_preconditioner();
+  const std::vector<double> bw = with.preconditioner_blocks(), bo = without.preconditioner_blocks();
+  int touched = 0;
+  for (size_t v = 0; v < f.mesh.vertex_count(); ++v) {
+    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
+    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k)
+      if (h.columns[k] == static_cast<int>(v))
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) block(i, j) = h.blocks[9 * k + 3 * i + j];
+    touched += block.norm() > 0.0;
+    const Eigen::Matrix3d inv_with = Eigen::Map<const Eigen::Matrix3d>(&bw[9 * v]);
+    const Eigen::Matrix3d inv_without = Eigen::Map<const Eigen::Matrix3d>(&bo[9 * v]);
+    const Eigen::Matrix3d expected = inv_without.inverse() + block;
+    EXPECT_LT((inv_with.inverse() - expected).norm(), 1e-9 * expected.norm()) << v;
+  }
+  EXPECT_GT(touched, 0);
+  // The step bound through the device model: as the host's (the minimum of
+  // per-pair times of impact, each over [0, 1]).
+  for (double dz : {-0.57, -0.3, -0.05}) {
+    const std::vector<double> down = f.b_down(dz);
+    const double reference = host.step_bound(x, down);
+    EXPECT_NEAR(with.step_bound(xd, upload<double>(down)), reference, 1e-15) << dz;
+    if (dz == -0.57) {
+      EXPECT_LT(reference, 1.0);
+    }
+  }
+}
+
 // The SNH_SELF_BARRIER model against the host reference: energy, residual,
 // products (cached and assembled) and block-Jacobi's diagonal gain exactly
 // kappa sum b, its force and its projected Hessian.
@@ -376,57 +464,98 @@ TEST(BarrierContact, DeviceTermsMatchTheHostReference) {
   // B moved 0.04 closer.
   const double dhat = 0.05, kappa = 2.0;
   with.set_self_barrier(dhat, kappa);
+  solver::BarrierContact host(f.mesh);
+  host.set_distance(dhat);
+  expect_barrier_matches(f, with, without, host, kappa);
+  EXPECT_EQ(without.step_bound(upload<double>(f.x), upload<double>(f.b_down(-0.57))),
+            std::numeric_limits<double>::infinity());
+}
+
+// The same on an embedded surface (positions W x, 8 weights per vertex
+// lifted on the device): energy, force W^T g, products W^T H W p,
+// block-Jacobi's diagonal blocks and the step bound as the host's.
+TEST(BarrierContact, DeviceTermsOnAnEmbeddedSurfaceMatchTheHostReference) {
+  const EmbeddedFixture f;
+  const fem::RestState rest = fem::compute_rest_state(f.mesh);
+  const MaterialMap map = uniform_material(f.mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3));
+  solver::ModelTerms terms;
+  terms.self_barrier = true;
+  solver::ElasticModel<double> with(device_for(Precision::double_), f.mesh, rest, map, ProductVariant::cached,
+                                    device::MaterialKernel::specialized, terms);
+  solver::ElasticModel<double> without(device_for(Precision::double_), f.mesh, rest, map, ProductVariant::cached);
+  // The embedded surfaces are 0.27 apart at rest.
+  const double dhat = 0.25, kappa = 2.0;
+  with.set_self_barrier(dhat, kappa);
+  with.set_self_barrier_surface(f.mesh, f.surface, f.embedding);
+  solver::BarrierContact host(f.mesh, f.surface, f.embedding);
+  host.set_distance(dhat);
+  expect_barrier_matches(f, with, without, host, kappa);
+}
+
+// A float solve on a device with fp64: the pair math still in double from
+// the float positions, so the energy matches the host reference at those
+// positions to 1e-12; the force, blocks and products are rounded to float
+// once per entry and summed in float, so they match within a few float
+// roundings of the largest term they are summed with.
+TEST(BarrierContact, FloatDeviceTermsMatchTheHostReferenceWithinFloatRounding) {
+  if (!device_for(Precision::single).info().has_fp64) GTEST_SKIP() << "the device has no fp64";
+  const Fixture f;
+  const fem::RestState rest = fem::compute_rest_state(f.mesh);
+  const MaterialMap map = uniform_material(f.mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3));
+  solver::ModelTerms terms;
+  terms.self_barrier = true;
+  auto& cl = device_for(Precision::single);
+  solver::ElasticModel<float> with(cl, f.mesh, rest, map, ProductVariant::cached, device::MaterialKernel::specialized,
+                                   terms);
+  solver::ElasticModel<float> without(cl, f.mesh, rest, map, ProductVariant::cached);
+  const double dhat = 0.05, kappa = 2.0;  // below the rest gap of 0.07
+  with.set_self_barrier(dhat, kappa);
+  EXPECT_TRUE(with.self_barrier()->pairs_in_double());
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> jitter(-0.005, 0.005);
   std::vector<double> x = f.x, p(x.size());
   const std::vector<double> closer = f.b_down(-0.04);
   for (size_t i = 0; i < x.size(); ++i) x[i] += closer[i] + jitter(rng);
   for (double& e : p) e = jitter(rng);
-  viennacl::vector<double> xd(x.size()), pd(x.size());
-  viennacl::copy(x.begin(), x.end(), xd.begin());
-  viennacl::copy(p.begin(), p.end(), pd.begin());
+  x = rounded<float>(x);
+  p = rounded<float>(p);
   solver::BarrierContact host(f.mesh);
   host.set_distance(dhat);
   const std::vector<solver::BarrierPair> pairs = host.near_pairs(x);
   ASSERT_FALSE(pairs.empty());
   const double energy = kappa * host.energy(x, pairs, nullptr);
-  EXPECT_GT(energy, 0.0);
-  std::vector<double> force(x.size(), 0.0);
-  host.add_gradient(x, pairs, kappa, force);
-  for (double& e : force) e = -e;
+  std::vector<double> gradient(x.size(), 0.0);
+  host.add_gradient(x, pairs, kappa, gradient);
   const solver::BarrierHessian h = host.hessian(x, pairs, kappa);
-  std::vector<double> product(x.size(), 0.0);
+  std::vector<double> product(x.size(), 0.0), magnitude(x.size(), 0.0);
   for (size_t v = 0; v + 1 < h.offsets.size(); ++v)
     for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k)
       for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) product[3 * v + i] += h.blocks[9 * k + 3 * i + j] * p[3 * h.columns[k] + j];
-  expect_vertex_term_matches(with, without, xd, pd, energy, force, product);
-  EXPECT_EQ(with.self_barrier()->state().pairs, static_cast<int>(pairs.size()));
-  // Block-Jacobi: the inverted diagonal blocks of (elastic + barrier).
-  with.set_variant(ProductVariant::cached);
-  without.set_variant(ProductVariant::cached);
+        for (int j = 0; j < 3; ++j) {
+          product[3 * v + i] += h.blocks[9 * k + 3 * i + j] * p[3 * h.columns[k] + j];
+          magnitude[3 * v + i] += std::abs(h.blocks[9 * k + 3 * i + j] * p[3 * h.columns[k] + j]);
+        }
+  const viennacl::vector<float> xd = upload<float>(x), pd = upload<float>(p);
+  EXPECT_NEAR(with.energy(xd) - without.energy(xd), energy, 1e-12 * energy + 1e-6 * std::abs(without.energy(xd)));
+  viennacl::vector<float> rw(x.size()), ro(x.size()), yw(x.size()), yo(x.size());
+  with.residual(xd, rw);
+  without.residual(xd, ro);
+  const std::vector<double> a = download(rw), b = download(ro);
+  double scale = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) scale = std::max({scale, std::abs(a[i]), std::abs(b[i])});
+  int moved = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i] - b[i], -gradient[i], 4 * FLT_EPSILON * (scale + std::abs(gradient[i]))) << i;
+    moved += gradient[i] != 0.0;
+  }
+  EXPECT_GT(moved, 0);
   with.linearize(xd, true);
   without.linearize(xd, true);
-  with.setup_preconditioner();
-  without.setup_preconditioner();
-  const std::vector<double> bw = with.preconditioner_blocks(), bo = without.preconditioner_blocks();
-  for (size_t v = 0; v < f.mesh.vertex_count(); ++v) {
-    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
-    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k)
-      if (h.columns[k] == static_cast<int>(v))
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) block(i, j) = h.blocks[9 * k + 3 * i + j];
-    const Eigen::Matrix3d inv_with = Eigen::Map<const Eigen::Matrix3d>(&bw[9 * v]);
-    const Eigen::Matrix3d inv_without = Eigen::Map<const Eigen::Matrix3d>(&bo[9 * v]);
-    const Eigen::Matrix3d expected = inv_without.inverse() + block;
-    EXPECT_LT((inv_with.inverse() - expected).norm(), 1e-9 * expected.norm()) << v;
-  }
-  // The step bound through the device model: as the host's.
-  const std::vector<double> down = f.b_down(-0.5);
-  viennacl::vector<double> downd(x.size());
-  viennacl::copy(down.begin(), down.end(), downd.begin());
-  EXPECT_EQ(with.step_bound(xd, downd), host.step_bound(x, down));
-  EXPECT_EQ(without.step_bound(xd, downd), std::numeric_limits<double>::infinity());
+  with.product(pd, yw);
+  without.product(pd, yo);
+  const std::vector<double> c = download(yw), d = download(yo);
+  for (size_t i = 0; i < c.size(); ++i)
+    EXPECT_NEAR(c[i] - d[i], product[i], 8 * FLT_EPSILON * (std::abs(c[i]) + std::abs(d[i]) + magnitude[i])) << i;
 }
 
 // A problem without the hook and the same problem with an unbounded one:

@@ -1,8 +1,8 @@
 // The barrier's per-pair math (kernels/contact/ipc_*.h, ccd.h): squared
 // distances of every distance type with gradients and Hessians against
 // central differences, the barrier and mollifier derivatives, the PSD
-// projection, and the conservative CCD on crossing motions (generic,
-// glancing and parallel).
+// projection (Eigen's reference and the shared cyclic Jacobi one), and the
+// conservative CCD on crossing motions (generic, glancing and parallel).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -20,6 +20,7 @@ namespace ipc {
 #define SNH_DOUBLE 1
 #include "contact/ccd.h"
 #include "contact/ipc_barrier.h"
+#include "contact/psd_jacobi.h"
 }  // namespace ipc
 namespace {
 
@@ -260,6 +261,67 @@ TEST(BarrierMath, PsdProjectionClampsNegativeEigenvaluesAndKeepsPsdMatrices) {
     solver::project_psd(kept.data(), 12);
     EXPECT_EQ(kept, psd);
   }
+}
+
+// The cyclic Jacobi projection (contact/psd_jacobi.h, what host and device
+// run) against Eigen's: random symmetric matrices, repeated and zero
+// eigenvalues, rank-one barrier-like Hessians of large dynamic range, the
+// pair Hessians themselves; eigenvalues clamped, PSD input left bit for bit.
+TEST(BarrierMath, JacobiProjectionMatchesEigensAndKeepsPsdMatrices) {
+  using M = Eigen::Matrix<double, 12, 12, Eigen::RowMajor>;
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0.0, 1.0);
+  auto expect_same = [](const M& h, const char* what, int trial) {
+    M reference = h, jacobi = h;
+    solver::project_psd(reference.data(), 12);
+    solver::project_psd_pair(jacobi.data());
+    const double scale = std::max(h.norm(), DBL_MIN);
+    EXPECT_LT((jacobi - reference).norm(), 1e-12 * scale) << what << " " << trial;
+    EXPECT_EQ(jacobi, jacobi.transpose()) << what << " " << trial;
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> after(jacobi);
+    EXPECT_GE(after.eigenvalues().minCoeff(), -1e-12 * scale) << what << " " << trial;
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    M a;
+    for (int i = 0; i < 144; ++i) a.data()[i] = n(rng);
+    expect_same(a + a.transpose(), "random", trial);
+    // Repeated eigenvalues: Q diag(-1, -1, -1, 2, 2, 0, ...) Q^T.
+    const Eigen::MatrixXd square = a;
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(square);
+    const Eigen::MatrixXd q = qr.householderQ();
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(12);
+    lambda.head(5) << -1, -1, -1, 2, 2;
+    expect_same(M(q * lambda.asDiagonal() * q.transpose()), "repeated", trial);
+    // A barrier-like Hessian: b'' g g^T + b' H_d with b'' >> b'.
+    Eigen::Matrix<double, 12, 1> g;
+    for (int i = 0; i < 12; ++i) g[i] = n(rng);
+    const M sym = a + a.transpose();
+    expect_same(M(1e8 * g * g.transpose() - 1e-2 * sym), "rank one", trial);
+    // PSD: unchanged bit for bit.
+    M psd = a * a.transpose();
+    psd.diagonal().array() += 1e-3;
+    M kept = psd;
+    solver::project_psd_pair(kept.data());
+    EXPECT_EQ(kept, psd) << trial;
+    // The pair Hessians within dhat.
+    const Config x = random_config(rng);
+    for (int kind = 0; kind < 2; ++kind) {
+      int type;
+      const double s =
+          kind == 0 ? ipc::ipc_pt_distance(x.data(), &type, 0, 0) : ipc::ipc_ee_distance(x.data(), &type, 0, 0);
+      const double ex = kind == 1 ? 0.5 * ipc::ipc_edge_cross_squared(x.data(), 0, 0) : 0.0;
+      double d, gp[12];
+      M h;
+      if (kind == 0)
+        ipc::ipc_pt_potential(x.data(), 1.2 * s, &d, gp, h.data());
+      else
+        ipc::ipc_ee_potential(x.data(), 1.2 * s, ex, &d, gp, h.data());
+      expect_same(h, kind == 0 ? "point-triangle" : "edge-edge", trial);
+    }
+  }
+  M zero = M::Zero();
+  solver::project_psd_pair(zero.data());
+  EXPECT_EQ(zero, M::Zero());
 }
 
 // Positions at t = 1 of linearly moving vertices that are at `at` when

@@ -16,6 +16,7 @@ namespace kernel {
 #define SNH_DOUBLE 1
 #include "contact/ccd.h"
 #include "contact/ipc_barrier.h"
+#include "contact/psd_jacobi.h"
 }  // namespace kernel
 
 namespace {
@@ -148,6 +149,8 @@ void project_psd(double* matrix, int n) {
   const Eigen::VectorXd clamped = eigen.eigenvalues().cwiseMax(0.0);
   m = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
 }
+
+void project_psd_pair(double* matrix) { kernel::psd_project12(matrix); }
 
 BarrierContact::BarrierContact(const Mesh& mesh) {
   const fem::BoundaryFaces faces = fem::boundary_faces(mesh, "barrier contact");
@@ -320,6 +323,21 @@ BarrierPair BarrierContact::make_pair(int kind, int a, int b) const {
   return pair;
 }
 
+std::vector<BarrierPair> BarrierContact::candidate_pairs(const std::vector<double>& lattice_x,
+                                                         const std::vector<double>* lattice_p) const {
+  std::vector<double> x_storage, p_storage;
+  const std::vector<double>& x = lift(lattice_x, x_storage);
+  std::vector<std::array<int, 2>> pt, ee;
+  candidates(x, lattice_p ? &lift(*lattice_p, p_storage) : nullptr, dhat_, pt, ee);
+  std::vector<BarrierPair> pairs;
+  pairs.reserve(pt.size() + ee.size());
+  for (const auto& c : pt)
+    if (!excluded(0, c[0], c[1])) pairs.push_back(make_pair(0, c[0], c[1]));
+  for (const auto& c : ee)
+    if (!excluded(1, c[0], c[1])) pairs.push_back(make_pair(1, c[0], c[1]));
+  return pairs;
+}
+
 std::vector<BarrierPair> BarrierContact::near_pairs(const std::vector<double>& lattice_x) const {
   std::vector<double> storage;
   const std::vector<double>& x = lift(lattice_x, storage);
@@ -401,7 +419,7 @@ BarrierHessian BarrierContact::hessian(const std::vector<double>& lattice_x, con
       kernel::ipc_pt_potential(q, sh, &s, pg, ph);
     else
       kernel::ipc_ee_potential(q, sh, pair.ex, &s, pg, ph);
-    project_psd(ph, 12);
+    project_psd_pair(ph);
     auto add = [&](int row, int column, int v, int w, double scale) {
       auto [it, fresh] = blocks.try_emplace({row, column});
       if (fresh) it->second.fill(0.0);
@@ -448,7 +466,7 @@ double BarrierContact::step_bound(const std::vector<double>& lattice_x, const st
       const BarrierPair pair = make_pair(kind, c[0], c[1]);
       gather(pair, x, q);
       gather(pair, p, dq);
-      const double toi = kind == 0 ? kernel::ccd_point_triangle(q, dq, bound) : kernel::ccd_edge_edge(q, dq, bound);
+      const double toi = kind == 0 ? kernel::ccd_point_triangle(q, dq, 1.0) : kernel::ccd_edge_edge(q, dq, 1.0);
       bound = std::min(bound, toi);
     }
   return bound;

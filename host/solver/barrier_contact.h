@@ -1,13 +1,15 @@
 // Self-contact by the incremental-potential barrier (Li et al. 2020,
-// "Incremental Potential Contact"): the host side. The simulated surface (the
-// mesh's boundary faces, hex8 quads as two triangles) as points, edges and
-// triangles; a deterministic uniform-grid broad phase; the pairs within dhat
+// "Incremental Potential Contact"): the host side, and the reference the
+// device's terms (solver/barrier_terms.h) are tested against. The simulated
+// surface (the mesh's boundary faces, hex8 quads as two triangles) as points,
+// edges and triangles; a deterministic uniform-grid broad phase; the pairs within dhat
 // at x (point-triangle and edge-edge, those sharing a vertex excluded); the
 // barrier's energy kappa sum b, gradient and PSD-projected Hessian as 3x3
 // vertex blocks in a fixed order; and the largest step along x + alpha p that
 // continuous collision detection clears (kernels/contact/ccd.h). The per-pair
-// math is kernels/contact/ipc_*.h, written once for the host and a later
-// device port. Internal to the library.
+// math is kernels/contact/ipc_*.h, ccd.h and psd_jacobi.h, written once for
+// the host and the device (kernels/contact/barrier_pairs.cl). Internal to
+// the library.
 #pragma once
 
 #include <array>
@@ -35,10 +37,13 @@ inline constexpr double kDefaultSelfDistance = 0.01;
 double default_barrier_stiffness(const MaterialMap& materials, double edge, double dhat);
 
 // Projects a symmetric n x n matrix (row-major) to its nearest PSD matrix:
-// negative eigenvalues clamped to 0 (IPC sec. 4.2). On the host by Eigen's
-// SelfAdjointEigenSolver; a device port needs a Jacobi eigensolver for the
-// 12 x 12 pair Hessians.
+// negative eigenvalues clamped to 0 (IPC sec. 4.2), by Eigen's
+// SelfAdjointEigenSolver. The tests' reference: the pair Hessians are
+// projected by the cyclic Jacobi method of kernels/contact/psd_jacobi.h,
+// on the host (project_psd_pair) as on the device.
 void project_psd(double* matrix, int n);
+// A 12 x 12 pair Hessian projected by kernels/contact/psd_jacobi.h.
+void project_psd_pair(double* matrix);
 
 // One pair within dhat: kind 0 point-triangle (vertex = p, t0, t1, t2), 1
 // edge-edge (a0, a1, b0, b1); mesh vertex indices. ex: the edge-edge
@@ -95,9 +100,16 @@ class BarrierContact {
                     std::vector<double>& g) const;
   // kappa times the pairs' PSD-projected Hessians, assembled.
   BarrierHessian hessian(const std::vector<double>& x, const std::vector<BarrierPair>& pairs, double kappa) const;
+  // The candidate pairs at x (p null) or along x + t p, t in [0, 1]: those
+  // whose boxes (swept with p), inflated by dhat, overlap; point-triangle
+  // pairs in point then triangle order, then edge-edge pairs in edge order.
+  // near_pairs() is those of them closer than dhat at x.
+  std::vector<BarrierPair> candidate_pairs(const std::vector<double>& x, const std::vector<double>* p) const;
   // The largest alpha in [0, 1] such that x + t p, t in [0, alpha], has no
   // pair in contact: the smallest additive-CCD time of impact over the pairs
-  // whose swept boxes (inflated by dhat) overlap; 1 when none hits.
+  // whose swept boxes (inflated by dhat) overlap, each run over [0, 1] (so
+  // the minimum does not depend on the pairs' order, as on the device);
+  // 1 when none hits.
   double step_bound(const std::vector<double>& x, const std::vector<double>& p) const;
   // The smallest distance between any two non-adjacent surface primitives
   // within `reach` of each other (reach when none).
@@ -107,6 +119,13 @@ class BarrierContact {
   size_t edge_count() const { return edges_.size() / 2; }
   size_t triangle_count() const { return triangles_.size() / 3; }
   const std::vector<int>& triangles() const { return triangles_; }
+  // The positions the pairs' vertex indices refer to: the surface's
+  // vertices with an embedding, else the mesh's.
+  size_t surface_vertex_count() const { return carrier_.empty() ? 0 : weight_.size() / 8; }
+  // The embedding: 8 lattice vertices and weights per surface vertex (both
+  // empty without one).
+  const std::vector<int>& carriers() const { return carrier_; }
+  const std::vector<double>& weights() const { return weight_; }
 
  private:
   // Candidate pairs whose boxes overlap: point-triangle (point, triangle)

@@ -17,7 +17,7 @@
 #define SNH_FRICTION 0
 #endif
 /* Barrier self-contact (solver/barrier_terms.h): its products run in
- * contact/barrier.cl; block-Jacobi's setup adds its diagonal blocks. */
+ * contact/barrier_pairs.cl; block-Jacobi's setup adds its diagonal blocks. */
 #ifndef SNH_SELF_BARRIER
 #define SNH_SELF_BARRIER 0
 #endif
