@@ -401,6 +401,31 @@ TEST(DeviceTraffic, EnergyWithExternalForceReadsNoVector) {
   expect_constant_newton_reads(Preconditioner::multigrid, 4, 14, {0.0, 0.0, -0.2});
 }
 
+// A multigrid build reads twice whatever the DOF count, the levels and the
+// power iterations: the coarsest level's cell matrices (for its host
+// factor) and every smoothed level's lambda_max estimate, all in one read.
+// A reused hierarchy with a current fine level re-estimates the fine bound
+// at each linearization: one read.
+TEST(DeviceTraffic, MultigridBuildReadsTwiceWhateverTheLevels) {
+  for (MultigridFineLevel fine : {MultigridFineLevel::built, MultigridFineLevel::current})
+    for (int resolution : {4, 14}) {
+      const Traced r = run(twist(resolution), Preconditioner::multigrid, 4, HessianMode::projected, {0.0, 0.0, 0.0},
+                           [&](SolveOptions& o) {
+                             o.multigrid.fine_level = fine;
+                             o.multigrid.rebuild_every = fine == MultigridFineLevel::built ? 1 : 3;
+                           });
+      ASSERT_TRUE(r.result.converged) << resolution;
+      long long builds = 0;
+      for (const StepResult& s : r.result.steps) builds += s.preconditioner_builds;
+      const long long linearizations = linear_solves(r.result);
+      ASSERT_GT(builds, 0);
+      if (fine == MultigridFineLevel::built) EXPECT_EQ(builds, linearizations);
+      if (fine == MultigridFineLevel::current) EXPECT_LT(builds, linearizations);
+      const DeviceTraffic& setup = r.result.profile.traffic.at("preconditioner_setup");
+      EXPECT_EQ(setup.blocking_readbacks, 2 * builds + (linearizations - builds)) << resolution;
+    }
+}
+
 // Implicit Euler's inertia energy is a device reduction too: a dynamics
 // step's Newton loop reads a few doubles per iteration whatever the size,
 // and bytes to host per Newton iteration (less each substep's result, all

@@ -110,9 +110,14 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   void vcycle(int level) const;
   void coarse_solve() const;
   void factor_coarsest();
-  void estimate_bound(size_t level);  // lambda_max(D^-1 A) by power iteration
-  void block_jacobi(Level& level);    // level.inverse from level.blocks
-  void assemble_stencil(int level);   // the level's stencil from its matrices
+  // lambda_max(D^-1 A) by power iteration at levels [first, first + count),
+  // with one read for them all on the device.
+  void estimate_bounds(size_t first, size_t count);
+  void estimate_on_host(Level& level, size_t l);  // no fp64: the norms read at every step
+  void queue_estimate(Level& level, size_t l, int slot);
+  void set_bound(Level& level, double lambda);
+  void block_jacobi(Level& level);   // level.inverse from level.blocks
+  void assemble_stencil(int level);  // the level's stencil from its matrices
   // r <- base - A p at an assembled level (base may be r).
   void residual(int level, const VectorBase& p, const VectorBase& base, VectorBase& r) const;
   // to <- from in the other precision (kNarrow only): snh_narrow, snh_widen.
@@ -169,6 +174,11 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   static constexpr size_t kPowerSpan = 4096;  // SNH_CG_SPAN of its kernels
   device::Kernel power_dot_k_, power_normalize_k_;
   mutable device::Buffer power_partials_;
+  // Each estimated level's sum of squares, totalled on the device
+  // (kernels/reduce.cl, the partials in index order as the host added them)
+  // and read together: one read per set-up whatever the levels and steps.
+  device::Kernel power_total_k_;
+  device::Buffer power_totals_;
   device::Kernel coarse_inverse_k_;
   device::Buffer coarsest_inverse_;
 };
@@ -193,7 +203,7 @@ struct Levels<Real, C>::Level {
   // ViennaCL vector to a sized one leaves it as it was: this says instead.)
   bool estimated = false;
   double lambda = 1.0;
-  ChebyshevSteps steps;  // the smoothing's coefficients for lambda (estimate_bound)
+  ChebyshevSteps steps;  // the smoothing's coefficients for lambda (estimate_bounds)
   size_t bytes = 0;
 };
 
@@ -241,6 +251,7 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
     power.cg_span = static_cast<int>(kPowerSpan);
     power_dot_k_ = cl_.kernel("cg.cl", power, "snh_cg_dot");
     power_normalize_k_ = cl_.kernel("cg.cl", power, "snh_cg_normalize");
+    power_total_k_ = cl_.kernel("reduce.cl", "", "snh_partial_total");
   }
   coarse_on_device_ = options_.coarse_solve_on_device;
   if (coarse_on_device_) {
@@ -530,7 +541,7 @@ void Levels<Real, C>::setup() {
   // the last eigenvector estimate, whose operator changed by one Newton step
   // only. Norms are reduced on the device in a fixed order.
   const size_t smoothed = levels_.size() == 1 || !coarsest_ok_ ? levels_.size() : levels_.size() - 1;
-  for (size_t l = 0; l < smoothed; ++l) estimate_bound(l);
+  estimate_bounds(0, smoothed);
 }
 
 template <typename Real, typename C>
@@ -558,42 +569,71 @@ void Levels<Real, C>::convert(const device::Kernel& k, cl_mem from, size_t value
 
 template <typename Real, typename C>
 void Levels<Real, C>::update_fine_bound() {
-  if (!fine_built_) estimate_bound(0);
+  if (!fine_built_) estimate_bounds(0, 1);
 }
 
 template <typename Real, typename C>
-void Levels<Real, C>::estimate_bound(size_t l) {
-  Level& L = *levels_[l];
-  const bool warm = L.estimated && L.eigenvector.size() == 3 * L.vertices;
+void Levels<Real, C>::estimate_bounds(size_t first, size_t count) {
+  if (count == 0) return;
+  if (!power_dot_k_) {
+    for (size_t l = first; l < first + count; ++l) estimate_on_host(*levels_[l], l);
+    return;
+  }
+  if (!power_totals_ || device::OpenClContext::bytes(power_totals_.get()) < levels_.size() * sizeof(double))
+    power_totals_ = cl_.buffer(CL_MEM_READ_WRITE, levels_.size() * sizeof(double));
+  for (size_t l = first; l < first + count; ++l) queue_estimate(*levels_[l], l, static_cast<int>(l - first));
+  std::vector<double> totals(count);
+  cl_.read(power_totals_.get(), count * sizeof(double), totals.data());
+  for (size_t l = first; l < first + count; ++l) set_bound(*levels_[l], std::sqrt(totals[l - first]));
+}
+
+template <typename Real, typename C>
+void Levels<Real, C>::set_bound(Level& L, double lambda) {
+  L.estimated = std::isfinite(lambda) && lambda > 0.0;
+  if (!L.estimated) lambda = 1.0;  // start again next time
+  L.lambda = lambda;
+  L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
+}
+
+// The start: the last estimate's eigenvector, or a fixed pseudo-random
+// vector (deterministic) on the level's free DOFs. Returns the steps to run.
+template <typename C>
+int start_power_iteration(const LatticeLevel& h, bool estimated, viennacl::vector<C>& eigenvector,
+                          device::OpenClContext& cl) {
+  const bool warm = estimated && eigenvector.size() == 3 * h.vertex_count;
   if (!warm) {
-    const LatticeLevel& h = hierarchy_.levels[l];
-    std::vector<C> start(3 * L.vertices);
+    std::vector<C> start(3 * h.vertex_count);
     uint32_t state = 12345u;
     for (size_t i = 0; i < start.size(); ++i) {
       state = state * 1664525u + 1013904223u;
       start[i] = h.mask[i] ? C(0.5 + static_cast<double>(state >> 8) / 16777216.0) : C(0);
     }
-    device::write_to_device(cl_, start, L.eigenvector);
+    device::write_to_device(cl, start, eigenvector);
   }
-  const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
-  if (!power_dot_k_) {  // no fp64 on the device: ViennaCL's norms, read at every step
-    double lambda = 0.0;
-    for (int it = 0; it < iterations; ++it) {
-      const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
-      if (!(norm > 0.0) || !std::isfinite(norm)) break;
-      L.eigenvector *= C(1.0 / norm);
-      product(static_cast<int>(l), L.eigenvector, L.t);
-      inverse_diagonal(static_cast<int>(l), L.t);
-      lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
-      L.eigenvector.fast_swap(L.t);
-    }
-    L.estimated = std::isfinite(lambda) && lambda > 0.0;
-    L.lambda = L.estimated ? lambda : 1.0;
-    L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, L.lambda);
-    return;
+  return warm ? kWarmPowerIterations : kPowerIterations;
+}
+
+template <typename Real, typename C>
+void Levels<Real, C>::estimate_on_host(Level& L, size_t l) {
+  const int iterations = start_power_iteration(hierarchy_.levels[l], L.estimated, L.eigenvector, cl_);
+  double lambda = 0.0;
+  for (int it = 0; it < iterations; ++it) {
+    const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
+    if (!(norm > 0.0) || !std::isfinite(norm)) break;
+    L.eigenvector *= C(1.0 / norm);
+    product(static_cast<int>(l), L.eigenvector, L.t);
+    inverse_diagonal(static_cast<int>(l), L.t);
+    lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
+    L.eigenvector.fast_swap(L.t);
   }
-  // On the device: each step normalizes by the norm's partials (kernels/cg.cl)
-  // without a read; only the final estimate is read.
+  set_bound(L, lambda);
+}
+
+template <typename Real, typename C>
+void Levels<Real, C>::queue_estimate(Level& L, size_t l, int slot) {
+  const int iterations = start_power_iteration(hierarchy_.levels[l], L.estimated, L.eigenvector, cl_);
+  // Each step normalizes by the norm's partials (kernels/cg.cl) without a
+  // read; the final norm's partials are totalled into `slot`.
   const int n = static_cast<int>(3 * L.vertices);
   const size_t groups = (3 * L.vertices + kPowerSpan - 1) / kPowerSpan;
   if (!power_partials_ || device::OpenClContext::bytes(power_partials_.get()) < groups * sizeof(double))
@@ -616,15 +656,15 @@ void Levels<Real, C>::estimate_bound(size_t l) {
     L.eigenvector.fast_swap(L.t);
   }
   squares(L.eigenvector);
-  std::vector<double> partial(groups);
-  cl_.read(power_partials_.get(), groups * sizeof(double), partial.data());
-  double lambda = 0.0;
-  for (double p : partial) lambda += p;
-  lambda = std::sqrt(lambda);
-  L.estimated = std::isfinite(lambda) && lambda > 0.0;
-  if (!L.estimated) lambda = 1.0;  // start again next time
-  L.lambda = lambda;
-  L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
+  cl_.run(KernelArgs(power_total_k_.get())
+              .add(power_partials_.get())
+              .add(0)
+              .add(static_cast<int>(groups))
+              .add(0)
+              .add(power_totals_.get())
+              .add(slot)
+              .bind(),
+          1);
 }
 
 template <typename Real, typename C>
