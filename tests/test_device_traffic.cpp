@@ -401,29 +401,36 @@ TEST(DeviceTraffic, EnergyWithExternalForceReadsNoVector) {
   expect_constant_newton_reads(Preconditioner::multigrid, 4, 14, {0.0, 0.0, -0.2});
 }
 
-// A multigrid build reads twice whatever the DOF count, the levels and the
-// power iterations: the coarsest level's cell matrices (for its host
-// factor) and every smoothed level's lambda_max estimate, all in one read.
-// A reused hierarchy with a current fine level re-estimates the fine bound
-// at each linearization: one read.
-TEST(DeviceTraffic, MultigridBuildReadsTwiceWhateverTheLevels) {
-  for (MultigridFineLevel fine : {MultigridFineLevel::built, MultigridFineLevel::current})
-    for (int resolution : {4, 14}) {
-      const Traced r = run(twist(resolution), Preconditioner::multigrid, 4, HessianMode::projected, {0.0, 0.0, 0.0},
-                           [&](SolveOptions& o) {
-                             o.multigrid.fine_level = fine;
-                             o.multigrid.rebuild_every = fine == MultigridFineLevel::built ? 1 : 3;
-                           });
-      ASSERT_TRUE(r.result.converged) << resolution;
-      long long builds = 0;
-      for (const StepResult& s : r.result.steps) builds += s.preconditioner_builds;
-      const long long linearizations = linear_solves(r.result);
-      ASSERT_GT(builds, 0);
-      if (fine == MultigridFineLevel::built) EXPECT_EQ(builds, linearizations);
-      if (fine == MultigridFineLevel::current) EXPECT_LT(builds, linearizations);
-      const DeviceTraffic& setup = r.result.profile.traffic.at("preconditioner_setup");
-      EXPECT_EQ(setup.blocking_readbacks, 2 * builds + (linearizations - builds)) << resolution;
-    }
+// A multigrid build reads once or twice whatever the DOF count, the levels
+// and the power iterations: every estimated level's lambda_max in one read
+// and, with the coarsest solve on the host, the coarsest level's cell
+// matrices for its factor. A reused hierarchy with a current fine level
+// re-estimates the fine bound at each linearization: one read.
+TEST(DeviceTraffic, MultigridBuildReadsOnceOrTwiceWhateverTheLevels) {
+  for (bool device_coarse : {true, false})
+    for (MultigridFineLevel fine : {MultigridFineLevel::built, MultigridFineLevel::current})
+      for (int resolution : {4, 14}) {
+        const Traced r = run(twist(resolution), Preconditioner::multigrid, 4, HessianMode::projected, {0.0, 0.0, 0.0},
+                             [&](SolveOptions& o) {
+                               o.multigrid.coarse_solve_on_device = device_coarse;
+                               o.multigrid.fine_level = fine;
+                               o.multigrid.rebuild_every = fine == MultigridFineLevel::built ? 1 : 3;
+                             });
+        const std::string what = std::string(device_coarse ? "device" : "host") + " coarsest solve, " +
+                                 to_string(fine) + " fine level, res " + std::to_string(resolution);
+        ASSERT_TRUE(r.result.converged) << what;
+        long long builds = 0;
+        for (const StepResult& s : r.result.steps) builds += s.preconditioner_builds;
+        const long long linearizations = linear_solves(r.result);
+        ASSERT_GT(builds, 0) << what;
+        if (fine == MultigridFineLevel::built) {
+          EXPECT_EQ(builds, linearizations) << what;
+        } else {
+          EXPECT_LT(builds, linearizations) << what;
+        }
+        const DeviceTraffic& setup = r.result.profile.traffic.at("preconditioner_setup");
+        EXPECT_EQ(setup.blocking_readbacks, (device_coarse ? 1 : 2) * builds + (linearizations - builds)) << what;
+      }
 }
 
 // Implicit Euler's inertia energy is a device reduction too: a dynamics

@@ -29,6 +29,14 @@ constexpr int kCellMatrix = 24 * 24;
 // drop_block (a current fine level, re-estimated at every linearization)
 // 1.30 -> 1.04 s with the same Newton and CG counts.
 constexpr int kPowerIterations = 10, kWarmPowerIterations = 2;
+// The coarsest level's solve on the device: first-kind Chebyshev of degree
+// 8 on [1.1 lambda / 60, 1.1 lambda] (lambda its lambda_max(D^-1 A)
+// estimate). Against the factor's exact solve, twist and stretch res 10
+// (648-DOF coarsest levels): 26 / 141 and 83 / 743 Newton / CG against
+// 26 / 134 and 87 / 741; degree 4 on [.., / 10] 29 / 188 twist, 12 on
+// [.., / 100] 28 / 158 (docs/performance.md).
+constexpr int kCoarseDegree = 8;
+constexpr double kUpperBound = 1.1, kCoarseSpread = 60.0;
 
 // Inertia or obstacle contact: per-vertex terms in the fine operator.
 template <typename Real>
@@ -106,7 +114,9 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   // Chebyshev smoothing of A x = b at `level`; r holds b - A x on entry, or
   // with `from` x = 0 and r = *from are taken as the entry values (neither
   // read); r holds the residual on return if want_residual.
-  void chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual, const VectorBase* from = nullptr) const;
+  // `polynomial`: other steps than the level's smoothing (their degree).
+  void chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual, const VectorBase* from = nullptr,
+                 const ChebyshevSteps* polynomial = nullptr) const;
   void vcycle(int level) const;
   void coarse_solve() const;
   void factor_coarsest();
@@ -166,9 +176,9 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
   bool coarsest_ok_ = false;
   mutable std::vector<C> host_rhs_;
-  // The coarsest solve on the device: A^-1 dense (in C), computed from the
-  // factor at each set-up and applied by snh_coarse_inverse_apply, so a
-  // V-cycle never waits for the host (MultigridOptions::coarse_solve).
+  // The coarsest solve on the device (MultigridOptions::coarse_solve_on_device):
+  // a Chebyshev polynomial in D^-1 A of the level (Level::solve_steps), so
+  // that a V-cycle never waits for the host and a build needs no factor.
   bool coarse_on_device_ = false;
   // The power iteration's norms on the device (kernels/cg.cl).
   static constexpr size_t kPowerSpan = 4096;  // SNH_CG_SPAN of its kernels
@@ -179,8 +189,6 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   // and read together: one read per set-up whatever the levels and steps.
   device::Kernel power_total_k_;
   device::Buffer power_totals_;
-  device::Kernel coarse_inverse_k_;
-  device::Buffer coarsest_inverse_;
 };
 
 template <typename Real, typename C>
@@ -203,7 +211,8 @@ struct Levels<Real, C>::Level {
   // ViennaCL vector to a sized one leaves it as it was: this says instead.)
   bool estimated = false;
   double lambda = 1.0;
-  ChebyshevSteps steps;  // the smoothing's coefficients for lambda (estimate_bounds)
+  ChebyshevSteps steps;        // the smoothing's coefficients for lambda (estimate_bounds)
+  ChebyshevSteps solve_steps;  // the coarsest level's polynomial solve (coarse_solve)
   size_t bytes = 0;
 };
 
@@ -254,11 +263,6 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
     power_total_k_ = cl_.kernel("reduce.cl", "", "snh_partial_total");
   }
   coarse_on_device_ = options_.coarse_solve_on_device;
-  if (coarse_on_device_) {
-    device::KernelConfig narrow;
-    narrow.float_cycle = kNarrow;
-    coarse_inverse_k_ = cl_.kernel("coarse_solve.cl", narrow, "snh_coarse_inverse_apply");
-  }
   restrict_k_ = cl_.kernel("multigrid.cl", cycle, "snh_restrict");
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", cycle, "snh_chebyshev_start");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
@@ -539,7 +543,8 @@ void Levels<Real, C>::setup() {
   // lambda_max(D^-1 A) per smoothed level by power iteration: the first
   // setup from a fixed start (deterministic), later ones warm-started from
   // the last eigenvector estimate, whose operator changed by one Newton step
-  // only. Norms are reduced on the device in a fixed order.
+  // only. Norms are reduced on the device in a fixed order. The coarsest
+  // level too where it is smoothed or solved by its own polynomial.
   const size_t smoothed = levels_.size() == 1 || !coarsest_ok_ ? levels_.size() : levels_.size() - 1;
   estimate_bounds(0, smoothed);
 }
@@ -593,6 +598,8 @@ void Levels<Real, C>::set_bound(Level& L, double lambda) {
   if (!L.estimated) lambda = 1.0;  // start again next time
   L.lambda = lambda;
   L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
+  if (coarse_on_device_ && &L == levels_.back().get())
+    L.solve_steps = chebyshev_interval_steps(kCoarseDegree, kUpperBound * lambda / kCoarseSpread, kUpperBound * lambda);
 }
 
 // The start: the last estimate's eigenvector, or a fixed pseudo-random
@@ -670,7 +677,7 @@ void Levels<Real, C>::queue_estimate(Level& L, size_t l, int slot) {
 template <typename Real, typename C>
 void Levels<Real, C>::factor_coarsest() {
   coarsest_ok_ = false;
-  if (levels_.size() < 2) return;
+  if (levels_.size() < 2 || coarse_on_device_) return;
   const Level& L = *levels_.back();
   const LatticeLevel& h = hierarchy_.levels.back();
   std::vector<Real> local(L.cells * kCellMatrix);
@@ -682,33 +689,17 @@ void Levels<Real, C>::factor_coarsest() {
     if (!h.mask[i]) values[coarsest_diagonal_[i]] += 1.0;  // dead DOF (its row and column are 0): identity
   coarsest_.factorize(coarsest_matrix_);
   coarsest_ok_ = coarsest_.info() == Eigen::Success && coarsest_.vectorD().minCoeff() > 0.0;
-  if (!coarsest_ok_ || !coarse_on_device_) return;
-  // Column j of A^-1 (symmetric: also row j), with zero rows and columns at
-  // constrained DOFs, as the host solve's masked result has.
-  const Eigen::Index n = static_cast<Eigen::Index>(3 * L.vertices);
-  const Eigen::MatrixXd inverse = coarsest_.solve(Eigen::MatrixXd::Identity(n, n));
-  std::vector<C> dense(static_cast<size_t>(n * n));
-  for (Eigen::Index j = 0; j < n; ++j)
-    for (Eigen::Index i = 0; i < n; ++i)
-      dense[static_cast<size_t>(j * n + i)] = h.mask[i] && h.mask[j] ? static_cast<C>(inverse(i, j)) : C(0);
-  if (!coarsest_inverse_) {
-    coarsest_inverse_ = cl_.buffer(CL_MEM_READ_ONLY, dense.size() * sizeof(C));
-    table_bytes_ += dense.size() * sizeof(C);
-  }
-  cl_.write(coarsest_inverse_.get(), dense.size() * sizeof(C), dense.data());
 }
 
 template <typename Real, typename C>
 void Levels<Real, C>::coarse_solve() const {
   Level& L = *levels_.back();
-  if (!coarsest_ok_) {  // a singular coarsest operator: smooth instead
-    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b);
+  if (coarse_on_device_) {
+    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b, &L.solve_steps);
     return;
   }
-  if (coarse_on_device_) {
-    const int n = static_cast<int>(3 * L.vertices);
-    cl_.run(KernelArgs(coarse_inverse_k_.get()).add(coarsest_inverse_.get()).add(mem(L.b)).add(n).add(mem(L.x)).bind(),
-            3 * L.vertices);
+  if (!coarsest_ok_) {  // a singular coarsest operator: smooth instead
+    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b);
     return;
   }
   device::read_back(cl_, L.b, host_rhs_);
@@ -721,11 +712,11 @@ void Levels<Real, C>::coarse_solve() const {
 }
 
 template <typename Real, typename C>
-void Levels<Real, C>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual,
-                                const VectorBase* from) const {
+void Levels<Real, C>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual, const VectorBase* from,
+                                const ChebyshevSteps* polynomial) const {
   Level& L = *levels_[level];
-  const int degree = options_.smoother_degree;
-  const ChebyshevSteps& steps = L.steps;
+  const ChebyshevSteps& steps = polynomial ? *polynomial : L.steps;
+  const int degree = static_cast<int>(steps.c_z.size());
   // With weights beta != 1 on the updates of x the recurrence's r is not
   // b - A x: the residual asked for is then computed from x and b (`from`).
   const bool weighted = steps.weighted();
