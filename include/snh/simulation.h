@@ -217,8 +217,9 @@ struct MultigridOptions {
   // V-cycle never waits for the host and a build reads only its smoothing
   // bounds. false (default): the level's exact LDL^T solve on the host, its
   // vector read back and written again in every V-cycle. On pocl the two
-  // ran equally fast (the device's set-up 35% shorter, CG counts within
-  // 15% either way; docs/performance.md); not yet measured on a GPU.
+  // ran equally fast (the device's set-up 35% shorter, Newton and CG counts
+  // up to 27% apart either way; docs/performance.md); not yet measured on a
+  // GPU.
   bool coarse_solve_on_device = false;
 };
 
