@@ -56,8 +56,8 @@ struct MultigridFlags {
         ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
     cmd->add_option("--multigrid-coarse-solve", coarse_solve,
-                    "multigrid: the coarsest level's solve by a dense inverse on the device (device) or by its "
-                    "factor on the host, read back and written again in every V-cycle (host)")
+                    "multigrid: the coarsest level's solve by a Chebyshev polynomial on the device, no read "
+                    "(device), or by its factor on the host, read back and written again in every V-cycle (host)")
         ->check(CLI::IsMember({"device", "host"}))
         ->capture_default_str();
   }

@@ -91,6 +91,30 @@ __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_
   }
 }
 
+/* sum over each span of 1/2 c_v (x_i - y_i)^2, v = i / 3, into partial[g]:
+ * implicit Euler's inertia energy (host/solver/implicit_euler.h) at x, with
+ * the target y and the per-vertex coefficients c kept in double as the host
+ * holds them, each term the host's own (VertexTerms::add_inertia_energy). */
+__kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_partial_inertia(
+    __global const real* x, __global const double* y, __global const double* c, const int n, __global double* partial) {
+  __local double fold[SNH_REDUCE_GROUP];
+  const int l = (int)get_local_id(0), g = (int)get_group_id(0);
+  const int begin = g * SNH_REDUCE_SPAN;
+  const int end = min(begin + SNH_REDUCE_SPAN, n);
+  double s = 0.0;
+  for (int i = begin + l; i < end; i += SNH_REDUCE_GROUP) {
+    const double d = (double)x[i] - y[i];
+    s += 0.5 * c[i / 3] * d * d;
+  }
+  fold[l] = s;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int h = SNH_REDUCE_GROUP / 2; h > 0; h >>= 1) {
+    if (l < h) fold[l] += fold[l + h];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0) partial[g] = fold[0];
+}
+
 /* total[slot] = the sum (minimum: 1) of partial[offset..offset + groups) in
  * index order (0 for no groups),
  * by one work-item: the order, and so the value, the host's loop over the

@@ -13,6 +13,7 @@
 
 #include "device_test_support.h"
 #include "solver/device_reduction.h"
+#include "solver/vertex_terms.h"
 #include "viennacl/linalg/opencl/kernels/vector.hpp"
 
 namespace snh::test {
@@ -87,6 +88,56 @@ TEST(DeviceReduction, NonFiniteEntriesReachTheSum) {
   a[5000] = std::numeric_limits<double>::infinity();
   cl.write(da.get(), a.size() * sizeof(double), a.data());
   EXPECT_TRUE(std::isinf(reduction.sum(da.get(), a.size())));
+}
+
+// Implicit Euler's inertia energy 1/2 sum_v c_v |x_v - y_v|^2 reduced on the
+// device (VertexTerms::queue_inertia_energy) is the host's sum
+// (add_inertia_energy) within the reordering's rounding, bitwise repeatable,
+// in double and float models alike (c and y in double on both sides).
+template <typename Real>
+void check_inertia_against_host(Precision precision) {
+  device::OpenClContext& cl = device_for(precision);
+  solver::DeviceReduction reduction(cl, sizeof(Real), nullptr);
+  ASSERT_TRUE(reduction.on_device());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // Vertex counts whose 3 n DOFs fall below, on and above one span of 4,096.
+  for (size_t vertices : {size_t(5), size_t(1365), size_t(1366), size_t(20011)}) {
+    const size_t n = 3 * vertices;
+    std::vector<double> c(vertices), y(n);
+    std::vector<Real> x(n);
+    for (double& v : c) v = 1e3 * (u(rng) + 1.5);
+    for (size_t i = 0; i < n; ++i) {
+      y[i] = u(rng);
+      x[i] = static_cast<Real>(y[i] + 1e-3 * u(rng));
+    }
+    solver::VertexTerms<Real> terms(cl, vertices, true, 0, false, device::KernelConfig{}, nullptr);
+    terms.set_inertia(c, y);
+    device::Buffer dx = cl.buffer(CL_MEM_READ_WRITE, n * sizeof(Real), x.data());
+    double host = 0.0;
+    terms.add_inertia_energy(x, host);
+    long double exact = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const long double d = static_cast<long double>(x[i]) - y[i];
+      exact += 0.5L * c[i / 3] * d * d;
+    }
+    terms.queue_inertia_energy(reduction, dx.get(), 0);
+    const double device = reduction.read_totals(1)[0];
+    terms.queue_inertia_energy(reduction, dx.get(), 1);
+    EXPECT_EQ(reduction.read_totals(2)[1], device) << vertices;
+    // Positive terms: each within (70 + groups) eps of the sum after the
+    // per-term rounding (a few eps), as in check_against_host.
+    const double groups = std::ceil(static_cast<double>(n) / 4096.0);
+    const double bound = (75.0 + groups) * std::numeric_limits<double>::epsilon() * static_cast<double>(exact);
+    EXPECT_NEAR(device, static_cast<double>(exact), bound) << vertices;
+    EXPECT_NEAR(host, static_cast<double>(exact), 1.0 * n * std::numeric_limits<double>::epsilon() * exact) << vertices;
+    EXPECT_GT(device, 0.0);
+  }
+}
+
+TEST(DeviceReduction, InertiaEnergyMatchesTheHostSum) {
+  check_inertia_against_host<double>(Precision::double_);
+  check_inertia_against_host<float>(Precision::single);
 }
 
 // CG's updates (x += a p, r -= a q, p = z + b p) and a copy, in ViennaCL's

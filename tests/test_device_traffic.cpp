@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "snh/error.h"
@@ -101,7 +102,8 @@ struct Traced {
 };
 
 Traced run(const Scene& scene, Preconditioner preconditioner, int check_every,
-           HessianMode hessian = HessianMode::adaptive, const std::array<double, 3>& body_force = {0.0, 0.0, 0.0}) {
+           HessianMode hessian = HessianMode::adaptive, const std::array<double, 3>& body_force = {0.0, 0.0, 0.0},
+           const std::function<void(SolveOptions&)>& adjust = {}) {
   SolveOptions o = scene.options;
   if (body_force != std::array<double, 3>{0.0, 0.0, 0.0}) o.body_force = body_force;
   o.hessian = hessian;
@@ -111,6 +113,7 @@ Traced run(const Scene& scene, Preconditioner preconditioner, int check_every,
   // would be the whole mesh).
   o.multigrid.coarsest_dofs = 60;
   o.multigrid.coarse_solve_on_device = true;
+  if (adjust) adjust(o);
   QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, o);
   const Calls before = calls;
   Traced r;
@@ -396,6 +399,103 @@ TEST(DeviceTraffic, NewtonReadsAFewDoublesPerIterationWhateverTheSizeWithMultigr
 // a body force reads no vector either.
 TEST(DeviceTraffic, EnergyWithExternalForceReadsNoVector) {
   expect_constant_newton_reads(Preconditioner::multigrid, 4, 14, {0.0, 0.0, -0.2});
+}
+
+// A multigrid build reads once or twice whatever the DOF count, the levels
+// and the power iterations: every estimated level's lambda_max in one read
+// and, with the coarsest solve on the host, the coarsest level's cell
+// matrices for its factor. A reused hierarchy with a current fine level
+// re-estimates the fine bound at each linearization: one read.
+TEST(DeviceTraffic, MultigridBuildReadsOnceOrTwiceWhateverTheLevels) {
+  for (bool device_coarse : {true, false})
+    for (MultigridFineLevel fine : {MultigridFineLevel::built, MultigridFineLevel::current})
+      for (int resolution : {4, 14}) {
+        const Traced r = run(twist(resolution), Preconditioner::multigrid, 4, HessianMode::projected, {0.0, 0.0, 0.0},
+                             [&](SolveOptions& o) {
+                               o.multigrid.coarse_solve_on_device = device_coarse;
+                               o.multigrid.fine_level = fine;
+                               o.multigrid.rebuild_every = fine == MultigridFineLevel::built ? 1 : 3;
+                             });
+        const std::string what = std::string(device_coarse ? "device" : "host") + " coarsest solve, " +
+                                 to_string(fine) + " fine level, res " + std::to_string(resolution);
+        ASSERT_TRUE(r.result.converged) << what;
+        long long builds = 0;
+        for (const StepResult& s : r.result.steps) builds += s.preconditioner_builds;
+        const long long linearizations = linear_solves(r.result);
+        ASSERT_GT(builds, 0) << what;
+        if (fine == MultigridFineLevel::built) {
+          EXPECT_EQ(builds, linearizations) << what;
+        } else {
+          EXPECT_LT(builds, linearizations) << what;
+        }
+        const DeviceTraffic& setup = r.result.profile.traffic.at("preconditioner_setup");
+        EXPECT_EQ(setup.blocking_readbacks, (device_coarse ? 1 : 2) * builds + (linearizations - builds)) << what;
+      }
+}
+
+// Implicit Euler's inertia energy is a device reduction too: a dynamics
+// step's Newton loop reads a few doubles per iteration whatever the size,
+// and bytes to host per Newton iteration (less each substep's result, all
+// of x once) do not grow with the DOF count.
+struct DynamicsReads {
+  double reads_per_newton = 0.0, bytes_per_newton = 0.0;
+  long long dofs = 0;
+};
+
+DynamicsReads dynamics_reads(int resolution, Preconditioner preconditioner) {
+  SceneParameters parameters;
+  parameters.resolution = resolution;
+  parameters.steps = 3;
+  const Scene scene = make_scene("twist", parameters);
+  const int substeps = 2;
+  const Traced r = run(scene, preconditioner, 4, HessianMode::projected, {0.0, 0.0, 0.0}, [&](SolveOptions& o) {
+    o.dynamics = DynamicsOptions{};
+    o.dynamics->time_step = 0.01;
+    o.dynamics->density = 1000.0;
+    o.dynamics->damping.mass = 0.5;
+    o.dynamics->substeps = substeps;
+  });
+  EXPECT_TRUE(r.result.converged) << resolution;
+  const SolveProfile& p = r.result.profile;
+  DeviceTraffic outside;
+  for (const auto& [phase, t] : p.traffic)
+    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
+        phase != "preconditioner_setup")
+      outside += t;
+  int newton = 0;
+  for (const StepResult& s : r.result.steps) newton += s.newton_iterations;
+  EXPECT_GT(newton, 0);
+  DynamicsReads out;
+  out.dofs = static_cast<long long>(r.result.positions.size());
+  const long long solves = static_cast<long long>(r.result.steps.size()) * substeps;
+  const long long bytes = outside.bytes_to_host - solves * out.dofs * static_cast<long long>(sizeof(double));
+  out.reads_per_newton = static_cast<double>(outside.blocking_readbacks - solves) / newton;
+  out.bytes_per_newton = static_cast<double>(bytes) / newton;
+  return out;
+}
+
+void expect_constant_dynamics_reads(Preconditioner preconditioner) {
+  const DynamicsReads a = dynamics_reads(4, preconditioner);
+  const DynamicsReads b = dynamics_reads(14, preconditioner);
+  ASSERT_GT(b.dofs, 2 * 4096);
+  ASSERT_GT(b.dofs, 4 * a.dofs);
+  for (const DynamicsReads& r : {a, b}) {
+    EXPECT_GT(r.reads_per_newton, 2.0) << r.dofs;
+    EXPECT_LE(r.reads_per_newton, 8.0) << r.dofs;
+    // The energy's sums in one read of at most six doubles, the norms and
+    // dots one double each: a read of x (3 DOF doubles per vertex) would
+    // add dofs * 8 bytes per energy.
+    EXPECT_LE(r.bytes_per_newton, 8.0 * 6 * sizeof(double)) << r.dofs;
+  }
+  EXPECT_LE(b.bytes_per_newton, 1.5 * a.bytes_per_newton);
+}
+
+TEST(DeviceTraffic, DynamicsReadsAFewDoublesPerNewtonIterationWithBlockJacobi) {
+  expect_constant_dynamics_reads(Preconditioner::block_jacobi);
+}
+
+TEST(DeviceTraffic, DynamicsReadsAFewDoublesPerNewtonIterationWithMultigrid) {
+  expect_constant_dynamics_reads(Preconditioner::multigrid);
 }
 
 TEST(DeviceTraffic, NegativeCheckIntervalIsRefused) {

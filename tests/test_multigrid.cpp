@@ -124,6 +124,33 @@ TEST(Chebyshev, FirstKindIsTheMinimaxPolynomialOnItsInterval) {
   }
 }
 
+// The coarsest level's polynomial solve (coarse_solve_on_device): the first
+// kind on a wide interval [upper / 60, upper], the minimax factor there, and
+// 0 < p(t) < 1 on (0, lower), so the solve is positive on every eigenvalue
+// up to upper.
+TEST(Chebyshev, IntervalStepsAreTheMinimaxPolynomialAndPositiveBelow) {
+  const double upper = 2.2, lower = upper / 60.0;
+  for (int degree : {1, 4, 8, 12}) {
+    const solver::ChebyshevSteps steps = solver::chebyshev_interval_steps(degree, lower, upper);
+    EXPECT_EQ(solver::chebyshev_residual_factor(steps, 0.0), 1.0);
+    const double bound = 1.0 / std::cosh(degree * std::acosh((upper + lower) / (upper - lower)));
+    EXPECT_NEAR(sampled_max(steps, lower, upper, false, upper), bound, 1e-8 * bound) << "degree " << degree;
+    for (int i = 1; i <= 1000; ++i) {
+      const double t = lower * i / 1000.0, p = solver::chebyshev_residual_factor(steps, t);
+      EXPECT_GT(p, 0.0) << "degree " << degree << " t " << t;
+      EXPECT_LT(p, 1.0) << "degree " << degree << " t " << t;
+    }
+  }
+  // The first kind's smoothing steps are these on [0.1, 1.1] lambda.
+  const solver::ChebyshevSteps a = solver::chebyshev_steps(ChebyshevKind::first, 3, 2.0);
+  const solver::ChebyshevSteps b = solver::chebyshev_interval_steps(3, 0.1 * 2.0, 1.1 * 2.0);
+  EXPECT_EQ(a.c_d, b.c_d);
+  EXPECT_EQ(a.c_z, b.c_z);
+  EXPECT_THROW(solver::chebyshev_interval_steps(0, 0.1, 1.0), Error);
+  EXPECT_THROW(solver::chebyshev_interval_steps(2, 0.0, 1.0), Error);
+  EXPECT_THROW(solver::chebyshev_interval_steps(2, 1.0, 1.0), Error);
+}
+
 TEST(Chebyshev, FourthKindReachesLottesBoundWithoutALowerBound) {
   const double lambda = 2.0, upper = 2.2;
   for (int degree = 1; degree <= 6; ++degree) {
@@ -566,37 +593,39 @@ TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
                                      Smoothing{2, ChebyshevKind::fourth, MultigridFineLevel::built},
                                      Smoothing{3, ChebyshevKind::optimized_fourth, MultigridFineLevel::built},
                                      Smoothing{2, ChebyshevKind::optimized_fourth, MultigridFineLevel::current}})
-    for (bool float_cycle : {false, true}) {
-      const int degree = smoothing.degree;
-      SCOPED_TRACE(std::string(to_string(smoothing.kind)) + " " + to_string(smoothing.fine) +
-                   (float_cycle ? " float cycle" : ""));
-      MultigridOptions options;
-      options.coarsest_dofs = 50;
-      options.smoother_degree = degree;
-      options.chebyshev_kind = smoothing.kind;
-      options.fine_level = smoothing.fine;
-      options.float_cycle = float_cycle;
-      solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
-      // A float cycle needs a built fine level; a current one keeps double.
-      ASSERT_EQ(mg.float_cycle(), float_cycle && smoothing.fine == MultigridFineLevel::built);
-      model.linearize(upload(c.x), true);
-      model.setup_preconditioner();
-      mg.setup();
-      std::mt19937_64 rng(7);
-      std::uniform_real_distribution<double> u(-1.0, 1.0);
-      std::vector<double> a(mask.size()), b(mask.size());
-      for (size_t i = 0; i < mask.size(); ++i) {
-        a[i] = mask[i] * u(rng);
-        b[i] = mask[i] * u(rng);
+    for (bool float_cycle : {false, true})
+      for (bool device_coarse : {false, true}) {
+        const int degree = smoothing.degree;
+        SCOPED_TRACE(std::string(to_string(smoothing.kind)) + " " + to_string(smoothing.fine) +
+                     (float_cycle ? " float cycle" : "") + (device_coarse ? " coarsest solve on the device" : ""));
+        MultigridOptions options;
+        options.coarsest_dofs = 50;
+        options.smoother_degree = degree;
+        options.chebyshev_kind = smoothing.kind;
+        options.fine_level = smoothing.fine;
+        options.float_cycle = float_cycle;
+        options.coarse_solve_on_device = device_coarse;
+        solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
+        // A float cycle needs a built fine level; a current one keeps double.
+        ASSERT_EQ(mg.float_cycle(), float_cycle && smoothing.fine == MultigridFineLevel::built);
+        model.linearize(upload(c.x), true);
+        model.setup_preconditioner();
+        mg.setup();
+        std::mt19937_64 rng(7);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        std::vector<double> a(mask.size()), b(mask.size());
+        for (size_t i = 0; i < mask.size(); ++i) {
+          a[i] = mask[i] * u(rng);
+          b[i] = mask[i] * u(rng);
+        }
+        viennacl::vector<double> ma = upload(a), mb = upload(b);
+        mg.apply(ma);
+        mg.apply(mb);
+        SCOPED_TRACE("degree " + std::to_string(degree));
+        // Double: exactly symmetric to the sums' rounding. A float cycle: to
+        // float's rounding of its vectors and stencils (measured 3e-8).
+        expect_symmetric_positive(mask, a, b, download(ma), download(mb), mg.float_cycle() ? 1e-6 : 1e-12);
       }
-      viennacl::vector<double> ma = upload(a), mb = upload(b);
-      mg.apply(ma);
-      mg.apply(mb);
-      SCOPED_TRACE("degree " + std::to_string(degree));
-      // Double: exactly symmetric to the sums' rounding. A float cycle: to
-      // float's rounding of its vectors and stencils (measured 3e-8).
-      expect_symmetric_positive(mask, a, b, download(ma), download(mb), mg.float_cycle() ? 1e-6 : 1e-12);
-    }
 }
 
 // MultigridOptions::fine_level: right after a build, the V-cycle over the

@@ -1,5 +1,6 @@
 #include "solver/chebyshev.h"
 
+#include <cmath>
 #include <string>
 
 #include "snh/error.h"
@@ -29,19 +30,7 @@ ChebyshevSteps chebyshev_steps(ChebyshevKind kind, int degree, double lambda) {
   s.c_z.assign(degree, 0.0);
   s.beta.assign(degree, 1.0);
   const double upper = kUpper * lambda;
-  if (kind == ChebyshevKind::first) {
-    const double lower = kLower * lambda;
-    const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower);
-    double rho = delta / theta;
-    s.c_z[0] = 1.0 / theta;
-    for (int i = 1; i < degree; ++i) {
-      const double rho_next = 1.0 / (2.0 * theta / delta - rho);
-      s.c_d[i] = rho_next * rho;
-      s.c_z[i] = 2.0 * rho_next / delta;
-      rho = rho_next;
-    }
-    return s;
-  }
+  if (kind == ChebyshevKind::first) return chebyshev_interval_steps(degree, kLower * lambda, upper);
   if (kind == ChebyshevKind::optimized_fourth && degree > kOptimizedDegrees)
     throw Error("chebyshev: optimized-fourth weights are tabulated for degrees 1 to " +
                 std::to_string(kOptimizedDegrees) + ", got " + std::to_string(degree));
@@ -52,6 +41,27 @@ ChebyshevSteps chebyshev_steps(ChebyshevKind kind, int degree, double lambda) {
   }
   if (kind == ChebyshevKind::optimized_fourth)
     for (int i = 0; i < degree; ++i) s.beta[i] = kOptimizedBeta[degree - 1][i];
+  return s;
+}
+
+ChebyshevSteps chebyshev_interval_steps(int degree, double lower, double upper) {
+  if (degree < 1) throw Error("chebyshev: degree must be at least 1, got " + std::to_string(degree));
+  if (!(lower > 0.0) || !(upper > lower) || !std::isfinite(upper))
+    throw Error("chebyshev: an interval needs 0 < lower < upper, got [" + std::to_string(lower) + ", " +
+                std::to_string(upper) + "]");
+  ChebyshevSteps s;
+  s.c_d.assign(degree, 0.0);
+  s.c_z.assign(degree, 0.0);
+  s.beta.assign(degree, 1.0);
+  const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower);
+  double rho = delta / theta;
+  s.c_z[0] = 1.0 / theta;
+  for (int i = 1; i < degree; ++i) {
+    const double rho_next = 1.0 / (2.0 * theta / delta - rho);
+    s.c_d[i] = rho_next * rho;
+    s.c_z[i] = 2.0 * rho_next / delta;
+    rho = rho_next;
+  }
   return s;
 }
 

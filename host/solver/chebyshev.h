@@ -44,6 +44,11 @@ struct ChebyshevSteps {
 // coefficients for.
 ChebyshevSteps chebyshev_steps(ChebyshevKind kind, int degree, double lambda);
 
+// The first kind's steps over [lower, upper] (0 < lower < upper), for
+// `degree` >= 1: its residual factor is at most 1 / T_degree((upper +
+// lower) / (upper - lower)) there, and falls from 1 to that below lower.
+ChebyshevSteps chebyshev_interval_steps(int degree, double lower, double upper);
+
 // p(t) of the steps above (the error factor at eigenvalue t of D^-1 A), from
 // the same recurrence on scalars: for tests and documentation.
 double chebyshev_residual_factor(const ChebyshevSteps& steps, double t);

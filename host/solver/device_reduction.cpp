@@ -19,6 +19,7 @@ DeviceReduction::DeviceReduction(device::OpenClContext& cl, size_t real_bytes, P
     sums_ = cl.kernel("reduce.cl", "", "snh_partial_sums");
     minima_ = cl.kernel("reduce.cl", "", "snh_partial_minima");
     work_ = cl.kernel("reduce.cl", "", "snh_partial_work");
+    inertia_ = cl.kernel("reduce.cl", "", "snh_partial_inertia");
     total_ = cl.kernel("reduce.cl", "", "snh_partial_total");
     totals_ = cl.buffer(CL_MEM_READ_WRITE, kSlots * sizeof(double));
   }
@@ -84,6 +85,15 @@ void DeviceReduction::queue_work(cl_mem x, cl_mem f, size_t n, int slot) const {
             groups * kGroup);
   queue_total(groups, false, slot);
   queue_total(groups, false, slot + 1, groups);
+}
+
+void DeviceReduction::queue_inertia(cl_mem x, cl_mem y, cl_mem c, size_t n, int slot) const {
+  if (!on_device_) throw Error("solver: the device reduction of the inertia energy needs fp64 on the device");
+  const size_t groups = partials_for(n);
+  if (groups > 0)
+    cl_.run(device::KernelArgs(inertia_.get()).add(x).add(y).add(c).add(static_cast<int>(n)).add(partial_.get()).bind(),
+            groups * kGroup);
+  queue_total(groups, false, slot);
 }
 
 const double* DeviceReduction::read_totals(int count) const {

@@ -38,6 +38,10 @@ class DeviceReduction {
   // sum f x into `slot` and sum |f x| into slot + 1: the work of forces f
   // (doubles; on_device() only) at x (n reals).
   void queue_work(cl_mem x, cl_mem f, size_t n, int slot) const;
+  // sum_i 1/2 c[i / 3] (x_i - y_i)^2 into `slot`: implicit Euler's inertia
+  // energy at x (n reals), y (n doubles) and c (n / 3 doubles); on_device()
+  // only.
+  void queue_inertia(cl_mem x, cl_mem y, cl_mem c, size_t n, int slot) const;
   // Totals [0, count), in one blocking read.
   const double* read_totals(int count) const;
   static constexpr int kSlots = 8;
@@ -58,7 +62,7 @@ class DeviceReduction {
   size_t real_bytes_;
   PhaseProfiler* profiler_;
   bool on_device_;
-  device::Kernel sums_, minima_, work_, total_;
+  device::Kernel sums_, minima_, work_, inertia_, total_;
   mutable device::Buffer partial_, totals_;
   mutable double totals_host_[kSlots] = {};
   mutable size_t partial_capacity_ = 0;

@@ -392,26 +392,33 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   args.add(mem(x)).add(data_.elements.get()).add(data_.gradients.get()).add(data_.weights.get()).add(count);
   material_.add_to(args).add(energies_.get()).add(min_j_.get());
   data_.run_element_kernel(args.bind());
-  // One read for the sums and the minimum (slots: elastic, min J, contact,
-  // external work and its magnitude).
+  // One read for the sums and the minimum (slots: elastic, min J, then as
+  // the terms present: contact, external work and its magnitude, inertia).
   const bool work_on_device = has_external_ && reduction_.on_device();
+  const bool inertia_on_device = terms_.inertia && reduction_.on_device();
   reduction_.queue_sum(energies_.get(), data_.element_count, 0);
   reduction_.queue_min(min_j_.get(), data_.element_count, 1);
-  if (terms_.obstacles > 0) {
+  int slots = 2;
+  const int contact_slot = terms_.obstacles > 0 ? slots++ : -1;
+  const int work_slot = work_on_device ? (slots += 2) - 2 : -1;
+  const int inertia_slot = inertia_on_device ? slots++ : -1;
+  if (contact_slot >= 0) {
     contact(x);
-    reduction_.queue_sum(vertex_terms_->contact_energy(), data_.vertex_count, 2);
+    reduction_.queue_sum(vertex_terms_->contact_energy(), data_.vertex_count, contact_slot);
   }
-  if (work_on_device) reduction_.queue_work(mem(x), external_work_.get(), dofs(), 3);
-  const double* totals = reduction_.read_totals(work_on_device ? 5 : terms_.obstacles > 0 ? 3 : 2);
+  if (work_slot >= 0) reduction_.queue_work(mem(x), external_work_.get(), dofs(), work_slot);
+  if (inertia_slot >= 0) vertex_terms_->queue_inertia_energy(reduction_, mem(x), inertia_slot);
+  const double* totals = reduction_.read_totals(slots);
   double sum = totals[0] * elastic_scale_;
   last_min_j_ = totals[1];
   last_energy_magnitude_ = elastic_magnitude_ * elastic_scale_;
-  if (terms_.obstacles > 0) sum += totals[2];
-  if (work_on_device) {
-    sum -= totals[3];
-    last_energy_magnitude_ += totals[4];
+  if (contact_slot >= 0) sum += totals[contact_slot];
+  if (work_slot >= 0) {
+    sum -= totals[work_slot];
+    last_energy_magnitude_ += totals[work_slot + 1];
   }
-  if ((has_external_ && !work_on_device) || terms_.inertia || terms_.self_contact) {
+  if (inertia_slot >= 0) sum += totals[inertia_slot];
+  if ((has_external_ && !work_on_device) || (terms_.inertia && !inertia_on_device) || terms_.self_contact) {
     std::vector<Real> xh(dofs());
     {
       PhaseScope transfer(&profiler_, Phase::transfers);
@@ -422,7 +429,7 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
         sum -= external_host_[i] * static_cast<double>(xh[i]);
         last_energy_magnitude_ += std::abs(external_host_[i] * static_cast<double>(xh[i]));
       }
-    if (terms_.inertia) vertex_terms_->add_inertia_energy(xh, sum);
+    if (terms_.inertia && !inertia_on_device) vertex_terms_->add_inertia_energy(xh, sum);
     if (terms_.self_contact && !self_contact_->pairs().empty()) {
       // The frozen springs, in contact order, in double.
       const double springs = self_contact_energy(self_contact_->pairs(), self_contact_->stiffness(),

@@ -29,6 +29,14 @@ constexpr int kCellMatrix = 24 * 24;
 // drop_block (a current fine level, re-estimated at every linearization)
 // 1.30 -> 1.04 s with the same Newton and CG counts.
 constexpr int kPowerIterations = 10, kWarmPowerIterations = 2;
+// The coarsest level's solve on the device: first-kind Chebyshev of degree
+// 8 on [1.1 lambda / 60, 1.1 lambda] (lambda its lambda_max(D^-1 A)
+// estimate). Against the factor's exact solve, twist and stretch res 10
+// (648-DOF coarsest levels): 26 / 141 and 83 / 743 Newton / CG against
+// 26 / 134 and 87 / 741; degree 4 on [.., / 10] 29 / 188 twist, 12 on
+// [.., / 100] 28 / 158 (docs/performance.md).
+constexpr int kCoarseDegree = 8;
+constexpr double kUpperBound = 1.1, kCoarseSpread = 60.0;
 
 // Inertia or obstacle contact: per-vertex terms in the fine operator.
 template <typename Real>
@@ -106,13 +114,20 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   // Chebyshev smoothing of A x = b at `level`; r holds b - A x on entry, or
   // with `from` x = 0 and r = *from are taken as the entry values (neither
   // read); r holds the residual on return if want_residual.
-  void chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual, const VectorBase* from = nullptr) const;
+  // `polynomial`: other steps than the level's smoothing (their degree).
+  void chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual, const VectorBase* from = nullptr,
+                 const ChebyshevSteps* polynomial = nullptr) const;
   void vcycle(int level) const;
   void coarse_solve() const;
   void factor_coarsest();
-  void estimate_bound(size_t level);  // lambda_max(D^-1 A) by power iteration
-  void block_jacobi(Level& level);    // level.inverse from level.blocks
-  void assemble_stencil(int level);   // the level's stencil from its matrices
+  // lambda_max(D^-1 A) by power iteration at levels [first, first + count),
+  // with one read for them all on the device.
+  void estimate_bounds(size_t first, size_t count);
+  void estimate_on_host(Level& level, size_t l);  // no fp64: the norms read at every step
+  void queue_estimate(Level& level, size_t l, int slot);
+  void set_bound(Level& level, double lambda);
+  void block_jacobi(Level& level);   // level.inverse from level.blocks
+  void assemble_stencil(int level);  // the level's stencil from its matrices
   // r <- base - A p at an assembled level (base may be r).
   void residual(int level, const VectorBase& p, const VectorBase& base, VectorBase& r) const;
   // to <- from in the other precision (kNarrow only): snh_narrow, snh_widen.
@@ -161,16 +176,19 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
   bool coarsest_ok_ = false;
   mutable std::vector<C> host_rhs_;
-  // The coarsest solve on the device: A^-1 dense (in C), computed from the
-  // factor at each set-up and applied by snh_coarse_inverse_apply, so a
-  // V-cycle never waits for the host (MultigridOptions::coarse_solve).
+  // The coarsest solve on the device (MultigridOptions::coarse_solve_on_device):
+  // a Chebyshev polynomial in D^-1 A of the level (Level::solve_steps), so
+  // that a V-cycle never waits for the host and a build needs no factor.
   bool coarse_on_device_ = false;
   // The power iteration's norms on the device (kernels/cg.cl).
   static constexpr size_t kPowerSpan = 4096;  // SNH_CG_SPAN of its kernels
   device::Kernel power_dot_k_, power_normalize_k_;
   mutable device::Buffer power_partials_;
-  device::Kernel coarse_inverse_k_;
-  device::Buffer coarsest_inverse_;
+  // Each estimated level's sum of squares, totalled on the device
+  // (kernels/reduce.cl, the partials in index order as the host added them)
+  // and read together: one read per set-up whatever the levels and steps.
+  device::Kernel power_total_k_;
+  device::Buffer power_totals_;
 };
 
 template <typename Real, typename C>
@@ -193,7 +211,8 @@ struct Levels<Real, C>::Level {
   // ViennaCL vector to a sized one leaves it as it was: this says instead.)
   bool estimated = false;
   double lambda = 1.0;
-  ChebyshevSteps steps;  // the smoothing's coefficients for lambda (estimate_bound)
+  ChebyshevSteps steps;        // the smoothing's coefficients for lambda (estimate_bounds)
+  ChebyshevSteps solve_steps;  // the coarsest level's polynomial solve (coarse_solve)
   size_t bytes = 0;
 };
 
@@ -241,13 +260,9 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
     power.cg_span = static_cast<int>(kPowerSpan);
     power_dot_k_ = cl_.kernel("cg.cl", power, "snh_cg_dot");
     power_normalize_k_ = cl_.kernel("cg.cl", power, "snh_cg_normalize");
+    power_total_k_ = cl_.kernel("reduce.cl", "", "snh_partial_total");
   }
   coarse_on_device_ = options_.coarse_solve_on_device;
-  if (coarse_on_device_) {
-    device::KernelConfig narrow;
-    narrow.float_cycle = kNarrow;
-    coarse_inverse_k_ = cl_.kernel("coarse_solve.cl", narrow, "snh_coarse_inverse_apply");
-  }
   restrict_k_ = cl_.kernel("multigrid.cl", cycle, "snh_restrict");
   chebyshev_start_k_ = cl_.kernel("multigrid.cl", cycle, "snh_chebyshev_start");
   jacobi_setup_k_ = cl_.kernel("fem.cl", coarse, "snh_block_jacobi_setup");
@@ -528,9 +543,10 @@ void Levels<Real, C>::setup() {
   // lambda_max(D^-1 A) per smoothed level by power iteration: the first
   // setup from a fixed start (deterministic), later ones warm-started from
   // the last eigenvector estimate, whose operator changed by one Newton step
-  // only. Norms are reduced on the device in a fixed order.
+  // only. Norms are reduced on the device in a fixed order. The coarsest
+  // level too where it is smoothed or solved by its own polynomial.
   const size_t smoothed = levels_.size() == 1 || !coarsest_ok_ ? levels_.size() : levels_.size() - 1;
-  for (size_t l = 0; l < smoothed; ++l) estimate_bound(l);
+  estimate_bounds(0, smoothed);
 }
 
 template <typename Real, typename C>
@@ -558,42 +574,73 @@ void Levels<Real, C>::convert(const device::Kernel& k, cl_mem from, size_t value
 
 template <typename Real, typename C>
 void Levels<Real, C>::update_fine_bound() {
-  if (!fine_built_) estimate_bound(0);
+  if (!fine_built_) estimate_bounds(0, 1);
 }
 
 template <typename Real, typename C>
-void Levels<Real, C>::estimate_bound(size_t l) {
-  Level& L = *levels_[l];
-  const bool warm = L.estimated && L.eigenvector.size() == 3 * L.vertices;
+void Levels<Real, C>::estimate_bounds(size_t first, size_t count) {
+  if (count == 0) return;
+  if (!power_dot_k_) {
+    for (size_t l = first; l < first + count; ++l) estimate_on_host(*levels_[l], l);
+    return;
+  }
+  if (!power_totals_ || device::OpenClContext::bytes(power_totals_.get()) < levels_.size() * sizeof(double))
+    power_totals_ = cl_.buffer(CL_MEM_READ_WRITE, levels_.size() * sizeof(double));
+  for (size_t l = first; l < first + count; ++l) queue_estimate(*levels_[l], l, static_cast<int>(l - first));
+  std::vector<double> totals(count);
+  cl_.read(power_totals_.get(), count * sizeof(double), totals.data());
+  for (size_t l = first; l < first + count; ++l) set_bound(*levels_[l], std::sqrt(totals[l - first]));
+}
+
+template <typename Real, typename C>
+void Levels<Real, C>::set_bound(Level& L, double lambda) {
+  L.estimated = std::isfinite(lambda) && lambda > 0.0;
+  if (!L.estimated) lambda = 1.0;  // start again next time
+  L.lambda = lambda;
+  L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
+  if (coarse_on_device_ && &L == levels_.back().get())
+    L.solve_steps = chebyshev_interval_steps(kCoarseDegree, kUpperBound * lambda / kCoarseSpread, kUpperBound * lambda);
+}
+
+// The start: the last estimate's eigenvector, or a fixed pseudo-random
+// vector (deterministic) on the level's free DOFs. Returns the steps to run.
+template <typename C>
+int start_power_iteration(const LatticeLevel& h, bool estimated, viennacl::vector<C>& eigenvector,
+                          device::OpenClContext& cl) {
+  const bool warm = estimated && eigenvector.size() == 3 * h.vertex_count;
   if (!warm) {
-    const LatticeLevel& h = hierarchy_.levels[l];
-    std::vector<C> start(3 * L.vertices);
+    std::vector<C> start(3 * h.vertex_count);
     uint32_t state = 12345u;
     for (size_t i = 0; i < start.size(); ++i) {
       state = state * 1664525u + 1013904223u;
       start[i] = h.mask[i] ? C(0.5 + static_cast<double>(state >> 8) / 16777216.0) : C(0);
     }
-    device::write_to_device(cl_, start, L.eigenvector);
+    device::write_to_device(cl, start, eigenvector);
   }
-  const int iterations = warm ? kWarmPowerIterations : kPowerIterations;
-  if (!power_dot_k_) {  // no fp64 on the device: ViennaCL's norms, read at every step
-    double lambda = 0.0;
-    for (int it = 0; it < iterations; ++it) {
-      const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
-      if (!(norm > 0.0) || !std::isfinite(norm)) break;
-      L.eigenvector *= C(1.0 / norm);
-      product(static_cast<int>(l), L.eigenvector, L.t);
-      inverse_diagonal(static_cast<int>(l), L.t);
-      lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
-      L.eigenvector.fast_swap(L.t);
-    }
-    L.estimated = std::isfinite(lambda) && lambda > 0.0;
-    L.lambda = L.estimated ? lambda : 1.0;
-    L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, L.lambda);
-    return;
+  return warm ? kWarmPowerIterations : kPowerIterations;
+}
+
+template <typename Real, typename C>
+void Levels<Real, C>::estimate_on_host(Level& L, size_t l) {
+  const int iterations = start_power_iteration(hierarchy_.levels[l], L.estimated, L.eigenvector, cl_);
+  double lambda = 0.0;
+  for (int it = 0; it < iterations; ++it) {
+    const double norm = static_cast<double>(viennacl::linalg::norm_2(L.eigenvector));
+    if (!(norm > 0.0) || !std::isfinite(norm)) break;
+    L.eigenvector *= C(1.0 / norm);
+    product(static_cast<int>(l), L.eigenvector, L.t);
+    inverse_diagonal(static_cast<int>(l), L.t);
+    lambda = static_cast<double>(viennacl::linalg::norm_2(L.t));
+    L.eigenvector.fast_swap(L.t);
   }
-  // On the device: each step normalizes by the norm's partials (kernels/cg.cl)
-  // without a read; only the final estimate is read.
+  set_bound(L, lambda);
+}
+
+template <typename Real, typename C>
+void Levels<Real, C>::queue_estimate(Level& L, size_t l, int slot) {
+  const int iterations = start_power_iteration(hierarchy_.levels[l], L.estimated, L.eigenvector, cl_);
+  // Each step normalizes by the norm's partials (kernels/cg.cl) without a
+  // read; the final norm's partials are totalled into `slot`.
   const int n = static_cast<int>(3 * L.vertices);
   const size_t groups = (3 * L.vertices + kPowerSpan - 1) / kPowerSpan;
   if (!power_partials_ || device::OpenClContext::bytes(power_partials_.get()) < groups * sizeof(double))
@@ -616,21 +663,21 @@ void Levels<Real, C>::estimate_bound(size_t l) {
     L.eigenvector.fast_swap(L.t);
   }
   squares(L.eigenvector);
-  std::vector<double> partial(groups);
-  cl_.read(power_partials_.get(), groups * sizeof(double), partial.data());
-  double lambda = 0.0;
-  for (double p : partial) lambda += p;
-  lambda = std::sqrt(lambda);
-  L.estimated = std::isfinite(lambda) && lambda > 0.0;
-  if (!L.estimated) lambda = 1.0;  // start again next time
-  L.lambda = lambda;
-  L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
+  cl_.run(KernelArgs(power_total_k_.get())
+              .add(power_partials_.get())
+              .add(0)
+              .add(static_cast<int>(groups))
+              .add(0)
+              .add(power_totals_.get())
+              .add(slot)
+              .bind(),
+          1);
 }
 
 template <typename Real, typename C>
 void Levels<Real, C>::factor_coarsest() {
   coarsest_ok_ = false;
-  if (levels_.size() < 2) return;
+  if (levels_.size() < 2 || coarse_on_device_) return;
   const Level& L = *levels_.back();
   const LatticeLevel& h = hierarchy_.levels.back();
   std::vector<Real> local(L.cells * kCellMatrix);
@@ -642,33 +689,17 @@ void Levels<Real, C>::factor_coarsest() {
     if (!h.mask[i]) values[coarsest_diagonal_[i]] += 1.0;  // dead DOF (its row and column are 0): identity
   coarsest_.factorize(coarsest_matrix_);
   coarsest_ok_ = coarsest_.info() == Eigen::Success && coarsest_.vectorD().minCoeff() > 0.0;
-  if (!coarsest_ok_ || !coarse_on_device_) return;
-  // Column j of A^-1 (symmetric: also row j), with zero rows and columns at
-  // constrained DOFs, as the host solve's masked result has.
-  const Eigen::Index n = static_cast<Eigen::Index>(3 * L.vertices);
-  const Eigen::MatrixXd inverse = coarsest_.solve(Eigen::MatrixXd::Identity(n, n));
-  std::vector<C> dense(static_cast<size_t>(n * n));
-  for (Eigen::Index j = 0; j < n; ++j)
-    for (Eigen::Index i = 0; i < n; ++i)
-      dense[static_cast<size_t>(j * n + i)] = h.mask[i] && h.mask[j] ? static_cast<C>(inverse(i, j)) : C(0);
-  if (!coarsest_inverse_) {
-    coarsest_inverse_ = cl_.buffer(CL_MEM_READ_ONLY, dense.size() * sizeof(C));
-    table_bytes_ += dense.size() * sizeof(C);
-  }
-  cl_.write(coarsest_inverse_.get(), dense.size() * sizeof(C), dense.data());
 }
 
 template <typename Real, typename C>
 void Levels<Real, C>::coarse_solve() const {
   Level& L = *levels_.back();
-  if (!coarsest_ok_) {  // a singular coarsest operator: smooth instead
-    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b);
+  if (coarse_on_device_) {
+    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b, &L.solve_steps);
     return;
   }
-  if (coarse_on_device_) {
-    const int n = static_cast<int>(3 * L.vertices);
-    cl_.run(KernelArgs(coarse_inverse_k_.get()).add(coarsest_inverse_.get()).add(mem(L.b)).add(n).add(mem(L.x)).bind(),
-            3 * L.vertices);
+  if (!coarsest_ok_) {  // a singular coarsest operator: smooth instead
+    chebyshev(static_cast<int>(levels_.size()) - 1, L.x, L.r, false, &L.b);
     return;
   }
   device::read_back(cl_, L.b, host_rhs_);
@@ -681,11 +712,11 @@ void Levels<Real, C>::coarse_solve() const {
 }
 
 template <typename Real, typename C>
-void Levels<Real, C>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual,
-                                const VectorBase* from) const {
+void Levels<Real, C>::chebyshev(int level, VectorBase& x, VectorBase& r, bool want_residual, const VectorBase* from,
+                                const ChebyshevSteps* polynomial) const {
   Level& L = *levels_[level];
-  const int degree = options_.smoother_degree;
-  const ChebyshevSteps& steps = L.steps;
+  const ChebyshevSteps& steps = polynomial ? *polynomial : L.steps;
+  const int degree = static_cast<int>(steps.c_z.size());
   // With weights beta != 1 on the updates of x the recurrence's r is not
   // b - A x: the residual asked for is then computed from x and b (`from`).
   const bool weighted = steps.weighted();

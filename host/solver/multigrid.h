@@ -24,7 +24,13 @@
 //     updates (snh_chebyshev_step; twist res 32: 2.41 -> 1.77 s applying).
 //   - Coarsest level: assembled and factored (sparse LDL^T, Eigen) on the
 //     host; where that factor is not positive (a true Hessian that is not
-//     positive definite there) the coarsest level is smoothed instead.
+//     positive definite there) the coarsest level is smoothed instead. Or
+//     (MultigridOptions::coarse_solve_on_device) solved approximately on the
+//     device by a first-kind Chebyshev polynomial of degree 8 on [1.1
+//     lambda / 60, 1.1 lambda]: no factor, no read in a V-cycle.
+//   - Set-up reads: every estimated level's lambda_max together in one read,
+//     and with the host's coarsest solve the coarsest cell matrices: two per
+//     build whatever the levels, one with the device's coarsest solve.
 //   - Reuse (MultigridRebuild below): the operators built at one Newton
 //     linearization serve the next few; in between a current fine level
 //     follows the new fine operator, its Chebyshev bound re-estimated.

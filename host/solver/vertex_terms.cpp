@@ -24,6 +24,10 @@ VertexTerms<Real>::VertexTerms(device::OpenClContext& cl, size_t vertex_count, b
     const std::vector<Real> zeros(dofs, Real(0));
     inertia_mass_ = cl_.buffer(CL_MEM_READ_ONLY, vertex_count_ * sizeof(Real), zeros.data());
     inertia_target_ = cl_.buffer(CL_MEM_READ_ONLY, dofs * sizeof(Real), zeros.data());
+    if (cl_.info().has_fp64) {
+      inertia_mass_wide_ = cl_.buffer(CL_MEM_READ_ONLY, vertex_count_ * sizeof(double), inertia_mass_host_.data());
+      inertia_target_wide_ = cl_.buffer(CL_MEM_READ_ONLY, dofs * sizeof(double), inertia_target_host_.data());
+    }
   }
   if (obstacles > 0) {
     const std::vector<Real> zeros(9 * vertex_count_, Real(0));
@@ -54,6 +58,10 @@ void VertexTerms<Real>::set_inertia(const std::vector<double>& coefficient, cons
   const std::vector<Real> c(coefficient.begin(), coefficient.end()), y(target.begin(), target.end());
   cl_.write(inertia_mass_.get(), c.size() * sizeof(Real), c.data());
   cl_.write(inertia_target_.get(), y.size() * sizeof(Real), y.data());
+  if (inertia_mass_wide_) {
+    cl_.write(inertia_mass_wide_.get(), coefficient.size() * sizeof(double), coefficient.data());
+    cl_.write(inertia_target_wide_.get(), target.size() * sizeof(double), target.data());
+  }
 }
 
 template <typename Real>
@@ -62,6 +70,13 @@ void VertexTerms<Real>::add_inertia_energy(const std::vector<Real>& x, double& s
     const double d = static_cast<double>(x[i]) - inertia_target_host_[i];
     sum += 0.5 * inertia_mass_host_[i / 3] * d * d;
   }
+}
+
+template <typename Real>
+void VertexTerms<Real>::queue_inertia_energy(const DeviceReduction& reduction, cl_mem x, int slot) const {
+  if (!inertia_mass_wide_ || !reduction.on_device())
+    throw Error("solver: the inertia energy's device reduction needs fp64 on the device");
+  reduction.queue_inertia(x, inertia_target_wide_.get(), inertia_mass_wide_.get(), 3 * vertex_count_, slot);
 }
 
 template <typename Real>
@@ -183,9 +198,10 @@ template <typename Real>
 size_t VertexTerms<Real>::memory_bytes() const {
   size_t bytes = 0;
   for (const device::Buffer* b :
-       {&inertia_mass_, &inertia_target_, &obstacles_, &contact_energy_, &contact_force_, &contact_blocks_,
-        &contact_scratch_, &contact_depth_, &friction_start_, &friction_anchors_, &friction_start_records_,
-        &friction_records_, &surface_offsets_, &surface_entries_, &surface_vertices_, &surface_weights_})
+       {&inertia_mass_, &inertia_target_, &inertia_mass_wide_, &inertia_target_wide_, &obstacles_, &contact_energy_,
+        &contact_force_, &contact_blocks_, &contact_scratch_, &contact_depth_, &friction_start_, &friction_anchors_,
+        &friction_start_records_, &friction_records_, &surface_offsets_, &surface_entries_, &surface_vertices_,
+        &surface_weights_})
     bytes += device::OpenClContext::bytes(b->get());
   return bytes;
 }

@@ -12,6 +12,7 @@
 #include "device/opencl_context.h"
 #include "snh/mesh.h"
 #include "snh/surface.h"
+#include "solver/device_reduction.h"
 #include "solver/phase_profile.h"
 
 namespace snh::solver {
@@ -44,8 +45,13 @@ class VertexTerms {
 
   // Inertia (validated by the caller): c_v per vertex and the target y.
   void set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target);
-  // sum += 1/2 sum_v c_v |x_v - y_v|^2, entry by entry in order (x: xyz per vertex).
+  // sum += 1/2 sum_v c_v |x_v - y_v|^2, entry by entry in order (x: xyz per
+  // vertex): the host's sum, where the device has no fp64.
   void add_inertia_energy(const std::vector<Real>& x, double& sum) const;
+  // The same energy at x reduced on the device into `slot` of `reduction`
+  // (on_device() only): c and y in double there, as the host holds them,
+  // so no vector crosses to the host.
+  void queue_inertia_energy(const DeviceReduction& reduction, cl_mem x, int slot) const;
   void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
   // The embedded surface's points join the contact (SNH_SURFACE_CONTACT:
   // the contact kernel is rebuilt with them); an empty one leaves them out
@@ -78,6 +84,8 @@ class VertexTerms {
   int obstacles_count_;
   bool friction_;
   device::Buffer inertia_mass_, inertia_target_;
+  // c and y in double for the energy's device reduction (with fp64).
+  device::Buffer inertia_mass_wide_, inertia_target_wide_;
   std::vector<double> inertia_mass_host_, inertia_target_host_;
   // contact_blocks_ holds the blocks of the last linearization, which the
   // products use; other evaluations write theirs to contact_scratch_.

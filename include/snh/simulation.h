@@ -212,13 +212,14 @@ struct MultigridOptions {
   // false: the V-cycle in the working precision. No effect in float or with
   // fine_level current (docs/performance.md).
   bool float_cycle = true;
-  // The coarsest level's solve on the device: the set-up inverts the
-  // level's LDL^T factor on the host into a dense inverse that a kernel
-  // applies, so a V-cycle never waits for the host. false (default): the
-  // factor's solve on the host, the level's vector read back and written
-  // again in every V-cycle. On pocl the inverse's set-up (about n times the
-  // factor's solve, n up to coarsest_dofs) cost more than the reads it
-  // saves (docs/performance.md); not yet measured on a GPU.
+  // The coarsest level's solve on the device: a Chebyshev polynomial of
+  // degree 8 in the level's D^-1 A (an approximate solve, no factor), so a
+  // V-cycle never waits for the host and a build reads only its smoothing
+  // bounds. false (default): the level's exact LDL^T solve on the host, its
+  // vector read back and written again in every V-cycle. On pocl the two
+  // ran equally fast (the device's set-up 35% shorter, Newton and CG counts
+  // up to 27% apart either way; docs/performance.md); not yet measured on a
+  // GPU.
   bool coarse_solve_on_device = false;
 };
 
