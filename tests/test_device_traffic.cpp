@@ -223,7 +223,9 @@ void expect_reads_per_check(Preconditioner preconditioner, int resolution, int k
   EXPECT_LE(p.cg_iterations_past_convergence, solves * (k - 1));
   // None inside a product or a V-cycle.
   EXPECT_EQ(p.traffic.at("products").blocking_readbacks, 0);
-  if (p.traffic.count("preconditioner_apply")) EXPECT_EQ(p.traffic.at("preconditioner_apply").blocking_readbacks, 0);
+  if (p.traffic.count("preconditioner_apply")) {
+    EXPECT_EQ(p.traffic.at("preconditioner_apply").blocking_readbacks, 0);
+  }
 }
 
 TEST(DeviceTraffic, CgReadsOncePerCheckWithBlockJacobi) { expect_reads_per_check(Preconditioner::block_jacobi, 3, 4); }
@@ -349,7 +351,9 @@ NewtonReads newton_reads(int resolution, Preconditioner preconditioner, int k, c
   const long long run_iterations = cg_iterations(r.result) + p.cg_iterations_past_convergence;
   EXPECT_LE(cg.blocking_readbacks * k, run_iterations + linear_solves(r.result) * (k - 1)) << resolution;
   EXPECT_EQ(cg.bytes_to_host, cg.blocking_readbacks * static_cast<long long>((2 * k + 2) * sizeof(double)));
-  if (p.traffic.count("preconditioner_apply")) EXPECT_EQ(p.traffic.at("preconditioner_apply").blocking_readbacks, 0);
+  if (p.traffic.count("preconditioner_apply")) {
+    EXPECT_EQ(p.traffic.at("preconditioner_apply").blocking_readbacks, 0);
+  }
   // Less each step's result, read once at its end (double here).
   NewtonReads out;
   out.dofs = static_cast<long long>(r.result.positions.size());

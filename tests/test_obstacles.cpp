@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -216,7 +217,8 @@ TEST(Obstacles, BlockRestingOnAPlanePenetratesWeightOverStiffness) {
   // first Newton iteration (its vertical motion is otherwise free).
   const double plane_z = -thickness + 0.001;
   options.obstacles = {Obstacle::plane({0, 0, plane_z}, {0, 0, 1})};
-  options.contact = {k, thickness};
+  options.contact.stiffness = k;
+  options.contact.thickness = thickness;
   options.absolute_tolerance = 1e-9;
   Simulation sim(mesh, StableNeoHookean::from_youngs_modulus(1e7, 0.3), {lateral}, options);
   const SolveResult r = sim.solve();
@@ -241,7 +243,8 @@ TEST(Obstacles, MovingSpherePushesIntoABlock) {
   ball.motion = [](double t) { return RigidTransform::translation_by({0.0, 0.0, -0.1 * t}); };
   SolveOptions options;
   options.obstacles = {ball};
-  options.contact = {1e5, 0.005};
+  options.contact.stiffness = 1e5;
+  options.contact.thickness = 0.005;
   options.load_steps = 4;
   Simulation sim(mesh, StableNeoHookean::from_youngs_modulus(1e4, 0.3), {held}, options);
   const SolveResult r = sim.solve();
@@ -276,7 +279,8 @@ TEST(Obstacles, BlockDroppedOnAPlaneComesToRest) {
   options.dynamics->damping.mass = 20.0;
   options.body_force = {0.0, 0.0, -density * g};
   options.obstacles = {Obstacle::plane({0, 0, -thickness}, {0, 0, 1})};
-  options.contact = {k, thickness};
+  options.contact.stiffness = k;
+  options.contact.thickness = thickness;
   options.absolute_tolerance = 1e-9;
   // E = 1e7 at a tight tolerance: the energy (0.5 J) is a small sum of
   // elastic terms of mu V ~ 4e3 J whose rounding the driver must allow for
@@ -298,7 +302,10 @@ TEST(Obstacles, BlockDroppedOnAPlaneComesToRest) {
 }
 
 TEST(Obstacles, OptionsAreChecked) {
-  auto message = [](std::vector<Obstacle> obstacles, const ContactOptions& contact) {
+  auto message = [](std::vector<Obstacle> obstacles, std::array<double, 2> stiffness_thickness) {
+    ContactOptions contact;
+    contact.stiffness = stiffness_thickness[0];
+    contact.thickness = stiffness_thickness[1];
     return contact_options_error(std::move(obstacles), contact);
   };
   EXPECT_NE(message({Obstacle::plane({0, 0, 0}, {0, 0, 1})}, {0.0, 0.0}).find("stiffness"), std::string::npos);

@@ -362,7 +362,10 @@ SceneFile load_scene(const std::string& path) {
                                 "\", not both");
     out.character = scene_io::read_character_section(r, doc["character"], folder);
     const SceneFile::CharacterSection& c = *out.character;
-    out.embedded = SceneFile::Embedded{c.character.surface, c.rig.voxels, c.rig.embedding};
+    out.embedded.emplace();
+    out.embedded->surface = c.character.surface;
+    out.embedded->voxels = c.rig.voxels;
+    out.embedded->embedding = c.rig.embedding;
     s.mesh = c.rig.voxels.lattice;
   } else if (doc.contains("mesh") == doc.contains("embed")) {
     r.fail("mesh",
