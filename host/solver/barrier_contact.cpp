@@ -126,6 +126,13 @@ Box box_of(const int* v, int n, const std::vector<double>& x, const std::vector<
   return b;
 }
 
+// The pair's barrier b (kind 0: point-triangle, 1: edge-edge with its
+// mollifier), its squared distance in *s, and with g and h its gradient (12)
+// and Hessian (144) at the gathered positions q.
+double pair_potential(const BarrierPair& pair, const double* q, double sh, double* s, double* g, double* h) {
+  return pair.kind == 0 ? kernel::ipc_pt_potential(q, sh, s, g, h) : kernel::ipc_ee_potential(q, sh, pair.ex, s, g, h);
+}
+
 void gather(const BarrierPair& pair, const std::vector<double>& x, double* out) {
   for (int v = 0; v < 4; ++v)
     for (int d = 0; d < 3; ++d) out[3 * v + d] = x[3 * pair.vertex[v] + d];
@@ -372,8 +379,7 @@ double BarrierContact::energy(const std::vector<double>& lattice_x, const std::v
   for (const BarrierPair& pair : pairs) {
     gather(pair, x, q);
     double s = 0.0;
-    sum += pair.kind == 0 ? kernel::ipc_pt_potential(q, sh, &s, nullptr, nullptr)
-                          : kernel::ipc_ee_potential(q, sh, pair.ex, &s, nullptr, nullptr);
+    sum += pair_potential(pair, q, sh, &s, nullptr, nullptr);
     smallest = std::min(smallest, s);
   }
   if (min_distance) *min_distance = std::sqrt(smallest);
@@ -388,10 +394,7 @@ void BarrierContact::add_gradient(const std::vector<double>& lattice_x, const st
   double q[12], pg[12], ph[144], s;
   for (const BarrierPair& pair : pairs) {
     gather(pair, x, q);
-    if (pair.kind == 0)
-      kernel::ipc_pt_potential(q, sh, &s, pg, ph);
-    else
-      kernel::ipc_ee_potential(q, sh, pair.ex, &s, pg, ph);
+    pair_potential(pair, q, sh, &s, pg, ph);
     for (int v = 0; v < 4; ++v) {
       if (carrier_.empty()) {
         for (int d = 0; d < 3; ++d) g[3 * pair.vertex[v] + d] += kappa * pg[3 * v + d];
@@ -415,10 +418,7 @@ BarrierHessian BarrierContact::hessian(const std::vector<double>& lattice_x, con
   double q[12], pg[12], ph[144], s;
   for (const BarrierPair& pair : pairs) {
     gather(pair, x, q);
-    if (pair.kind == 0)
-      kernel::ipc_pt_potential(q, sh, &s, pg, ph);
-    else
-      kernel::ipc_ee_potential(q, sh, pair.ex, &s, pg, ph);
+    pair_potential(pair, q, sh, &s, pg, ph);
     project_psd_pair(ph);
     auto add = [&](int row, int column, int v, int w, double scale) {
       auto [it, fresh] = blocks.try_emplace({row, column});
