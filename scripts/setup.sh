@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir="${1:-build}"
 
-packages=(cmake g++ make pkg-config clang-format
+packages=(cmake g++ make pkg-config clang-format ccache
           ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
           libviennacl-dev libeigen3-dev libgtest-dev
           nlohmann-json3-dev libcli11-dev python3-matplotlib
