@@ -621,6 +621,68 @@ TEST(BarrierContact, DriverWithoutABoundIsUnchangedAndABoundCapsEveryStep) {
   for (const NewtonIteration& it : h2) EXPECT_LE(it.step_length, 0.25);
 }
 
+// A slide off a saddle, E = -x^2 / 2 + x^4 / 4 from x = 0.01, with the
+// projected Hessian's curvature (at least 1) far above the true one: Newton
+// extrapolates past alpha = 1 (doubling while the descent holds). A
+// barrier's bound stops at alpha = 1 (continuous collision detection clears
+// at most the step asked for), so each extension is cleared on its own: a
+// far wall lets Newton reach the minimum at x = 1 as fast as without a
+// bound, a near one is never passed.
+struct Slide {
+  using Vector = std::vector<double>;
+  double wall = std::numeric_limits<double>::infinity();
+  size_t dofs() const { return 1; }
+  double epsilon() const { return 1e-16; }
+  Vector vector() const { return Vector(1, 0.0); }
+  double energy(const Vector& x) { return -0.5 * x[0] * x[0] + 0.25 * std::pow(x[0], 4); }
+  double last_min_j() const { return 1.0; }
+  void residual(const Vector& x, Vector& r) { r[0] = x[0] - std::pow(x[0], 3); }
+  double norm(const Vector& v) const { return std::abs(v[0]); }
+  double dot(const Vector& a, const Vector& b) const { return a[0] * b[0]; }
+  Vector x_lin;
+  void linearize(const Vector& x, bool) { x_lin = x; }
+  solver::LinearSolve solve(const Vector& r, Vector& p, double, int) {
+    p[0] = r[0] / std::max(3 * x_lin[0] * x_lin[0] - 1, 1.0);
+    return {1, 0.0, false, false};
+  }
+  void precondition(const Vector& r, Vector& p) { p = r; }
+  void step(const Vector& x, double alpha, const Vector& p, Vector& out) { out[0] = x[0] + alpha * p[0]; }
+  void swap(Vector& a, Vector& b) { a.swap(b); }
+  bool has_true_hessian() const { return false; }
+  // The largest alpha <= 1 that keeps x + alpha p at or before the wall.
+  double step_bound(const Vector& x, const Vector& p) { return p[0] > 0.0 ? std::min(1.0, (wall - x[0]) / p[0]) : 1.0; }
+};
+
+TEST(BarrierContact, DriverExtrapolatesPastABarriersUnitBoundWhereTheWayIsClear) {
+  SolveOptions options;
+  auto run = [&](Slide& problem) {
+    solver::NewtonDriver<Slide> driver(problem, options);
+    std::vector<double> x{0.01};
+    std::vector<NewtonIteration> history;
+    const StepResult r = driver.solve_step(0, x, 1e-10, history, std::chrono::steady_clock::now());
+    double longest = 0.0;
+    for (const NewtonIteration& it : history) longest = std::max(longest, it.step_length);
+    return std::make_tuple(r, x[0], longest);
+  };
+  Slide free_slide;  // no bound at all (infinity)
+  free_slide.wall = std::numeric_limits<double>::infinity();
+  Slide far;
+  far.wall = 3.0;
+  Slide near;
+  near.wall = 0.3;
+  const auto [r_free, x_free, longest_free] = run(free_slide);
+  const auto [r_far, x_far, longest_far] = run(far);
+  const auto [r_near, x_near, longest_near] = run(near);
+  ASSERT_TRUE(r_free.converged);
+  EXPECT_GT(longest_free, 1.0);
+  EXPECT_TRUE(r_far.converged);
+  EXPECT_NEAR(x_far, 1.0, 1e-9);
+  EXPECT_GT(longest_far, 1.0) << "a barrier's unit bound kept Newton from extrapolating";
+  EXPECT_EQ(r_far.newton_iterations, r_free.newton_iterations);
+  EXPECT_LE(x_near, 0.3);
+  EXPECT_GT(x_near, 0.01);
+}
+
 // The stability suite's frictionless squash at nu = 0.46, 4^3 hexes, the
 // lid closing to 5% of the height and opening again, in 32 time steps:
 // without self-contact the surface passes through itself; with barrier

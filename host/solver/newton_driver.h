@@ -405,7 +405,8 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     // trial's residual.
     double trial_energy = energy, trial_rn = rn;
     bool non_finite_residual = false;
-    double bound = std::numeric_limits<double>::infinity();  // step_bound along this p
+    // step_bound along this p (a barrier's is at most 1; infinity without one)
+    double bound = std::numeric_limits<double>::infinity();
     auto line_search = [&]() -> double {
       bound = step_bound_of(problem_, x, p);
       if (!(bound > 0.0)) return 0.0;
@@ -455,10 +456,15 @@ StepResult NewtonDriver<Problem>::solve_step(int step, Vector& x, double toleran
     if (accepted == 1.0) {
       double descent = problem_.dot(r_trial, p);  // -dE/dalpha at the accepted point
       int doublings = 0;
-      while (doublings < kMaxDoublings && std::isfinite(descent) && descent >= slope && descent > 0.0 &&
-             2.0 * accepted <= bound) {
+      while (doublings < kMaxDoublings && std::isfinite(descent) && descent >= slope && descent > 0.0) {
         const double next = 2.0 * accepted;
         problem_.step(x, next, p, far);
+        // Past the bound along p (a barrier's stops at alpha = 1) the
+        // extension from the accepted point is checked on its own.
+        if (next > bound) {
+          problem_.step(far, -1.0, trial, r_far);  // the move from trial to far
+          if (!(step_bound_of(problem_, trial, r_far) >= 1.0)) break;
+        }
         const double far_energy = problem_.energy(far);
         if (!std::isfinite(far_energy) || !(far_energy <= trial_energy - kArmijo * (next - accepted) * descent)) break;
         problem_.residual(far, r_far);
