@@ -36,6 +36,7 @@ TEST(HonestResults, WarningNamesRoundTrip) {
       {ResultWarning::inverted_elements, "inverted_elements"},
       {ResultWarning::not_converged, "not_converged"},
       {ResultWarning::obstacle_penetration, "obstacle_penetration"},
+      {ResultWarning::surface_intersections, "surface_intersections"},
   };
   for (const auto& [kind, name] : expected) {
     EXPECT_STREQ(to_string(kind), name);
@@ -363,7 +364,8 @@ TEST(SurfaceContact, BadEmbeddingIsNamed) {
   const Mesh mesh = make_box_lattice(1, 1, 1, 1.0);
   SolveOptions options;
   options.obstacles = {Obstacle::plane({0, 0, -1}, {0, 0, 1})};
-  options.contact = {1.0, 0.01};
+  options.contact.stiffness = 1.0;
+  options.contact.thickness = 0.01;
   Simulation sim(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3), {ConstraintSet::fixed("all", {0, 1, 2, 3})},
                  options);
   Embedding bad;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "snh/outcomes.h"
+
 namespace snh::scene_io {
 
 OutputSurfaceCheck::OutputSurfaceCheck(const SceneFile& file, const Mesh& mesh) : file_(&file), mesh_(&mesh) {
@@ -41,8 +43,9 @@ SelfIntersections OutputSurfaceCheck::count(const std::vector<double>& x, const 
 
 std::string OutputSurfaceCheck::warning(const SelfIntersections& count) {
   if (count.clean()) return "";
-  std::string w = "surface_intersections: " + std::to_string(count.intersecting_pairs) +
-                  " intersecting triangle pairs of the output surface";
+  std::string w =
+      warning_text(ResultWarning::surface_intersections,
+                   std::to_string(count.intersecting_pairs) + " intersecting triangle pairs of the output surface");
   if (!count.first_pairs.empty())
     w += " (first: triangles " + std::to_string(count.first_pairs[0][0]) + " and " +
          std::to_string(count.first_pairs[0][1]) + ")";

@@ -44,10 +44,11 @@ constexpr NameTable<StepStatus, 8> kStepStatusNames{{
     {StepStatus::inverted_elements, "inverted_elements"},
 }};
 
-constexpr NameTable<ResultWarning, 3> kResultWarningNames{{
+constexpr NameTable<ResultWarning, 4> kResultWarningNames{{
     {ResultWarning::inverted_elements, "inverted_elements"},
     {ResultWarning::not_converged, "not_converged"},
     {ResultWarning::obstacle_penetration, "obstacle_penetration"},
+    {ResultWarning::surface_intersections, "surface_intersections"},
 }};
 
 constexpr const char* kWarningSeparator = ": ";

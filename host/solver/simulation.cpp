@@ -31,6 +31,7 @@
 #include "solver/obstacles.h"
 #include "solver/phase_profile.h"
 #include "solver/precision_fallback.h"
+#include "solver/prescribed_crossing.h"
 #include "solver/simulation_engine.h"
 #include "solver/simulation_state.h"
 #include "solver/solve_accounting.h"
@@ -213,6 +214,12 @@ struct Simulation::Impl {
       warnings.push_back("contact: " + std::to_string(left_out) +
                          " self-contact surface pairs are closer than its distance at rest (seams, or the surface "
                          "touching or crossing itself); they are left out of self-contact");
+    const solver::BarrierTerms<double>* dual_barrier = dual ? dual->model->self_barrier() : nullptr;
+    const solver::BarrierTerms<float>* single_barrier = single ? single->model->self_barrier() : nullptr;
+    if (dual_barrier)
+      crossing = std::make_unique<solver::PrescribedCrossingCheck>(dual_barrier->contact(), mesh.positions);
+    if (single_barrier)
+      crossing = std::make_unique<solver::PrescribedCrossingCheck>(single_barrier->contact(), mesh.positions);
   }
 
   // Barrier self-contact's dhat and kappa (ContactOptions::self_distance),
@@ -303,10 +310,14 @@ struct Simulation::Impl {
     }
   }
 
-  // Every set's targets at fraction s of this solve, into x.
+  // Every set's targets at fraction s of this solve, into x; with barrier
+  // self-contact the placement's CCD is noted (solver/prescribed_crossing.h).
   void place_targets(double s) {
+    const std::vector<double> before = crossing ? x : std::vector<double>();
     for (size_t k = 0; k < constraints.size(); ++k) solver::place_target(mesh, constraints[k], targets[k], s, x);
+    if (crossing) crossing->placed(before, x);
   }
+  std::unique_ptr<solver::PrescribedCrossingCheck> crossing;
 
   template <typename Real>
   StepResult solve_in(Engine<Real>& engine, int s, std::vector<NewtonIteration>& history, Clock::time_point start,
@@ -409,8 +420,9 @@ struct Simulation::Impl {
         solver::ramp_force(force_from, force_to, fraction, force_applied);
         step = solve_step(s, steps, result, start, progress);
       }
-      solver::assess_step(mesh, rest, x, options, (options.dynamics ? "time step " : "load step ") + std::to_string(s),
-                          step);
+      const std::string label = (options.dynamics ? "time step " : "load step ") + std::to_string(s);
+      solver::assess_step(mesh, rest, x, options, label, step);
+      if (crossing) crossing->assess(x, label, step);
       result.warnings.insert(result.warnings.end(), step.warnings.begin(), step.warnings.end());
       result.converged = result.converged && step.converged && step.status != StepStatus::inverted_elements;
       result.final_residual_norm = step.residual_norm;

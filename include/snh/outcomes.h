@@ -49,6 +49,11 @@ enum class ResultWarning {
   // deeper in an obstacle's contact layer than the layer is thick, that is
   // inside the obstacle itself.
   obstacle_penetration,
+  // "surface_intersections": the surface passes through itself at the end
+  // of the step: with self-contact, after a prescribed motion (a target, a
+  // bone) moved it through itself, which self-contact cannot stop; in
+  // scene files also the output surface's count (output.check_intersections).
+  surface_intersections,
 };
 
 const char* to_string(ResultWarning kind);
