@@ -17,6 +17,22 @@
 #define SNH_REDUCE_GROUP 64
 #define SNH_REDUCE_SPAN (SNH_REDUCE_GROUP * 64)
 
+/* The sum of the group's values v, folded in a fixed tree in local memory
+ * (fold: SNH_REDUCE_GROUP entries), returned to every item. Every item of
+ * the group calls it (it holds barriers). */
+#define SNH_GROUP_SUM(type)                                        \
+  SNH_FN type group_sum_##type(__local type* fold, const type v) { \
+    const int l = (int)get_local_id(0);                            \
+    fold[l] = v;                                                   \
+    barrier(CLK_LOCAL_MEM_FENCE);                                  \
+    for (int h = SNH_REDUCE_GROUP / 2; h > 0; h >>= 1) {           \
+      if (l < h) fold[l] += fold[l + h];                           \
+      barrier(CLK_LOCAL_MEM_FENCE);                                \
+    }                                                              \
+    return fold[0];                                                \
+  }
+SNH_GROUP_SUM(double)
+
 /* mode 0: sum a; 1: sum a^2; 2: sum a b (b is read only in mode 2). */
 __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_partial_sums(
     __global const real* a, __global const real* b, const int n, const int mode, __global double* partial) {
@@ -29,13 +45,8 @@ __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_
     const double x = (double)a[i];
     s += mode == 0 ? x : mode == 1 ? x * x : x * (double)b[i];
   }
-  fold[l] = s;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int h = SNH_REDUCE_GROUP / 2; h > 0; h >>= 1) {
-    if (l < h) fold[l] += fold[l + h];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (l == 0) partial[g] = fold[0];
+  const double sum = group_sum_double(fold, s);
+  if (l == 0) partial[g] = sum;
 }
 
 /* The smallest entry of each span, by x < m (a NaN entry is passed over
@@ -75,19 +86,10 @@ __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_
     s += w;
     m += fabs(w);
   }
-  fold[l] = s;
-  size[l] = m;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int h = SNH_REDUCE_GROUP / 2; h > 0; h >>= 1) {
-    if (l < h) {
-      fold[l] += fold[l + h];
-      size[l] += size[l + h];
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
+  const double work = group_sum_double(fold, s), magnitude = group_sum_double(size, m);
   if (l == 0) {
-    partial[g] = fold[0];
-    partial[groups + g] = size[0];
+    partial[g] = work;
+    partial[groups + g] = magnitude;
   }
 }
 
@@ -106,13 +108,8 @@ __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_
     const double d = (double)x[i] - y[i];
     s += 0.5 * c[i / 3] * d * d;
   }
-  fold[l] = s;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int h = SNH_REDUCE_GROUP / 2; h > 0; h >>= 1) {
-    if (l < h) fold[l] += fold[l + h];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (l == 0) partial[g] = fold[0];
+  const double sum = group_sum_double(fold, s);
+  if (l == 0) partial[g] = sum;
 }
 
 /* total[slot] = the sum (minimum: 1) of partial[offset..offset + groups) in

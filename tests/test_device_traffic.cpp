@@ -135,6 +135,22 @@ DeviceTraffic cg_traffic(const SolveProfile& p) {
   return t;
 }
 
+// The rest, less the preconditioner's set-up: the Newton loop's own traffic.
+DeviceTraffic outside_linear_solves(const SolveProfile& p) {
+  DeviceTraffic outside;
+  for (const auto& [phase, t] : p.traffic)
+    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
+        phase != "preconditioner_setup")
+      outside += t;
+  return outside;
+}
+
+int newton_iterations(const SolveResult& r) {
+  int n = 0;
+  for (const StepResult& s : r.steps) n += s.newton_iterations;
+  return n;
+}
+
 int cg_iterations(const SolveResult& r) {
   int n = 0;
   for (const StepResult& s : r.steps) n += s.cg_iterations;
@@ -338,13 +354,8 @@ NewtonReads newton_reads(int resolution, Preconditioner preconditioner, int k, c
   const Traced r = run(make_scene("twist", parameters), preconditioner, k, HessianMode::projected, force);
   EXPECT_TRUE(r.result.converged) << resolution;
   const SolveProfile& p = r.result.profile;
-  DeviceTraffic outside;
-  for (const auto& [phase, t] : p.traffic)
-    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
-        phase != "preconditioner_setup")
-      outside += t;
-  int newton = 0;
-  for (const StepResult& s : r.result.steps) newton += s.newton_iterations;
+  const DeviceTraffic outside = outside_linear_solves(p);
+  const int newton = newton_iterations(r.result);
   EXPECT_GT(newton, 0);
   // CG: one read of 2 k + 2 doubles per k iterations; none in a V-cycle.
   const DeviceTraffic cg = cg_traffic(p);
@@ -461,13 +472,8 @@ DynamicsReads dynamics_reads(int resolution, Preconditioner preconditioner) {
   });
   EXPECT_TRUE(r.result.converged) << resolution;
   const SolveProfile& p = r.result.profile;
-  DeviceTraffic outside;
-  for (const auto& [phase, t] : p.traffic)
-    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
-        phase != "preconditioner_setup")
-      outside += t;
-  int newton = 0;
-  for (const StepResult& s : r.result.steps) newton += s.newton_iterations;
+  const DeviceTraffic outside = outside_linear_solves(p);
+  const int newton = newton_iterations(r.result);
   EXPECT_GT(newton, 0);
   DynamicsReads out;
   out.dofs = static_cast<long long>(r.result.positions.size());
