@@ -5,7 +5,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -17,22 +16,9 @@
 
 namespace snh::cli {
 
-// The names of the values 0, 1, 2, ... up to the first outside the table:
-// for a to_string that answers such a value with a word that is no name
-// (ElementType's "unknown"), the first whose name is that of a value far
-// outside the table.
-template <typename E>
-std::vector<std::string> enum_names(const char* (*name)(E)) {
-  using Underlying = std::underlying_type_t<E>;
-  const std::string fallback = name(static_cast<E>(std::numeric_limits<Underlying>::max()));
-  std::vector<std::string> out;
-  for (Underlying i = 0; name(static_cast<E>(i)) != fallback; ++i) out.push_back(name(static_cast<E>(i)));
-  return out;
-}
-
-// The same for an enum with a parse function: the values 0, 1, 2, ... up to
-// the first whose name does not parse back to it (a to_string may answer
-// values outside its table with one of its names).
+// The names of an enum's values 0, 1, 2, ... up to the first whose name
+// does not parse back to it (a to_string may answer values outside its
+// table with one of its names, or with a word that is no name).
 template <typename E>
 std::vector<std::string> enum_names(const char* (*name)(E), E (*parse)(const std::string&)) {
   using Underlying = std::underlying_type_t<E>;
@@ -63,24 +49,11 @@ inline std::vector<std::string> names_with(std::vector<std::string> names, const
   return out;
 }
 
-// The value named `text`; else snh::Error "<what>: expected a, b or c, got
-// '<text>'".
-template <typename E>
-E enum_value(const char* (*name)(E), const std::string& text, const char* what) {
-  const std::vector<std::string> names = enum_names(name);
-  std::string known;
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (text == names[i]) return static_cast<E>(i);
-    known += std::string(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
-  }
-  throw Error(std::string(what) + ": expected " + known + ", got '" + text + "'");
-}
-
 // The element types ("hex8", "tet4") and the one a name stands for.
-inline std::vector<std::string> element_type_names() { return enum_names<ElementType>(to_string); }
-inline ElementType element_type_named(const std::string& text) {
-  return enum_value<ElementType>(to_string, text, "element type");
+inline std::vector<std::string> element_type_names() {
+  return enum_names<ElementType>(element_type_name, parse_element_type);
 }
+inline ElementType element_type_named(const std::string& text) { return parse_element_type(text); }
 
 // The names of the other enums the command lines take.
 inline std::vector<std::string> precision_names() { return enum_names<Precision>(to_string, parse_precision); }

@@ -35,7 +35,7 @@ int run_hessian(const HessianCommand& o) {
   p.resolution = o.resolution;
   p.youngs_modulus = o.youngs_modulus;
   p.poisson_ratio = o.poisson_ratio;
-  p.element_type = element_type_named(o.element);
+  p.element_type = parse_element_type(o.element);
   const Scene scene = make_scene(o.name, p);
   const MaterialMap materials = uniform_material(scene.mesh, scene.material);
   const auto t0 = Clock::now();

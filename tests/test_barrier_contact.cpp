@@ -99,6 +99,42 @@ struct Fixture {
   }
 };
 
+// kappa times the barrier energy at x: its gradient against central
+// differences (step 1e-7, within 1e-6 of its largest entry), and its Hessian,
+// each vertex's blocks in ascending columns, assembled dense: symmetric, PSD
+// and not zero. `hessian` gets the Hessian.
+void expect_gradient_and_psd_hessian(const solver::BarrierContact& contact, const std::vector<double>& x, double kappa,
+                                     solver::BarrierHessian& hessian) {
+  auto energy = [&](const std::vector<double>& y) { return kappa * contact.energy(y, contact.near_pairs(y), nullptr); };
+  std::vector<double> g(x.size(), 0.0);
+  contact.add_gradient(x, contact.near_pairs(x), kappa, g);
+  double scale = 0.0;
+  for (double e : g) scale = std::max(scale, std::abs(e));
+  ASSERT_GT(scale, 0.0);
+  for (size_t i = 0; i < x.size(); ++i) {
+    std::vector<double> plus = x, minus = x;
+    plus[i] += 1e-7;
+    minus[i] -= 1e-7;
+    EXPECT_NEAR((energy(plus) - energy(minus)) / 2e-7, g[i], 1e-6 * scale) << i;
+  }
+  hessian = contact.hessian(x, contact.near_pairs(x), kappa);
+  const solver::BarrierHessian& h = hessian;
+  const size_t n = x.size();
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (size_t v = 0; v + 1 < h.offsets.size(); ++v)
+    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k) {
+      if (k > h.offsets[v]) {
+        EXPECT_LT(h.columns[k - 1], h.columns[k]);
+      }
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) dense(3 * v + i, 3 * h.columns[k] + j) = h.blocks[9 * k + 3 * i + j];
+    }
+  EXPECT_LT((dense - dense.transpose()).norm(), 1e-12 * dense.norm());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (dense + dense.transpose()));
+  EXPECT_GE(eigen.eigenvalues().minCoeff(), -1e-10 * dense.norm());
+  EXPECT_GT(eigen.eigenvalues().maxCoeff(), 0.0);
+}
+
 TEST(BarrierContact, NoPairAtRestAndNearPairsExcludeNeighbours) {
   const Mesh lattice = make_box_lattice(3, 2, 2, 1.0);
   solver::BarrierContact rest(lattice);
@@ -143,33 +179,8 @@ TEST(BarrierContact, GradientMatchesDifferencesAndHessianIsSymmetricPsdAndRepeat
   std::vector<double> x = f.x;
   for (double& e : x) e += jitter(rng);
   const double kappa = 3.0;
-  auto energy = [&](const std::vector<double>& y) { return kappa * contact.energy(y, contact.near_pairs(y), nullptr); };
-  std::vector<double> g(x.size(), 0.0);
-  contact.add_gradient(x, contact.near_pairs(x), kappa, g);
-  double scale = 0.0;
-  for (double e : g) scale = std::max(scale, std::abs(e));
-  ASSERT_GT(scale, 0.0);
-  for (size_t i = 0; i < x.size(); ++i) {
-    std::vector<double> plus = x, minus = x;
-    plus[i] += 1e-7;
-    minus[i] -= 1e-7;
-    EXPECT_NEAR((energy(plus) - energy(minus)) / 2e-7, g[i], 1e-6 * scale) << i;
-  }
-  const solver::BarrierHessian h = contact.hessian(x, contact.near_pairs(x), kappa);
-  const size_t n = x.size();
-  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
-  for (size_t v = 0; v + 1 < h.offsets.size(); ++v)
-    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k) {
-      if (k > h.offsets[v]) {
-        EXPECT_LT(h.columns[k - 1], h.columns[k]);
-      }
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) dense(3 * v + i, 3 * h.columns[k] + j) = h.blocks[9 * k + 3 * i + j];
-    }
-  EXPECT_LT((dense - dense.transpose()).norm(), 1e-12 * dense.norm());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (dense + dense.transpose()));
-  EXPECT_GE(eigen.eigenvalues().minCoeff(), -1e-10 * dense.norm());
-  EXPECT_GT(eigen.eigenvalues().maxCoeff(), 0.0);
+  solver::BarrierHessian h;
+  ASSERT_NO_FATAL_FAILURE(expect_gradient_and_psd_hessian(contact, x, kappa, h));
   const solver::BarrierHessian again = contact.hessian(x, contact.near_pairs(x), kappa);
   EXPECT_EQ(again.blocks, h.blocks);  // bitwise
   EXPECT_EQ(again.columns, h.columns);
@@ -221,33 +232,12 @@ TEST(BarrierContact, EmbeddedSurfaceGradientHessianAndStepBoundAreCarriedByTheCe
   for (double& e : x) e += jitter(rng);
   ASSERT_FALSE(contact.near_pairs(x).empty());
   const double kappa = 2.0;
-  auto energy = [&](const std::vector<double>& y) { return kappa * contact.energy(y, contact.near_pairs(y), nullptr); };
-  std::vector<double> g(x.size(), 0.0);
-  contact.add_gradient(x, contact.near_pairs(x), kappa, g);
-  double scale = 0.0;
-  for (double e : g) scale = std::max(scale, std::abs(e));
-  ASSERT_GT(scale, 0.0);
-  for (size_t i = 0; i < x.size(); ++i) {
-    std::vector<double> plus = x, minus = x;
-    plus[i] += 1e-7;
-    minus[i] -= 1e-7;
-    EXPECT_NEAR((energy(plus) - energy(minus)) / 2e-7, g[i], 1e-6 * scale) << i;
-  }
   // W^T H W: symmetric and PSD over the lattice's DOFs, and its product with
   // a direction equals the gradient's directional difference within the
   // projection (here the pair Hessians' clamped parts are checked by sign).
-  const solver::BarrierHessian h = contact.hessian(x, contact.near_pairs(x), kappa);
+  solver::BarrierHessian h;
+  ASSERT_NO_FATAL_FAILURE(expect_gradient_and_psd_hessian(contact, x, kappa, h));
   ASSERT_EQ(h.offsets.size(), f.mesh.vertex_count() + 1);
-  const size_t n = x.size();
-  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
-  for (size_t v = 0; v + 1 < h.offsets.size(); ++v)
-    for (int k = h.offsets[v]; k < h.offsets[v + 1]; ++k)
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) dense(3 * v + i, 3 * h.columns[k] + j) = h.blocks[9 * k + 3 * i + j];
-  EXPECT_LT((dense - dense.transpose()).norm(), 1e-12 * dense.norm());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (dense + dense.transpose()));
-  EXPECT_GE(eigen.eigenvalues().minCoeff(), -1e-10 * dense.norm());
-  EXPECT_GT(eigen.eigenvalues().maxCoeff(), 0.0);
   // B's cells down through A's: the bound stops the embedded surfaces apart.
   contact.set_distance(0.02);
   const std::vector<double> p = f.b_down(-0.6);

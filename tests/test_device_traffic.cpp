@@ -135,6 +135,22 @@ DeviceTraffic cg_traffic(const SolveProfile& p) {
   return t;
 }
 
+// The rest, less the preconditioner's set-up: the Newton loop's own traffic.
+DeviceTraffic outside_linear_solves(const SolveProfile& p) {
+  DeviceTraffic outside;
+  for (const auto& [phase, t] : p.traffic)
+    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
+        phase != "preconditioner_setup")
+      outside += t;
+  return outside;
+}
+
+int newton_iterations(const SolveResult& r) {
+  int n = 0;
+  for (const StepResult& s : r.steps) n += s.newton_iterations;
+  return n;
+}
+
 int cg_iterations(const SolveResult& r) {
   int n = 0;
   for (const StepResult& s : r.steps) n += s.cg_iterations;
@@ -338,13 +354,8 @@ NewtonReads newton_reads(int resolution, Preconditioner preconditioner, int k, c
   const Traced r = run(make_scene("twist", parameters), preconditioner, k, HessianMode::projected, force);
   EXPECT_TRUE(r.result.converged) << resolution;
   const SolveProfile& p = r.result.profile;
-  DeviceTraffic outside;
-  for (const auto& [phase, t] : p.traffic)
-    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
-        phase != "preconditioner_setup")
-      outside += t;
-  int newton = 0;
-  for (const StepResult& s : r.result.steps) newton += s.newton_iterations;
+  const DeviceTraffic outside = outside_linear_solves(p);
+  const int newton = newton_iterations(r.result);
   EXPECT_GT(newton, 0);
   // CG: one read of 2 k + 2 doubles per k iterations; none in a V-cycle.
   const DeviceTraffic cg = cg_traffic(p);
@@ -461,13 +472,8 @@ DynamicsReads dynamics_reads(int resolution, Preconditioner preconditioner) {
   });
   EXPECT_TRUE(r.result.converged) << resolution;
   const SolveProfile& p = r.result.profile;
-  DeviceTraffic outside;
-  for (const auto& [phase, t] : p.traffic)
-    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
-        phase != "preconditioner_setup")
-      outside += t;
-  int newton = 0;
-  for (const StepResult& s : r.result.steps) newton += s.newton_iterations;
+  const DeviceTraffic outside = outside_linear_solves(p);
+  const int newton = newton_iterations(r.result);
   EXPECT_GT(newton, 0);
   DynamicsReads out;
   out.dofs = static_cast<long long>(r.result.positions.size());
@@ -500,6 +506,62 @@ TEST(DeviceTraffic, DynamicsReadsAFewDoublesPerNewtonIterationWithBlockJacobi) {
 
 TEST(DeviceTraffic, DynamicsReadsAFewDoublesPerNewtonIterationWithMultigrid) {
   expect_constant_dynamics_reads(Preconditioner::multigrid);
+}
+
+// With obstacles, multigrid asks at each linearization whether the contact
+// set changed (a changed set rebuilds the hierarchy): an integer hash
+// reduced on the device, so the bytes read per linearization do not grow
+// with the lattice, where reading every vertex's depth would (8 bytes a
+// vertex).
+struct ContactReads {
+  double bytes_per_linearization = 0.0;
+  long long vertices = 0;
+  int contacts = 0;
+};
+
+ContactReads contact_reads(int resolution) {
+  SceneParameters parameters;
+  parameters.resolution = resolution;
+  parameters.steps = 1;
+  const Scene scene = make_scene("twist", parameters);
+  const double h = 1.0 / resolution;
+  // A wall facing the side x = 0, its layer half a cell thick and just
+  // reaching that side at rest: the twist turns the middle layers' corners
+  // into it.
+  const Traced r =
+      run(scene, Preconditioner::multigrid, 4, HessianMode::projected, {0.0, 0.0, 0.0}, [&](SolveOptions& o) {
+        o.obstacles = {Obstacle::plane({-0.5 * h, 0.0, 0.0}, {1.0, 0.0, 0.0})};
+        o.contact.thickness = 0.5 * h;
+        o.contact.stiffness = 10.0 * h;
+      });
+  EXPECT_TRUE(r.result.converged) << resolution;
+  EXPECT_NE(r.result.kernel_specialization.find("-DSNH_OBSTACLES=1"), std::string::npos);
+  const SolveProfile& p = r.result.profile;
+  ContactReads out;
+  out.vertices = static_cast<long long>(r.result.positions.size() / 3);
+  out.contacts = r.result.steps.back().contacts;
+  // Less each step's result: x, and the depths for its contact count and
+  // deepest penetration.
+  const long long steps = static_cast<long long>(r.result.steps.size());
+  const long long bytes = outside_linear_solves(p).bytes_to_host - steps * 4 * out.vertices * sizeof(double);
+  const int linearizations = linear_solves(r.result);
+  EXPECT_GT(linearizations, 1) << resolution;
+  out.bytes_per_linearization = static_cast<double>(bytes) / std::max(1, linearizations);
+  return out;
+}
+
+TEST(DeviceTraffic, ContactSetCheckReadsAFewBytesPerLinearizationWhateverTheSize) {
+  const ContactReads a = contact_reads(4);
+  const ContactReads b = contact_reads(16);
+  // More than one reduction group (4,096 entries) at the larger size.
+  ASSERT_GT(b.vertices, 4096);
+  ASSERT_GT(b.vertices, 4 * a.vertices);
+  for (const ContactReads& r : {a, b}) {
+    EXPECT_GT(r.contacts, 0) << r.vertices;
+    EXPECT_LE(r.bytes_per_linearization, 8.0 * 6 * sizeof(double)) << r.vertices;
+  }
+  // Reading every depth: 1,066 and 39,370 bytes per linearization here.
+  EXPECT_LE(b.bytes_per_linearization, 1.1 * a.bytes_per_linearization);
 }
 
 TEST(DeviceTraffic, NegativeCheckIntervalIsRefused) {

@@ -21,7 +21,9 @@ constexpr NameTable<ElementType, 2> kElementTypeNames{{{ElementType::hex8, "hex8
 
 }  // namespace
 
-const char* to_string(ElementType type) { return name_of(kElementTypeNames, type, "unknown"); }
+const char* element_type_name(ElementType type) { return name_of(kElementTypeNames, type, "unknown"); }
+ElementType parse_element_type(const std::string& text) { return value_named(kElementTypeNames, text, "element type"); }
+const char* to_string(ElementType type) { return element_type_name(type); }
 
 int nodes_per_element(ElementType type) {
   switch (type) {

@@ -224,8 +224,8 @@ void MeshBuilder::add_element(ElementType type, int64_t file_id, const int32_t* 
   } else if (type != type_) {
     std::ostringstream s;
     s << noun_ << " " << file_id << " is a " << element_noun(type) << ", but " << noun_ << " " << ids_.front() << " ("
-      << place(where_.front()) << ") is a " << element_noun(type_)
-      << "; a mesh must hold one element type (tet4 or hex8)";
+      << place(where_.front()) << ") is a " << element_noun(type_) << "; a mesh must hold one element type ("
+      << element_type_name(type_) << " or " << element_type_name(type) << ")";
     fail(path_, where, s.str());
   }
   if (ids_.size() >= static_cast<size_t>(std::numeric_limits<int32_t>::max()))

@@ -86,11 +86,17 @@ Mesh read_scene_mesh(const Reader& r, const json& m, const std::filesystem::path
       r.fail("mesh.generator", "expected box or cylinder, got '" + generator + "'");
     }
   }
-  const std::string element = r.text(m, "mesh", "element", to_string(mesh.type));
-  if (element == "tet4" && mesh.type == ElementType::hex8)
+  ElementType element = mesh.type;
+  try {
+    element = parse_element_type(r.text(m, "mesh", "element", element_type_name(mesh.type)));
+  } catch (const Error& error) {
+    r.fail("mesh.element", error.what());
+  }
+  if (element == ElementType::tet4 && mesh.type == ElementType::hex8)
     mesh = split_hexes_into_tets(mesh);
-  else if (element != to_string(mesh.type))
-    r.fail("mesh.element", "expected hex8 or tet4 matching the mesh");
+  else if (element != mesh.type)
+    r.fail("mesh.element", std::string(element_type_name(element)) + " does not match the mesh's " +
+                               element_type_name(mesh.type) + " elements");
   return mesh;
 }
 

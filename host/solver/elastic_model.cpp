@@ -307,23 +307,7 @@ ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
 
 template <typename Real>
 uint64_t ElasticModel<Real>::contact_set_signature() {
-  if (terms_.obstacles == 0) return 0;
-  std::vector<Real> depth;
-  {
-    PhaseScope transfer(&profiler_, Phase::transfers);
-    depth = vertex_terms_->contact_depths();
-  }
-  // FNV-1a over the indices of the vertices in a layer, in vertex order.
-  uint64_t hash = 0;
-  for (size_t v = 0; v < depth.size(); ++v)
-    if (depth[v] > Real(0)) {
-      if (hash == 0) hash = 14695981039346656037ull;
-      for (int byte = 0; byte < 8; ++byte) {
-        hash ^= (static_cast<uint64_t>(v) >> (8 * byte)) & 0xffu;
-        hash *= 1099511628211ull;
-      }
-    }
-  return hash;
+  return terms_.obstacles == 0 ? 0 : vertex_terms_->contact_set_signature();
 }
 
 template <typename Real>

@@ -124,7 +124,8 @@ class ElasticModel {
   // The vertices in an obstacle's contact layer at the last linearize(), as
   // a hash of their indices (0: none, or no obstacles): where it changes, so
   // do the per-vertex contact blocks of the Hessian (the multigrid's reuse
-  // rule, solver/device_problem.h). Reads the depths back from the device.
+  // rule, solver/device_problem.h). One read of two integers where the
+  // device has fp64 (VertexTerms::contact_set_signature).
   uint64_t contact_set_signature();
   // Self-contact (ModelTerms::self_contact): the springs' stiffness, and the
   // active set detected at x, frozen until the next refresh (energy,

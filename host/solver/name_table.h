@@ -5,6 +5,7 @@
 #include <array>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "snh/error.h"
 
@@ -22,14 +23,17 @@ const char* name_of(const NameTable<E, N>& table, E value, const char* unknown =
 }
 
 // The value named `text`; else snh::Error "<what>: expected a, b or c, got
-// '<text>'" with the table's names in its order.
+// '<text>'" with the table's names in its order (an empty name, such as
+// StepStatus::none's, parses but is not listed).
 template <typename E, size_t N>
 E value_named(const NameTable<E, N>& table, const std::string& text, const char* what) {
-  std::string known;
-  for (size_t i = 0; i < N; ++i) {
-    if (text == table[i].second) return table[i].first;
-    known += std::string(i == 0 ? "" : i + 1 == N ? " or " : ", ") + table[i].second;
+  std::vector<std::string> names;
+  for (const auto& [value, name] : table) {
+    if (text == name) return value;
+    if (*name != '\0') names.push_back(name);
   }
+  std::string known;
+  for (size_t i = 0; i < names.size(); ++i) known += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
   throw Error(std::string(what) + ": expected " + known + ", got '" + text + "'");
 }
 

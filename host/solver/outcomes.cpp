@@ -1,37 +1,16 @@
 // Names of the solve outcomes (snh/outcomes.h): one table per enum, read by
-// both directions.
+// both directions (solver/name_table.h).
 #include "snh/outcomes.h"
 
-#include <array>
 #include <ostream>
-#include <utility>
 
 #include "snh/error.h"
 #include "snh/simulation.h"
+#include "solver/name_table.h"
 
 namespace snh {
 
 namespace {
-
-template <typename E, size_t N>
-using NameTable = std::array<std::pair<E, const char*>, N>;
-
-template <typename E, size_t N>
-const char* name_in(const NameTable<E, N>& table, E value) {
-  for (const auto& [v, name] : table)
-    if (v == value) return name;
-  return "?";
-}
-
-template <typename E, size_t N>
-E parse_in(const NameTable<E, N>& table, const std::string& text, const char* what) {
-  std::string known;
-  for (const auto& [v, name] : table) {
-    if (text == name) return v;
-    known += std::string(known.empty() ? "'" : ", '") + name + "'";
-  }
-  throw Error(std::string(what) + ": expected one of " + known + ", got '" + text + "'");
-}
 
 constexpr NameTable<StepStatus, 8> kStepStatusNames{{
     {StepStatus::none, ""},
@@ -86,13 +65,13 @@ bool ends_with(const std::string& text, const std::string& suffix) {
 
 }  // namespace
 
-const char* to_string(StepStatus status) { return name_in(kStepStatusNames, status); }
-StepStatus parse_step_status(const std::string& text) { return parse_in(kStepStatusNames, text, "step status"); }
+const char* to_string(StepStatus status) { return name_of(kStepStatusNames, status); }
+StepStatus parse_step_status(const std::string& text) { return value_named(kStepStatusNames, text, "step status"); }
 std::ostream& operator<<(std::ostream& out, StepStatus status) { return out << to_string(status); }
 
-const char* to_string(ResultWarning kind) { return name_in(kResultWarningNames, kind); }
+const char* to_string(ResultWarning kind) { return name_of(kResultWarningNames, kind); }
 ResultWarning parse_result_warning(const std::string& text) {
-  return parse_in(kResultWarningNames, text, "result warning");
+  return value_named(kResultWarningNames, text, "result warning");
 }
 
 std::string warning_text(ResultWarning kind, const std::string& detail) {
@@ -106,13 +85,13 @@ bool has_warning(const std::vector<std::string>& warnings, ResultWarning kind) {
   return false;
 }
 
-const char* to_string(CgStop stop) { return name_in(kCgStopNames, stop); }
-CgStop parse_cg_stop(const std::string& text) { return parse_in(kCgStopNames, text, "CG stop"); }
+const char* to_string(CgStop stop) { return name_of(kCgStopNames, stop); }
+CgStop parse_cg_stop(const std::string& text) { return value_named(kCgStopNames, text, "CG stop"); }
 std::ostream& operator<<(std::ostream& out, CgStop stop) { return out << to_string(stop); }
 
-const char* to_string(RecoveryAction action) { return name_in(kRecoveryNames, action); }
+const char* to_string(RecoveryAction action) { return name_of(kRecoveryNames, action); }
 RecoveryAction parse_recovery_action(const std::string& text) {
-  return parse_in(kRecoveryNames, text, "recovery action");
+  return value_named(kRecoveryNames, text, "recovery action");
 }
 
 std::string to_string(const Recovery& recovery) {

@@ -7,6 +7,28 @@
 
 namespace snh::solver {
 
+namespace kernel {
+#include "math/mix64.h"
+}  // namespace kernel
+
+namespace {
+constexpr size_t kReduceGroup = 64;                // SNH_REDUCE_GROUP, kernels/reduce.cl
+constexpr size_t kReduceSpan = kReduceGroup * 64;  // SNH_REDUCE_SPAN
+
+uint64_t signature_of(uint64_t count, uint64_t hash) { return count == 0 ? 0 : hash == 0 ? 1 : hash; }
+}  // namespace
+
+template <typename Real>
+uint64_t contact_set_signature(const std::vector<Real>& depth) {
+  uint64_t count = 0, hash = 0;
+  for (size_t v = 0; v < depth.size(); ++v)
+    if (depth[v] > Real(0)) {
+      ++count;
+      hash += kernel::snh_mix64(v);
+    }
+  return signature_of(count, hash);
+}
+
 template <typename Real>
 VertexTerms<Real>::VertexTerms(device::OpenClContext& cl, size_t vertex_count, bool inertia, int obstacles,
                                bool friction, const device::KernelConfig& config, PhaseProfiler* profiler)
@@ -48,6 +70,15 @@ VertexTerms<Real>::VertexTerms(device::OpenClContext& cl, size_t vertex_count, b
     friction_slip_ = 1.0;
   }
   if (obstacles > 0) contact_k_ = cl_.kernel("fem.cl", config, "snh_contact_vertices");
+  // reduce.cl reads the depths as its `real`: the context's precision.
+  const size_t context_real = cl_.precision() == Precision::double_ ? sizeof(double) : sizeof(float);
+  if (obstacles > 0 && cl_.info().has_fp64 && context_real == sizeof(Real)) {
+    contact_set_k_ = cl_.kernel("reduce.cl", "", "snh_partial_contact_set");
+    contact_set_total_k_ = cl_.kernel("reduce.cl", "", "snh_contact_set_total");
+    const size_t groups = std::max<size_t>(1, (vertex_count_ + kReduceSpan - 1) / kReduceSpan);
+    contact_set_partial_ = cl_.buffer(CL_MEM_READ_WRITE, 2 * groups * sizeof(uint64_t));
+    contact_set_total_ = cl_.buffer(CL_MEM_READ_WRITE, 2 * sizeof(uint64_t));
+  }
   if (friction) friction_anchors_k_ = cl_.kernel("fem.cl", config, "snh_friction_anchors");
 }
 
@@ -183,6 +214,40 @@ std::vector<Real> VertexTerms<Real>::contact_depths() const {
 }
 
 template <typename Real>
+uint64_t VertexTerms<Real>::contact_set_signature() const {
+  if (obstacles_count_ == 0) return 0;
+  if (!contact_set_k_) {
+    std::vector<Real> depth;
+    {
+      PhaseScope transfer(profiler_, Phase::transfers);
+      depth = contact_depths();
+    }
+    return solver::contact_set_signature(depth);
+  }
+  const size_t groups = (vertex_count_ + kReduceSpan - 1) / kReduceSpan;
+  const int count = static_cast<int>(vertex_count_);
+  if (groups > 0)
+    cl_.run(device::KernelArgs(contact_set_k_.get())
+                .add(contact_depth_.get())
+                .add(count)
+                .add(contact_set_partial_.get())
+                .bind(),
+            groups * kReduceGroup);
+  cl_.run(device::KernelArgs(contact_set_total_k_.get())
+              .add(contact_set_partial_.get())
+              .add(static_cast<int>(groups))
+              .add(contact_set_total_.get())
+              .bind(),
+          1);
+  uint64_t total[2] = {0, 0};
+  {
+    PhaseScope transfer(profiler_, Phase::transfers);
+    cl_.read(contact_set_total_.get(), sizeof(total), total);
+  }
+  return signature_of(total[0], total[1]);
+}
+
+template <typename Real>
 void VertexTerms<Real>::add_gather_args(device::KernelArgs& args) const {
   if (inertia_) args.add(inertia_mass_.get()).add(inertia_target_.get());
   if (obstacles_count_ > 0) args.add(contact_force_.get()).add(contact_blocks_.get());
@@ -203,6 +268,8 @@ size_t VertexTerms<Real>::memory_bytes() const {
         &friction_start_records_, &friction_records_, &surface_offsets_, &surface_entries_, &surface_vertices_,
         &surface_weights_})
     bytes += device::OpenClContext::bytes(b->get());
+  bytes +=
+      device::OpenClContext::bytes(contact_set_partial_.get()) + device::OpenClContext::bytes(contact_set_total_.get());
   return bytes;
 }
 
@@ -247,5 +314,7 @@ ContactSurface contact_surface(const Mesh& mesh, const Embedding& embedding) {
 
 template class VertexTerms<float>;
 template class VertexTerms<double>;
+template uint64_t contact_set_signature(const std::vector<float>&);
+template uint64_t contact_set_signature(const std::vector<double>&);
 
 }  // namespace snh::solver

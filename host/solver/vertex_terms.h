@@ -5,6 +5,7 @@
 // kernels read. Internal to the library.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,13 @@ struct ContactSurface {
 // The contact surface of an embedding in `mesh` (hex8); throws snh::Error
 // naming the surface vertex whose element or weights do not fit.
 ContactSurface contact_surface(const Mesh& mesh, const Embedding& embedding);
+
+// The vertices v with depth[v] > 0: 0 for none, else the sum modulo 2^64 of
+// splitmix64's mix of each index (kernels/math/mix64.h), 1 where that sum is
+// 0. Any order of the sum gives the same value; a vertex entering or leaving
+// the set changes it (but for a collision of 64-bit sums).
+template <typename Real>
+uint64_t contact_set_signature(const std::vector<Real>& depth);
 
 template <typename Real>
 class VertexTerms {
@@ -65,6 +73,11 @@ class VertexTerms {
   void contact(cl_mem x, bool linearization = false) const;
   // Each vertex's contact depth g at the last contact() (> 0: in a layer).
   std::vector<Real> contact_depths() const;
+  // The vertices in a layer at the last contact() as an order-independent
+  // hash (contact_set_signature below), reduced on the device where it has
+  // fp64 (kernels/reduce.cl): one read of two integers whatever the size.
+  // Elsewhere the depths are read and hashed here, to the same value.
+  uint64_t contact_set_signature() const;
   cl_mem contact_energy() const { return contact_energy_.get(); }
 
   // The gather's arguments (inertia c and y, contact force and blocks), and
@@ -94,6 +107,10 @@ class VertexTerms {
   device::Buffer friction_start_, friction_anchors_, friction_start_records_, friction_records_;
   double friction_slip_ = 0.0;
   device::Kernel contact_k_, friction_anchors_k_;
+  // The contact set's device reduction (none without fp64): per-group
+  // partials and the two totals (count, hash).
+  device::Kernel contact_set_k_, contact_set_total_k_;
+  device::Buffer contact_set_partial_, contact_set_total_;
   device::KernelConfig config_;
   // The contact surface's arrays (ContactSurface), empty without one.
   device::Buffer surface_offsets_, surface_entries_, surface_vertices_, surface_weights_;

@@ -13,6 +13,11 @@ namespace snh {
 
 enum class ElementType { hex8, tet4 };
 
+// "hex8", "tet4": one table gives the names both ways. parse_element_type
+// throws snh::Error naming the bad value and the valid ones; to_string is
+// element_type_name.
+const char* element_type_name(ElementType type);
+ElementType parse_element_type(const std::string& text);
 const char* to_string(ElementType type);
 int nodes_per_element(ElementType type);
 int quadrature_points(ElementType type);  // 8 for hex8 (2x2x2 Gauss), 1 for tet4

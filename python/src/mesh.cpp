@@ -46,8 +46,8 @@ py::array_t<double> array_values(const snh::MeshArray& a) {
 
 void bind_mesh(py::module_& m) {
   py::enum_<snh::ElementType>(m, "ElementType", "Element kind: 8-node hexahedra or 4-node tetrahedra.")
-      .value("hex8", snh::ElementType::hex8)
-      .value("tet4", snh::ElementType::tet4);
+      .value(snh::element_type_name(snh::ElementType::hex8), snh::ElementType::hex8)
+      .value(snh::element_type_name(snh::ElementType::tet4), snh::ElementType::tet4);
 
   py::class_<snh::MeshGroup>(m, "MeshGroup",
                              "A named set of vertices and elements from a mesh file (Gmsh physical group, Medit "
