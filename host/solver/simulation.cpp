@@ -164,7 +164,9 @@ struct Simulation::Impl {
     // obstacle contact and the self-contact barrier's diagonal blocks
     // (per-vertex blocks shared out to the cells), not the penalty's
     // self-contact springs, which couple vertices of different cells. With
-    // self-contact `automatic` is block-Jacobi. With dynamics and obstacles
+    // self-contact `automatic` is block-Jacobi: multigrid took 2.3 times
+    // fewer CG but 1.5-2 times the time on elbow_150 at 5,439 DOFs
+    // (docs/performance.md). With dynamics and obstacles
     // it follows the mesh as without (measured: the drop_block scene at
     // 16^3 and 24^3 hexes, docs/performance.md).
     if (options.contact.self && options.contact.self_method == SelfContactMethod::penalty &&
