@@ -184,7 +184,7 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
     }
 }
 
-#if SNH_INERTIA || SNH_OBSTACLES
+#if SNH_INERTIA || SNH_OBSTACLES || SNH_SELF_BARRIER
 /* The fine operator's per-vertex terms on the first coarse level. The fine
  * Hessian is s K + sum_v B_v (s: implicit Euler's elastic scale; B_v the
  * vertex's 3x3 block, c_v I for inertia plus its obstacle contact and
@@ -193,7 +193,10 @@ __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __
  * coarse cells of W_o^T (D B_a share D) W_o over children and their nodes a,
  * like the elastic part. This kernel scales a cell's elastic Galerkin matrix
  * (from either kernel above) by s, adds those terms, and rewrites the cell's
- * diagonal blocks. */
+ * diagonal blocks. Barrier self-contact adds W^T H W to the fine Hessian:
+ * its diagonal blocks join B_v; its couplings, between vertices of cells far
+ * apart that no coarse cell holds, are left out (the coarse operators stay
+ * PSD: the diagonal blocks of a PSD matrix are). */
 __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __global const int* children,
                                         __global const int* fine_elements, __global const real* share,
                                         __global const real* fine_mask, const int count, const real elastic_scale,
@@ -202,6 +205,9 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
 #endif
 #if SNH_OBSTACLES
                                         __global const real* contact_blocks,
+#endif
+#if SNH_SELF_BARRIER
+                                        __global const real* barrier_diagonal,
 #endif
                                         __global real* out, __global real* blocks) {
   const int c = get_global_id(0);
@@ -222,6 +228,10 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
 #endif
 #if SNH_OBSTACLES
       for (int i = 0; i < 9; ++i) b[i] += contact_blocks[9 * v + i];
+#endif
+#if SNH_SELF_BARRIER
+      /* row-major and symmetric (solver/barrier_terms.h): either order */
+      for (int i = 0; i < 9; ++i) b[i] += barrier_diagonal[9 * v + i];
 #endif
       /* b(i, j) column-major (as the model's 3x3 blocks), masked on both sides */
       for (int j = 0; j < 3; ++j)

@@ -297,15 +297,21 @@ TEST(Dynamics, OptionsAreChecked) {
   EXPECT_NE(message(with([](SolveOptions& o) { o.dynamics->substeps = 0; })).find("substeps"), std::string::npos);
   EXPECT_NE(message(with([](SolveOptions& o) { o.initial_velocities = {1.0}; })).find("initial_velocities"),
             std::string::npos);
-  // Multigrid carries the inertia on its coarse levels,
-  // not the self-contact springs.
+  // Multigrid carries the inertia and the self-contact barrier on its
+  // coarse levels, not the self-contact penalty's springs.
   EXPECT_EQ(message(with([](SolveOptions& o) { o.preconditioner = Preconditioner::multigrid; })), "");
+  EXPECT_EQ(message(with([](SolveOptions& o) {
+              o.preconditioner = Preconditioner::multigrid;
+              o.contact.self = true;
+            })),
+            "");
   EXPECT_NE(message(with([](SolveOptions& o) {
               o.preconditioner = Preconditioner::multigrid;
               o.contact.self = true;
+              o.contact.self_method = SelfContactMethod::penalty;
               o.contact.stiffness = 1.0;
               o.contact.thickness = 0.01;
-            })).find("preconditioner multigrid: its coarse levels do not carry self-contact"),
+            })).find("preconditioner multigrid: its coarse levels do not carry the self-contact penalty's springs"),
             std::string::npos);
   SolveOptions quasistatic;
   quasistatic.initial_velocities.assign(24, 0.0);

@@ -38,10 +38,11 @@ constexpr int kPowerIterations = 10, kWarmPowerIterations = 2;
 constexpr int kCoarseDegree = 8;
 constexpr double kUpperBound = 1.1, kCoarseSpread = 60.0;
 
-// Inertia or obstacle contact: per-vertex terms in the fine operator.
+// Inertia, obstacle contact or barrier self-contact: per-vertex terms in the
+// fine operator (the barrier's diagonal blocks; snh_galerkin_vertex_terms).
 template <typename Real>
 bool has_vertex_terms(const ElasticModel<Real>& model) {
-  return model.terms().inertia || model.terms().obstacles > 0;
+  return model.terms().inertia || model.terms().obstacles > 0 || model.terms().self_barrier;
 }
 
 // Whether the options and the model's terms give a built fine level.
@@ -153,9 +154,9 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   // Each level's, built for its width (stencil_build) and, on a
   // float fine level, its float matrices.
   const StencilKernels& stencil_kernels(int level) const;
-  // Inertia or obstacle contact in the fine operator: added to the first
-  // coarse level's cell matrices (snh_galerkin_vertex_terms) with each
-  // vertex's share 1 / (cells around it).
+  // Inertia, obstacle contact or the barrier's diagonal blocks in the fine
+  // operator: added to the first coarse level's cell matrices
+  // (snh_galerkin_vertex_terms) with each vertex's share 1 / (cells around it).
   bool vertex_terms_ = false;
   bool fine_built_ = false;
   // The built fine level's matrices in float (double builds).
@@ -240,8 +241,10 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
         std::to_string(options.rebuild_every));
   if (!(options.rebuild_growth >= 1.0))
     throw Error("multigrid: rebuild_growth must be at least 1, got " + std::to_string(options.rebuild_growth));
-  if (model.terms().self_contact || model.terms().self_barrier)
-    throw Error("multigrid: its coarse levels do not carry self-contact (use block-jacobi)");
+  if (model.terms().self_contact)
+    throw Error(
+        "multigrid: its coarse levels do not carry the self-contact penalty's springs (use block-jacobi, or the "
+        "barrier)");
   hierarchy_ = build_lattice_hierarchy(mesh, mask, options.coarsest_dofs, options.max_levels);
   // The coarse levels carry the per-vertex terms inside their cell matrices
   // (snh_galerkin_vertex_terms): their products, gathers and smoothers are
@@ -273,8 +276,8 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
   vertex_terms_ = has_vertex_terms(model);
   if (options.fine_level == MultigridFineLevel::built && vertex_terms_)
     throw Error(
-        "multigrid: fine_level built does not carry the inertia or obstacle contact blocks (use automatic or "
-        "current)");
+        "multigrid: fine_level built does not carry the inertia, obstacle contact or self-contact barrier blocks "
+        "(use automatic or current)");
   fine_built_ = builds_fine_level(model, options);
   if (kNarrow && !fine_built_) throw Error("multigrid: a float V-cycle needs a built fine level");
   fine_float_ = fine_built_ && options.fine_level_float && sizeof(Real) > sizeof(float);
@@ -533,6 +536,7 @@ void Levels<Real, C>::setup() {
           .add(static_cast<Real>(model_.elastic_scale()));
       if (model_.inertia_buffer()) args.add(model_.inertia_buffer());
       if (model_.contact_blocks_buffer()) args.add(model_.contact_blocks_buffer());
+      if (const auto* barrier = model_.self_barrier()) args.add(barrier->diagonal());
       args.add(L.matrices.get()).add(L.blocks.get());
       cl_.run(args.bind(), L.cells);
     }
@@ -574,7 +578,15 @@ void Levels<Real, C>::convert(const device::Kernel& k, cl_mem from, size_t value
 
 template <typename Real, typename C>
 void Levels<Real, C>::update_fine_bound() {
-  if (!fine_built_) estimate_bounds(0, 1);
+  if (fine_built_) return;
+  // Barrier self-contact: pairs come within dhat and leave between builds,
+  // each with a diagonal block that can outweigh the elastic one by orders
+  // of magnitude, so the fine smoother takes this linearization's blocks.
+  // Against the build's: the 4^3 squash to 5% (dynamics, reuse over 4
+  // linearizations) 1,194 Newton / 7,277 CG -> 758 / 1,251, elbow_150
+  // 1,268 / 39,597 -> 1,110 / 25,222 (docs/performance.md).
+  if (model_.self_barrier()) model_.setup_preconditioner();
+  estimate_bounds(0, 1);
 }
 
 template <typename Real, typename C>

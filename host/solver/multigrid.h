@@ -4,12 +4,16 @@
 //     of the build's linearization and their block-Jacobi inverse blocks,
 //     frozen with the coarse levels; or current, the engine's own
 //     matrix-free product (ElasticModel) of each linearization and its
-//     block-Jacobi inverse blocks of the build.
+//     block-Jacobi inverse blocks of the build (automatic with inertia,
+//     obstacles or barrier self-contact, whose terms only it carries).
 //   - Coarse levels: Galerkin operators P^T D A D P of the fine operator A
 //     (projected or true Hessian, as linearized) rebuilt at every Newton
 //     linearization, one 24x24 matrix per coarse cell (kernels/multigrid.cl),
 //     from the fine element matrices when the product variant keeps them,
-//     else from the linearization cache.
+//     else from the linearization cache; the first takes in the per-vertex
+//     blocks of inertia and obstacle contact and the barrier's diagonal
+//     blocks, not its couplings between vertices of distant cells
+//     (snh_galerkin_vertex_terms).
 //   - Products on the built levels: each level's cell matrices assembled
 //     per vertex after each build, 3x3 blocks against the vertices sharing
 //     a cell (snh_stencil_assemble: a third of the cell matrices' bytes and
@@ -75,7 +79,10 @@ inline int resolved_rebuild_every(const MultigridOptions& options) {
 // unless there is none. rebuild_every 1 builds at every linearization,
 // projected or not. With obstacles the caller also invalidates the build when
 // the set of vertices in contact changed since it, and with friction at each
-// new step (solver/device_problem.h). Host bookkeeping only.
+// new step (solver/device_problem.h). Not when barrier self-contact's pairs
+// within dhat change: that measured no better than refreshing the fine
+// smoother's blocks alone (update_fine_bound, docs/performance.md). Host
+// bookkeeping only.
 class MultigridRebuild {
  public:
   explicit MultigridRebuild(const MultigridOptions& options)
@@ -150,7 +157,9 @@ class MultigridPreconditioner {
   void setup();
   // After model.linearize() alone, keeping the hierarchy of the last
   // setup(): a current fine level follows the new fine operator (its
-  // Chebyshev bound re-estimated); a built one keeps the build's.
+  // Chebyshev bound re-estimated, and with barrier self-contact its
+  // block-Jacobi blocks too: model.setup_preconditioner()); a built one
+  // keeps the build's.
   void update_fine_bound();
   // The next setup() estimates every smoothing bound from the fixed start
   // vector, as the first one does, instead of from the last estimate.

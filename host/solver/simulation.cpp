@@ -161,16 +161,20 @@ struct Simulation::Impl {
         tolerance(0.0) {
     validate_solve_inputs(mesh, constraints, options);
     validate_material_map(mesh, materials);
-    // The multigrid's coarse levels carry the elastic Hessian, inertia and
-    // obstacle contact (per-vertex blocks shared out to the cells), not the
-    // self-contact springs, which couple vertices of different cells: with
-    // self-contact `automatic` is block-Jacobi. With dynamics and obstacles
+    // The multigrid's coarse levels carry the elastic Hessian, inertia,
+    // obstacle contact and the self-contact barrier's diagonal blocks
+    // (per-vertex blocks shared out to the cells), not the penalty's
+    // self-contact springs, which couple vertices of different cells. With
+    // self-contact `automatic` is block-Jacobi: multigrid took 2.3 times
+    // fewer CG but 1.5-2 times the time on elbow_150 at 5,439 DOFs
+    // (docs/performance.md). With dynamics and obstacles
     // it follows the mesh as without (measured: the drop_block scene at
     // 16^3 and 24^3 hexes, docs/performance.md).
-    if (options.contact.self && options.preconditioner == Preconditioner::multigrid)
+    if (options.contact.self && options.contact.self_method == SelfContactMethod::penalty &&
+        options.preconditioner == Preconditioner::multigrid)
       throw Error(
-          "preconditioner multigrid: its coarse levels do not carry self-contact (contact.self, on by default for "
-          "rigged and skinned characters); use block-jacobi or automatic with it, or turn it off");
+          "preconditioner multigrid: its coarse levels do not carry the self-contact penalty's springs "
+          "(contact.self_method penalty); use the barrier, or block-jacobi or automatic with it");
     if (options.contact.self && options.preconditioner == Preconditioner::automatic &&
         preconditioner == Preconditioner::multigrid)
       preconditioner = Preconditioner::block_jacobi;

@@ -64,9 +64,9 @@ Scene make_scene(const std::string& name, const SceneParameters& parameters);
 std::vector<std::string> scene_names();
 
 // The scenes built on the paper's lattices and run as load steps (all but
-// "drop" and "elbow", whose self-contact refuses the multigrid that scale
-// sweeps): those whose resolution, element type and E the benchmarks that
-// sweep them (errtime, scale) can vary.
+// "drop", a tet4 mesh under dynamics, and "elbow", with self-contact): those
+// whose resolution, element type and E the benchmarks that sweep them
+// (errtime, scale) can vary.
 std::vector<std::string> lattice_scene_names();
 
 // The parameters a scene is meant to run with: the struct's defaults, except

@@ -120,13 +120,13 @@ ProductVariant default_product_variant(ElementType type, Precision precision, bo
 // The fine level inside the multigrid V-cycle (its smoothing and the residual
 // restricted to the coarse levels).
 enum class MultigridFineLevel {
-  automatic,  // built, except with inertia or obstacles (then current)
+  automatic,  // built, except with inertia, obstacles or barrier self-contact (then current)
   // The element matrices of the build's linearization (24x24 per element,
   // kept on the device) and their block-Jacobi blocks, reused with the
   // coarse operators until the next build (also at true-Hessian
   // linearizations): between builds the V-cycle is one fixed SPD operator,
-  // its Chebyshev bound estimated once per build. Not with inertia or
-  // obstacles, whose per-vertex blocks it does not carry.
+  // its Chebyshev bound estimated once per build. Not with inertia,
+  // obstacles or barrier self-contact, whose terms it does not carry.
   built,
   // The engine's product of each linearization, with the block-Jacobi
   // blocks of the build and its Chebyshev bound re-estimated (4 power
@@ -348,7 +348,8 @@ struct Obstacle {
 // rest surface edge length), kappa = E h^2 / dhat^3 (E the largest Young's
 // modulus, h that edge length), and every Newton step limited by continuous
 // collision detection, so that the surface never passes through itself.
-// Detection on the host. Not with the multigrid preconditioner.
+// Detection on the host. With the multigrid preconditioner its coarse levels
+// carry the barrier's diagonal blocks (docs/design.md).
 //
 // penalty: the reference-map penalty (Smith et al. 2018
 // sec. 6; docs/design.md): a surface vertex found inside a deformed
