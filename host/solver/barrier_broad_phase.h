@@ -53,6 +53,8 @@ class BarrierBroadPhase {
   void near(const DevicePairList& candidates, cl_mem distance, double sh, DevicePairList& out);
   // The index lists of `pairs` over `surface_count` surface vertices.
   void lists(const DevicePairList& pairs, int surface_count, DevicePairLists& out);
+  // How many of the first n ints of `flags` are not 0 (one int read).
+  int count_set(cl_mem flags, int n) { return scan(flags, n, offsets_); }
   // The list read back (tests and inspection).
   std::vector<BarrierPair> download(const DevicePairList& pairs);
 

@@ -53,6 +53,9 @@ BarrierTerms<Real>::BarrierTerms(device::OpenClContext& cl, const Mesh& mesh, Ph
   ccd_k_ = cl_.kernel(file, config, "snh_barrier_ccd");
   min_partials_k_ = cl_.kernel(file, config, "snh_barrier_min_partials");
   min_total_k_ = cl_.kernel(file, config, "snh_barrier_min_total");
+  differs_k_ = cl_.kernel(file, config, "snh_barrier_differs");
+  x_copy_ = cl_.buffer(CL_MEM_READ_WRITE, 3 * vertex_count_ * sizeof(Real));
+  differs_ = cl_.buffer(CL_MEM_READ_WRITE, 3 * vertex_count_ * sizeof(int));
   total_ = cl_.buffer(CL_MEM_READ_WRITE, 3 * pair_bytes_);
   diagonal_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real));
   upload_surface();
@@ -65,6 +68,7 @@ void BarrierTerms<Real>::set_parameters(double dhat, double kappa) {
     excluded_at_rest_ = contact_.exclude_pairs_near(rest_);
     excluded_known_ = true;
     broad_.set_surface(contact_);
+    x_known_ = false;
   }
   kappa_ = kappa;
 }
@@ -123,6 +127,7 @@ void BarrierTerms<Real>::upload_surface() {
   surface_gradient_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * pair_bytes_);
   z_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * sizeof(Real));
   broad_.set_surface(contact_);
+  x_known_ = false;
   blocks_ = 0;
 }
 
@@ -141,16 +146,40 @@ void BarrierTerms<Real>::lift(cl_mem x, device::Buffer& surface) {
 }
 
 template <typename Real>
-void BarrierTerms<Real>::find_candidates(bool swept) {
-  broad_.candidates(q_.get(), swept ? dq_.get() : nullptr, contact_.distance(), candidates_);
+void BarrierTerms<Real>::at(cl_mem x) {
+  const int n = static_cast<int>(3 * vertex_count_);
+  if (x_known_) {
+    device::KernelArgs args(differs_k_.get());
+    args.add(x).add(x_copy_.get()).add(n).add(differs_.get());
+    cl_.run(args.bind(), static_cast<size_t>(n));
+    if (broad_.count_set(differs_.get(), n) == 0) return;
+  }
+  cl_.copy(x, x_copy_.get(), static_cast<size_t>(n) * sizeof(Real));
+  lift(x, q_);
+  x_known_ = true;
+  candidates_known_ = near_known_ = lists_known_ = false;
 }
 
 template <typename Real>
-void BarrierTerms<Real>::find_near(cl_mem x) {
-  lift(x, q_);
-  find_candidates(false);
-  run_pairs(candidates_, 0);
-  broad_.near(candidates_, distance_.get(), contact_.distance() * contact_.distance(), near_);
+void BarrierTerms<Real>::find_candidates() {
+  if (candidates_known_) return;
+  broad_.candidates(q_.get(), nullptr, contact_.distance(), candidates_);
+  candidates_known_ = true;
+}
+
+template <typename Real>
+void BarrierTerms<Real>::find_near(cl_mem x, bool lists) {
+  at(x);
+  if (!near_known_) {
+    find_candidates();
+    run_pairs(candidates_, 0);
+    broad_.near(candidates_, distance_.get(), contact_.distance() * contact_.distance(), near_);
+    near_known_ = true;
+  }
+  if (lists && !lists_known_) {
+    broad_.lists(near_, surface_count_, lists_);
+    lists_known_ = true;
+  }
 }
 
 template <typename Real>
@@ -186,15 +215,19 @@ void BarrierTerms<Real>::run_pairs(const DevicePairList& pairs, int derivatives)
 
 template <typename Real>
 std::vector<BarrierPair> BarrierTerms<Real>::candidate_pairs(cl_mem x, cl_mem p) {
-  lift(x, q_);
-  if (p) lift(p, dq_);
-  find_candidates(p != nullptr);
+  at(x);
+  if (p) {
+    lift(p, dq_);
+    broad_.candidates(q_.get(), dq_.get(), contact_.distance(), swept_);
+    return broad_.download(swept_);
+  }
+  find_candidates();
   return broad_.download(candidates_);
 }
 
 template <typename Real>
 std::vector<BarrierPair> BarrierTerms<Real>::near_pairs(cl_mem x) {
-  find_near(x);
+  find_near(x, false);
   return broad_.download(near_);
 }
 
@@ -204,8 +237,8 @@ double BarrierTerms<Real>::energy(cl_mem x) {
   const double dhat = contact_.distance(), sh = dhat * dhat;
   state_.pairs = 0;
   state_.min_distance = dhat;
-  lift(x, q_);
-  find_candidates(false);
+  at(x);
+  find_candidates();
   if (candidates_.count == 0) return 0.0;
   run_pairs(candidates_, 0);
   const int count = candidates_.count, groups = spans(count);
@@ -245,9 +278,8 @@ double BarrierTerms<Real>::energy(cl_mem x) {
 template <typename Real>
 void BarrierTerms<Real>::add_force(cl_mem x, cl_mem mask, cl_mem r) {
   Stopwatch watch{state_.seconds};
-  find_near(x);
+  find_near(x, true);
   if (near_.count == 0) return;
-  broad_.lists(near_, surface_count_, lists_);
   run_pairs(near_, 1);
   device::KernelArgs gather(surface_gradient_k_.get());
   gather.add(gradient_.get()).add(lists_.incidence_offsets.get()).add(lists_.incidence.get());
@@ -269,7 +301,7 @@ void BarrierTerms<Real>::add_force(cl_mem x, cl_mem mask, cl_mem r) {
 template <typename Real>
 void BarrierTerms<Real>::linearize(cl_mem x) {
   Stopwatch watch{state_.seconds};
-  find_near(x);
+  find_near(x, true);
   blocks_ = 0;
   if (near_.count == 0) {
     const std::vector<Real> zeros(9 * vertex_count_, Real(0));
@@ -277,7 +309,6 @@ void BarrierTerms<Real>::linearize(cl_mem x) {
     cl_.write(diagonal_.get(), zeros.size() * sizeof(Real), zeros.data());
     return;
   }
-  broad_.lists(near_, surface_count_, lists_);
   run_pairs(near_, 2);
   const int count = lists_.blocks;
   reserve(blocks_values_, 9 * static_cast<size_t>(count) * sizeof(Real));
@@ -291,7 +322,14 @@ void BarrierTerms<Real>::linearize(cl_mem x) {
   cl_.run(blocks.bind(), static_cast<size_t>(count));
   const int n = static_cast<int>(vertex_count_);
   device::KernelArgs diagonal(diagonal_k_.get());
-  diagonal.add(lists_.rows.get()).add(lists_.columns.get()).add(blocks_values_.get());
+  // The linearization's own block rows and columns: a force at another x
+  // rebuilds lists_ before the products that use these.
+  const size_t row_bytes = (static_cast<size_t>(surface_count_) + 1) * sizeof(int);
+  reserve(rows_, row_bytes);
+  reserve(columns_, static_cast<size_t>(count) * sizeof(int));
+  cl_.copy(lists_.rows.get(), rows_.get(), row_bytes);
+  if (count > 0) cl_.copy(lists_.columns.get(), columns_.get(), static_cast<size_t>(count) * sizeof(int));
+  diagonal.add(rows_.get()).add(columns_.get()).add(blocks_values_.get());
   diagonal.add(transpose_offsets_.get()).add(transpose_entries_.get()).add(carrier_.get()).add(weight_.get());
   diagonal.add(carriers_).add(n).add(diagonal_.get());
   cl_.run(diagonal.bind(), vertex_count_);
@@ -303,7 +341,7 @@ template <typename Real>
 void BarrierTerms<Real>::add_product(cl_mem mask, cl_mem p, cl_mem y) const {
   if (blocks_ == 0) return;
   device::KernelArgs surface(surface_product_k_.get());
-  surface.add(lists_.rows.get()).add(lists_.columns.get()).add(blocks_values_.get()).add(carrier_.get());
+  surface.add(rows_.get()).add(columns_.get()).add(blocks_values_.get()).add(carrier_.get());
   surface.add(weight_store_.get()).add(carriers_).add(surface_count_).add(mask).add(p).add(z_.get()).add(y);
   cl_.run(surface.bind(), static_cast<size_t>(surface_count_));
   if (carriers_ == 1) return;  // W = I: the first pass added to y
@@ -317,15 +355,15 @@ void BarrierTerms<Real>::add_product(cl_mem mask, cl_mem p, cl_mem y) const {
 template <typename Real>
 double BarrierTerms<Real>::step_bound(cl_mem x, cl_mem p) {
   Stopwatch watch{state_.seconds};
-  lift(x, q_);
+  at(x);
   lift(p, dq_);
-  find_candidates(true);
-  const int count = candidates_.count, groups = spans(count);
+  broad_.candidates(q_.get(), dq_.get(), contact_.distance(), swept_);
+  const int count = swept_.count, groups = spans(count);
   if (count == 0) return 1.0;
   reserve(toi_, static_cast<size_t>(count) * pair_bytes_);
   reserve(partial_, 3 * static_cast<size_t>(groups) * pair_bytes_);
   device::KernelArgs ccd(ccd_k_.get());
-  ccd.add(q_.get()).add(dq_.get()).add(candidates_.vertex.get()).add(candidates_.kind.get()).add(count);
+  ccd.add(q_.get()).add(dq_.get()).add(swept_.vertex.get()).add(swept_.kind.get()).add(count);
   ccd.add(toi_.get());
   cl_.run(ccd.bind(), static_cast<size_t>(count));
   device::KernelArgs partials(min_partials_k_.get());

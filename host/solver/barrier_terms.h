@@ -79,10 +79,15 @@ class BarrierTerms {
   void upload_surface();
   // Lifts the solver's x to the surface positions `surface` (W x).
   void lift(cl_mem x, device::Buffer& surface);
-  // The candidate pairs at q_ (swept along dq_ with `swept`) into candidates_.
-  void find_candidates(bool swept);
-  // The pairs within dhat at x into near_, q_ lifted from x.
-  void find_near(cl_mem x);
+  // Makes q_ W x. The lists found at the x of the last call are kept when
+  // x is the same (compared on the device: one int read), so the energy,
+  // force and linearization at one x find them once.
+  void at(cl_mem x);
+  // The candidate pairs at q_ into candidates_ (kept while x is).
+  void find_candidates();
+  // The pairs within dhat at x into near_, and with `lists` their index
+  // lists into lists_ (kept while x is).
+  void find_near(cl_mem x, bool lists);
   // Runs the per-pair kernel over `pairs` at q_: energy and squared
   // distance (derivatives 0), gradient (1), gradient and projected Hessian
   // (2).
@@ -110,15 +115,18 @@ class BarrierTerms {
   device::Buffer q_, dq_, surface_gradient_, partial_, total_, toi_;
   // The pair lists and, per pair of the list last run: energy, squared
   // distance, gradient (12), projected Hessian (144).
-  DevicePairList candidates_, near_;
+  DevicePairList candidates_, near_, swept_;
   DevicePairLists lists_;
+  // The x the lists were found at (a device copy) and what holds for it.
+  device::Buffer x_copy_, differs_;
+  bool x_known_ = false, candidates_known_ = false, near_known_ = false, lists_known_ = false;
   device::Buffer energy_, distance_, gradient_, hessian_;
-  // The linearization: surface blocks (block CSR over surface vertices in
-  // lists_), the lattice diagonal blocks, and the product's surface vectors.
+  // The linearization: surface blocks (block CSR over surface vertices),
+  // the lattice diagonal blocks, and the product's surface vectors.
   int blocks_ = 0;
-  device::Buffer blocks_values_, diagonal_, z_;
+  device::Buffer rows_, columns_, blocks_values_, diagonal_, z_;
   device::Kernel lift_k_, energy_k_, pair_k_, partials_k_, total_k_, surface_gradient_k_, force_k_, surface_blocks_k_,
-      diagonal_k_, surface_product_k_, spread_product_k_, ccd_k_, min_partials_k_, min_total_k_;
+      diagonal_k_, surface_product_k_, spread_product_k_, ccd_k_, min_partials_k_, min_total_k_, differs_k_;
 };
 
 }  // namespace snh::solver

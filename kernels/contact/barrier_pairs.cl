@@ -72,6 +72,15 @@ __kernel void snh_barrier_lift_store(__global const store_real* x, __global cons
   }
 }
 
+/* 1 where x and the copy it is compared with differ (the lists built at
+ * that copy hold for x where none does). */
+__kernel void snh_barrier_differs(__global const store_real* x, __global const store_real* copy, const int count,
+                                  __global int* differs) {
+  const int i = get_global_id(0);
+  if (i >= count) return;
+  differs[i] = x[i] != copy[i] ? 1 : 0;
+}
+
 /* Per pair at q: energy b (without kappa) and squared distance, by the
  * distance alone (no derivatives): the energy's and the filter's pass over
  * every candidate. The same functions, so the same values as the terms
