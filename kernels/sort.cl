@@ -5,8 +5,9 @@
  * by key, then by value, so entries with equal keys come out in one order
  * whatever the device (the network is not stable; the value breaks ties).
  * The host pads the list to a power of two with the largest entry
- * (all bits set), launches snh_sort_bitonic_step once per (k, j) stage, k
- * = 2, 4, ..., n and j = k / 2, ..., 1, over n work-items.
+ * (all bits set) and runs the stages (k, j), k = 2, 4, ..., n and j = k /
+ * 2, ..., 1: those within blocks of entries by snh_sort_bitonic_block, a
+ * launch per k, the others by snh_sort_bitonic_step, a launch each.
  *
  * The scan is the exclusive prefix sum of int counts in three passes: per
  * span of SNH_SCAN_SPAN entries its sum, one work-item over the spans (and
@@ -14,12 +15,10 @@
 
 #define SNH_SCAN_SPAN 256
 
-__kernel void snh_sort_bitonic_step(__global ulong* keys, __global uint* values, const int j, const int k,
-                                    const int n) {
-  const int i = get_global_id(0);
-  if (i >= n) return;
-  const int l = i ^ j;
-  if (l <= i) return;
+/* Entries i < l: swapped where the stage's direction (ascending where i &
+ * k is 0) wants them the other way round. */
+static inline void sort_compare_swap(__global ulong* keys, __global uint* values, const int i, const int l,
+                                     const int k) {
   const ulong ki = keys[i], kl = keys[l];
   const uint vi = values[i], vl = values[l];
   const int i_after_l = ki > kl || (ki == kl && vi > vl);
@@ -31,6 +30,32 @@ __kernel void snh_sort_bitonic_step(__global ulong* keys, __global uint* values,
     values[i] = vl;
     values[l] = vi;
   }
+}
+
+/* One stage (k, j) over n entries, one work-item per entry. */
+__kernel void snh_sort_bitonic_step(__global ulong* keys, __global uint* values, const int j, const int k,
+                                    const int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const int l = i ^ j;
+  if (l > i) sort_compare_swap(keys, values, i, l, k);
+}
+
+/* The stages whose partners lie within one block of `block` entries, one
+ * work-item per block, in order: for k = k_first, 2 k_first, ..., k_last,
+ * the stages j = min(k, block) / 2, ..., 1. The same network as the steps,
+ * in a few launches rather than one per stage. */
+__kernel void snh_sort_bitonic_block(__global ulong* keys, __global uint* values, const int k_first, const int k_last,
+                                     const int block, const int n) {
+  const int begin = get_global_id(0) * block;
+  if (begin >= n) return;
+  const int end = min(begin + block, n);
+  for (int k = k_first; k <= k_last; k *= 2)
+    for (int j = min(k, block) / 2; j > 0; j /= 2)
+      for (int i = begin; i < end; ++i) {
+        const int l = i ^ j;
+        if (l > i) sort_compare_swap(keys, values, i, l, k);
+      }
 }
 
 /* Entries from .. to - 1 set to the largest entry (the padding). */

@@ -17,12 +17,13 @@
 namespace snh::test {
 namespace {
 
-// Two 4 x 4 x 1 lattices, B above A with a gap of 0.07 (cells of 0.5).
+// Two n x n x 1 lattices of cells h, B above A with a gap of 0.14 h and
+// shifted by (0.26 h, 0.42 h); by default n = 4, h = 0.5 (a gap of 0.07).
 struct Stack {
-  Mesh mesh = make_box_lattice(4, 4, 1, 0.5);
+  Mesh mesh;
   int first_b = 0;
-  Stack() {
-    const Mesh b = make_box_lattice(4, 4, 1, 0.5, {0.13, 0.21, 0.57});
+  explicit Stack(int n = 4, double h = 0.5) : mesh(make_box_lattice(n, n, 1, h)) {
+    const Mesh b = make_box_lattice(n, n, 1, h, {0.26 * h, 0.42 * h, 1.14 * h});
     first_b = static_cast<int>(mesh.vertex_count());
     mesh.positions.insert(mesh.positions.end(), b.positions.begin(), b.positions.end());
     for (int32_t v : b.elements) mesh.elements.push_back(v + first_b);
@@ -127,6 +128,25 @@ TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnAMeshBoundary) {
   // Nothing within dhat at rest.
   const viennacl::vector<double> rest = upload<double>(s.mesh.positions);
   EXPECT_TRUE(terms.near_pairs(solver::mem(rest)).empty());
+}
+
+// Lists of thousands of entries: the sorts run their stages across blocks
+// of 256 entries as well as within them.
+TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnALargerSurface) {
+  const double h = 1.0 / 16;
+  const Stack s(16, h);
+  solver::BarrierTerms<double> terms(device_for(Precision::double_), s.mesh, nullptr);
+  const double dhat = 0.1 * h;
+  terms.set_parameters(dhat, 2.0);
+  solver::BarrierContact host(s.mesh);
+  host.set_distance(dhat);
+  EXPECT_EQ(host.exclude_pairs_near(s.mesh.positions), 0u);
+  const std::vector<double> x = s.pressed(-0.08 * h, 0.008 * h, 9);
+  std::vector<double> p(x.size());
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<double> step(-0.5 * h, 0.5 * h);
+  for (double& e : p) e = step(rng);
+  expect_lists_match(terms, host, x, p, 300);
 }
 
 TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnAnEmbeddedSurface) {

@@ -17,6 +17,9 @@ constexpr int kSpan = 256;
 
 int spans(int count) { return (count + kSpan - 1) / kSpan; }
 
+// Entries per block of the sort's within-block stages (a power of two).
+constexpr int kSortBlock = 256;
+
 int power_of_two_at_least(int n) {
   int p = 1;
   while (p < n) p *= 2;
@@ -52,6 +55,7 @@ BarrierBroadPhase::BarrierBroadPhase(device::OpenClContext& cl, size_t real_byte
   block_rows_k_ = cl_.kernel(broad, config, "snh_broad_block_rows");
   const char* sorting = "sort.cl";
   bitonic_k_ = cl_.kernel(sorting, config, "snh_sort_bitonic_step");
+  bitonic_block_k_ = cl_.kernel(sorting, config, "snh_sort_bitonic_block");
   pad_k_ = cl_.kernel(sorting, config, "snh_sort_pad");
   scan_spans_k_ = cl_.kernel(sorting, config, "snh_scan_spans");
   scan_span_offsets_k_ = cl_.kernel(sorting, config, "snh_scan_span_offsets");
@@ -129,12 +133,22 @@ void BarrierBroadPhase::sort(cl_mem keys, cl_mem values, int n) {
     pad.add(keys).add(values).add(n).add(size);
     cl_.run(pad.bind(), static_cast<size_t>(size - n));
   }
-  for (int k = 2; k <= size; k *= 2)
-    for (int j = k / 2; j > 0; j /= 2) {
+  // The stages within blocks of kSortBlock entries in one launch per k.
+  const int block = std::min(kSortBlock, size);
+  auto within_blocks = [&](int k_first, int k_last) {
+    device::KernelArgs args(bitonic_block_k_.get());
+    args.add(keys).add(values).add(k_first).add(k_last).add(block).add(size);
+    cl_.run(args.bind(), static_cast<size_t>(size / block));
+  };
+  within_blocks(2, block);
+  for (int k = 2 * block; k <= size; k *= 2) {
+    for (int j = k / 2; j >= block; j /= 2) {
       device::KernelArgs step(bitonic_k_.get());
       step.add(keys).add(values).add(j).add(k).add(size);
       cl_.run(step.bind(), static_cast<size_t>(size));
     }
+    within_blocks(k, k);
+  }
 }
 
 void BarrierBroadPhase::candidates(cl_mem q, cl_mem dq, double inflate, DevicePairList& out) {

@@ -78,8 +78,8 @@ class BarrierBroadPhase {
   device::Buffer lo_, hi_, partial_, grid_, dims_, counts_, offsets_, span_sums_, total_, cell_keys_, cell_boxes_,
       incidence_keys_, block_keys_, starts_, block_of_, entry_bounds_;
   device::Kernel boxes_k_, bounds_k_, grid_k_, cell_counts_k_, cell_entries_k_, query_k_, pairs_k_, flags_k_,
-      compact_k_, list_entries_k_, block_starts_k_, block_lists_k_, block_rows_k_, bitonic_k_, pad_k_, scan_spans_k_,
-      scan_span_offsets_k_, scan_offsets_k_, lower_bounds_k_;
+      compact_k_, list_entries_k_, block_starts_k_, block_lists_k_, block_rows_k_, bitonic_k_, bitonic_block_k_, pad_k_,
+      scan_spans_k_, scan_span_offsets_k_, scan_offsets_k_, lower_bounds_k_;
 };
 
 }  // namespace snh::solver
