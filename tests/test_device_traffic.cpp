@@ -564,6 +564,97 @@ TEST(DeviceTraffic, ContactSetCheckReadsAFewBytesPerLinearizationWhateverTheSize
   EXPECT_LE(b.bytes_per_linearization, 1.1 * a.bytes_per_linearization);
 }
 
+// Barrier self-contact runs on the device from the solver's own x and p:
+// its broad phase reads an int per count that sizes a buffer, its energy
+// and step bound a few doubles. A Newton iteration reads a bounded number
+// of small values whatever the size; a read of x (or of a pair list) would
+// grow with it. Two res x res x 2 lattices, B a tenth of a cell above A, B's
+// top pressed down 0.08 cells: B's bottom face within dhat (0.05 cells) of
+// A's top.
+struct BarrierReads {
+  double reads_per_newton = 0.0, bytes_per_read = 0.0;
+  int pairs = 0;
+  long long dofs = 0;
+};
+
+BarrierReads barrier_reads(int resolution) {
+  SceneParameters parameters;
+  parameters.resolution = resolution;
+  parameters.steps = 1;
+  Scene scene = make_scene("twist", parameters);
+  const double h = 1.0 / resolution;
+  const double tolerance_per_root_vertex =
+      scene.options.absolute_tolerance / std::sqrt(static_cast<double>(scene.mesh.vertex_count()));
+  scene.mesh = make_box_lattice(resolution, resolution, 2, h);
+  const Mesh b = make_box_lattice(resolution, resolution, 2, h, {0.0, 0.0, 2.1 * h});
+  const int32_t first_b = static_cast<int32_t>(scene.mesh.vertex_count());
+  scene.mesh.positions.insert(scene.mesh.positions.end(), b.positions.begin(), b.positions.end());
+  for (int32_t v : b.elements) scene.mesh.elements.push_back(v + first_b);
+  ConstraintSet bottom{"bottom", {}, {}, {}}, top{"top", {}, {}, {}};
+  for (size_t v = 0; v < scene.mesh.vertex_count(); ++v) {
+    const double z = scene.mesh.positions[3 * v + 2];
+    if (std::abs(z) < 1e-9) bottom.vertices.push_back(static_cast<int32_t>(v));
+    if (std::abs(z - 4.1 * h) < 1e-9) top.vertices.push_back(static_cast<int32_t>(v));
+  }
+  top.motion = [h](double t) { return RigidTransform::translation_by({0.0, 0.0, -0.08 * h * t}); };
+  scene.constraints = {bottom, top};
+  scene.options.absolute_tolerance =
+      tolerance_per_root_vertex * std::sqrt(static_cast<double>(scene.mesh.vertex_count()));
+  const Traced r =
+      run(scene, Preconditioner::block_jacobi, 4, HessianMode::projected, {0.0, 0.0, 0.0}, [&](SolveOptions& o) {
+        o.contact.self = true;
+        o.contact.self_method = SelfContactMethod::barrier;
+        o.contact.self_distance = 0.05 * h;
+        // Enough iterations to press B against the barrier; the reads per
+        // iteration are what is measured, not where Newton ends.
+        o.max_newton_iterations = 12;
+      });
+  const SolveProfile& p = r.result.profile;
+  DeviceTraffic outside;
+  for (const auto& [phase, t] : p.traffic)
+    if (phase != "products" && phase != "preconditioner_apply" && phase != "cg_vector_work" &&
+        phase != "preconditioner_setup")
+      outside += t;
+  int newton = 0;
+  BarrierReads out;
+  for (const StepResult& s : r.result.steps) {
+    newton += s.newton_iterations;
+    out.pairs = std::max(out.pairs, s.self_contact_pairs);
+  }
+  EXPECT_GT(newton, 0);
+  // Less each step's result, read once at its end (double here).
+  out.dofs = static_cast<long long>(r.result.positions.size());
+  const long long steps = static_cast<long long>(r.result.steps.size());
+  const long long reads = outside.blocking_readbacks - steps;
+  const long long bytes = outside.bytes_to_host - steps * out.dofs * static_cast<long long>(sizeof(double));
+  out.reads_per_newton = static_cast<double>(reads) / newton;
+  out.bytes_per_read = static_cast<double>(bytes) / std::max<long long>(1, reads);
+  return out;
+}
+
+TEST(DeviceTraffic, NewtonWithBarrierSelfContactReadsAFewValuesWhateverTheSize) {
+  const BarrierReads a = barrier_reads(4);
+  const BarrierReads b = barrier_reads(12);
+  ASSERT_GT(b.dofs, 4 * a.dofs);
+  for (const BarrierReads& r : {a, b}) {
+    // Pairs within dhat: the barrier acted.
+    EXPECT_GT(r.pairs, 0) << r.dofs;
+    // Per Newton iteration (about 20 here): the elastic loop's few reads,
+    // and the barrier's in its residual and its linearization (4 each:
+    // cell entries, candidates, pairs within dhat, blocks), step bound (3)
+    // and each energy (3); none of a vector.
+    EXPECT_GT(r.reads_per_newton, 2.0) << r.dofs;
+    EXPECT_LE(r.reads_per_newton, 30.0) << r.dofs;
+    // At most the energy's five doubles in one read.
+    EXPECT_LE(r.bytes_per_read, 5.0 * sizeof(double)) << r.dofs;
+  }
+  // The same mix of reads at both sizes: more surface pairs are not more
+  // reads (the line search's trials shift the mix a little).
+  EXPECT_LE(b.reads_per_newton, 1.5 * a.reads_per_newton);
+  EXPECT_LE(b.bytes_per_read, 1.25 * a.bytes_per_read);
+  EXPECT_GE(b.bytes_per_read, a.bytes_per_read / 1.25);
+}
+
 TEST(DeviceTraffic, NegativeCheckIntervalIsRefused) {
   const Scene scene = twist();
   SolveOptions o = scene.options;

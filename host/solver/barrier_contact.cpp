@@ -21,10 +21,6 @@ namespace kernel {
 
 namespace {
 
-// The edge-edge mollifier's threshold factor (IPC sec. 4.3): ex = 1e-3
-// |A|^2 |B|^2 of the rest edges.
-constexpr double kMollifierFactor = 1e-3;
-
 struct Box {
   double lo[3], hi[3];
   bool overlaps(const Box& o) const {

@@ -36,6 +36,10 @@ inline constexpr double kDefaultSelfDistance = 0.01;
 // pressed together stop near dhat / 2 under the pressures of a squash.
 double default_barrier_stiffness(const MaterialMap& materials, double edge, double dhat);
 
+// The edge-edge mollifier's threshold factor (IPC sec. 4.3): ex = 1e-3
+// |A|^2 |B|^2 of the rest edges.
+inline constexpr double kMollifierFactor = 1e-3;
+
 // Projects a symmetric n x n matrix (row-major) to its nearest PSD matrix:
 // negative eigenvalues clamped to 0 (IPC sec. 4.2), by Eigen's
 // SelfAdjointEigenSolver. The tests' reference: the pair Hessians are
@@ -119,6 +123,15 @@ class BarrierContact {
   size_t edge_count() const { return edges_.size() / 2; }
   size_t triangle_count() const { return triangles_.size() / 3; }
   const std::vector<int>& triangles() const { return triangles_; }
+  // The surface's points (vertex indices, ascending), edges (2 each,
+  // ascending pairs, sorted) and their rest lengths squared: the primitive
+  // indices of the pairs' keys.
+  const std::vector<int>& points() const { return points_; }
+  const std::vector<int>& edges() const { return edges_; }
+  const std::vector<double>& edge_rest_squared() const { return edge_rest_squared_; }
+  // The pairs left out (exclude_pairs_near), sorted keys kind << 62 | a <<
+  // 31 | b of point or edge a and triangle or edge b.
+  const std::vector<uint64_t>& exclusion_keys() const { return excluded_; }
   // The positions the pairs' vertex indices refer to: the surface's
   // vertices with an embedding, else the mesh's.
   size_t surface_vertex_count() const { return carrier_.empty() ? 0 : weight_.size() / 8; }

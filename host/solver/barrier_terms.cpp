@@ -30,11 +30,16 @@ int spans(int count) { return (count + kSpan - 1) / kSpan; }
 
 template <typename Real>
 BarrierTerms<Real>::BarrierTerms(device::OpenClContext& cl, const Mesh& mesh, PhaseProfiler* profiler)
-    : cl_(cl), profiler_(profiler), vertex_count_(mesh.vertex_count()), contact_(mesh), rest_(mesh.positions) {
-  pair_bytes_ = cl_.info().has_fp64 ? sizeof(double) : sizeof(float);
+    : cl_(cl),
+      profiler_(profiler),
+      vertex_count_(mesh.vertex_count()),
+      contact_(mesh),
+      rest_(mesh.positions),
+      pair_bytes_(cl.info().has_fp64 ? sizeof(double) : sizeof(float)),
+      broad_(cl, pair_bytes_, profiler) {
   const char* file = "contact/barrier_pairs.cl";
   const device::KernelConfig config;
-  lift_k_ = cl_.kernel(file, config, "snh_barrier_lift");
+  lift_k_ = cl_.kernel(file, config, "snh_barrier_lift_store");
   energy_k_ = cl_.kernel(file, config, "snh_barrier_pair_energy");
   pair_k_ = cl_.kernel(file, config, "snh_barrier_pair_terms");
   partials_k_ = cl_.kernel(file, config, "snh_barrier_partials");
@@ -48,8 +53,9 @@ BarrierTerms<Real>::BarrierTerms(device::OpenClContext& cl, const Mesh& mesh, Ph
   ccd_k_ = cl_.kernel(file, config, "snh_barrier_ccd");
   min_partials_k_ = cl_.kernel(file, config, "snh_barrier_min_partials");
   min_total_k_ = cl_.kernel(file, config, "snh_barrier_min_total");
-  x_ = cl_.buffer(CL_MEM_READ_ONLY, 3 * vertex_count_ * pair_bytes_);
-  p_ = cl_.buffer(CL_MEM_READ_ONLY, 3 * vertex_count_ * pair_bytes_);
+  differs_k_ = cl_.kernel(file, config, "snh_barrier_differs");
+  x_copy_ = cl_.buffer(CL_MEM_READ_WRITE, 3 * vertex_count_ * sizeof(Real));
+  differs_ = cl_.buffer(CL_MEM_READ_WRITE, 3 * vertex_count_ * sizeof(int));
   total_ = cl_.buffer(CL_MEM_READ_WRITE, 3 * pair_bytes_);
   diagonal_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * vertex_count_ * sizeof(Real));
   upload_surface();
@@ -61,9 +67,10 @@ void BarrierTerms<Real>::set_parameters(double dhat, double kappa) {
     contact_.set_distance(dhat);
     excluded_at_rest_ = contact_.exclude_pairs_near(rest_);
     excluded_known_ = true;
+    broad_.set_surface(contact_);
+    x_known_ = false;
   }
   kappa_ = kappa;
-  near_valid_ = candidates_valid_ = false;
 }
 
 template <typename Real>
@@ -119,114 +126,65 @@ void BarrierTerms<Real>::upload_surface() {
   dq_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * pair_bytes_);
   surface_gradient_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * pair_bytes_);
   z_ = cl_.buffer(CL_MEM_READ_WRITE, s3 * sizeof(Real));
-  pairs_ = BarrierPairBuffers{};
-  near_valid_ = candidates_valid_ = false;
+  broad_.set_surface(contact_);
+  x_known_ = false;
   blocks_ = 0;
 }
 
 template <typename Real>
-void BarrierTerms<Real>::lift(const std::vector<double>& x, device::Buffer& lattice, device::Buffer& surface) {
-  {
-    PhaseScope transfer(profiler_, Phase::transfers);
-    if (pair_bytes_ == sizeof(double)) {
-      cl_.write(lattice.get(), x.size() * sizeof(double), x.data());
-    } else {
-      const std::vector<float> narrow(x.begin(), x.end());
-      cl_.write(lattice.get(), narrow.size() * sizeof(float), narrow.data());
-    }
-  }
+void BarrierTerms<Real>::reserve(device::Buffer& buffer, size_t bytes) {
+  bytes = std::max<size_t>(bytes, 1);
+  if (buffer && device::OpenClContext::bytes(buffer.get()) >= bytes) return;
+  buffer = cl_.buffer(CL_MEM_READ_WRITE, bytes + bytes / 2);  // room to grow
+}
+
+template <typename Real>
+void BarrierTerms<Real>::lift(cl_mem x, device::Buffer& surface) {
   device::KernelArgs args(lift_k_.get());
-  args.add(lattice.get()).add(carrier_.get()).add(weight_.get()).add(carriers_).add(surface_count_).add(surface.get());
+  args.add(x).add(carrier_.get()).add(weight_.get()).add(carriers_).add(surface_count_).add(surface.get());
   cl_.run(args.bind(), static_cast<size_t>(surface_count_));
 }
 
 template <typename Real>
-void BarrierTerms<Real>::set_pairs(const std::vector<BarrierPair>& pairs) {
-  if (pairs_.count == static_cast<int>(pairs.size()) && pairs_.pairs == pairs) return;
-  BarrierPairBuffers& b = pairs_;
-  b.pairs = pairs;
-  b.count = static_cast<int>(pairs.size());
-  b.lists = false;
-  const size_t count = pairs.size();
-  std::vector<cl_int4> vertex(std::max<size_t>(count, 1));
-  std::vector<int> kind(count);
-  std::vector<double> ex(count);
-  for (size_t i = 0; i < count; ++i) {
-    for (int k = 0; k < 4; ++k) vertex[i].s[k] = pairs[i].vertex[k];
-    kind[i] = pairs[i].kind;
-    ex[i] = pairs[i].ex;
+void BarrierTerms<Real>::at(cl_mem x) {
+  const int n = static_cast<int>(3 * vertex_count_);
+  if (x_known_) {
+    device::KernelArgs args(differs_k_.get());
+    args.add(x).add(x_copy_.get()).add(n).add(differs_.get());
+    cl_.run(args.bind(), static_cast<size_t>(n));
+    if (broad_.count_set(differs_.get(), n) == 0) return;
   }
-  PhaseScope transfer(profiler_, Phase::transfers);
-  b.vertex = cl_.buffer(CL_MEM_READ_ONLY, vertex.size() * sizeof(cl_int4), vertex.data());
-  b.kind = host_to_device(kind);
-  b.ex = host_to_device(ex);
-  const size_t slots = std::max<size_t>(count, 1);
-  b.energy = cl_.buffer(CL_MEM_READ_WRITE, slots * pair_bytes_);
-  b.distance = cl_.buffer(CL_MEM_READ_WRITE, slots * pair_bytes_);
-  b.gradient = device::Buffer();
-  b.hessian = device::Buffer();
+  cl_.copy(x, x_copy_.get(), static_cast<size_t>(n) * sizeof(Real));
+  lift(x, q_);
+  x_known_ = true;
+  candidates_known_ = near_known_ = lists_known_ = false;
 }
 
 template <typename Real>
-void BarrierTerms<Real>::build_lists() {
-  BarrierPairBuffers& b = pairs_;
-  if (b.lists) return;
-  const std::vector<BarrierPair>& pairs = b.pairs;
-  const size_t count = pairs.size();
-  // Incidences per surface vertex, in pair order (a counting sort).
-  std::vector<int> offsets(surface_count_ + 1, 0), incidence(4 * count);
-  for (const BarrierPair& p : pairs)
-    for (int v : p.vertex) ++offsets[v + 1];
-  for (int s = 0; s < surface_count_; ++s) offsets[s + 1] += offsets[s];
-  std::vector<int> fill(offsets.begin(), offsets.end() - 1);
-  for (size_t i = 0; i < count; ++i)
-    for (int v = 0; v < 4; ++v) incidence[fill[pairs[i].vertex[v]]++] = static_cast<int>(4 * i + v);
-  // The pairs' blocks by (row, column), contributions in pair order.
-  std::vector<std::array<int, 3>> keys;
-  keys.reserve(16 * count);
-  for (size_t i = 0; i < count; ++i)
-    for (int v = 0; v < 4; ++v)
-      for (int w = 0; w < 4; ++w)
-        keys.push_back({pairs[i].vertex[v], pairs[i].vertex[w], static_cast<int>(16 * i + 4 * v + w)});
-  std::sort(keys.begin(), keys.end());
-  b.rows.assign(surface_count_ + 1, 0);
-  b.columns.clear();
-  std::vector<int> contribution_offsets{0}, contributions;
-  contributions.reserve(keys.size());
-  for (size_t k = 0; k < keys.size(); ++k) {
-    if (k == 0 || keys[k][0] != keys[k - 1][0] || keys[k][1] != keys[k - 1][1]) {
-      if (k > 0) contribution_offsets.push_back(static_cast<int>(k));
-      ++b.rows[keys[k][0] + 1];
-      b.columns.push_back(keys[k][1]);
-    }
-    contributions.push_back(keys[k][2]);
-  }
-  contribution_offsets.push_back(static_cast<int>(keys.size()));
-  if (keys.empty()) contribution_offsets.assign(1, 0);
-  for (int s = 0; s < surface_count_; ++s) b.rows[s + 1] += b.rows[s];
-  b.blocks = static_cast<int>(b.columns.size());
-  PhaseScope transfer(profiler_, Phase::transfers);
-  b.incidence_offsets = host_to_device(offsets);
-  b.incidence = host_to_device(incidence);
-  b.contribution_offsets = host_to_device(contribution_offsets);
-  b.contributions = host_to_device(contributions);
-  b.lists = true;
+void BarrierTerms<Real>::find_candidates() {
+  if (candidates_known_) return;
+  broad_.candidates(q_.get(), nullptr, contact_.distance(), candidates_);
+  candidates_known_ = true;
 }
 
 template <typename Real>
-const std::vector<BarrierPair>& BarrierTerms<Real>::candidates(const std::vector<double>& x) {
-  if (!(candidates_valid_ && x == candidates_x_)) {
-    candidates_ = contact_.candidate_pairs(x, nullptr);
-    candidates_x_ = x;
-    candidates_valid_ = true;
+void BarrierTerms<Real>::find_near(cl_mem x, bool lists) {
+  at(x);
+  if (!near_known_) {
+    find_candidates();
+    run_pairs(candidates_, 0);
+    broad_.near(candidates_, distance_.get(), contact_.distance() * contact_.distance(), near_);
+    near_known_ = true;
   }
-  return candidates_;
+  if (lists && !lists_known_) {
+    broad_.lists(near_, surface_count_, lists_);
+    lists_known_ = true;
+  }
 }
 
 template <typename Real>
-void BarrierTerms<Real>::run_pairs(int derivatives) {
-  BarrierPairBuffers& b = pairs_;
-  if (b.count == 0) return;
+void BarrierTerms<Real>::run_pairs(const DevicePairList& pairs, int derivatives) {
+  if (pairs.count == 0) return;
   const double sh = contact_.distance() * contact_.distance();
   auto add_real = [&](device::KernelArgs& args, double value) {
     if (pair_bytes_ == sizeof(double))
@@ -234,72 +192,61 @@ void BarrierTerms<Real>::run_pairs(int derivatives) {
     else
       args.add(static_cast<float>(value));
   };
-  const size_t count = static_cast<size_t>(b.count);
+  const size_t count = static_cast<size_t>(pairs.count);
   if (derivatives == 0) {
+    reserve(energy_, count * pair_bytes_);
+    reserve(distance_, count * pair_bytes_);
     device::KernelArgs args(energy_k_.get());
-    args.add(q_.get()).add(b.vertex.get()).add(b.kind.get()).add(b.ex.get()).add(b.count);
+    args.add(q_.get()).add(pairs.vertex.get()).add(pairs.kind.get()).add(pairs.ex.get()).add(pairs.count);
     add_real(args, sh);
-    args.add(b.energy.get()).add(b.distance.get());
+    args.add(energy_.get()).add(distance_.get());
     cl_.run(args.bind(), count);
     return;
   }
-  if (!b.gradient) b.gradient = cl_.buffer(CL_MEM_READ_WRITE, 12 * count * pair_bytes_);
+  reserve(gradient_, 12 * count * pair_bytes_);
   const int hessian = derivatives > 1 ? 1 : 0;
-  if (hessian && !b.hessian) b.hessian = cl_.buffer(CL_MEM_READ_WRITE, 144 * count * pair_bytes_);
+  if (hessian) reserve(hessian_, 144 * count * pair_bytes_);
   device::KernelArgs args(pair_k_.get());
-  args.add(q_.get()).add(b.vertex.get()).add(b.kind.get()).add(b.ex.get()).add(b.count);
+  args.add(q_.get()).add(pairs.vertex.get()).add(pairs.kind.get()).add(pairs.ex.get()).add(pairs.count);
   add_real(args, sh);
-  args.add(hessian).add(b.gradient.get()).add(hessian ? b.hessian.get() : b.gradient.get());
+  args.add(hessian).add(gradient_.get()).add(hessian ? hessian_.get() : gradient_.get());
   cl_.run(args.bind(), count);
 }
 
 template <typename Real>
-const std::vector<BarrierPair>& BarrierTerms<Real>::near_pairs(const std::vector<double>& x) {
-  if (near_valid_ && x == near_x_) return near_;
-  const std::vector<BarrierPair>& candidates = this->candidates(x);
-  near_.clear();
-  if (!candidates.empty()) {
-    lift(x, x_, q_);
-    set_pairs(candidates);
-    run_pairs(0);
-    std::vector<double> distance(candidates.size());
-    {
-      PhaseScope transfer(profiler_, Phase::transfers);
-      if (pair_bytes_ == sizeof(double)) {
-        cl_.read(pairs_.distance.get(), distance.size() * sizeof(double), distance.data());
-      } else {
-        std::vector<float> narrow(distance.size());
-        cl_.read(pairs_.distance.get(), narrow.size() * sizeof(float), narrow.data());
-        distance.assign(narrow.begin(), narrow.end());
-      }
-    }
-    const double sh = contact_.distance() * contact_.distance();
-    for (size_t i = 0; i < candidates.size(); ++i)
-      if (distance[i] < sh) near_.push_back(candidates[i]);
+std::vector<BarrierPair> BarrierTerms<Real>::candidate_pairs(cl_mem x, cl_mem p) {
+  at(x);
+  if (p) {
+    lift(p, dq_);
+    broad_.candidates(q_.get(), dq_.get(), contact_.distance(), swept_);
+    return broad_.download(swept_);
   }
-  near_x_ = x;
-  near_valid_ = true;
-  return near_;
+  find_candidates();
+  return broad_.download(candidates_);
 }
 
 template <typename Real>
-double BarrierTerms<Real>::energy(const std::vector<double>& x) {
+std::vector<BarrierPair> BarrierTerms<Real>::near_pairs(cl_mem x) {
+  find_near(x, false);
+  return broad_.download(near_);
+}
+
+template <typename Real>
+double BarrierTerms<Real>::energy(cl_mem x) {
   Stopwatch watch{state_.seconds};
   const double dhat = contact_.distance(), sh = dhat * dhat;
-  const std::vector<BarrierPair>& candidates = this->candidates(x);
   state_.pairs = 0;
   state_.min_distance = dhat;
-  if (candidates.empty()) return 0.0;
-  lift(x, x_, q_);
-  set_pairs(candidates);
-  run_pairs(0);
-  const int count = pairs_.count, groups = spans(count);
-  if (!partial_ || device::OpenClContext::bytes(partial_.get()) < 3 * static_cast<size_t>(groups) * pair_bytes_)
-    partial_ = cl_.buffer(CL_MEM_READ_WRITE, 3 * static_cast<size_t>(groups) * pair_bytes_);
+  at(x);
+  find_candidates();
+  if (candidates_.count == 0) return 0.0;
+  run_pairs(candidates_, 0);
+  const int count = candidates_.count, groups = spans(count);
+  reserve(partial_, 3 * static_cast<size_t>(groups) * pair_bytes_);
   double totals[3];
   {
     device::KernelArgs args(partials_k_.get());
-    args.add(pairs_.energy.get()).add(pairs_.distance.get()).add(count);
+    args.add(energy_.get()).add(distance_.get()).add(count);
     if (pair_bytes_ == sizeof(double))
       args.add(sh);
     else
@@ -329,16 +276,13 @@ double BarrierTerms<Real>::energy(const std::vector<double>& x) {
 }
 
 template <typename Real>
-void BarrierTerms<Real>::add_force(const std::vector<double>& x, cl_mem mask, cl_mem r) {
+void BarrierTerms<Real>::add_force(cl_mem x, cl_mem mask, cl_mem r) {
   Stopwatch watch{state_.seconds};
-  const std::vector<BarrierPair> near = near_pairs(x);
-  if (near.empty()) return;
-  lift(x, x_, q_);
-  set_pairs(near);
-  build_lists();
-  run_pairs(1);
+  find_near(x, true);
+  if (near_.count == 0) return;
+  run_pairs(near_, 1);
   device::KernelArgs gather(surface_gradient_k_.get());
-  gather.add(pairs_.gradient.get()).add(pairs_.incidence_offsets.get()).add(pairs_.incidence.get());
+  gather.add(gradient_.get()).add(lists_.incidence_offsets.get()).add(lists_.incidence.get());
   gather.add(surface_count_);
   if (pair_bytes_ == sizeof(double))
     gather.add(kappa_);
@@ -355,42 +299,41 @@ void BarrierTerms<Real>::add_force(const std::vector<double>& x, cl_mem mask, cl
 }
 
 template <typename Real>
-void BarrierTerms<Real>::linearize(const std::vector<double>& x) {
+void BarrierTerms<Real>::linearize(cl_mem x) {
   Stopwatch watch{state_.seconds};
-  const std::vector<BarrierPair> near = near_pairs(x);
+  find_near(x, true);
   blocks_ = 0;
-  if (near.empty()) {
+  if (near_.count == 0) {
     const std::vector<Real> zeros(9 * vertex_count_, Real(0));
     PhaseScope transfer(profiler_, Phase::transfers);
     cl_.write(diagonal_.get(), zeros.size() * sizeof(Real), zeros.data());
     return;
   }
-  lift(x, x_, q_);
-  set_pairs(near);
-  build_lists();
-  run_pairs(2);
-  const BarrierPairBuffers& b = pairs_;
-  {
-    PhaseScope transfer(profiler_, Phase::transfers);
-    rows_ = host_to_device(b.rows);
-    columns_ = host_to_device(b.columns);
-  }
-  blocks_values_ = cl_.buffer(CL_MEM_READ_WRITE, 9 * static_cast<size_t>(b.blocks) * sizeof(Real));
+  run_pairs(near_, 2);
+  const int count = lists_.blocks;
+  reserve(blocks_values_, 9 * static_cast<size_t>(count) * sizeof(Real));
   device::KernelArgs blocks(surface_blocks_k_.get());
-  blocks.add(b.hessian.get()).add(b.contribution_offsets.get()).add(b.contributions.get()).add(b.blocks);
+  blocks.add(hessian_.get()).add(lists_.contribution_offsets.get()).add(lists_.contributions.get()).add(count);
   if (pair_bytes_ == sizeof(double))
     blocks.add(kappa_);
   else
     blocks.add(static_cast<float>(kappa_));
   blocks.add(blocks_values_.get());
-  cl_.run(blocks.bind(), static_cast<size_t>(b.blocks));
+  cl_.run(blocks.bind(), static_cast<size_t>(count));
   const int n = static_cast<int>(vertex_count_);
   device::KernelArgs diagonal(diagonal_k_.get());
+  // The linearization's own block rows and columns: a force at another x
+  // rebuilds lists_ before the products that use these.
+  const size_t row_bytes = (static_cast<size_t>(surface_count_) + 1) * sizeof(int);
+  reserve(rows_, row_bytes);
+  reserve(columns_, static_cast<size_t>(count) * sizeof(int));
+  cl_.copy(lists_.rows.get(), rows_.get(), row_bytes);
+  if (count > 0) cl_.copy(lists_.columns.get(), columns_.get(), static_cast<size_t>(count) * sizeof(int));
   diagonal.add(rows_.get()).add(columns_.get()).add(blocks_values_.get());
   diagonal.add(transpose_offsets_.get()).add(transpose_entries_.get()).add(carrier_.get()).add(weight_.get());
   diagonal.add(carriers_).add(n).add(diagonal_.get());
   cl_.run(diagonal.bind(), vertex_count_);
-  blocks_ = b.blocks;
+  blocks_ = count;
   cl_.finish();  // the device's part counted in state().seconds
 }
 
@@ -410,20 +353,18 @@ void BarrierTerms<Real>::add_product(cl_mem mask, cl_mem p, cl_mem y) const {
 }
 
 template <typename Real>
-double BarrierTerms<Real>::step_bound(const std::vector<double>& x, const std::vector<double>& p) {
+double BarrierTerms<Real>::step_bound(cl_mem x, cl_mem p) {
   Stopwatch watch{state_.seconds};
-  const std::vector<BarrierPair> candidates = contact_.candidate_pairs(x, &p);
-  if (candidates.empty()) return 1.0;
-  lift(x, x_, q_);
-  lift(p, p_, dq_);
-  set_pairs(candidates);
-  const int count = pairs_.count, groups = spans(count);
-  if (!toi_ || device::OpenClContext::bytes(toi_.get()) < static_cast<size_t>(count) * pair_bytes_)
-    toi_ = cl_.buffer(CL_MEM_READ_WRITE, static_cast<size_t>(count) * pair_bytes_);
-  if (!partial_ || device::OpenClContext::bytes(partial_.get()) < 3 * static_cast<size_t>(groups) * pair_bytes_)
-    partial_ = cl_.buffer(CL_MEM_READ_WRITE, 3 * static_cast<size_t>(groups) * pair_bytes_);
+  at(x);
+  lift(p, dq_);
+  broad_.candidates(q_.get(), dq_.get(), contact_.distance(), swept_);
+  const int count = swept_.count, groups = spans(count);
+  if (count == 0) return 1.0;
+  reserve(toi_, static_cast<size_t>(count) * pair_bytes_);
+  reserve(partial_, 3 * static_cast<size_t>(groups) * pair_bytes_);
   device::KernelArgs ccd(ccd_k_.get());
-  ccd.add(q_.get()).add(dq_.get()).add(pairs_.vertex.get()).add(pairs_.kind.get()).add(count).add(toi_.get());
+  ccd.add(q_.get()).add(dq_.get()).add(swept_.vertex.get()).add(swept_.kind.get()).add(count);
+  ccd.add(toi_.get());
   cl_.run(ccd.bind(), static_cast<size_t>(count));
   device::KernelArgs partials(min_partials_k_.get());
   partials.add(toi_.get()).add(count).add(partial_.get());

@@ -218,9 +218,11 @@ class DeviceProblem {
     // With barrier self-contact the move is cut to what continuous collision
     // detection clears: a perturbation never passes the surface through itself.
     double alpha = 1.0;
-    if (const auto* barrier = model_.self_barrier()) {
-      const std::vector<double> from(host.begin(), host.end());
-      alpha = std::min(1.0, barrier->contact().step_bound(from, move));
+    if (model_.self_barrier()) {  // the device's CCD from x as it is there
+      const std::vector<Real> narrow(move.begin(), move.end());
+      viennacl::vector<Real> step(narrow.size());
+      viennacl::copy(narrow.begin(), narrow.end(), step.begin());
+      alpha = std::min(1.0, model_.step_bound(x, step));
     }
     for (size_t i = 0; i < host.size(); ++i) host[i] += static_cast<Real>(alpha * move[i]);
     viennacl::copy(host.begin(), host.end(), x.begin());

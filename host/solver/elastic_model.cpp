@@ -360,7 +360,7 @@ void ElasticModel<Real>::set_self_barrier_surface(const Mesh& mesh, const Triang
 template <typename Real>
 double ElasticModel<Real>::step_bound(const VectorBase& x, const VectorBase& p) {
   if (!barrier_) return std::numeric_limits<double>::infinity();
-  return barrier_->step_bound(host_positions(x), host_positions(p));
+  return barrier_->step_bound(mem(x), mem(p));
 }
 
 template <typename Real>
@@ -423,7 +423,7 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
     }
   }
   if (barrier_) {
-    const double barrier = barrier_->energy(host_positions(x));
+    const double barrier = barrier_->energy(mem(x));
     sum += barrier;
     last_energy_magnitude_ += barrier;
   }
@@ -459,7 +459,7 @@ void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
   if (terms_.obstacles > 0) contact(x);
   self_differences(x);
   gather(data_.element_scratch, r, true, &x, 1, elastic_scale_);
-  if (barrier_) barrier_->add_force(host_positions(x), data_.mask.get(), mem(r));
+  if (barrier_) barrier_->add_force(mem(x), data_.mask.get(), mem(r));
 }
 
 template <typename Real>
@@ -475,7 +475,7 @@ void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   if (sizeof(Real) > sizeof(float)) args.add(products_->float_cache_buffer());
   data_.run_point_kernel(args.bind(), material_lanes_);
   if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
-  if (barrier_) barrier_->linearize(host_positions(x));
+  if (barrier_) barrier_->linearize(mem(x));
   products_->linearized(projected);
 }
 

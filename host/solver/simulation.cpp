@@ -477,13 +477,26 @@ struct Simulation::Impl {
   solver::PrecisionFallback precision_fallback;
 
   // The largest fraction of `move` from `from` that barrier self-contact's
-  // continuous collision detection clears (infinity without it).
-  double barrier_bound(const std::vector<double>& from, const std::vector<double>& move) const {
-    const solver::BarrierTerms<double>* barrier = dual ? dual->model->self_barrier() : nullptr;
-    if (!barrier && single) {
-      if (const auto* b = single->model->self_barrier()) return b->contact().step_bound(from, move);
+  // continuous collision detection clears (infinity without it): the
+  // device's CCD, the one Newton's line search runs.
+  double barrier_bound(const std::vector<double>& from, const std::vector<double>& move) {
+    if (dual && dual->model->self_barrier()) return device_barrier_bound(*dual, from, move);
+    if (single && single->model->self_barrier()) return device_barrier_bound(*single, from, move);
+    return std::numeric_limits<double>::infinity();
+  }
+  template <typename Real>
+  static double device_barrier_bound(Engine<Real>& engine, const std::vector<double>& from,
+                                     const std::vector<double>& move) {
+    device::OpenClContext& context = engine.model->context();
+    const device::Buffer from_buffer = context.buffer(CL_MEM_READ_WRITE, from.size() * sizeof(Real));
+    const device::Buffer move_buffer = context.buffer(CL_MEM_READ_WRITE, move.size() * sizeof(Real));
+    viennacl::vector<Real> from_device(from_buffer.get(), from.size()), move_device(move_buffer.get(), move.size());
+    {
+      solver::PhaseScope upload(&engine.model->profiler(), solver::Phase::transfers);
+      device::write_to_device(context, from, from_device);
+      device::write_to_device(context, move, move_device);
     }
-    return barrier ? barrier->contact().step_bound(from, move) : std::numeric_limits<double>::infinity();
+    return engine.model->step_bound(from_device, move_device);
   }
 
   // One Newton solve from x at its step's targets and forces, with the

@@ -58,6 +58,29 @@ __kernel void snh_barrier_lift(__global const real* x, __global const int* carri
   }
 }
 
+/* The same from x in the solver's precision (the device's own positions,
+ * never read back): each coordinate widened, then summed as above. */
+__kernel void snh_barrier_lift_store(__global const store_real* x, __global const int* carrier,
+                                     __global const real* weight, const int carriers, const int count,
+                                     __global real* q) {
+  const int s = get_global_id(0);
+  if (s >= count) return;
+  for (int d = 0; d < 3; ++d) {
+    real sum = SNH_R(0);
+    for (int k = 0; k < carriers; ++k) sum += weight[carriers * s + k] * (real)x[3 * carrier[carriers * s + k] + d];
+    q[3 * s + d] = sum;
+  }
+}
+
+/* 1 where x and the copy it is compared with differ (the lists built at
+ * that copy hold for x where none does). */
+__kernel void snh_barrier_differs(__global const store_real* x, __global const store_real* copy, const int count,
+                                  __global int* differs) {
+  const int i = get_global_id(0);
+  if (i >= count) return;
+  differs[i] = x[i] != copy[i] ? 1 : 0;
+}
+
 /* Per pair at q: energy b (without kappa) and squared distance, by the
  * distance alone (no derivatives): the energy's and the filter's pass over
  * every candidate. The same functions, so the same values as the terms
