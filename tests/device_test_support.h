@@ -46,14 +46,14 @@ viennacl::vector<Real> upload(const std::vector<double>& v) {
 }
 
 template <typename Real>
-std::vector<Real> download_raw(const viennacl::vector<Real>& d) {
+std::vector<Real> download_raw(const viennacl::vector_base<Real>& d) {
   std::vector<Real> r(d.size());
   viennacl::copy(d.begin(), d.end(), r.begin());
   return r;
 }
 
 template <typename Real>
-std::vector<double> download(const viennacl::vector<Real>& d) {
+std::vector<double> download(const viennacl::vector_base<Real>& d) {
   const std::vector<Real> r = download_raw(d);
   return {r.begin(), r.end()};
 }

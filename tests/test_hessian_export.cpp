@@ -18,6 +18,7 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
+#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "hessian_export.h"
 #include "snh/scenes.h"
@@ -27,18 +28,6 @@
 
 namespace snh::test {
 namespace {
-
-viennacl::vector<double> upload(const std::vector<double>& v) {
-  viennacl::vector<double> d(v.size());
-  viennacl::copy(v.begin(), v.end(), d.begin());
-  return d;
-}
-
-std::vector<double> download(const viennacl::vector<double>& d) {
-  std::vector<double> v(d.size());
-  viennacl::copy(d.begin(), d.end(), v.begin());
-  return v;
-}
 
 std::vector<double> read_rhs(const std::string& path) {
   std::ifstream in(path);
@@ -92,7 +81,7 @@ TEST(HessianExport, MatrixTimesVectorIsTheEngineProductOnFreeDofs) {
   const Eigen::VectorXd y_export = a * p_free;
   const std::vector<double> expected(y_export.data(), y_export.data() + y_export.size());
 
-  const viennacl::vector<double> xd = upload(s.positions);
+  const viennacl::vector<double> xd = upload<double>(s.positions);
   viennacl::vector<double> r(model.dofs());
   model.residual(xd, r);
   const std::vector<double> r_full = download(r);
@@ -105,7 +94,7 @@ TEST(HessianExport, MatrixTimesVectorIsTheEngineProductOnFreeDofs) {
     model.set_variant(variant);
     model.linearize(xd, true);
     viennacl::vector<double> y(model.dofs());
-    model.product(upload(p_full), y);
+    model.product(upload<double>(p_full), y);
     const std::vector<double> y_full = download(y);
     std::vector<double> y_free;
     for (int64_t d : s.free_dofs) y_free.push_back(y_full[size_t(d)]);

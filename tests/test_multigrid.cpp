@@ -306,17 +306,6 @@ TEST(LatticeHierarchy, RefusesMeshesThatAreNotLattices) {
 
 // --- on the device ------------------------------------------------------------
 
-viennacl::vector<double> upload(const std::vector<double>& v) {
-  viennacl::vector<double> out(v.size());
-  viennacl::copy(v.begin(), v.end(), out.begin());
-  return out;
-}
-std::vector<double> download(const viennacl::vector_base<double>& v) {
-  std::vector<double> out(v.size());
-  viennacl::copy(v.begin(), v.end(), out.begin());
-  return out;
-}
-
 // A deformed, partly constrained L-shaped lattice at nu = 0.45.
 struct DeviceCase {
   Mesh mesh = lattice_subset(6, 5, 4, [](int i, int j, int) { return i < 3 || j < 2; });
@@ -372,7 +361,7 @@ void expect_galerkin_coarse_operators(solver::ElasticModel<double>& model,
   for (size_t j = 0; j < n; ++j) {
     std::vector<double> e(n, 0.0);
     e[j] = 1.0;
-    model.product(upload(e), y);
+    model.product(upload<double>(e), y);
     const std::vector<double> column = download(y);
     for (size_t i = 0; i < n; ++i) k(i, j) = column[i];
   }
@@ -433,7 +422,7 @@ TEST_P(CoarseOperator, IsTheAssembledGalerkinProduct) {
   options.fine_level_float = false;  // the exact Galerkin product (float: FloatFineLevel... below)
   solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
   ASSERT_GE(mg.levels(), 3);
-  const viennacl::vector<double> x = upload(c.x);
+  const viennacl::vector<double> x = upload<double>(c.x);
   model.linearize(x, projected);
   model.setup_preconditioner();
   mg.setup();
@@ -490,7 +479,7 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
     solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
     EXPECT_FALSE(mg.fine_level_built());  // automatic: the model's operator, which has them
     ASSERT_GE(mg.levels(), 3);
-    const viennacl::vector<double> x = upload(c.x);
+    const viennacl::vector<double> x = upload<double>(c.x);
     ASSERT_GT(model.contact_state(x).contacts, 4);
     model.linearize(x, true);
     model.setup_preconditioner();
@@ -539,7 +528,7 @@ TEST(Multigrid, ContactSetChangeRebuildsTheHierarchy) {
     solver::DeviceProblem<double> problem(
         model, Preconditioner::multigrid,
         std::make_unique<solver::MultigridPreconditioner<double>>(model, c.mesh, c.mask, options));
-    const viennacl::vector<double> x = upload(c.x);
+    const viennacl::vector<double> x = upload<double>(c.x);
     place(top + 2.0 * thickness);  // clear of the body
     ASSERT_EQ(model.contact_state(x).contacts, 0);
     problem.linearize(x, true);
@@ -608,7 +597,7 @@ TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
         solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
         // A float cycle needs a built fine level; a current one keeps double.
         ASSERT_EQ(mg.float_cycle(), float_cycle && smoothing.fine == MultigridFineLevel::built);
-        model.linearize(upload(c.x), true);
+        model.linearize(upload<double>(c.x), true);
         model.setup_preconditioner();
         mg.setup();
         std::mt19937_64 rng(7);
@@ -618,7 +607,7 @@ TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
           a[i] = mask[i] * u(rng);
           b[i] = mask[i] * u(rng);
         }
-        viennacl::vector<double> ma = upload(a), mb = upload(b);
+        viennacl::vector<double> ma = upload<double>(a), mb = upload<double>(b);
         mg.apply(ma);
         mg.apply(mb);
         SCOPED_TRACE("degree " + std::to_string(degree));
@@ -652,11 +641,11 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
     b[i] = mask[i] * u(rng);
   }
   auto apply = [&](const solver::MultigridPreconditioner<double>& mg, const std::vector<double>& v) {
-    viennacl::vector<double> z = upload(v);
+    viennacl::vector<double> z = upload<double>(v);
     mg.apply(z);
     return download(z);
   };
-  model.linearize(upload(c.x), true);
+  model.linearize(upload<double>(c.x), true);
   model.setup_preconditioner();
   built.setup();
   current.setup();
@@ -666,7 +655,7 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
   // A different deformation, linearized without a build (a reused hierarchy).
   std::vector<double> moved = c.x;
   for (size_t v = 0; v < c.mesh.vertex_count(); ++v) moved[3 * v + 2] += 0.2 * c.mesh.positions[3 * v + 2];
-  model.linearize(upload(moved), true);
+  model.linearize(upload<double>(moved), true);
   built.update_fine_bound();
   current.update_fine_bound();
   EXPECT_EQ(apply(built, a), built_a);
@@ -674,7 +663,7 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
   expect_symmetric_positive(mask, a, b, apply(built, a), apply(built, b), 1e-12);
 
   // A true-Hessian linearization (adaptive mode) keeps it too.
-  model.linearize(upload(moved), false);
+  model.linearize(upload<double>(moved), false);
   built.update_fine_bound();
   EXPECT_EQ(apply(built, a), built_a);
 }
@@ -704,7 +693,7 @@ TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
       options.coarsest_dofs = 1;
       solver::MultigridPreconditioner<double> mg(model, *mesh, mask, options);
       ASSERT_GE(mg.levels(), 3);
-      model.linearize(upload(x), true);
+      model.linearize(upload<double>(x), true);
       mg.setup();
       std::mt19937_64 rng(3);
       std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -721,7 +710,7 @@ TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
                   cells[576 * cell + 24 * col + row] * p[3 * level.elements[8 * cell + col / 3] + col % 3];
         for (size_t i = 0; i < n; ++i) expected[i] *= level.mask[i];
         viennacl::vector<double> y(n);
-        mg.level_product(l, upload(p), y);
+        mg.level_product(l, upload<double>(p), y);
         // Double: rounding only. Float fine level: the float rounding of the
         // assembled blocks (the cells' are float already). Float cycle: every
         // level's blocks and products in float.
@@ -737,8 +726,8 @@ TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
           b[i] = level.mask[i] * u(rng);
         }
         viennacl::vector<double> ya(n), yb(n);
-        mg.level_product(0, upload(a), ya);
-        mg.level_product(0, upload(b), yb);
+        mg.level_product(0, upload<double>(a), ya);
+        mg.level_product(0, upload<double>(b), yb);
         const std::vector<double> aa = download(ya), bb = download(yb);
         double ab = 0.0, ba = 0.0, scale = 0.0;
         for (size_t i = 0; i < n; ++i) {
@@ -760,7 +749,7 @@ std::pair<std::vector<double>, std::vector<double>> apply_both(const solver::Mul
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<double> a(mask.size());
   for (size_t i = 0; i < mask.size(); ++i) a[i] = mask[i] * u(rng);
-  viennacl::vector<double> z1 = upload(a), z2 = upload(a);
+  viennacl::vector<double> z1 = upload<double>(a), z2 = upload<double>(a);
   first.apply(z1);
   second.apply(z2);
   return {download(z1), download(z2)};
@@ -786,7 +775,7 @@ TEST(Multigrid, FloatFineLevelHalvesItsMatricesAndStaysClose) {
       solver::device_stencil_tables(c.mesh.elements, count, 8, fem::vertex_slots(c.mesh.elements, count), tile), count,
       tile);
   EXPECT_EQ(full.memory_bytes() - single.memory_bytes(), (c.mesh.element_count() * 576 + entries) * sizeof(float));
-  model.linearize(upload(c.x), true);
+  model.linearize(upload<double>(c.x), true);
   model.setup_preconditioner();
   single.setup();
   full.setup();
@@ -819,7 +808,7 @@ TEST(Multigrid, FloatCycleIsTheDoubleCycleToFloatRounding) {
   ASSERT_TRUE(single.float_cycle());
   ASSERT_FALSE(full.float_cycle());
   EXPECT_LT(single.memory_bytes(), full.memory_bytes());
-  model.linearize(upload(c.x), true);
+  model.linearize(upload<double>(c.x), true);
   model.setup_preconditioner();
   single.setup();
   full.setup();
@@ -1220,7 +1209,7 @@ TEST(Multigrid, BlockJacobiBlocksFromElementMatricesMatchTheCache) {
   for (ProductVariant v : {ProductVariant::cached, ProductVariant::element_matrices}) {
     solver::ElasticModel<double> model(cl, c.mesh, c.rest, uniform_material(c.mesh, c.material), v);
     model.set_mask(std::vector<double>(c.mask.begin(), c.mask.end()));
-    model.linearize(upload(c.x), true);
+    model.linearize(upload<double>(c.x), true);
     model.setup_preconditioner();
     blocks.push_back(model.preconditioner_blocks());
   }

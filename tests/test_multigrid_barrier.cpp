@@ -30,17 +30,6 @@
 namespace snh::test {
 namespace {
 
-viennacl::vector<double> upload(const std::vector<double>& v) {
-  viennacl::vector<double> out(v.size());
-  viennacl::copy(v.begin(), v.end(), out.begin());
-  return out;
-}
-std::vector<double> download(const viennacl::vector_base<double>& v) {
-  std::vector<double> out(v.size());
-  viennacl::copy(v.begin(), v.end(), out.begin());
-  return out;
-}
-
 // An 8x8x2 lattice (h = 0.25) squashed to a tenth of its height, so that its
 // top face comes within dhat = 0.3 h of its bottom face (0.2 h apart, 2 h at
 // rest: no pair is left out at rest), the bottom face pinned. kappa = 0.03
@@ -102,7 +91,7 @@ TEST(MultigridBarrier, FirstCoarseLevelCarriesTheBarriersDiagonalBlocks) {
   solver::MultigridPreconditioner<double> mg(*barrier_model, s.mesh, s.mask, three_levels());
   EXPECT_FALSE(mg.fine_level_built());  // automatic: the model's product, which has the barrier
   ASSERT_GE(mg.levels(), 2);
-  const viennacl::vector<double> x = upload(s.x);
+  const viennacl::vector<double> x = upload<double>(s.x);
   barrier_model->energy(x);
   ASSERT_GT(barrier_model->self_barrier()->state().pairs, 8) << "the squash brings no pair within dhat";
   barrier_model->linearize(x, true);
@@ -116,7 +105,7 @@ TEST(MultigridBarrier, FirstCoarseLevelCarriesTheBarriersDiagonalBlocks) {
   for (size_t j = 0; j < n; ++j) {
     std::vector<double> e(n, 0.0);
     e[j] = 1.0;
-    elastic_model->product(upload(e), y);
+    elastic_model->product(upload<double>(e), y);
     const std::vector<double> column = download(y);
     for (size_t i = 0; i < n; ++i) k(i, j) = column[i];
   }
@@ -168,9 +157,9 @@ TEST(MultigridBarrier, VCycleIsSymmetricPositive) {
     MultigridOptions options = three_levels();
     options.coarse_solve_on_device = device_coarse;
     solver::MultigridPreconditioner<double> mg(*model, s.mesh, s.mask, options);
-    model->energy(upload(s.x));
+    model->energy(upload<double>(s.x));
     ASSERT_GT(model->self_barrier()->state().pairs, 8);
-    model->linearize(upload(s.x), true);
+    model->linearize(upload<double>(s.x), true);
     model->setup_preconditioner();
     mg.setup();
     std::mt19937_64 rng(3);
@@ -180,7 +169,7 @@ TEST(MultigridBarrier, VCycleIsSymmetricPositive) {
       a[i] = mask[i] * u(rng);
       b[i] = mask[i] * u(rng);
     }
-    viennacl::vector<double> ma = upload(a), mb = upload(b);
+    viennacl::vector<double> ma = upload<double>(a), mb = upload<double>(b);
     mg.apply(ma);
     mg.apply(mb);
     const std::vector<double> za = download(ma), zb = download(mb);
