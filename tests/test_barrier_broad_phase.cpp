@@ -6,13 +6,16 @@
 // surface and with pairs left out at rest; and two runs give the same bits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
 #include "device_test_support.h"
+#include "snh/simulation.h"
 #include "snh/surface.h"
 #include "solver/barrier_contact.h"
 #include "solver/barrier_terms.h"
+#include "stability.h"
 
 namespace snh::test {
 namespace {
@@ -111,6 +114,7 @@ void expect_lists_match(solver::BarrierTerms<double>& terms, const solver::Barri
 TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnAMeshBoundary) {
   const Stack s;
   solver::BarrierTerms<double> terms(device_for(Precision::double_), s.mesh, nullptr);
+  terms.set_candidates_on_host(false);  // the device's grid, whatever the device
   const double dhat = 0.05;
   terms.set_parameters(dhat, 2.0);
   EXPECT_EQ(terms.excluded_at_rest(), 0u);
@@ -136,6 +140,7 @@ TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnALargerSurface) {
   const double h = 1.0 / 16;
   const Stack s(16, h);
   solver::BarrierTerms<double> terms(device_for(Precision::double_), s.mesh, nullptr);
+  terms.set_candidates_on_host(false);  // the device's grid, whatever the device
   const double dhat = 0.1 * h;
   terms.set_parameters(dhat, 2.0);
   solver::BarrierContact host(s.mesh);
@@ -153,6 +158,7 @@ TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnAnEmbeddedSurface) {
   const Stack s;
   const Embedded e(s.mesh);
   solver::BarrierTerms<double> terms(device_for(Precision::double_), s.mesh, nullptr);
+  terms.set_candidates_on_host(false);  // the device's grid, whatever the device
   const double dhat = 0.05;
   terms.set_parameters(dhat, 2.0);
   terms.set_surface(solver::BarrierContact(s.mesh, e.surface, e.embedding));
@@ -171,6 +177,7 @@ TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnAnEmbeddedSurface) {
 TEST(BarrierBroadPhase, PairsLeftOutAtRestAreLeftOutOnTheDevice) {
   const Stack s;
   solver::BarrierTerms<double> terms(device_for(Precision::double_), s.mesh, nullptr);
+  terms.set_candidates_on_host(false);  // the device's grid, whatever the device
   // dhat above the rest gap: the pairs across it are left out.
   const double dhat = 0.1;
   terms.set_parameters(dhat, 2.0);
@@ -194,6 +201,33 @@ TEST(BarrierBroadPhase, PairsLeftOutAtRestAreLeftOutOnTheDevice) {
   std::uniform_real_distribution<double> step(-0.1, 0.1);
   for (double& c : p) c = step(rng);
   expect_lists_match(terms, host, x, p, 5);
+}
+
+// A squash with barrier self-contact solved with the host's candidate pairs
+// and with the device's: the same pairs in the same order, so the same
+// iterations and positions bit for bit (SelfBroadPhase).
+TEST(BarrierBroadPhase, HostAndDeviceCandidatesSolveAlikeBitForBit) {
+  Scene scene = bench::make_stability_case("squash_h0.05_nu0.46", Precision::double_, 4, 0.0);
+  scene.options.load_steps = 8;
+  auto run = [&](SelfBroadPhase where) {
+    SolveOptions options = scene.options;
+    options.contact.self_broad_phase = where;
+    Simulation sim(scene.mesh, uniform_material(scene.mesh, scene.material), scene.constraints, options);
+    const SolveResult r = sim.solve();
+    return std::make_pair(r, sim.positions());
+  };
+  const auto [host, x_host] = run(SelfBroadPhase::host);
+  const auto [device, x_device] = run(SelfBroadPhase::device);
+  ASSERT_EQ(host.steps.size(), device.steps.size());
+  int pairs = 0;
+  for (size_t s = 0; s < host.steps.size(); ++s) {
+    EXPECT_EQ(host.steps[s].newton_iterations, device.steps[s].newton_iterations) << s;
+    EXPECT_EQ(host.steps[s].cg_iterations, device.steps[s].cg_iterations) << s;
+    EXPECT_EQ(host.steps[s].self_contact_pairs, device.steps[s].self_contact_pairs) << s;
+    pairs = std::max(pairs, host.steps[s].self_contact_pairs);
+  }
+  EXPECT_GT(pairs, 0) << "no pair came within dhat: the comparison shows nothing";
+  EXPECT_EQ(x_host, x_device);  // bitwise
 }
 
 }  // namespace

@@ -605,6 +605,7 @@ BarrierReads barrier_reads(int resolution) {
         o.contact.self = true;
         o.contact.self_method = SelfContactMethod::barrier;
         o.contact.self_distance = 0.05 * h;
+        o.contact.self_broad_phase = SelfBroadPhase::device;  // what a GPU runs (the CPU's default reads x)
         // Enough iterations to press B against the barrier; the reads per
         // iteration are what is measured, not where Newton ends.
         o.max_newton_iterations = 12;

@@ -292,6 +292,34 @@ void BarrierBroadPhase::lists(const DevicePairList& pairs, int surface_count, De
   out.blocks = blocks;
 }
 
+void BarrierBroadPhase::upload(const std::vector<BarrierPair>& pairs, DevicePairList& out) {
+  out.count = 0;
+  const size_t n = pairs.size();
+  if (n == 0) return;
+  reserve(out, static_cast<int>(n));
+  std::vector<cl_ulong> keys(n);
+  std::vector<cl_int4> vertex(n);
+  std::vector<int> kind(n);
+  std::vector<double> ex(n);
+  for (size_t i = 0; i < n; ++i) {
+    keys[i] = i;  // the order they come in
+    for (int k = 0; k < 4; ++k) vertex[i].s[k] = pairs[i].vertex[k];
+    kind[i] = pairs[i].kind;
+    ex[i] = pairs[i].ex;
+  }
+  PhaseScope transfer(profiler_, Phase::transfers);
+  cl_.write(out.keys.get(), n * sizeof(cl_ulong), keys.data());
+  cl_.write(out.vertex.get(), n * sizeof(cl_int4), vertex.data());
+  cl_.write(out.kind.get(), n * sizeof(int), kind.data());
+  if (real_bytes_ == sizeof(double)) {
+    cl_.write(out.ex.get(), n * sizeof(double), ex.data());
+  } else {
+    const std::vector<float> narrow(ex.begin(), ex.end());
+    cl_.write(out.ex.get(), n * sizeof(float), narrow.data());
+  }
+  out.count = static_cast<int>(n);
+}
+
 std::vector<BarrierPair> BarrierBroadPhase::download(const DevicePairList& pairs) {
   const size_t n = static_cast<size_t>(pairs.count);
   std::vector<BarrierPair> out(n);

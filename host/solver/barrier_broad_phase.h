@@ -55,6 +55,8 @@ class BarrierBroadPhase {
   void lists(const DevicePairList& pairs, int surface_count, DevicePairLists& out);
   // How many of the first n ints of `flags` are not 0 (one int read).
   int count_set(cl_mem flags, int n) { return scan(flags, n, offsets_); }
+  // `pairs` (found on the host, in their order) as a device list.
+  void upload(const std::vector<BarrierPair>& pairs, DevicePairList& out);
   // The list read back (tests and inspection).
   std::vector<BarrierPair> download(const DevicePairList& pairs);
 

@@ -163,8 +163,31 @@ void BarrierTerms<Real>::at(cl_mem x) {
 template <typename Real>
 void BarrierTerms<Real>::find_candidates() {
   if (candidates_known_) return;
-  broad_.candidates(q_.get(), nullptr, contact_.distance(), candidates_);
+  candidates(x_copy_.get(), nullptr, candidates_);
   candidates_known_ = true;
+}
+
+template <typename Real>
+std::vector<double> BarrierTerms<Real>::to_host(cl_mem v) {
+  std::vector<Real> values(3 * vertex_count_);
+  PhaseScope transfer(profiler_, Phase::transfers);
+  cl_.read(v, values.size() * sizeof(Real), values.data());
+  return {values.begin(), values.end()};
+}
+
+template <typename Real>
+void BarrierTerms<Real>::candidates(cl_mem x, cl_mem p, DevicePairList& out) {
+  if (!host_candidates_) {
+    broad_.candidates(q_.get(), p ? dq_.get() : nullptr, contact_.distance(), out);
+    return;
+  }
+  const std::vector<double> xh = to_host(x);
+  if (!p) {
+    broad_.upload(contact_.candidate_pairs(xh, nullptr), out);
+    return;
+  }
+  const std::vector<double> ph = to_host(p);
+  broad_.upload(contact_.candidate_pairs(xh, &ph), out);
 }
 
 template <typename Real>
@@ -218,7 +241,7 @@ std::vector<BarrierPair> BarrierTerms<Real>::candidate_pairs(cl_mem x, cl_mem p)
   at(x);
   if (p) {
     lift(p, dq_);
-    broad_.candidates(q_.get(), dq_.get(), contact_.distance(), swept_);
+    candidates(x, p, swept_);
     return broad_.download(swept_);
   }
   find_candidates();
@@ -357,7 +380,7 @@ double BarrierTerms<Real>::step_bound(cl_mem x, cl_mem p) {
   Stopwatch watch{state_.seconds};
   at(x);
   lift(p, dq_);
-  broad_.candidates(q_.get(), dq_.get(), contact_.distance(), swept_);
+  candidates(x, p, swept_);
   const int count = swept_.count, groups = spans(count);
   if (count == 0) return 1.0;
   reserve(toi_, static_cast<size_t>(count) * pair_bytes_);

@@ -71,6 +71,13 @@ class BarrierTerms {
   std::vector<BarrierPair> candidate_pairs(cl_mem x, cl_mem p);
   std::vector<BarrierPair> near_pairs(cl_mem x);
   const BarrierState& state() const { return state_; }
+  // Candidate pairs from the host's grid (BarrierContact::candidate_pairs,
+  // reading x, and p for the CCD) instead of the device's: the same pairs in
+  // the same order, so the same results bit for bit.
+  void set_candidates_on_host(bool on) {
+    host_candidates_ = on;
+    x_known_ = false;
+  }
   // Whether the pair math runs in double (the device has fp64).
   bool pairs_in_double() const { return pair_bytes_ == sizeof(double); }
 
@@ -93,6 +100,11 @@ class BarrierTerms {
   // (2).
   void run_pairs(const DevicePairList& pairs, int derivatives);
   device::Buffer host_to_device(const std::vector<double>& values);
+  // A device vector of Real, xyz per vertex, read back in double.
+  std::vector<double> to_host(cl_mem v);
+  // The candidates at x (p null) or along x + t p into `out`, on the host
+  // or the device as set_candidates_on_host says.
+  void candidates(cl_mem x, cl_mem p, DevicePairList& out);
   device::Buffer host_to_device(const std::vector<int>& values);
   void reserve(device::Buffer& buffer, size_t bytes);
 
@@ -119,6 +131,7 @@ class BarrierTerms {
   DevicePairLists lists_;
   // The x the lists were found at (a device copy) and what holds for it.
   device::Buffer x_copy_, differs_;
+  bool host_candidates_ = false;
   bool x_known_ = false, candidates_known_ = false, near_known_ = false, lists_known_ = false;
   device::Buffer energy_, distance_, gradient_, hessian_;
   // The linearization: surface blocks (block CSR over surface vertices),

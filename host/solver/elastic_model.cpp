@@ -104,7 +104,12 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   block_jacobi_ = std::make_unique<BlockJacobi<Real>>(cl, vertex_count, config);
   mask_k_ = cl.kernel("fem.cl", config, "snh_apply_mask");
   if (terms.self_contact) self_contact_ = std::make_unique<SelfContactTerms<Real>>(cl, mesh, config, &profiler_);
-  if (terms.self_barrier) barrier_ = std::make_unique<BarrierTerms<Real>>(cl, mesh, &profiler_);
+  if (terms.self_barrier) {
+    barrier_ = std::make_unique<BarrierTerms<Real>>(cl, mesh, &profiler_);
+    barrier_->set_candidates_on_host(terms.self_broad_phase == SelfBroadPhase::automatic
+                                         ? !cl.info().is_gpu
+                                         : terms.self_broad_phase == SelfBroadPhase::host);
+  }
   for (size_t e = 0; e < element_count; ++e) {
     const Material& m = materials.of_element(e);
     double volume = 0.0;

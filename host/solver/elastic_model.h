@@ -66,6 +66,7 @@ struct ModelTerms {
   bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/self_contact.h)
   bool friction = false;      // lagged Coulomb friction against the obstacles (SNH_FRICTION)
   bool self_barrier = false;  // barrier self-contact (SNH_SELF_BARRIER, solver/barrier_terms.h)
+  SelfBroadPhase self_broad_phase = SelfBroadPhase::automatic;   // its candidate pairs' (BarrierTerms)
   PointDataLayout hex8_point_data = PointDataLayout::automatic;  // SNH_POINT_MAJOR, SNH_CACHE_TILE (tet4 too)
 };
 

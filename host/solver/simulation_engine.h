@@ -68,6 +68,7 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
   terms.obstacles = static_cast<int>(options.obstacles.size());
   terms.self_contact = options.contact.self && options.contact.self_method == SelfContactMethod::penalty;
   terms.self_barrier = options.contact.self && options.contact.self_method == SelfContactMethod::barrier;
+  terms.self_broad_phase = options.contact.self_broad_phase;
   terms.friction = setup.friction;
   engine->model = std::make_unique<ElasticModel<Real>>(ctx, setup.mesh, setup.rest, setup.materials, variant,
                                                        device::MaterialKernel::specialized, terms);

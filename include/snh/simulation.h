@@ -373,6 +373,12 @@ struct Obstacle {
 // (kernels/contact/obstacle.h). Kernels carry it (SNH_FRICTION) only
 // when some obstacle's coefficient is > 0.
 enum class SelfContactMethod { barrier, penalty };
+// Where barrier self-contact finds its candidate pairs. automatic: on the
+// device when it is a GPU (no read of x), on the host when the device is
+// the CPU (its uniform grid is faster there than the device's sorts on the
+// same cores). Either way the pairs, and so every result, are the same bit
+// for bit.
+enum class SelfBroadPhase { automatic, host, device };
 
 struct ContactOptions {
   double stiffness = 0.0;  // > 0 when there are obstacles (or penalty self-contact without self_stiffness)
@@ -388,6 +394,7 @@ struct ContactOptions {
   // boundary. Scene files with "embed" set it to their surface.
   TriangleSurface self_surface;
   Embedding self_embedding;
+  SelfBroadPhase self_broad_phase = SelfBroadPhase::automatic;
   double friction = 0.0;  // >= 0, the obstacles' coefficient unless they set their own
   // The slip (length) below which friction sticks as a spring (> 0); 0:
   // 1% of the mesh's vertex spacing (rest volume / vertices)^(1/3).
