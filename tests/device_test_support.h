@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "device/opencl_context.h"
@@ -100,6 +101,41 @@ inline void expect_vertex_term_matches(solver::ElasticModel<double>& with, solve
     });
     for (size_t i = 0; i < product.size(); ++i) EXPECT_NEAR(dp[i], product[i], 1e-12) << to_string(variant) << " " << i;
   }
+}
+
+// Two vectors of uniform values in [-1, 1), drawn in turn from a generator
+// seeded with `seed`, each times `mask` (0 on the constrained DOFs).
+inline std::pair<std::vector<double>, std::vector<double>> masked_random_pair(const std::vector<double>& mask,
+                                                                              uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> a(mask.size()), b(mask.size());
+  for (size_t i = 0; i < mask.size(); ++i) {
+    a[i] = mask[i] * u(rng);
+    b[i] = mask[i] * u(rng);
+  }
+  return {a, b};
+}
+
+// za = M a and zb = M b for a preconditioner M: a.(M b) = b.(M a) within
+// bound * sum_i |a_i (M b)_i|, a.(M a) > 0, and both exactly 0 on the
+// constrained DOFs (mask 0).
+inline void expect_symmetric_positive(const std::vector<double>& mask, const std::vector<double>& a,
+                                      const std::vector<double>& b, const std::vector<double>& za,
+                                      const std::vector<double>& zb, double bound) {
+  double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    ab += a[i] * zb[i];
+    ba += b[i] * za[i];
+    aa += a[i] * za[i];
+    scale += std::abs(a[i] * zb[i]);
+    if (mask[i] == 0.0) {
+      EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
+      EXPECT_EQ(zb[i], 0.0) << "constrained DOF " << i;
+    }
+  }
+  EXPECT_LT(std::abs(ab - ba), bound * scale) << "a.Mb " << ab << " b.Ma " << ba;
+  EXPECT_GT(aa, 0.0);
 }
 
 }  // namespace snh::test

@@ -546,27 +546,6 @@ TEST(Multigrid, ContactSetChangeRebuildsTheHierarchy) {
   }
 }
 
-// za = M a and zb = M b for a preconditioner M: a.(M b) = b.(M a) within
-// bound * sum_i |a_i (M b)_i|, a.(M a) > 0, and both exactly 0 on the
-// constrained DOFs (mask 0).
-void expect_symmetric_positive(const std::vector<double>& mask, const std::vector<double>& a,
-                               const std::vector<double>& b, const std::vector<double>& za,
-                               const std::vector<double>& zb, double bound) {
-  double ab = 0.0, ba = 0.0, aa = 0.0, scale = 0.0;
-  for (size_t i = 0; i < mask.size(); ++i) {
-    ab += a[i] * zb[i];
-    ba += b[i] * za[i];
-    aa += a[i] * za[i];
-    scale += std::abs(a[i] * zb[i]);
-    if (mask[i] == 0.0) {
-      EXPECT_EQ(za[i], 0.0) << "constrained DOF " << i;
-      EXPECT_EQ(zb[i], 0.0) << "constrained DOF " << i;
-    }
-  }
-  EXPECT_LT(std::abs(ab - ba), bound * scale) << "a.Mb " << ab << " b.Ma " << ba;
-  EXPECT_GT(aa, 0.0);
-}
-
 TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
   DeviceCase c;
   const std::unique_ptr<solver::ElasticModel<double>> owned = masked_model(c);
@@ -600,13 +579,7 @@ TEST(Multigrid, VCycleIsSymmetricPositiveAndKeepsConstrainedDofsZero) {
         model.linearize(upload<double>(c.x), true);
         model.setup_preconditioner();
         mg.setup();
-        std::mt19937_64 rng(7);
-        std::uniform_real_distribution<double> u(-1.0, 1.0);
-        std::vector<double> a(mask.size()), b(mask.size());
-        for (size_t i = 0; i < mask.size(); ++i) {
-          a[i] = mask[i] * u(rng);
-          b[i] = mask[i] * u(rng);
-        }
+        const auto [a, b] = masked_random_pair(mask, 7);
         viennacl::vector<double> ma = upload<double>(a), mb = upload<double>(b);
         mg.apply(ma);
         mg.apply(mb);
