@@ -11,7 +11,7 @@ packages=(cmake g++ make pkg-config clang-format ccache
           nlohmann-json3-dev libcli11-dev python3-matplotlib
           gmsh python3-meshio libassimp-dev
           python3-dev pybind11-dev python3-numpy python3-pytest
-          libboost-dev)
+          libboost-dev blender)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

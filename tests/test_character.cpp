@@ -139,12 +139,14 @@ TEST(CharacterRead, BadFilesNameTheFileAndTheItem) {
   e = message("nan_key.gltf");
   EXPECT_NE(e.find(kData + "nan_key.gltf"), std::string::npos) << e;
   EXPECT_NE(e.find("node 'elbow': rotation key 1 is not finite"), std::string::npos) << e;
-  e = message("bad_weights.gltf");
+  CharacterReadOptions strict;
+  strict.weights = WeightPolicy::strict;
+  e = message("bad_weights.gltf", strict);
   EXPECT_NE(e.find(kData + "bad_weights.gltf"), std::string::npos) << e;
   EXPECT_NE(e.find("vertex 7"), std::string::npos) << e;
   EXPECT_NE(e.find("sum to 0.5"), std::string::npos) << e;
   CharacterReadOptions normalize;
-  normalize.normalize_weights = true;
+  normalize.weights = WeightPolicy::normalize;
   const Character c = read_character(kData + "bad_weights.gltf", normalize);
   double sum = 0.0;
   for (int32_t k = c.weights.offset[7]; k < c.weights.offset[8]; ++k) sum += c.weights.weight[k];

@@ -238,8 +238,32 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
   return out;
 }
 
+double character_cell(const Character& character, int resolution) {
+  if (resolution < 1) throw Error(character.file + ": resolution must be >= 1 cell, got " + std::to_string(resolution));
+  const std::vector<double>& x = character.surface.positions;
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (size_t i = 0; i + 2 < x.size(); i += 3)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], x[i + d]);
+      hi[d] = std::max(hi[d], x[i + d]);
+    }
+  const double longest = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  if (!(longest > 0.0) || !std::isfinite(longest))
+    throw Error(character.file + ": the skin has no extent, so no cell can be chosen from a resolution");
+  return longest / resolution;
+}
+
 CharacterRig prepare_character(const Character& character, double cell, const CharacterBoneOptions& bones,
                                const VoxelizeOptions& voxelize_options) {
+  CharacterPrepareOptions options;
+  options.bones = bones;
+  options.voxelize = voxelize_options;
+  return prepare_character(character, cell, options);
+}
+
+CharacterRig prepare_character(const Character& character, double cell, const CharacterPrepareOptions& options) {
+  const CharacterBoneOptions& bones = options.bones;
+  const VoxelizeOptions& voxelize_options = options.voxelize;
   CharacterRig rig;
   try {
     rig.voxels = voxelize(character.welded, cell, voxelize_options);

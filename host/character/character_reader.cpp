@@ -295,7 +295,7 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
       double sum = 0.0;
       for (const auto& [j, w] : row) sum += w;
       if (std::abs(sum - 1.0) > options.weight_tolerance) {
-        if (!(options.normalize_weights && sum > 0.0))
+        if (!(options.weights == WeightPolicy::normalize && sum > 0.0))
           fail(path, mesh_name + ": vertex " + std::to_string(v) + " (surface vertex " + std::to_string(base + v) +
                          "): its skin weights sum to " + number(sum) + ", not 1 (tolerance " +
                          number(options.weight_tolerance) + ")");

@@ -27,6 +27,13 @@
 
 namespace snh {
 
+// What read_character does with skin weights that do not sum to 1 (most
+// exporters write sums a few percent off; Blender, Maya, Unity and three.js
+// normalize on import): `normalize` divides each vertex's weights by their
+// sum (one warning gives the count and the worst sum); `strict` refuses the
+// file, naming the first such vertex.
+enum class WeightPolicy { normalize, strict };
+
 struct CharacterReadOptions {
   // The clip to sample: by name, else by index (clip_index >= 0), else the
   // first clip. With require_clip false a file without animation reads as a
@@ -39,10 +46,12 @@ struct CharacterReadOptions {
   // clip's start; last < 0: up to the clip's last key.
   int first_frame = 0;
   int last_frame = -1;
-  // Skin weights of every vertex must sum to 1 within this; a vertex that
-  // does not is an error naming it, unless normalize_weights.
+  // Weights summing to 1 within weight_tolerance are taken as they are;
+  // others are normalized or refused (WeightPolicy). A vertex with no weight
+  // at all takes the weights of the nearest weighted vertex (a warning
+  // counts them) under either policy.
+  WeightPolicy weights = WeightPolicy::normalize;
   double weight_tolerance = 1e-3;
-  bool normalize_weights = false;
   // Positions closer than this (absolute; 0: 1e-9 of the bounding box's
   // diagonal) are welded into one vertex of the simulated surface.
   double weld_distance = 0.0;
@@ -92,13 +101,20 @@ struct Character {
   std::vector<std::string> clip_names;
   bool has_clip = false;
   CharacterClip clip;
+  // What was repaired on reading, one line per kind: weights normalized or
+  // borrowed, joints named by weights but missing from the hierarchy (held
+  // at their bind pose). Empty for a clean file.
+  std::vector<std::string> warnings;
 };
 
-// Reads a skinned character. snh::Error naming the file and the item for a
-// file assimp cannot read, no mesh with bones, no animation (when a clip is
-// required), an unknown clip name or index (listing the clips), a frame
-// range outside the clip, non-finite positions, matrices or keys, and a
-// vertex whose weights do not sum to 1 (naming it).
+// Reads a skinned character: FBX through ufbx (the surface in the file's
+// control-point order, as Blender, Maya and 3ds Max import it), every other
+// format assimp reads through assimp. snh::Error naming the file and the item
+// for a file that cannot be read, no mesh with bones, no animation (when a
+// clip is required), an unknown clip name or index (listing the clips), a
+// frame range outside the clip, non-finite positions, matrices or keys, and,
+// with WeightPolicy::strict, a vertex whose weights do not sum to 1 (naming
+// it). Repairs are listed in Character::warnings.
 Character read_character(const std::string& path, const CharacterReadOptions& options = {});
 
 // Linear blend skinning: sum_j w_j M_j x for each vertex of rest positions
@@ -129,6 +145,11 @@ struct CharacterBoneOptions {
   // A joint without child joints: a segment of this fraction of its parent's
   // segment length, continuing the parent's direction; 0 skips such joints.
   double leaf_fraction = 0.0;
+  // The radius of a bone whose segment touches or crosses the skin (a thin
+  // limb, a tail) and that `radius` does not give: absolute; 0 leaves such
+  // bones out. prepare_character sets it to touching_radius_cells cells.
+  // Either way one warning lists the bones affected.
+  double touching_radius = 0.0;
 };
 
 // Bones and their animation from the skeleton: each kept joint's segment
@@ -141,6 +162,7 @@ struct CharacterBones {
   std::vector<Bone> bones;
   std::vector<int> joint;  // per bone, its joint's index
   Animation animation;     // empty frames without a clip
+  std::vector<std::string> warnings;  // bones given the floor radius or left out
 };
 CharacterBones character_bones(const Character& character, const CharacterBoneOptions& options = {});
 
@@ -150,12 +172,42 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
 // (inverse-distance average of the 4 nearest welded surface vertices), for
 // the skinned initial guess.
 struct CharacterRig {
+  double cell = 0.0;  // the lattice's cube side
   Voxelization voxels;
   Embedding embedding;  // per vertex of Character::surface
   CharacterBones bones;
   std::vector<ConstraintSet> constraints;  // one per bone (bone_constraints)
   SkinWeights lattice_weights;
+  // Surface vertices outside every element (open sheets, flaps thinner than
+  // a cell, loose points and edges) follow their nearest element, extended
+  // to first order (CharacterPrepareOptions): their count and the largest
+  // distance from their element.
+  int vertices_outside = 0;
+  double max_outside_distance = 0.0;
+  // What was repaired (shells turned outwards, vertices carried, bones given
+  // a floor radius or left out), one line per kind, and the voxelizer's
+  // surface warnings.
+  std::vector<std::string> warnings;
 };
+
+struct CharacterPrepareOptions {
+  CharacterBoneOptions bones;
+  VoxelizeOptions voxelize;
+  // A bone whose segment touches the skin gets this many cells as its
+  // radius unless CharacterBoneOptions::touching_radius is set (> 0).
+  double touching_radius_cells = 0.5;
+  // A surface vertex farther than this from every element (as a fraction
+  // of the bounding box's diagonal, and more than 4 cells) is an error
+  // naming it: geometry far from everything else.
+  double max_outside_fraction = 0.25;
+};
+
+// The cube side that puts `resolution` cells along the longest side of the
+// character's bind-pose bounding box. snh::Error naming the file for
+// resolution < 1 or an empty or flat surface.
+double character_cell(const Character& character, int resolution);
+
+CharacterRig prepare_character(const Character& character, double cell, const CharacterPrepareOptions& options);
 CharacterRig prepare_character(const Character& character, double cell, const CharacterBoneOptions& bones = {},
                                const VoxelizeOptions& voxelize_options = {});
 
