@@ -63,15 +63,17 @@ void print_intersections_summary(const SceneRun& run) {
 void print_frames(const SceneRun& run) {
   double seconds = 0.0;
   const bool checked = !run.surface_intersections.empty();
-  std::cout << "frame  newton  cg      status                 residual   min J       inverted  warnings"
-            << (checked ? "  intersections" : "") << "\n";
+  const bool skinned = !run.skin_deviation.empty();
+  std::cout << "frame  seconds  newton  cg      status                 residual   min J       inverted  self_pairs"
+            << (skinned ? "  lbs_max     " : "") << "  warnings" << (checked ? "  intersections" : "") << "\n";
   for (size_t k = 0; k < run.frames.size(); ++k) {
     const FrameRecord& r = run.frames[k];
     seconds += r.seconds;
-    std::cout << std::left << std::setw(7) << r.frame << std::setw(8) << r.newton_iterations << std::setw(8)
-              << r.cg_iterations << std::setw(23) << r.status << std::setw(11) << std::setprecision(3)
-              << r.residual_norm << std::setw(12) << std::setprecision(4) << r.min_j << std::setw(10)
-              << r.inverted_elements;
+    std::cout << std::left << std::setw(7) << r.frame << std::setw(9) << std::setprecision(3) << r.seconds
+              << std::setw(8) << r.newton_iterations << std::setw(8) << r.cg_iterations << std::setw(23) << r.status
+              << std::setw(11) << std::setprecision(3) << r.residual_norm << std::setw(12) << std::setprecision(4)
+              << r.min_j << std::setw(10) << r.inverted_elements << std::setw(12) << r.self_contact_pairs;
+    if (skinned) std::cout << std::setw(14) << std::setprecision(4) << run.skin_deviation[k].max_distance;
     if (checked && k < run.surface_intersections.size())
       std::cout << std::setw(10) << r.warnings.size() << run.surface_intersections[k].intersecting_pairs;
     else

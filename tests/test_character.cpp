@@ -205,10 +205,21 @@ TEST(CharacterBones, CapsulesRunJointToChildWithARadiusFromTheSkin) {
   bad = {};
   bad.radius["knee"] = 0.1;
   EXPECT_NE(error_of([&] { character_bones(c, bad); }).find("no joint named 'knee'"), std::string::npos);
-  bad = {};
-  bad.leaf_fraction = 0.5;  // the wrist's segment would leave the tube through its cap
-  EXPECT_NE(error_of([&] { character_bones(c, bad); }).find("joint 'wrist': its segment touches the skin"),
-            std::string::npos);
+  // The wrist's segment would leave the tube through its cap: left out, or
+  // given touching_radius, with one warning naming it.
+  CharacterBoneOptions leaf;
+  leaf.leaf_fraction = 0.5;
+  b = character_bones(c, leaf);
+  ASSERT_EQ(b.bones.size(), 2u);
+  ASSERT_EQ(b.warnings.size(), 1u);
+  EXPECT_NE(b.warnings[0].find("'wrist'"), std::string::npos) << b.warnings[0];
+  EXPECT_NE(b.warnings[0].find("left out"), std::string::npos) << b.warnings[0];
+  leaf.touching_radius = 0.01;
+  b = character_bones(c, leaf);
+  ASSERT_EQ(b.bones.size(), 3u);
+  EXPECT_EQ(b.bones[2].name, "wrist");
+  EXPECT_DOUBLE_EQ(std::get<Capsule>(b.bones[2].shape).radius, 0.01);
+  EXPECT_NE(b.warnings.at(0).find("given the radius 0.01"), std::string::npos) << b.warnings[0];
   bad = {};
   bad.exclude = {"*"};
   EXPECT_NE(error_of([&] { character_bones(c, bad); }).find("no bone left"), std::string::npos);

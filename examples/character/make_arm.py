@@ -14,7 +14,10 @@ elbow) and 0.3..0.37 (elbow to wrist). One clip,
 
 --case writes the small files of the character tests instead (see
 tests/data/character/README.md): trs, no_skin, no_animation, nan_key,
-bad_weights.
+bad_weights, and the repairs: inside_out (every face wound inwards),
+unweighted (vertices 5 and 40 without weights), flap (an open fin sticking
+out of the tube and two loose points), tail (a joint past the wrist, so
+that the wrist's segment crosses the skin).
 """
 import argparse
 import base64
@@ -157,8 +160,31 @@ def arm(case=None):
         weights4[7] *= 0.5  # vertex 7's weights sum to 0.5
     if case == "no_animation":
         animations = []
-    return skinned_gltf(positions, triangles, joints4, weights4, nodes, [1, 2, 3],
-                        [translation_inverse(x) for x in JOINT_X], animations, with_skin=(case != "no_skin"))
+    if case == "inside_out":
+        triangles = triangles[:, ::-1].copy()
+    if case == "unweighted":
+        weights4[[5, 40]] = 0.0
+    if case == "flap":
+        # A one-sided fin at x = 0.25..0.32 in the plane z = 0 from the tube's
+        # side (y = 0.05) out to y = 0.11, and two loose points near the tube.
+        n = len(positions)
+        fin = [(0.25, 0.05, 0.0), (0.32, 0.05, 0.0), (0.25, 0.11, 0.0), (0.32, 0.11, 0.0)]
+        loose = [(0.1, 0.0, 0.09), (0.3, -0.085, 0.0)]
+        positions = np.concatenate([positions, np.array(fin + loose, dtype=np.float32)])
+        triangles = np.concatenate([triangles, np.array([[n, n + 1, n + 3], [n, n + 3, n + 2]], dtype=np.uint32)])
+        x = positions[n:, 0]
+        extra = np.zeros((len(x), 4), np.float32)
+        extra[:, 1] = 1.0  # the elbow's
+        joints4 = np.concatenate([joints4, np.tile(joints4[:1], (len(x), 1))])
+        weights4 = np.concatenate([weights4, extra])
+    joint_nodes, binds = [1, 2, 3], [translation_inverse(x) for x in JOINT_X]
+    if case == "tail":
+        nodes[3]["children"] = [4]
+        nodes.append({"name": "tail", "translation": [0.12, 0.0, 0.0]})
+        joint_nodes.append(4)
+        binds.append(translation_inverse(0.47))
+    return skinned_gltf(positions, triangles, joints4, weights4, nodes, joint_nodes, binds, animations,
+                        with_skin=(case != "no_skin"))
 
 
 def trs_chain():
@@ -187,7 +213,8 @@ def trs_chain():
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("out", help="the .gltf to write")
-    parser.add_argument("--case", choices=["trs", "no_skin", "no_animation", "nan_key", "bad_weights"])
+    parser.add_argument("--case", choices=["trs", "no_skin", "no_animation", "nan_key", "bad_weights", "inside_out",
+                                               "unweighted", "flap", "tail"])
     args = parser.parse_args()
     doc = trs_chain() if args.case == "trs" else arm(args.case)
     with open(args.out, "w") as f:

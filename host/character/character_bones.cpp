@@ -6,6 +6,7 @@
 #include <cmath>
 #include <queue>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "snh/character.h"
@@ -95,6 +96,20 @@ double segment_surface_distance(const Vec3& a, const Vec3& b, const TriangleSurf
     }
   }
   return std::sqrt(best);
+}
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// Names quoted and comma-separated, the first 8 and a count of the rest.
+std::string name_list(const std::vector<std::string>& names) {
+  std::string s;
+  for (size_t k = 0; k < names.size() && k < 8; ++k) s += (k ? ", '" : "'") + names[k] + "'";
+  if (names.size() > 8) s += " and " + std::to_string(names.size() - 8) + " more";
+  return s;
 }
 
 bool excluded(const std::string& name, const std::vector<std::string>& patterns) {
@@ -189,6 +204,7 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
   };
 
   CharacterBones out;
+  std::vector<std::string> touching;  // bones whose segment touches the skin
   for (size_t j = 0; j < n; ++j) {
     const Joint& joint = character.joints[j];
     if (excluded(joint.name, options.exclude)) continue;
@@ -203,10 +219,11 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
     } else {
       const double distance = segment_surface_distance(capsule.a, capsule.b, character.welded);
       capsule.radius = options.radius_fraction * distance;
-      if (!(capsule.radius > 0.0))
-        throw Error(file + ": joint '" + joint.name +
-                    "': its segment touches the skin surface, so its radius would be 0 (give bones.radius." +
-                    joint.name + " or exclude it)");
+      if (!(capsule.radius > 0.0)) {  // the segment touches or crosses the skin: a thin limb
+        touching.push_back(joint.name);
+        if (!(options.touching_radius > 0.0)) continue;
+        capsule.radius = options.touching_radius;
+      }
     }
     if (options.joint_clearance >= 0.0) {
       // Keep the capsule (caps included) clear of the flesh around both
@@ -225,7 +242,14 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
     out.bones.push_back({joint.name, capsule});
     out.joint.push_back(static_cast<int>(j));
   }
-  if (out.bones.empty()) throw Error(file + ": no bone left (every joint is excluded or a leaf)");
+  if (!touching.empty())
+    out.warnings.push_back(
+        "bones: " + std::to_string(touching.size()) + " bone segment(s) touch or cross the skin (" +
+        name_list(touching) + ")" +
+        (options.touching_radius > 0.0 ? "; given the radius " + number(options.touching_radius) : "; left out") +
+        " (bones.radius or bones.exclude decide otherwise)");
+  if (out.bones.empty())
+    throw Error(file + ": no bone left (every joint is excluded, a leaf, or touches the skin without a radius)");
   for (const Bone& b : out.bones) out.animation.bones.push_back(b.name);
   if (character.has_clip) {
     out.animation.times = character.clip.times;
@@ -262,24 +286,109 @@ CharacterRig prepare_character(const Character& character, double cell, const Ch
 }
 
 CharacterRig prepare_character(const Character& character, double cell, const CharacterPrepareOptions& options) {
-  const CharacterBoneOptions& bones = options.bones;
-  const VoxelizeOptions& voxelize_options = options.voxelize;
   CharacterRig rig;
+  rig.cell = cell;
+  VoxelizeOptions voxelize_options = options.voxelize;
+  if (voxelize_options.name == VoxelizeOptions{}.name) voxelize_options.name = character.file;
   try {
     rig.voxels = voxelize(character.welded, cell, voxelize_options);
   } catch (const Error& e) {
     throw Error(character.file + ": the welded skin surface: " + e.what());
   }
-  const Embedding welded = embed(rig.voxels, character.welded);
+  rig.warnings = rig.voxels.warnings;
+
+  // Every surface vertex is carried; those beyond a cell from the lattice
+  // (open sheets, thin flaps, loose points) to first order from their
+  // nearest element, unless far from everything.
+  const CarriedEmbedding welded = embed_carrying_all(rig.voxels, character.welded);
+  double diagonal = 0.0;
+  {
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    const std::vector<double>& x = character.surface.positions;
+    for (size_t i = 0; i + 2 < x.size(); i += 3)
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], x[i + d]);
+        hi[d] = std::max(hi[d], x[i + d]);
+      }
+    diagonal = norm(sub(hi, lo));
+  }
+  const double farthest = std::max(4.0 * cell, options.max_outside_fraction * diagonal);
   const size_t n = character.surface.vertex_count();
   rig.embedding.element.resize(n);
   rig.embedding.weights.resize(8 * n);
+  size_t worst = 0;
   for (size_t v = 0; v < n; ++v) {
     const size_t w = static_cast<size_t>(character.welded_index[v]);
-    rig.embedding.element[v] = welded.element[w];
-    std::copy_n(welded.weights.begin() + 8 * w, 8, rig.embedding.weights.begin() + 8 * v);
+    rig.embedding.element[v] = welded.embedding.element[w];
+    std::copy_n(welded.embedding.weights.begin() + 8 * w, 8, rig.embedding.weights.begin() + 8 * v);
+    const double d = welded.distance[w];
+    if (d > farthest) {
+      std::ostringstream m;
+      m << character.file << ": surface vertex " << v << " at (" << character.surface.positions[3 * v] << ", "
+        << character.surface.positions[3 * v + 1] << ", " << character.surface.positions[3 * v + 2] << ") is " << d
+        << " from the nearest lattice element, farther than " << farthest
+        << " (4 cells, or a quarter of the skin's diagonal): geometry far from everything else cannot follow the "
+           "flesh (a smaller cell fills thin parts)";
+      throw Error(m.str());
+    }
+    if (d > cell) {
+      ++rig.vertices_outside;
+      if (d > rig.max_outside_distance) {
+        rig.max_outside_distance = d;
+        worst = v;
+      }
+    }
   }
+  if (rig.vertices_outside > 0) {
+    std::ostringstream m;
+    m << "embedding: " << rig.vertices_outside << " of " << n
+      << " surface vertices lie more than a cell outside the lattice (open sheets, parts thinner than a cell, loose "
+         "points); each follows its nearest element, extended to first order; the farthest, vertex "
+      << worst << ", is " << rig.max_outside_distance << " (" << rig.max_outside_distance / cell << " cells) away";
+    rig.warnings.push_back(m.str());
+  }
+
+  CharacterBoneOptions bones = options.bones;
+  if (!(bones.touching_radius > 0.0)) bones.touching_radius = options.touching_radius_cells * cell;
   rig.bones = character_bones(character, bones);
+  for (const std::string& w : rig.bones.warnings) rig.warnings.push_back(w);
+  // A bone that holds no lattice vertex (thinner than a cell, outside the
+  // lattice, or inside an earlier bone) is left out rather than refused.
+  {
+    std::vector<char> owned(rig.voxels.lattice.vertex_count(), 0);
+    std::vector<std::string> empty;
+    CharacterBones kept;
+    kept.animation.times = rig.bones.animation.times;
+    kept.animation.transforms.resize(rig.bones.animation.transforms.size());
+    kept.warnings = rig.bones.warnings;
+    for (size_t b = 0; b < rig.bones.bones.size(); ++b) {
+      bool holds = false;
+      for (size_t v = 0; v < owned.size(); ++v)
+        if (!owned[v] && bone_contains(rig.bones.bones[b], rig.voxels.lattice.vertex(v))) {
+          owned[v] = 1;
+          holds = true;
+        }
+      if (!holds) {
+        empty.push_back(rig.bones.bones[b].name);
+        continue;
+      }
+      kept.bones.push_back(rig.bones.bones[b]);
+      kept.joint.push_back(rig.bones.joint[b]);
+      kept.animation.bones.push_back(rig.bones.animation.bones[b]);
+      for (size_t f = 0; f < kept.animation.transforms.size(); ++f)
+        kept.animation.transforms[f].push_back(rig.bones.animation.transforms[f][b]);
+    }
+    if (!empty.empty()) {
+      if (kept.bones.empty())
+        throw Error(character.file + ": bones: no bone holds a lattice vertex (" + name_list(empty) +
+                    "): use a smaller cell");
+      const std::string w = "bones: " + std::to_string(empty.size()) + " bone(s) hold no lattice vertex (" +
+                            name_list(empty) + "; thinner than a cell, or outside the flesh) and are left out";
+      kept.warnings.push_back(w);
+      rig.warnings.push_back(w);
+      rig.bones = std::move(kept);
+    }
+  }
   try {
     rig.constraints = bone_constraints(rig.voxels.lattice, rig.bones.bones);
   } catch (const Error& e) {

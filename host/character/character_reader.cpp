@@ -22,6 +22,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "character/skin_weights.h"
 #include "snh/character.h"
 #include "snh/error.h"
 
@@ -222,7 +223,6 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
       const std::string name = bone->mName.C_Str();
       const Matrix4 offset = to_matrix4(bone->mOffsetMatrix);
       if (!finite(offset)) fail(path, "joint '" + name + "': its inverse bind matrix is not finite");
-      if (!nodes.count(name)) fail(path, "joint '" + name + "': no node of that name in the scene");
       const auto [it, added] = offsets.emplace(name, offset);
       if (!added)
         for (int k = 0; k < 16; ++k)
@@ -231,14 +231,21 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
     }
   }
   if (offsets.empty()) fail(path, "no skinned mesh (no mesh has bones)");
+  // Joints in hierarchy order, then those the weights name but the
+  // hierarchy lacks (held at their bind pose, parentless).
+  std::vector<const aiNode*> joint_nodes;
+  std::set<std::string> listed;
+  for (const aiNode* n : order)
+    if (offsets.count(n->mName.C_Str()) && listed.insert(n->mName.C_Str()).second) joint_nodes.push_back(n);
+  std::vector<std::string> missing;
+  for (const auto& [name, offset] : offsets)
+    if (!listed.count(name)) missing.push_back(name);
   std::map<std::string, int> joint_of;
-  for (const aiNode* n : order) {
-    const std::string name = n->mName.C_Str();
-    if (!offsets.count(name) || joint_of.count(name)) continue;
+  const auto add_joint = [&](const std::string& name, const aiNode* n) {
     Joint j;
     j.name = name;
     j.inverse_bind = offsets[name];
-    for (const aiNode* p = n->mParent; p; p = p->mParent) {
+    for (const aiNode* p = n ? n->mParent : nullptr; p; p = p->mParent) {
       const auto it = joint_of.find(p->mName.C_Str());
       if (it != joint_of.end()) {
         j.parent = it->second;
@@ -254,6 +261,16 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
     j.rest_position = {bind[3], bind[7], bind[11]};
     joint_of[name] = static_cast<int>(c.joints.size());
     c.joints.push_back(j);
+  };
+  for (const aiNode* n : joint_nodes) add_joint(n->mName.C_Str(), n);
+  for (const std::string& name : missing) add_joint(name, nullptr);
+  if (!missing.empty()) {
+    std::string names;
+    for (size_t k = 0; k < missing.size() && k < 8; ++k) names += (k ? ", '" : "'") + missing[k] + "'";
+    if (missing.size() > 8) names += ", ...";
+    c.warnings.push_back("joints: " + std::to_string(missing.size()) +
+                         " joint(s) named by skin weights have no node in the hierarchy (" + names +
+                         "); held at their bind pose");
   }
 
   // The skin: every mesh with bones, its vertices as given.
@@ -290,20 +307,6 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
         if (w.mWeight > 0.0f) rows[base + w.mVertexId].push_back({j, w.mWeight});
       }
     }
-    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      auto& row = rows[base + v];
-      double sum = 0.0;
-      for (const auto& [j, w] : row) sum += w;
-      if (std::abs(sum - 1.0) > options.weight_tolerance) {
-        if (!(options.weights == WeightPolicy::normalize && sum > 0.0))
-          fail(path, mesh_name + ": vertex " + std::to_string(v) + " (surface vertex " + std::to_string(base + v) +
-                         "): its skin weights sum to " + number(sum) + ", not 1 (tolerance " +
-                         number(options.weight_tolerance) + ")");
-      }
-      if (sum > 0.0)
-        for (auto& jw : row) jw.second /= sum;
-      std::sort(row.begin(), row.end());
-    }
   }
   if (c.surface.triangle_count() == 0) fail(path, "the skinned meshes have no triangles");
   for (const auto& row : rows) {
@@ -313,6 +316,7 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
     }
     c.weights.offset.push_back(static_cast<int32_t>(c.weights.joint.size()));
   }
+  detail::resolve_skin_weights(c, options);
 
   // The weld of the simulated surface.
   double diagonal = 0.0;
@@ -424,7 +428,12 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
     }
     std::vector<Matrix4> skinning;
     for (const Joint& j : c.joints) {
-      const Matrix4 m = multiply_matrix4(world.at(nodes.at(j.name)), j.inverse_bind);
+      const auto node = nodes.find(j.name);
+      if (node == nodes.end()) {  // not in the hierarchy: held at the bind pose
+        skinning.push_back(compose_trs({0, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}));
+        continue;
+      }
+      const Matrix4 m = multiply_matrix4(world.at(node->second), j.inverse_bind);
       if (!finite(m))
         fail(path, clip_name + ": joint '" + j.name + "' at frame " + std::to_string(f) + " is not finite");
       skinning.push_back(m);

@@ -59,6 +59,31 @@ std::array<double, 8> trilinear_weights(double s, double t, double r) {
   return w;
 }
 
+// The trilinear functions extended to first order from the point q of the
+// cube nearest to local coordinates u: N_a(q) + grad N_a(q) . (u - q). They
+// sum to 1, reproduce affine maps exactly and grow linearly with the
+// distance, where the unclamped functions grow quadratically.
+std::array<double, 8> first_order_weights(const double u[3]) {
+  constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                 {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  double q[3], delta[3];
+  for (int d = 0; d < 3; ++d) {
+    q[d] = std::clamp(u[d], 0.0, 1.0);
+    delta[d] = u[d] - q[d];
+  }
+  std::array<double, 8> w{};
+  for (int a = 0; a < 8; ++a) {
+    double f[3], df[3];
+    for (int d = 0; d < 3; ++d) {
+      f[d] = kCorner[a][d] ? q[d] : 1.0 - q[d];
+      df[d] = kCorner[a][d] ? 1.0 : -1.0;
+    }
+    w[a] = f[0] * f[1] * f[2] + df[0] * f[1] * f[2] * delta[0] + f[0] * df[1] * f[2] * delta[1] +
+           f[0] * f[1] * df[2] * delta[2];
+  }
+  return w;
+}
+
 void check_voxelization(const Voxelization& voxels) {
   const Mesh& lattice = voxels.lattice;
   if (lattice.type != ElementType::hex8) throw Error("embed: the voxelization's lattice is not hex8");
@@ -84,9 +109,7 @@ void check_voxelization(const Voxelization& voxels) {
       }
 }
 
-}  // namespace
-
-Embedding embed(const Voxelization& voxels, const TriangleSurface& surface) {
+Embedding embed_impl(const Voxelization& voxels, const TriangleSurface& surface, std::vector<double>* far) {
   check_voxelization(voxels);
   if (surface.positions.size() % 3 != 0) throw Error("embed: the surface's positions are not xyz triples");
   std::unordered_map<int64_t, int32_t> element_of_cell;
@@ -145,6 +168,51 @@ Embedding embed(const Voxelization& voxels, const TriangleSurface& surface) {
             best_element = found->second;
           }
         }
+    if ((best_element < 0 || best_distance > kMaxDistance) && far) {
+      // Rings of grid cells outwards from the vertex's (clamped) cell until
+      // no nearer cell can remain.
+      int c0[3];
+      for (int d = 0; d < 3; ++d) c0[d] = std::clamp(base[d], 0, voxels.dims[d] - 1);
+      const int rings = std::max({voxels.dims[0], voxels.dims[1], voxels.dims[2]});
+      double outside0 = 0.0;  // how far the vertex is from the grid's box, in cells
+      for (int d = 0; d < 3; ++d) {
+        const double o = std::max({0.0, -u[d], u[d] - voxels.dims[d]});
+        outside0 += o * o;
+      }
+      outside0 = std::sqrt(outside0);
+      for (int r = 0; r <= rings; ++r) {
+        if (best_element >= 0 && std::max(outside0, r - 1.0) > best_distance) break;
+        for (int k = c0[2] - r; k <= c0[2] + r; ++k)
+          for (int j = c0[1] - r; j <= c0[1] + r; ++j)
+            for (int i = c0[0] - r; i <= c0[0] + r; ++i) {
+              if (std::max({std::abs(i - c0[0]), std::abs(j - c0[1]), std::abs(k - c0[2])}) != r) continue;
+              if (i < 0 || j < 0 || k < 0 || i >= voxels.dims[0] || j >= voxels.dims[1] || k >= voxels.dims[2])
+                continue;
+              const int64_t index = grid_index(voxels.dims, i, j, k);
+              const auto found = element_of_cell.find(index);
+              if (found == element_of_cell.end()) continue;
+              const int c[3] = {i, j, k};
+              double squared = 0.0;
+              for (int d = 0; d < 3; ++d) {
+                const double outside = std::max({0.0, c[d] - u[d], u[d] - (c[d] + 1)});
+                squared += outside * outside;
+              }
+              const double distance = std::sqrt(squared);
+              if (distance < best_distance || (distance == best_distance && index < best_index)) {
+                best_distance = distance;
+                best_index = index;
+                best_cell = {i, j, k};
+                best_element = found->second;
+              }
+            }
+      }
+      out.element[v] = best_element;
+      const double local[3] = {u[0] - best_cell[0], u[1] - best_cell[1], u[2] - best_cell[2]};
+      const auto w = first_order_weights(local);
+      std::copy(w.begin(), w.end(), out.weights.begin() + 8 * v);
+      (*far)[v] = best_distance * voxels.cell;
+      continue;
+    }
     if (best_element < 0 || best_distance > kMaxDistance) {
       std::ostringstream s;
       s << "embed: surface vertex " << v << " at (" << surface.positions[3 * v] << ", " << surface.positions[3 * v + 1]
@@ -155,7 +223,21 @@ Embedding embed(const Voxelization& voxels, const TriangleSurface& surface) {
     out.element[v] = best_element;
     const auto w = trilinear_weights(u[0] - best_cell[0], u[1] - best_cell[1], u[2] - best_cell[2]);
     std::copy(w.begin(), w.end(), out.weights.begin() + 8 * v);
+    if (far) (*far)[v] = best_distance * voxels.cell;
   }
+  return out;
+}
+
+}  // namespace
+
+Embedding embed(const Voxelization& voxels, const TriangleSurface& surface) {
+  return embed_impl(voxels, surface, nullptr);
+}
+
+CarriedEmbedding embed_carrying_all(const Voxelization& voxels, const TriangleSurface& surface) {
+  CarriedEmbedding out;
+  out.distance.assign(surface.vertex_count(), 0.0);
+  out.embedding = embed_impl(voxels, surface, &out.distance);
   return out;
 }
 

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "fem/fast_winding_number.h"
+#include "fem/shell_orientation.h"
 #include "fem/surface_cells.h"
 #include "fem/union_find.h"
 #include "snh/error.h"
@@ -202,7 +203,11 @@ Voxelization voxelize(const TriangleSurface& input, double cell, const VoxelizeO
   if (options.strict) validate_closed_surface(input, name);
   out.report = surface_report(input, name, options.weld_tolerance);
   out.warnings = out.report.warnings;
-  const TriangleSurface surface = options.strict ? input : weld_vertices(input, options.weld_tolerance).surface;
+  TriangleSurface surface = options.strict ? input : weld_vertices(input, options.weld_tolerance).surface;
+  // Inside-out or mirrored shells count as their outward twins: the winding
+  // number of a shell facing inwards is -1 inside it.
+  if (!options.strict)
+    for (std::string& w : fem::orient_shells(surface, name)) out.warnings.push_back(std::move(w));
 
   std::array<double, 3> lo, hi;
   for (int d = 0; d < 3; ++d) lo[d] = hi[d] = surface.positions[d];

@@ -35,8 +35,26 @@ SceneFile::CharacterSection read_character_section(const SceneJson& r, const jso
     if (options.first_frame < 0 || options.last_frame < options.first_frame)
       r.fail("character.frames", "expected 0 <= first <= last");
   }
-  const double cell = r.required_number(c, "character", "cell");
-  if (!(cell > 0.0)) r.fail("character.cell", "expected a cube side > 0");
+  if (c.contains("weights")) {
+    const json& w = c["weights"];
+    if (!w.is_string() || (w != "normalize" && w != "strict"))
+      r.fail("character.weights", "expected \"normalize\" or \"strict\"");
+    options.weights = w == "strict" ? WeightPolicy::strict : WeightPolicy::normalize;
+  }
+  if (c.contains("cell") == c.contains("resolution"))
+    r.fail(c.contains("cell") ? "character.resolution" : "character.cell",
+           c.contains("cell") ? "give \"cell\" or \"resolution\", not both"
+                              : "missing (a cube side, or \"resolution\": cells along the longest side)");
+  double cell = 0.0;
+  int resolution = 0;
+  if (c.contains("cell")) {
+    cell = r.required_number(c, "character", "cell");
+    if (!(cell > 0.0)) r.fail("character.cell", "expected a cube side > 0");
+  } else {
+    if (!c["resolution"].is_number_integer() || c["resolution"].get<int>() < 1)
+      r.fail("character.resolution", "expected an integer >= 1 (cells along the bind pose's longest side)");
+    resolution = c["resolution"].get<int>();
+  }
   CharacterBoneOptions bones;
   if (c.contains("bones")) {
     const json& b = c["bones"];
@@ -71,7 +89,11 @@ SceneFile::CharacterSection read_character_section(const SceneJson& r, const jso
     r.fail("character.file", e.what());
   }
   try {
-    out.rig = prepare_character(out.character, cell, bones);
+    if (resolution > 0) cell = character_cell(out.character, resolution);
+    out.resolution = resolution;
+    CharacterPrepareOptions prepare;
+    prepare.bones = bones;
+    out.rig = prepare_character(out.character, cell, prepare);
   } catch (const Error& e) {
     r.fail("character", e.what());
   }

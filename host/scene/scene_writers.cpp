@@ -26,6 +26,27 @@ using scene_io::add_solver_json;
 using scene_io::history_json;
 using scene_io::profile_json;
 
+// The skin's bind-pose bounding box.
+std::pair<std::array<double, 3>, std::array<double, 3>> character_bounds(const Character& c) {
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  const std::vector<double>& x = c.surface.positions;
+  for (size_t i = 0; i + 2 < x.size(); i += 3)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = i == 0 ? x[d] : std::min(lo[d], x[i + d]);
+      hi[d] = i == 0 ? x[d] : std::max(hi[d], x[i + d]);
+    }
+  return {lo, hi};
+}
+
+// What reading and preparing a character repaired, the voxelizer's surface
+// warnings (printed with the surface's defects) left out.
+std::vector<std::string> character_repairs(const SceneFile::CharacterSection& c) {
+  std::vector<std::string> out = c.character.warnings;
+  const size_t surface = c.rig.voxels.warnings.size();
+  for (size_t k = surface; k < c.rig.warnings.size(); ++k) out.push_back(c.rig.warnings[k]);
+  return out;
+}
+
 void create_parent(const std::string& path) {
   const auto parent = std::filesystem::path(path).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
@@ -287,6 +308,20 @@ void add_setup_json(json& j, const SceneFile& file) {
                            {"pieces", pieces},
                            {"warnings", file.embedded->piece_warnings}};
   }
+  if (file.character) {
+    const SceneFile::CharacterSection& c = *file.character;
+    const auto [lo, hi] = character_bounds(c.character);
+    j["character"] = {{"file", c.character.file},
+                      {"vertices", c.character.surface.vertex_count()},
+                      {"joints", c.character.joints.size()},
+                      {"bounding_box", {{"min", lo}, {"max", hi}}},
+                      {"cell", c.rig.cell},
+                      {"resolution", c.resolution},
+                      {"vertices_outside", c.rig.vertices_outside},
+                      {"max_outside_distance", c.rig.max_outside_distance},
+                      {"warnings", character_repairs(c)},
+                      {"surface_warnings", c.rig.voxels.warnings}};
+  }
   if (file.rig) {
     json bones = json::array();
     for (const Bone& bone : file.rig->bones) {
@@ -345,6 +380,17 @@ std::vector<std::string> scene_setup_report(const SceneFile& file) {
       }
     }
     for (const std::string& w : file.embedded->piece_warnings) lines.push_back("warning: " + w);
+  }
+  if (file.character) {
+    const SceneFile::CharacterSection& c = *file.character;
+    const auto [lo, hi] = character_bounds(c.character);
+    std::ostringstream l;
+    l << "character " << c.character.file << ": " << c.character.surface.vertex_count() << " vertices, "
+      << c.character.joints.size() << " joints; bind pose " << hi[0] - lo[0] << " x " << hi[1] - lo[1] << " x "
+      << hi[2] - lo[2] << " from (" << lo[0] << ", " << lo[1] << ", " << lo[2] << "); cell " << c.rig.cell;
+    if (c.resolution > 0) l << " (" << c.resolution << " cells along the longest side)";
+    lines.push_back(l.str());
+    for (const std::string& w : character_repairs(c)) lines.push_back("warning: " + w);
   }
   if (file.rig)
     for (const Bone& bone : file.rig->bones) {

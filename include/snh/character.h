@@ -160,8 +160,8 @@ struct CharacterBoneOptions {
 // fraction or radius, a segment of zero length, and no bone left.
 struct CharacterBones {
   std::vector<Bone> bones;
-  std::vector<int> joint;  // per bone, its joint's index
-  Animation animation;     // empty frames without a clip
+  std::vector<int> joint;             // per bone, its joint's index
+  Animation animation;                // empty frames without a clip
   std::vector<std::string> warnings;  // bones given the floor radius or left out
 };
 CharacterBones character_bones(const Character& character, const CharacterBoneOptions& options = {});

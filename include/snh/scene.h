@@ -87,6 +87,7 @@ struct SceneFile {
     Character character;
     CharacterRig rig;
     bool skinned_guess = false;  // "character.skinned_guess"
+    int resolution = 0;          // "character.resolution" (rig.cell is the cell chosen), 0: "cell" given
   };
   std::optional<CharacterSection> character;
   // "output.pc2", "output.mdd": the character's simulated surface per frame
@@ -206,7 +207,10 @@ SceneRun run_scene(const SceneFile& file, const SolveOptions& options, const Sce
 // What the set-up made of a loaded scene, as lines for a log: with "embed",
 // the lattice's pieces (count; each piece's cells, what holds it and what
 // embed.pieces did to it) and their warnings (prefixed "warning: "); with a
-// rig, each bone's captured lattice-vertex count.
+// character, its bounding box, the cell and what reading and preparing it
+// repaired (Character::warnings, CharacterRig::warnings but the voxelizer's,
+// prefixed "warning: "); with a rig, each bone's captured lattice-vertex
+// count.
 std::vector<std::string> scene_setup_report(const SceneFile& file);
 
 // The writers of a scene's outputs.

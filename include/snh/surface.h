@@ -193,6 +193,20 @@ struct Embedding {
 // snh::Error naming a surface vertex more than one cell from every element.
 Embedding embed(const Voxelization& voxels, const TriangleSurface& surface);
 
+// Like embed, for surfaces as artists make them (open sheets, flaps thinner
+// than a cell, loose points): a vertex farther than one cell from every
+// element is carried too. It goes to its nearest element (ties as above),
+// extended to first order from the cube's point q nearest to it: weights
+// N_a(q) + grad N_a(q) . (p - q), which sum to 1, reproduce affine maps of
+// the lattice exactly and grow linearly with the distance. Vertices within
+// one cell are embedded exactly as embed does. distance: per vertex, its
+// distance from its element (0 inside it).
+struct CarriedEmbedding {
+  Embedding embedding;
+  std::vector<double> distance;
+};
+CarriedEmbedding embed_carrying_all(const Voxelization& voxels, const TriangleSurface& surface);
+
 // The boundary of a volume mesh as a triangle surface: the element faces
 // used by exactly one element (the faces write_obj_surface and
 // write_ply_surface write), oriented outwards, hex8 quads split into two
