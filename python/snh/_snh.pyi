@@ -4,7 +4,7 @@ Stable Neo-Hookean flesh simulation on OpenCL devices.
 from __future__ import annotations
 import numpy
 import typing
-__all__: list[str] = ['Animation', 'Barrier', 'Bone', 'Capsule', 'CgStop', 'ChebyshevKind', 'ConstraintSet', 'ContactOptions', 'DeformationStatistics', 'DeviceInfo', 'DynamicsOptions', 'ElementFields', 'ElementType', 'Embedding', 'Error', 'FrameOptions', 'FrameRecord', 'HessianMode', 'LameParameters', 'Material', 'MaterialMap', 'MaterialModel', 'MaterialOptions', 'MaterialRegion', 'Mesh', 'MeshArray', 'MeshGroup', 'NewtonIteration', 'Obstacle', 'ObstacleType', 'Precision', 'Preconditioner', 'ProductVariant', 'Reaction', 'Recovery', 'RecoveryAction', 'RigidTransform', 'Scene', 'SceneFile', 'SceneParameters', 'SceneProgress', 'SceneRun', 'SceneStep', 'ShapeDeviation', 'Simulation', 'SimulationState', 'SolveOptions', 'SolveProfile', 'SolveResult', 'StableNeoHookean', 'StepResult', 'StepStatus', 'TriangleSurface', 'Voxelization', 'VoxelizeOptions', 'bone_constraints', 'bone_contains', 'boundary_surface', 'compute_element_fields', 'deformation_statistics', 'elastic_forces', 'element_fields_for_vtu', 'elements_in_box', 'elements_in_group', 'elements_in_sphere', 'elements_with_value', 'elements_with_value_in', 'embed', 'embedded_positions', 'enclosed_volume', 'identity_matrix4', 'list_devices', 'load_scene', 'lump_body_force', 'lumped_mass', 'make_box_lattice', 'make_material_map', 'make_scene', 'make_tet_box', 'make_voxel_cylinder', 'max_poisson_ratio', 'parse_animation_csv', 'parse_animation_json', 'read_animation', 'read_checkpoint', 'read_mesh', 'read_surface', 'run_frames', 'run_scene', 'scene_defaults', 'scene_file_keys', 'scene_names', 'shape_deviation', 'split_hexes_into_tets', 'surface_area', 'to_rigid_transform', 'uniform_material', 'validate_closed_surface', 'vertex_spacing', 'vertices_in_box', 'vertices_in_group', 'vertices_in_sphere', 'vertices_on_plane', 'vertices_with_value', 'vertices_with_value_in', 'voxelize', 'write_checkpoint', 'write_mesh', 'write_obj', 'write_obj_surface', 'write_ply_surface', 'write_pvd', 'write_scene_json', 'write_surface_vtu', 'write_vtu']
+__all__: list[str] = ['Animation', 'Barrier', 'Bone', 'Capsule', 'CgStop', 'Character', 'CharacterBoneOptions', 'CharacterBones', 'CharacterCacheSeries', 'CharacterClip', 'CharacterFrame', 'CharacterFrameOptions', 'CharacterPrepareOptions', 'CharacterReadOptions', 'CharacterRig', 'ChebyshevKind', 'ConstraintSet', 'ContactOptions', 'DeformationStatistics', 'DeviceInfo', 'DynamicsOptions', 'ElementFields', 'ElementType', 'Embedding', 'Error', 'FrameOptions', 'FrameRecord', 'HessianMode', 'Joint', 'LameParameters', 'Material', 'MaterialMap', 'MaterialModel', 'MaterialOptions', 'MaterialRegion', 'Mesh', 'MeshArray', 'MeshGroup', 'NewtonIteration', 'Obstacle', 'ObstacleType', 'PointCache', 'Precision', 'Preconditioner', 'ProductVariant', 'Reaction', 'Recovery', 'RecoveryAction', 'RigidTransform', 'Scene', 'SceneFile', 'SceneParameters', 'SceneProgress', 'SceneRun', 'SceneStep', 'ShapeDeviation', 'Simulation', 'SimulationState', 'SkinDeviation', 'SkinWeights', 'SolveOptions', 'SolveProfile', 'SolveResult', 'StableNeoHookean', 'StepResult', 'StepStatus', 'TriangleSurface', 'Voxelization', 'VoxelizeOptions', 'WeightPolicy', 'bone_constraints', 'bone_contains', 'boundary_surface', 'character_bones', 'character_cell', 'compute_element_fields', 'deformation_statistics', 'elastic_forces', 'element_fields_for_vtu', 'elements_in_box', 'elements_in_group', 'elements_in_sphere', 'elements_with_value', 'elements_with_value_in', 'embed', 'embedded_positions', 'enclosed_volume', 'identity_matrix4', 'linear_blend_skinning', 'list_devices', 'load_scene', 'lump_body_force', 'lumped_mass', 'make_box_lattice', 'make_material_map', 'make_scene', 'make_tet_box', 'make_voxel_cylinder', 'max_poisson_ratio', 'parse_animation_csv', 'parse_animation_json', 'prepare_character', 'read_animation', 'read_character', 'read_checkpoint', 'read_mdd', 'read_mesh', 'read_pc2', 'read_surface', 'run_character_frames', 'run_frames', 'run_scene', 'scene_defaults', 'scene_file_keys', 'scene_names', 'shape_deviation', 'split_hexes_into_tets', 'surface_area', 'to_rigid_transform', 'uniform_material', 'validate_closed_surface', 'vertex_spacing', 'vertices_in_box', 'vertices_in_group', 'vertices_in_sphere', 'vertices_on_plane', 'vertices_with_value', 'vertices_with_value_in', 'voxelize', 'write_checkpoint', 'write_mdd', 'write_mesh', 'write_obj', 'write_obj_surface', 'write_pc2', 'write_ply_surface', 'write_point_cache', 'write_pvd', 'write_scene_json', 'write_surface_ply', 'write_surface_vtu', 'write_vtu']
 class Error(RuntimeError):
     pass
 class ElementType:
@@ -1209,8 +1209,27 @@ class SolveProfile:
     Where a solve's time went, in seconds (read-only).
     """
     @property
+    def blocking_readbacks(self) -> int:
+        """
+        Reads from the device the host waited for.
+        """
+    @property
+    def bytes_to_device(self) -> int:
+        ...
+    @property
+    def bytes_to_host(self) -> int:
+        ...
+    @property
+    def cg_iterations_past_convergence(self) -> int:
+        ...
+    @property
     def cg_vector_work(self) -> float:
         ...
+    @property
+    def kernel_launches(self) -> int:
+        """
+        Kernels queued on the device.
+        """
     @property
     def kernels(self) -> dict[str, float]:
         """
@@ -1861,6 +1880,14 @@ class SolveOptions:
     def external_force(self, arg1: typing.Any) -> None:
         ...
     @property
+    def fail_on_inverted(self) -> bool:
+        """
+        A step ending with inverted elements fails (StepStatus.inverted_elements); later steps not run.
+        """
+    @fail_on_inverted.setter
+    def fail_on_inverted(self, arg0: bool) -> None:
+        ...
+    @property
     def hessian(self) -> HessianMode:
         """
         HessianMode (or 'projected', 'adaptive').
@@ -2228,6 +2255,38 @@ class VoxelizeOptions:
     @max_grid_cells.setter
     def max_grid_cells(self, arg0: int) -> None:
         ...
+    @property
+    def name(self) -> str:
+        """
+        The surface's file, for errors and warnings.
+        """
+    @name.setter
+    def name(self, arg0: str) -> None:
+        ...
+    @property
+    def strict(self) -> bool:
+        """
+        Refuse surfaces that are not closed; inside by crossing counts.
+        """
+    @strict.setter
+    def strict(self, arg0: bool) -> None:
+        ...
+    @property
+    def weld_tolerance(self) -> float:
+        """
+        Weld vertices closer than this times the bounding box's diagonal.
+        """
+    @weld_tolerance.setter
+    def weld_tolerance(self, arg0: float) -> None:
+        ...
+    @property
+    def winding_beta(self) -> float:
+        """
+        Accuracy of the fast winding number.
+        """
+    @winding_beta.setter
+    def winding_beta(self, arg0: float) -> None:
+        ...
 class Voxelization:
     """
     A hex8 lattice covering a closed surface's interior.
@@ -2261,6 +2320,11 @@ class Voxelization:
     def origin(self) -> list[float[3]]:
         """
         Corner of grid cell (0, 0, 0).
+        """
+    @property
+    def warnings(self) -> list[str]:
+        """
+        The surface's defects, one line per class.
         """
 class Embedding:
     """
@@ -2349,6 +2413,544 @@ class FrameOptions:
     @stop_on_failure.setter
     def stop_on_failure(self, arg0: bool) -> None:
         ...
+class WeightPolicy:
+    """
+    What read_character does with skin weights that do not sum to 1: normalize divides them by their sum (one warning), strict refuses the file naming the vertex.
+    
+    Members:
+    
+      normalize
+    
+      strict
+    """
+    __members__: typing.ClassVar[dict[str, WeightPolicy]]
+    normalize: typing.ClassVar[WeightPolicy]
+    strict: typing.ClassVar[WeightPolicy]
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: int) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: int) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class CharacterReadOptions:
+    """
+    What read_character reads.
+    """
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword arguments set the fields of the same names.
+        """
+    @property
+    def clip(self) -> str:
+        """
+        The clip by name ('': by clip_index, else the first).
+        """
+    @clip.setter
+    def clip(self, arg0: str) -> None:
+        ...
+    @property
+    def clip_index(self) -> int:
+        """
+        The clip by index among the file's (>= 0).
+        """
+    @clip_index.setter
+    def clip_index(self, arg0: int) -> None:
+        ...
+    @property
+    def first_frame(self) -> int:
+        """
+        First frame sampled (time frame / fps).
+        """
+    @first_frame.setter
+    def first_frame(self, arg0: int) -> None:
+        ...
+    @property
+    def fps(self) -> float:
+        """
+        Frames per second the clip is sampled at.
+        """
+    @fps.setter
+    def fps(self, arg0: float) -> None:
+        ...
+    @property
+    def last_frame(self) -> int:
+        """
+        Last frame sampled (inclusive); < 0: up to the clip's last key.
+        """
+    @last_frame.setter
+    def last_frame(self, arg0: int) -> None:
+        ...
+    @property
+    def require_clip(self) -> bool:
+        """
+        False: a file without animation reads as a character without a clip.
+        """
+    @require_clip.setter
+    def require_clip(self, arg0: bool) -> None:
+        ...
+    @property
+    def weight_tolerance(self) -> float:
+        """
+        Sums within this of 1 are taken as they are.
+        """
+    @weight_tolerance.setter
+    def weight_tolerance(self, arg0: float) -> None:
+        ...
+    @property
+    def weights(self) -> WeightPolicy:
+        """
+        WeightPolicy for sums off 1.
+        """
+    @weights.setter
+    def weights(self, arg0: WeightPolicy) -> None:
+        ...
+    @property
+    def weld_distance(self) -> float:
+        """
+        Positions closer than this are welded (0: 1e-9 of the bounding box's diagonal).
+        """
+    @weld_distance.setter
+    def weld_distance(self, arg0: float) -> None:
+        ...
+class Joint:
+    """
+    A joint of the skeleton: a node that skins vertices (read-only).
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def inverse_bind(self) -> numpy.ndarray[numpy.float64]:
+        """
+        Rest (mesh) space to joint space, float64 (4, 4) [row, column].
+        """
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def parent(self) -> int:
+        """
+        The nearest ancestor that is a joint, or -1.
+        """
+    @property
+    def rest_position(self) -> list[float[3]]:
+        """
+        The joint's origin at rest.
+        """
+class SkinWeights:
+    """
+    Skin weights per vertex in compressed rows: vertex v's joints are joint[offset[v]:offset[v + 1]] with weight[...].
+    """
+    def __init__(self, offset: typing.Any, joint: typing.Any, weight: typing.Any) -> None:
+        """
+        From offset (vertices + 1,), joint (k,) and weight (k,).
+        """
+    @property
+    def joint(self) -> numpy.ndarray[numpy.int32]:
+        """
+        int32 (k,).
+        """
+    @property
+    def offset(self) -> numpy.ndarray[numpy.int32]:
+        """
+        int32 (vertices + 1,).
+        """
+    @property
+    def vertex_count(self) -> int:
+        ...
+    @property
+    def weight(self) -> numpy.ndarray[numpy.float64]:
+        """
+        float64 (k,).
+        """
+class CharacterClip:
+    """
+    A clip sampled at fps (read-only).
+    """
+    @property
+    def first_frame(self) -> int:
+        ...
+    @property
+    def fps(self) -> float:
+        ...
+    @property
+    def frame_count(self) -> int:
+        ...
+    @property
+    def index(self) -> int:
+        """
+        Among the file's clips.
+        """
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def skinning(self) -> numpy.ndarray[numpy.float64]:
+        """
+        Per frame and joint, world(t) * inverse_bind (rest point to posed point), float64 (frames, joints, 4, 4).
+        """
+    @property
+    def times(self) -> numpy.ndarray[numpy.float64]:
+        """
+        Seconds per frame (frame / fps), float64 (frames,).
+        """
+class Character:
+    """
+    A skinned character as read_character reads it (read-only).
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def clip(self) -> CharacterClip:
+        """
+        The sampled CharacterClip (empty without one).
+        """
+    @property
+    def clip_names(self) -> list[str]:
+        """
+        The file's clips.
+        """
+    @property
+    def file(self) -> str:
+        ...
+    @property
+    def has_clip(self) -> bool:
+        ...
+    @property
+    def joints(self) -> list[Joint]:
+        """
+        Joint list, parents before children.
+        """
+    @property
+    def surface(self) -> TriangleSurface:
+        """
+        The skin as the file gives it (seams kept): the output's vertex order.
+        """
+    @property
+    def warnings(self) -> list[str]:
+        """
+        What was repaired on reading, one line per kind.
+        """
+    @property
+    def weights(self) -> SkinWeights:
+        """
+        SkinWeights per surface vertex.
+        """
+    @property
+    def welded(self) -> TriangleSurface:
+        """
+        The skin with coincident positions welded (voxelized).
+        """
+    @property
+    def welded_index(self) -> numpy.ndarray[numpy.int32]:
+        """
+        Each surface vertex's welded vertex, int32 (n,).
+        """
+class CharacterBoneOptions:
+    """
+    How bones are made from the skeleton.
+    """
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword arguments set the fields of the same names.
+        """
+    @property
+    def exclude(self) -> list[str]:
+        """
+        Joints without a bone, by name or glob pattern (a copy: assign a new list).
+        """
+    @exclude.setter
+    def exclude(self, arg0: list[str]) -> None:
+        ...
+    @property
+    def joint_clearance(self) -> float:
+        """
+        Flesh left free at each end, as a fraction of the segment's length; < 0: joint to joint.
+        """
+    @joint_clearance.setter
+    def joint_clearance(self, arg0: float) -> None:
+        ...
+    @property
+    def leaf_fraction(self) -> float:
+        """
+        A leaf joint's segment as a fraction of its parent's; 0 skips leaves.
+        """
+    @leaf_fraction.setter
+    def leaf_fraction(self, arg0: float) -> None:
+        ...
+    @property
+    def radius(self) -> dict[str, float]:
+        """
+        {joint: absolute radius} (a copy: assign a new dict).
+        """
+    @radius.setter
+    def radius(self, arg0: dict[str, float]) -> None:
+        ...
+    @property
+    def radius_fraction(self) -> float:
+        """
+        A bone's radius as a fraction of its segment's distance from the skin.
+        """
+    @radius_fraction.setter
+    def radius_fraction(self, arg0: float) -> None:
+        ...
+    @property
+    def touching_radius(self) -> float:
+        """
+        Radius of a bone whose segment touches the skin (absolute); 0 leaves such bones out.
+        """
+    @touching_radius.setter
+    def touching_radius(self, arg0: float) -> None:
+        ...
+class CharacterBones:
+    """
+    Bones from the skeleton and their animation (read-only).
+    """
+    @property
+    def animation(self) -> Animation:
+        """
+        Every bone's skinning matrix per frame.
+        """
+    @property
+    def bones(self) -> list[Bone]:
+        """
+        Bone list, named as their joints.
+        """
+    @property
+    def joint(self) -> numpy.ndarray[numpy.int32]:
+        """
+        Each bone's joint, int32.
+        """
+    @property
+    def warnings(self) -> list[str]:
+        """
+        Bones given the floor radius or left out.
+        """
+class CharacterPrepareOptions:
+    """
+    How prepare_character rigs a character.
+    """
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword arguments set the fields of the same names.
+        """
+    @property
+    def bones(self) -> CharacterBoneOptions:
+        """
+        CharacterBoneOptions (its fields can be set in place).
+        """
+    @bones.setter
+    def bones(self, arg0: CharacterBoneOptions) -> None:
+        ...
+    @property
+    def max_outside_fraction(self) -> float:
+        """
+        A surface vertex farther than this fraction of the diagonal from every element is an error.
+        """
+    @max_outside_fraction.setter
+    def max_outside_fraction(self, arg0: float) -> None:
+        ...
+    @property
+    def touching_radius_cells(self) -> float:
+        """
+        Cells of radius for a bone touching the skin, unless bones.touching_radius is set.
+        """
+    @touching_radius_cells.setter
+    def touching_radius_cells(self, arg0: float) -> None:
+        ...
+    @property
+    def voxelize(self) -> VoxelizeOptions:
+        """
+        VoxelizeOptions (its fields can be set in place).
+        """
+    @voxelize.setter
+    def voxelize(self, arg0: VoxelizeOptions) -> None:
+        ...
+class CharacterRig:
+    """
+    What a character's simulation needs (read-only).
+    """
+    @property
+    def bones(self) -> CharacterBones:
+        """
+        CharacterBones.
+        """
+    @property
+    def cell(self) -> float:
+        """
+        The lattice's cube side.
+        """
+    @property
+    def constraints(self) -> list[ConstraintSet]:
+        """
+        One ConstraintSet per bone.
+        """
+    @property
+    def embedding(self) -> Embedding:
+        """
+        Embedding of every surface vertex (file order).
+        """
+    @property
+    def lattice_weights(self) -> SkinWeights:
+        """
+        SkinWeights per lattice vertex, for the skinned guess.
+        """
+    @property
+    def max_outside_distance(self) -> float:
+        """
+        The largest distance of those from their element.
+        """
+    @property
+    def vertices_outside(self) -> int:
+        """
+        Surface vertices outside every element (they follow the nearest one).
+        """
+    @property
+    def voxels(self) -> Voxelization:
+        """
+        The welded surface's Voxelization.
+        """
+    @property
+    def warnings(self) -> list[str]:
+        """
+        What was repaired, one line per kind.
+        """
+class SkinDeviation:
+    """
+    How far a frame's simulated surface is from the linear-blend-skinned one.
+    """
+    @property
+    def max_distance(self) -> float:
+        ...
+    @property
+    def mean_distance(self) -> float:
+        ...
+class CharacterFrame:
+    """
+    One frame of a character (read-only).
+    """
+    @property
+    def lbs(self) -> SkinDeviation:
+        """
+        SkinDeviation from linear blend skinning.
+        """
+    @property
+    def record(self) -> FrameRecord:
+        """
+        The FrameRecord, frame and time as in the clip.
+        """
+class CharacterFrameOptions:
+    """
+    How run_character_frames runs the frames.
+    """
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword arguments set the fields of the same names.
+        """
+    @property
+    def frames(self) -> FrameOptions:
+        """
+        FrameOptions (its fields can be set in place).
+        """
+    @frames.setter
+    def frames(self, arg0: FrameOptions) -> None:
+        ...
+    @property
+    def skinned_guess(self) -> bool:
+        """
+        Start each frame from the last state moved by the lattice skinning's change.
+        """
+    @skinned_guess.setter
+    def skinned_guess(self, arg0: bool) -> None:
+        ...
+class PointCache:
+    """
+    The same points sampled over frames (PC2, MDD).
+    """
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword arguments set the fields (samples, start_frame, sample_rate, times, point_count).
+        """
+    @property
+    def point_count(self) -> int:
+        """
+        Points per sample (set by samples).
+        """
+    @point_count.setter
+    def point_count(self, arg0: int) -> None:
+        ...
+    @property
+    def sample_count(self) -> int:
+        """
+        Samples held.
+        """
+    @property
+    def sample_rate(self) -> float:
+        """
+        PC2: frames between samples.
+        """
+    @sample_rate.setter
+    def sample_rate(self, arg0: float) -> None:
+        ...
+    @property
+    def samples(self) -> numpy.ndarray[numpy.float32]:
+        """
+        float32 (samples, points, 3); setting it sets point_count.
+        """
+    @samples.setter
+    def samples(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def start_frame(self) -> float:
+        """
+        PC2: the first sample's frame.
+        """
+    @start_frame.setter
+    def start_frame(self, arg0: float) -> None:
+        ...
+    @property
+    def times(self) -> numpy.ndarray[numpy.float64]:
+        """
+        MDD: seconds per sample, float64 (samples,).
+        """
+    @times.setter
+    def times(self, arg1: typing.Any) -> None:
+        ...
+class CharacterCacheSeries:
+    """
+    Collects a character's frames and writes its point caches.
+    """
+    def __init__(self, character: Character, pc2: str = '', mdd: str = '', lbs: str = '') -> None:
+        """
+        The simulated surface to pc2 and/or mdd, the skinned one to lbs (.pc2 or .mdd); '' skips.
+        """
+    def add(self, clip_frame: int, surface: typing.Any) -> None:
+        """
+        A frame (numbered as in the clip) with the simulated surface (n, 3).
+        """
+    def finish(self) -> None:
+        """
+        Writes the files.
+        """
 class SceneParameters:
     """
     Size, material and steps of a built-in scene.
@@ -2517,6 +3119,14 @@ def boundary_surface(mesh: Mesh, positions: typing.Any = None) -> tuple:
     """
     The mesh's boundary as (TriangleSurface, vertices): outward triangles over the boundary vertices at positions (n, 3; None: rest), and the mesh vertex (int32) of each surface vertex.
     """
+def character_bones(character: Character, options: CharacterBoneOptions | None = None) -> CharacterBones:
+    """
+    A capsule per kept joint's segment (joint to child, trimmed by joint_clearance) and its animation.
+    """
+def character_cell(character: Character, resolution: int) -> float:
+    """
+    The cube side that puts resolution cells along the longest side of the bind pose's bounding box.
+    """
 def compute_element_fields(mesh: Mesh, materials: MaterialMap, positions: typing.Any) -> ElementFields:
     """
     ElementFields at positions (n, 3).
@@ -2569,6 +3179,10 @@ def identity_matrix4() -> numpy.ndarray[numpy.float64]:
     """
     The 4x4 identity.
     """
+def linear_blend_skinning(rest: typing.Any, weights: SkinWeights, matrices: typing.Any) -> numpy.ndarray[numpy.float64]:
+    """
+    sum_j w_j M_j x per vertex of rest (n, 3) with one matrix (joints, 4, 4) per joint: (n, 3).
+    """
 def list_devices() -> list[DeviceInfo]:
     """
     Every OpenCL device on this machine (DeviceInfo list).
@@ -2613,21 +3227,47 @@ def parse_animation_csv(text: str, name: str = '<string>') -> Animation:
     ...
 def parse_animation_json(text: str, name: str = '<string>') -> Animation:
     ...
+@typing.overload
+def prepare_character(character: Character, cell: float, options: CharacterPrepareOptions | None = None) -> CharacterRig:
+    """
+    Voxelizes the welded surface at cell, embeds every surface vertex, makes the bones and their constraint sets and carries the skin weights to the lattice.
+    """
+@typing.overload
+def prepare_character(character: Character, cell: float, bones: CharacterBoneOptions | None = None, voxelize: VoxelizeOptions | None = None) -> CharacterRig:
+    """
+    The same with bone and voxelizer options alone (the other options' defaults).
+    """
 def read_animation(path: str) -> Animation:
     """
     Reads a .json or .csv animation.
+    """
+def read_character(path: str, options: CharacterReadOptions | None = None) -> Character:
+    """
+    Reads a skinned character (glTF 2.0, FBX, Collada): surface, joints, weights and a clip sampled at fps. snh.Error names the file and the item at fault.
     """
 def read_checkpoint(path: str) -> SimulationState:
     """
     Reads a checkpoint file; snh.Error names the file and the item for a damaged one.
     """
+def read_mdd(path: str) -> PointCache:
+    """
+    Reads an MDD point cache.
+    """
 def read_mesh(path: str, allow_coincident_vertices: bool = False) -> Mesh:
     """
     Reads .msh, .vtk, .vtu, .mesh, .node/.ele (tet4 or hex8) with groups and arrays; snh.Error names the file and line at fault.
     """
+def read_pc2(path: str) -> PointCache:
+    """
+    Reads a PC2 point cache.
+    """
 def read_surface(path: str) -> TriangleSurface:
     """
     Reads .obj, .ply or .stl (polygons fanned).
+    """
+def run_character_frames(simulation: Simulation, character: Character, rig: CharacterRig, options: CharacterFrameOptions | None = None, on_frame: typing.Any = None) -> list[CharacterFrame]:
+    """
+    Runs the clip's frames on a Simulation of rig.voxels.lattice with rig.constraints. on_frame(frame, lattice (n, 3), surface (k, 3), skinned (k, 3)) after each frame; returning False stops (None goes on); an exception raised in it propagates. Runs without the GIL. Returns CharacterFrames.
     """
 def run_frames(simulation: Simulation, animation: Animation, embedding: Embedding = None, options: FrameOptions | None = None, on_frame: typing.Any = None) -> list[FrameRecord]:
     """
@@ -2669,9 +3309,9 @@ def uniform_material(mesh: Mesh, material: Material) -> MaterialMap:
     """
     One material for the whole mesh.
     """
-def validate_closed_surface(surface: TriangleSurface) -> None:
+def validate_closed_surface(surface: TriangleSurface, name: str = 'surface') -> None:
     """
-    snh.Error unless closed and consistently oriented.
+    snh.Error (starting with name) unless closed and consistently oriented.
     """
 def vertex_spacing(mesh: Mesh) -> float:
     """
@@ -2709,6 +3349,10 @@ def write_checkpoint(path: str, state: SimulationState) -> None:
     """
     Writes a SimulationState to a versioned binary file (doubles bit for bit).
     """
+def write_mdd(path: str, cache: PointCache) -> None:
+    """
+    Writes an MDD point cache (big-endian; one time per sample).
+    """
 def write_mesh(path: str, mesh: Mesh) -> None:
     """
     Writes the mesh at rest in the format its extension names (.msh, .vtk, .vtu, .mesh, .node/.ele).
@@ -2721,9 +3365,17 @@ def write_obj_surface(path: str, mesh: Mesh, positions: typing.Any = None) -> No
     """
     The boundary surface as OBJ.
     """
+def write_pc2(path: str, cache: PointCache) -> None:
+    """
+    Writes a PC2 point cache (little-endian).
+    """
 def write_ply_surface(path: str, mesh: Mesh, positions: typing.Any = None) -> None:
     """
     The boundary surface as PLY.
+    """
+def write_point_cache(path: str, cache: PointCache) -> None:
+    """
+    Writes .pc2 or .mdd by the extension.
     """
 def write_pvd(path: str, steps: list[tuple[float, str]]) -> None:
     """
@@ -2732,6 +3384,10 @@ def write_pvd(path: str, steps: list[tuple[float, str]]) -> None:
 def write_scene_json(path: str, file: SceneFile, run: SceneRun) -> None:
     """
     The run's JSON summary (docs/cli.md).
+    """
+def write_surface_ply(path: str, surface: TriangleSurface, positions: typing.Any = None) -> None:
+    """
+    Writes the surface as binary PLY at positions (n, 3) (None: its own), vertices in its order.
     """
 def write_surface_vtu(path: str, surface: TriangleSurface, positions: typing.Any = None) -> None:
     """

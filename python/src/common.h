@@ -64,6 +64,7 @@ void bind_results(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_io(py::module_& m);
 void bind_rig(py::module_& m);
+void bind_character(py::module_& m);
 void bind_scene_results(py::module_& m);
 void bind_scene(py::module_& m);
 

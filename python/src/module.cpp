@@ -15,5 +15,6 @@ PYBIND11_MODULE(_snh, m) {
   snh_python::bind_scene_results(m);
   snh_python::bind_io(m);
   snh_python::bind_rig(m);
+  snh_python::bind_character(m);
   snh_python::bind_scene(m);
 }

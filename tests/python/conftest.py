@@ -1,7 +1,8 @@
 """Shared problems of the Python tests.
 
-Run through ctest (python_tests), which sets PYTHONPATH to build/python and
-SNH_PYTHON_CROSSCHECK to the C++ program that solves the same problem.
+Run through ctest (python_tests), which sets PYTHONPATH to build/python,
+SNH_PYTHON_CROSSCHECK to the C++ program that solves the same problem and
+SNH_CLI to the snh command line.
 """
 
 import math
@@ -40,6 +41,14 @@ def crosscheck_program():
     path = os.environ.get("SNH_PYTHON_CROSSCHECK")
     if not path or not os.path.exists(path):
         pytest.skip("SNH_PYTHON_CROSSCHECK is not set (run through ctest)")
+    return path
+
+
+@pytest.fixture
+def cli_program():
+    path = os.environ.get("SNH_CLI")
+    if not path or not os.path.exists(path):
+        pytest.skip("SNH_CLI is not set (run through ctest)")
     return path
 
 
