@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "snh/character.h"
@@ -200,7 +201,9 @@ TEST(CharacterRepairs, BoneTouchingTheSkinGetsAFloorRadiusOrIsLeftOut) {
 
 TEST(CharacterRepairs, ResolutionChoosesTheCellAlongTheLongestSide) {
   const Character arm = read_character(kArm);
-  EXPECT_DOUBLE_EQ(character_cell(arm, 16), 0.4 / 16);
+  // The file's float positions: the tube is 0.4f long.
+  const double cell = character_cell(arm, 16);
+  EXPECT_DOUBLE_EQ(cell, static_cast<double>(0.4f) / 16);
   EXPECT_NE(error_of([&] { character_cell(arm, 0); }).find("resolution must be >= 1"), std::string::npos);
   const fs::path dir = fresh_dir("snh_character_resolution");
   fs::copy_file(kArm, dir / "arm.gltf");
@@ -211,8 +214,11 @@ TEST(CharacterRepairs, ResolutionChoosesTheCellAlongTheLongestSide) {
     return p.string();
   };
   const SceneFile by_resolution = load_scene(write(R"({"file": "arm.gltf", "fps": 10, "resolution": 16})"));
-  const SceneFile by_cell = load_scene(write(R"({"file": "arm.gltf", "fps": 10, "cell": 0.025})"));
-  EXPECT_DOUBLE_EQ(by_resolution.character->rig.cell, 0.025);
+  std::ostringstream given;
+  given.precision(17);
+  given << R"({"file": "arm.gltf", "fps": 10, "cell": )" << cell << "}";
+  const SceneFile by_cell = load_scene(write(given.str()));
+  EXPECT_DOUBLE_EQ(by_resolution.character->rig.cell, cell);
   EXPECT_EQ(by_resolution.scene.mesh.positions, by_cell.scene.mesh.positions);
   const std::vector<std::string> report = scene_setup_report(by_resolution);
   EXPECT_TRUE(mentions(report, "cell 0.025 (16 cells along the longest side)")) << joined(report);

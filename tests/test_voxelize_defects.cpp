@@ -251,7 +251,9 @@ TEST(VoxelizeDefects, WhatCannotBeVoxelizedIsAnErrorNamingTheFile) {
   box.positions[7] = HUGE_VAL;
   const std::string inf = error_of([&] { voxelize(box, 0.1, named); });
   EXPECT_EQ(inf.rfind("bad.obj: vertex 2 has a non-finite coordinate (y = inf)", 0), 0u) << inf;
-  // A lone triangle encloses nothing; so does a box facing inwards.
+  // A lone triangle encloses nothing. A box facing inwards is an inside-out
+  // skin: voxelized as its outward twin, with a warning naming the shell;
+  // strict keeps refusing it.
   TriangleSurface sheet;
   sheet.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   sheet.triangles = {0, 1, 2};
@@ -260,8 +262,14 @@ TEST(VoxelizeDefects, WhatCannotBeVoxelizedIsAnErrorNamingTheFile) {
   TriangleSurface inwards = test::box_surface({0, 0, 0}, {1, 1, 1});
   for (size_t t = 0; t < inwards.triangle_count(); ++t)
     std::swap(inwards.triangles[3 * t], inwards.triangles[3 * t + 1]);
-  const std::string inside_out = error_of([&] { voxelize(inwards, 0.25, named); });
-  EXPECT_NE(inside_out.find("no cell centre lies inside"), std::string::npos) << inside_out;
+  const Voxelization turned = voxelize(inwards, 0.25, named);
+  EXPECT_EQ(turned.element_cell, voxelize(test::box_surface({0, 0, 0}, {1, 1, 1}), 0.25, named).element_cell);
+  ASSERT_FALSE(turned.warnings.empty());
+  EXPECT_EQ(turned.warnings.back().rfind("bad.obj: shell 0 (from triangle 0, 12 triangles) faces inwards", 0), 0u)
+      << turned.warnings.back();
+  VoxelizeOptions strict = named;
+  strict.strict = true;
+  EXPECT_FALSE(error_of([&] { voxelize(inwards, 0.25, strict); }).empty());
 }
 
 TEST(VoxelizeDefects, SceneKeyStrictSurfaceAndTheFileInMessages) {
