@@ -1,5 +1,6 @@
 // Reading a skinned character through assimp (snh/character.h). assimp's
-// types stay in this file.
+// types stay in this file; FBX files go to the ufbx reader (fbx_reader.h)
+// and both end in finish_character (weights, weld).
 //
 // The importer runs with aiProcess_Triangulate alone: no step that joins,
 // splits or reorders vertices, so the surface keeps the file's vertex list
@@ -22,6 +23,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "character/fbx_reader.h"
 #include "snh/character.h"
 #include "snh/error.h"
 
@@ -190,9 +192,63 @@ void weld(Character& c, double distance) {
   }
 }
 
+// The end every format's reading shares: the skin weights (raw, rows in
+// any order) checked by options.weights (WeightPolicy), normalized and
+// sorted by joint, then the weld of the simulated surface. vertex_name names
+// a surface vertex in messages.
+void finish_character(Character& c, const std::string& path, const CharacterReadOptions& options,
+                      const std::function<std::string(size_t)>& vertex_name) {
+  SkinWeights& w = c.weights;
+  std::vector<std::pair<int32_t, double>> row;
+  for (size_t v = 0; v < w.vertex_count(); ++v) {
+    row.clear();
+    for (int32_t k = w.offset[v]; k < w.offset[v + 1]; ++k) row.push_back({w.joint[k], w.weight[k]});
+    double sum = 0.0;
+    for (const auto& jw : row) sum += jw.second;
+    if (std::abs(sum - 1.0) > options.weight_tolerance) {
+      if (!(options.weights == WeightPolicy::normalize && sum > 0.0))
+        fail(path, vertex_name(v) + ": its skin weights sum to " + number(sum) + ", not 1 (tolerance " +
+                       number(options.weight_tolerance) + ")");
+    }
+    if (sum > 0.0)
+      for (auto& jw : row) jw.second /= sum;
+    std::sort(row.begin(), row.end());
+    for (size_t k = 0; k < row.size(); ++k) {
+      w.joint[w.offset[v] + k] = row[k].first;
+      w.weight[w.offset[v] + k] = row[k].second;
+    }
+  }
+
+  // The weld of the simulated surface.
+  double diagonal = 0.0;
+  {
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (size_t v = 0; v < c.surface.vertex_count(); ++v)
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], c.surface.positions[3 * v + d]);
+        hi[d] = std::max(hi[d], c.surface.positions[3 * v + d]);
+      }
+    for (int d = 0; d < 3; ++d) diagonal += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+    diagonal = std::sqrt(diagonal);
+  }
+  const double weld_distance = options.weld_distance > 0.0 ? options.weld_distance : 1e-9 * std::max(diagonal, 1e-300);
+  weld(c, weld_distance);
+}
+
+bool is_fbx(const std::string& path) {
+  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return ext == ".fbx";
+}
+
 }  // namespace
 
 Character read_character(const std::string& path, const CharacterReadOptions& options) {
+  if (is_fbx(path)) {
+    Character c = detail::read_fbx_character(path, options);
+    finish_character(c, path, options, [](size_t v) { return "vertex " + std::to_string(v); });
+    return c;
+  }
   if (!(options.fps > 0.0) || !std::isfinite(options.fps)) fail(path, "fps must be > 0, got " + number(options.fps));
   if (options.first_frame < 0) fail(path, "the first frame must be >= 0, got " + std::to_string(options.first_frame));
   Assimp::Importer importer;
@@ -258,12 +314,14 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
 
   // The skin: every mesh with bones, its vertices as given.
   std::vector<std::vector<std::pair<int32_t, double>>> rows;
+  std::vector<std::pair<int32_t, std::string>> mesh_starts;  // first surface vertex, name
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
     if (mesh->mNumBones == 0) continue;
     const std::string mesh_name =
         "mesh " + std::to_string(m) + (mesh->mName.length ? " '" + std::string(mesh->mName.C_Str()) + "'" : "");
     const int32_t base = static_cast<int32_t>(c.surface.vertex_count());
+    mesh_starts.push_back({base, mesh_name});
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -290,20 +348,6 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
         if (w.mWeight > 0.0f) rows[base + w.mVertexId].push_back({j, w.mWeight});
       }
     }
-    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      auto& row = rows[base + v];
-      double sum = 0.0;
-      for (const auto& [j, w] : row) sum += w;
-      if (std::abs(sum - 1.0) > options.weight_tolerance) {
-        if (!(options.weights == WeightPolicy::normalize && sum > 0.0))
-          fail(path, mesh_name + ": vertex " + std::to_string(v) + " (surface vertex " + std::to_string(base + v) +
-                         "): its skin weights sum to " + number(sum) + ", not 1 (tolerance " +
-                         number(options.weight_tolerance) + ")");
-      }
-      if (sum > 0.0)
-        for (auto& jw : row) jw.second /= sum;
-      std::sort(row.begin(), row.end());
-    }
   }
   if (c.surface.triangle_count() == 0) fail(path, "the skinned meshes have no triangles");
   for (const auto& row : rows) {
@@ -314,20 +358,12 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
     c.weights.offset.push_back(static_cast<int32_t>(c.weights.joint.size()));
   }
 
-  // The weld of the simulated surface.
-  double diagonal = 0.0;
-  {
-    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (size_t v = 0; v < c.surface.vertex_count(); ++v)
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], c.surface.positions[3 * v + d]);
-        hi[d] = std::max(hi[d], c.surface.positions[3 * v + d]);
-      }
-    for (int d = 0; d < 3; ++d) diagonal += (hi[d] - lo[d]) * (hi[d] - lo[d]);
-    diagonal = std::sqrt(diagonal);
-  }
-  const double weld_distance = options.weld_distance > 0.0 ? options.weld_distance : 1e-9 * std::max(diagonal, 1e-300);
-  weld(c, weld_distance);
+  finish_character(c, path, options, [&](size_t v) {
+    size_t m = mesh_starts.size() - 1;
+    while (static_cast<size_t>(mesh_starts[m].first) > v) --m;
+    return mesh_starts[m].second + ": vertex " + std::to_string(v - mesh_starts[m].first) + " (surface vertex " +
+           std::to_string(v) + ")";
+  });
 
   // The clip.
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) c.clip_names.push_back(scene->mAnimations[a]->mName.C_Str());
