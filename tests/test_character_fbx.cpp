@@ -107,7 +107,9 @@ TEST(CharacterFbx, JointsAndRawWeightsAreTheFileClusters) {
     ASSERT_EQ(static_cast<size_t>(c.weights.offset[v + 1] - c.weights.offset[v]), groups.size()) << "vertex " << v;
     double sum = 0.0;
     for (int32_t k = c.weights.offset[v]; k < c.weights.offset[v + 1]; ++k) {
-      if (k > c.weights.offset[v]) EXPECT_LT(c.weights.joint[k - 1], c.weights.joint[k]) << "vertex " << v;
+      if (k > c.weights.offset[v]) {
+        EXPECT_LT(c.weights.joint[k - 1], c.weights.joint[k]) << "vertex " << v;
+      }
       const std::string& name = c.joints[c.weights.joint[k]].name;
       ASSERT_TRUE(groups.contains(name)) << "vertex " << v << " joint " << name;
       EXPECT_NEAR(c.weights.weight[k], groups[name].get<double>(), 1e-7) << "vertex " << v << " joint " << name;
@@ -151,7 +153,9 @@ TEST(CharacterFbx, LinearBlendSkinningMatchesBlendersArmatureDeform) {
         moved = std::max(moved, std::abs(x[3 * v + d] - c.surface.positions[3 * v + d]));
       }
     EXPECT_LT(worst, 1e-4 * scale) << "frame " << f;
-    if (f >= 3) EXPECT_GT(moved, 0.05 * scale) << "frame " << f << " should bend the tube";
+    if (f >= 3) {
+      EXPECT_GT(moved, 0.05 * scale) << "frame " << f << " should bend the tube";
+    }
   }
 }
 
