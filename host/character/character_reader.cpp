@@ -1,5 +1,6 @@
 // Reading a skinned character through assimp (snh/character.h). assimp's
-// types stay in this file.
+// types stay in this file; FBX files go to the ufbx reader (fbx_reader.h)
+// and both end in finish_character (weights, weld).
 //
 // The importer runs with aiProcess_Triangulate alone: no step that joins,
 // splits or reorders vertices, so the surface keeps the file's vertex list
@@ -22,6 +23,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "character/fbx_reader.h"
 #include "character/skin_weights.h"
 #include "snh/character.h"
 #include "snh/error.h"
@@ -191,9 +193,43 @@ void weld(Character& c, double distance) {
   }
 }
 
+// The end every format's reading shares: the skin weights (raw, rows in
+// any order) resolved by options.weights (detail::resolve_skin_weights:
+// checked or normalized, unweighted vertices filled, rows sorted by joint),
+// then the weld of the simulated surface.
+void finish_character(Character& c, const CharacterReadOptions& options) {
+  detail::resolve_skin_weights(c, options);
+
+  // The weld of the simulated surface.
+  double diagonal = 0.0;
+  {
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (size_t v = 0; v < c.surface.vertex_count(); ++v)
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], c.surface.positions[3 * v + d]);
+        hi[d] = std::max(hi[d], c.surface.positions[3 * v + d]);
+      }
+    for (int d = 0; d < 3; ++d) diagonal += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+    diagonal = std::sqrt(diagonal);
+  }
+  const double weld_distance = options.weld_distance > 0.0 ? options.weld_distance : 1e-9 * std::max(diagonal, 1e-300);
+  weld(c, weld_distance);
+}
+
+bool is_fbx(const std::string& path) {
+  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return ext == ".fbx";
+}
+
 }  // namespace
 
 Character read_character(const std::string& path, const CharacterReadOptions& options) {
+  if (is_fbx(path)) {
+    Character c = detail::read_fbx_character(path, options);
+    finish_character(c, options);
+    return c;
+  }
   if (!(options.fps > 0.0) || !std::isfinite(options.fps)) fail(path, "fps must be > 0, got " + number(options.fps));
   if (options.first_frame < 0) fail(path, "the first frame must be >= 0, got " + std::to_string(options.first_frame));
   Assimp::Importer importer;
@@ -316,22 +352,7 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
     }
     c.weights.offset.push_back(static_cast<int32_t>(c.weights.joint.size()));
   }
-  detail::resolve_skin_weights(c, options);
-
-  // The weld of the simulated surface.
-  double diagonal = 0.0;
-  {
-    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (size_t v = 0; v < c.surface.vertex_count(); ++v)
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], c.surface.positions[3 * v + d]);
-        hi[d] = std::max(hi[d], c.surface.positions[3 * v + d]);
-      }
-    for (int d = 0; d < 3; ++d) diagonal += (hi[d] - lo[d]) * (hi[d] - lo[d]);
-    diagonal = std::sqrt(diagonal);
-  }
-  const double weld_distance = options.weld_distance > 0.0 ? options.weld_distance : 1e-9 * std::max(diagonal, 1e-300);
-  weld(c, weld_distance);
+  finish_character(c, options);
 
   // The clip.
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) c.clip_names.push_back(scene->mAnimations[a]->mName.C_Str());

@@ -1,5 +1,5 @@
 // Skinned characters: a skin mesh with its skeleton, skin weights and
-// animation clips read from glTF 2.0, FBX or Collada (through assimp), turned
+// animation clips read from glTF 2.0, Collada (through assimp) or FBX (through ufbx), turned
 // into bones that drive an embedded flesh lattice, run frame by frame, and the
 // character's own surface written per frame, in the input's vertex order, as
 // point caches (PC2, MDD) beside its linear-blend-skinned counterpart.
