@@ -35,6 +35,10 @@ Matrix4 to_matrix4(const aiMatrix4x4& m) {
   return {m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4};
 }
 
+double determinant3(const Matrix4& m) {  // of the upper-left 3x3 block
+  return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) + m[2] * (m[4] * m[9] - m[5] * m[8]);
+}
+
 bool finite(const Matrix4& m) {
   return std::all_of(m.begin(), m.end(), [](double v) { return std::isfinite(v); });
 }
@@ -429,6 +433,31 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
   const auto step =
       scene->mNumAnimations > 0 ? gltf_step_channels(path, clip) : std::set<std::pair<std::string, int>>{};
   std::map<const aiNode*, Matrix4> world;
+  // The skin's own space. Where every joint's skinning matrix in the
+  // scene's static (unanimated) pose is one and the same M (a bind pose
+  // placed by the mesh's node, as Collada exporters write it), the frames
+  // are M^-1 S(t): the bind pose is the identity and the surface stays in the
+  // coordinates the file, and every importer, gives its vertices.
+  Matrix4 to_skin = compose_trs({0, 0, 0}, {1, 0, 0, 0}, {1, 1, 1});
+  {
+    for (const aiNode* n : order) {
+      const Matrix4 local = to_matrix4(n->mTransformation);
+      world[n] = n->mParent ? multiply_matrix4(world.at(n->mParent), local) : local;
+    }
+    std::vector<Matrix4> bind;
+    for (const Joint& j : c.joints)
+      if (nodes.count(j.name)) bind.push_back(multiply_matrix4(world.at(nodes.at(j.name)), j.inverse_bind));
+    bool same = !bind.empty(), identity = true;
+    double scale = 1.0;
+    for (double v : bind.front()) scale = std::max(scale, std::abs(v));
+    for (const Matrix4& m : bind)
+      for (int k = 0; k < 16; ++k) {
+        if (std::abs(m[k] - bind.front()[k]) > 1e-5 * scale) same = false;
+        if (std::abs(m[k] - to_skin[k]) > 1e-9 * scale) identity = false;
+      }
+    if (same && !identity && std::abs(determinant3(bind.front())) > 1e-12 * scale * scale * scale)
+      to_skin = inverse_matrix4(bind.front());
+  }
   for (int f = options.first_frame; f <= last; ++f) {
     const double seconds = f / options.fps, ticks = seconds * ticks_per_second;
     world.clear();
@@ -454,7 +483,7 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
         skinning.push_back(compose_trs({0, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}));
         continue;
       }
-      const Matrix4 m = multiply_matrix4(world.at(node->second), j.inverse_bind);
+      const Matrix4 m = multiply_matrix4(to_skin, multiply_matrix4(world.at(node->second), j.inverse_bind));
       if (!finite(m))
         fail(path, clip_name + ": joint '" + j.name + "' at frame " + std::to_string(f) + " is not finite");
       skinning.push_back(m);
