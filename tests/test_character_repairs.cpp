@@ -185,7 +185,7 @@ TEST(CharacterRepairs, BoneTouchingTheSkinGetsAFloorRadiusOrIsLeftOut) {
   for (const Bone& b : rig.bones.bones)
     if (b.name == "wrist") {
       found = true;
-      EXPECT_DOUBLE_EQ(std::get<Capsule>(b.shape).radius, 0.5 * cell);
+      EXPECT_DOUBLE_EQ(std::get<Capsule>(b.shape).radius, 0.9 * cell);
     }
   EXPECT_TRUE(found);
   CharacterPrepareOptions out;
@@ -240,35 +240,60 @@ TEST(CharacterRepairs, ResolutionChoosesTheCellAlongTheLongestSide) {
 }
 
 // Each defect class runs frames to the end, converged and with no inverted
-// element, and says what it repaired.
-class CharacterDefectRuns : public ::testing::TestWithParam<std::pair<const char*, const char*>> {};
+// element, and says what it repaired: the arm's variants (make_arm.py) and
+// the creature as Blender's exporters write it (data/characters).
+struct DefectCase {
+  const char* file;     // under the source folder
+  const char* lattice;  // the scene's "cell" or "resolution" entry
+  int last_frame;
+  const char* warning;
+};
+
+class CharacterDefectRuns : public ::testing::TestWithParam<DefectCase> {};
 
 TEST_P(CharacterDefectRuns, RunToTheLastFrameWithTheirWarning) {
-  const auto [file, warning] = GetParam();
-  const fs::path dir = fresh_dir(std::string("snh_character_defect_") + file);
-  fs::copy_file(kData + file, dir / file);
+  const DefectCase& d = GetParam();
+  const fs::path source = fs::path(SNH_SOURCE_DIR) / d.file;
+  const std::string name = source.filename().string();
+  const fs::path dir = fresh_dir("snh_character_defect_" + name);
+  fs::copy_file(source, dir / name);
   const fs::path scene = dir / "scene.json";
-  std::ofstream(scene) << R"({"material": {"E": 2e4, "nu": 0.45}, "character": {"file": ")" << file
-                       << R"(", "fps": 10, "frames": [0, 4], "cell": 0.025}, "solver": {"steps": 1}})";
+  std::ofstream(scene) << R"({"material": {"E": 2e4, "nu": 0.45}, "character": {"file": ")" << name << R"(", "fps": )"
+                       << (d.last_frame > 4 ? 24 : 10) << R"(, "frames": [0, )" << d.last_frame << "], " << d.lattice
+                       << R"(}, "solver": {"steps": 1}})";
   const SceneFile f = load_scene(scene.string());
   std::vector<std::string> report = scene_setup_report(f);
   for (const std::string& w : f.character->rig.voxels.warnings) report.push_back("warning: " + w);
-  EXPECT_TRUE(mentions(report, warning)) << joined(report);
+  EXPECT_TRUE(mentions(report, d.warning)) << joined(report);
   const SceneRun run = run_scene(f, f.scene.options);
-  ASSERT_EQ(run.frames.size(), 5u);
+  ASSERT_EQ(run.frames.size(), static_cast<size_t>(d.last_frame + 1));
   for (const FrameRecord& r : run.frames) {
-    EXPECT_TRUE(r.converged) << file << " frame " << r.frame;
-    EXPECT_EQ(r.inverted_elements, 0) << file << " frame " << r.frame;
+    EXPECT_TRUE(r.converged) << name << " frame " << r.frame;
+    EXPECT_EQ(r.inverted_elements, 0) << name << " frame " << r.frame;
+    EXPECT_TRUE(r.warnings.empty()) << name << " frame " << r.frame << ": " << joined(r.warnings);
   }
-  EXPECT_EQ(run.skin_deviation.size(), 5u);
+  ASSERT_EQ(run.skin_deviation.size(), run.frames.size());
+  EXPECT_LT(run.skin_deviation[0].max_distance, 1e-5) << name << ": frame 0 is the bind pose";
   fs::remove_all(dir);
 }
 
-INSTANTIATE_TEST_SUITE_P(ArmDefects, CharacterDefectRuns,
-                         ::testing::Values(std::make_pair("bad_weights.gltf", "do not sum to 1"),
-                                           std::make_pair("unweighted.gltf", "have no weight"),
-                                           std::make_pair("inside_out.gltf", "faces inwards"),
-                                           std::make_pair("flap.gltf", "more than a cell outside"),
-                                           std::make_pair("tail.gltf", "touch or cross the skin")));
+INSTANTIATE_TEST_SUITE_P(
+    ArmDefects, CharacterDefectRuns,
+    ::testing::Values(DefectCase{"tests/data/character/bad_weights.gltf", "\"cell\": 0.025", 4, "do not sum to 1"},
+                      DefectCase{"tests/data/character/unweighted.gltf", "\"cell\": 0.025", 4, "have no weight"},
+                      DefectCase{"tests/data/character/inside_out.gltf", "\"cell\": 0.025", 4, "faces inwards"},
+                      DefectCase{"tests/data/character/flap.gltf", "\"cell\": 0.025", 4, "more than a cell outside"},
+                      DefectCase{"tests/data/character/tail.gltf", "\"cell\": 0.025", 4, "touch or cross the skin"}));
+
+INSTANTIATE_TEST_SUITE_P(
+    BlenderExports, CharacterDefectRuns,
+    ::testing::Values(
+        DefectCase{"data/characters/inside_out.gltf", "\"resolution\": 25", 20, "faces inwards"},
+        DefectCase{"data/characters/open_sheets.gltf", "\"resolution\": 25", 20, "more than a cell outside"},
+        DefectCase{"data/characters/thin_tail.gltf", "\"resolution\": 25", 20, "touch or cross the skin"},
+        DefectCase{"data/characters/unnormalized.gltf", "\"resolution\": 25", 20, "have no weight"},
+        DefectCase{"data/characters/unnormalized.fbx", "\"resolution\": 25", 20, "do not sum to 1"},
+        DefectCase{"data/characters/centimetres.fbx", "\"resolution\": 25", 20, "cell 6.02"},
+        DefectCase{"data/characters/missing_joint.dae", "\"resolution\": 25", 20, "have no node in the hierarchy"}));
 
 }  // namespace snh::test

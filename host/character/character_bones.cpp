@@ -11,6 +11,7 @@
 
 #include "snh/character.h"
 #include "snh/error.h"
+#include "snh/pieces.h"
 
 namespace snh {
 namespace {
@@ -262,6 +263,50 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
   return out;
 }
 
+namespace {
+
+// Leaves out the bones that hold no lattice vertex (thinner than a cell,
+// outside the lattice, or inside an earlier bone), with a warning.
+void keep_bones_that_hold(const Character& character, CharacterRig& rig) {
+  {
+    std::vector<char> owned(rig.voxels.lattice.vertex_count(), 0);
+    std::vector<std::string> empty;
+    CharacterBones kept;
+    kept.animation.times = rig.bones.animation.times;
+    kept.animation.transforms.resize(rig.bones.animation.transforms.size());
+    kept.warnings = rig.bones.warnings;
+    for (size_t b = 0; b < rig.bones.bones.size(); ++b) {
+      bool holds = false;
+      for (size_t v = 0; v < owned.size(); ++v)
+        if (!owned[v] && bone_contains(rig.bones.bones[b], rig.voxels.lattice.vertex(v))) {
+          owned[v] = 1;
+          holds = true;
+        }
+      if (!holds) {
+        empty.push_back(rig.bones.bones[b].name);
+        continue;
+      }
+      kept.bones.push_back(rig.bones.bones[b]);
+      kept.joint.push_back(rig.bones.joint[b]);
+      kept.animation.bones.push_back(rig.bones.animation.bones[b]);
+      for (size_t f = 0; f < kept.animation.transforms.size(); ++f)
+        kept.animation.transforms[f].push_back(rig.bones.animation.transforms[f][b]);
+    }
+    if (!empty.empty()) {
+      if (kept.bones.empty())
+        throw Error(character.file + ": bones: no bone holds a lattice vertex (" + name_list(empty) +
+                    "): use a smaller cell");
+      const std::string w = "bones: " + std::to_string(empty.size()) + " bone(s) hold no lattice vertex (" +
+                            name_list(empty) + "; thinner than a cell, or outside the flesh) and are left out";
+      kept.warnings.push_back(w);
+      rig.warnings.push_back(w);
+      rig.bones = std::move(kept);
+    }
+  }
+}
+
+}  // namespace
+
 double character_cell(const Character& character, int resolution) {
   if (resolution < 1) throw Error(character.file + ": resolution must be >= 1 cell, got " + std::to_string(resolution));
   const std::vector<double>& x = character.surface.positions;
@@ -296,6 +341,50 @@ CharacterRig prepare_character(const Character& character, double cell, const Ch
     throw Error(character.file + ": the welded skin surface: " + e.what());
   }
   rig.warnings = rig.voxels.warnings;
+
+  CharacterBoneOptions bones = options.bones;
+  if (!(bones.touching_radius > 0.0)) bones.touching_radius = options.touching_radius_cells * cell;
+  rig.bones = character_bones(character, bones);
+  for (const std::string& w : rig.bones.warnings) rig.warnings.push_back(w);
+  keep_bones_that_hold(character, rig);
+
+  // Pieces no bone holds: joined to the body (or as options.pieces says).
+  Embedding welded_embedding = embed_carrying_all(rig.voxels, character.welded).embedding;
+  try {
+    rig.constraints = bone_constraints(rig.voxels.lattice, rig.bones.bones);
+  } catch (const Error& e) {
+    throw Error(character.file + ": bones: " + e.what());
+  }
+  {
+    PieceOptions piece_options;
+    piece_options.rule = options.pieces;
+    piece_options.rule_name = "CharacterPrepareOptions::pieces (scene files: character.pieces)";
+    PiecedLattice pieced;
+    try {
+      pieced = resolve_pieces(rig.voxels, welded_embedding, character.welded, rig.constraints, rig.bones.bones,
+                              piece_options);
+    } catch (const Error& e) {
+      throw Error(character.file + ": " + e.what());
+    }
+    for (const std::string& w : pieced.warnings) rig.warnings.push_back(w);
+    if (pieced.changed) {
+      int cells = 0, added = 0, moved = 0;
+      for (const LatticePiece& p : pieced.pieces)
+        if (!p.outcome.empty()) {
+          ++moved;
+          cells += static_cast<int>(p.elements.size());
+          added += p.added_cells;
+        }
+      std::ostringstream m;
+      m << "lattice: " << moved << " of " << pieced.pieces.size() << " pieces (" << cells << " cells) hold no bone; "
+        << (options.pieces == PieceRule::attach ? "attached to the nearest held piece (" : "dropped (") << added
+        << " cells added)";
+      rig.warnings.push_back(m.str());
+      rig.voxels = std::move(pieced.voxels);
+      rig.constraints = bone_constraints(rig.voxels.lattice, rig.bones.bones);  // the capsules on the new lattice
+    }
+    if (pieced.pieces.size() > 1) rig.pieces = std::move(pieced.pieces);
+  }
 
   // Every surface vertex is carried; those beyond a cell from the lattice
   // (open sheets, thin flaps, loose points) to first order from their
@@ -348,52 +437,6 @@ CharacterRig prepare_character(const Character& character, double cell, const Ch
     rig.warnings.push_back(m.str());
   }
 
-  CharacterBoneOptions bones = options.bones;
-  if (!(bones.touching_radius > 0.0)) bones.touching_radius = options.touching_radius_cells * cell;
-  rig.bones = character_bones(character, bones);
-  for (const std::string& w : rig.bones.warnings) rig.warnings.push_back(w);
-  // A bone that holds no lattice vertex (thinner than a cell, outside the
-  // lattice, or inside an earlier bone) is left out rather than refused.
-  {
-    std::vector<char> owned(rig.voxels.lattice.vertex_count(), 0);
-    std::vector<std::string> empty;
-    CharacterBones kept;
-    kept.animation.times = rig.bones.animation.times;
-    kept.animation.transforms.resize(rig.bones.animation.transforms.size());
-    kept.warnings = rig.bones.warnings;
-    for (size_t b = 0; b < rig.bones.bones.size(); ++b) {
-      bool holds = false;
-      for (size_t v = 0; v < owned.size(); ++v)
-        if (!owned[v] && bone_contains(rig.bones.bones[b], rig.voxels.lattice.vertex(v))) {
-          owned[v] = 1;
-          holds = true;
-        }
-      if (!holds) {
-        empty.push_back(rig.bones.bones[b].name);
-        continue;
-      }
-      kept.bones.push_back(rig.bones.bones[b]);
-      kept.joint.push_back(rig.bones.joint[b]);
-      kept.animation.bones.push_back(rig.bones.animation.bones[b]);
-      for (size_t f = 0; f < kept.animation.transforms.size(); ++f)
-        kept.animation.transforms[f].push_back(rig.bones.animation.transforms[f][b]);
-    }
-    if (!empty.empty()) {
-      if (kept.bones.empty())
-        throw Error(character.file + ": bones: no bone holds a lattice vertex (" + name_list(empty) +
-                    "): use a smaller cell");
-      const std::string w = "bones: " + std::to_string(empty.size()) + " bone(s) hold no lattice vertex (" +
-                            name_list(empty) + "; thinner than a cell, or outside the flesh) and are left out";
-      kept.warnings.push_back(w);
-      rig.warnings.push_back(w);
-      rig.bones = std::move(kept);
-    }
-  }
-  try {
-    rig.constraints = bone_constraints(rig.voxels.lattice, rig.bones.bones);
-  } catch (const Error& e) {
-    throw Error(character.file + ": bones: " + e.what());
-  }
   // The welded vertices' weights (the first surface vertex of each).
   SkinWeights welded_weights;
   std::vector<int32_t> first(character.welded.vertex_count(), -1);

@@ -417,7 +417,9 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
   }
   const double duration = anim->mDuration / ticks_per_second;
   if (!std::isfinite(duration) || duration < 0.0) fail(path, clip_name + ": its duration is not finite");
-  const int clip_last = static_cast<int>(std::floor(duration * options.fps + 1e-9));
+  // Key times are often float32 (glTF): 20 / 24 s stored as 0.83333331 is
+  // frame 20 all the same.
+  const int clip_last = static_cast<int>(std::floor(duration * options.fps * (1 + 1e-6) + 1e-9));
   const int last = options.last_frame < 0 ? clip_last : options.last_frame;
   if (options.first_frame > last || last > clip_last)
     fail(path, clip_name + ": frames " + std::to_string(options.first_frame) + ".." + std::to_string(last) +

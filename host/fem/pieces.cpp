@@ -490,7 +490,9 @@ PiecedLattice resolve_pieces(const Voxelization& voxels, const Embedding& embedd
     out.voxels = std::move(joined.voxels);
     out.vertex_map = std::move(joined.vertex_map);
     out.element_source = std::move(joined.element_source);
-    out.embedding = embed(out.voxels, surface);
+    // The surface as the caller embedded it: vertices beyond a cell of the
+    // lattice (a character's open sheets) are carried, not refused.
+    out.embedding = embed_carrying_all(out.voxels, surface).embedding;
   } else {
     std::vector<char> drop_element(lattice.element_count(), 0);
     for (size_t p : free_pieces) {

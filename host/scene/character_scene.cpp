@@ -45,6 +45,14 @@ SceneFile::CharacterSection read_character_section(const SceneJson& r, const jso
     r.fail(c.contains("cell") ? "character.resolution" : "character.cell",
            c.contains("cell") ? "give \"cell\" or \"resolution\", not both"
                               : "missing (a cube side, or \"resolution\": cells along the longest side)");
+  PieceRule pieces = PieceRule::attach;
+  if (c.contains("pieces")) {
+    try {
+      pieces = parse_piece_rule(r.text(c, "character", "pieces", "attach"));
+    } catch (const Error& e) {
+      r.fail("character.pieces", e.what());
+    }
+  }
   double cell = 0.0;
   int resolution = 0;
   if (c.contains("cell")) {
@@ -93,6 +101,7 @@ SceneFile::CharacterSection read_character_section(const SceneJson& r, const jso
     out.resolution = resolution;
     CharacterPrepareOptions prepare;
     prepare.bones = bones;
+    prepare.pieces = pieces;
     out.rig = prepare_character(out.character, cell, prepare);
   } catch (const Error& e) {
     r.fail("character", e.what());

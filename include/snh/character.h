@@ -21,6 +21,7 @@
 
 #include "snh/animation.h"
 #include "snh/frames.h"
+#include "snh/pieces.h"
 #include "snh/rig.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
@@ -178,6 +179,7 @@ struct CharacterRig {
   CharacterBones bones;
   std::vector<ConstraintSet> constraints;  // one per bone (bone_constraints)
   SkinWeights lattice_weights;
+  std::vector<LatticePiece> pieces;  // as found, when there were several (CharacterPrepareOptions::pieces)
   // Surface vertices outside every element (open sheets, flaps thinner than
   // a cell, loose points and edges) follow their nearest element, extended
   // to first order (CharacterPrepareOptions): their count and the largest
@@ -194,12 +196,18 @@ struct CharacterPrepareOptions {
   CharacterBoneOptions bones;
   VoxelizeOptions voxelize;
   // A bone whose segment touches the skin gets this many cells as its
-  // radius unless CharacterBoneOptions::touching_radius is set (> 0).
-  double touching_radius_cells = 0.5;
+  // radius unless CharacterBoneOptions::touching_radius is set (> 0): more
+  // than sqrt(3) / 2, so that a lattice vertex lies within it wherever its
+  // segment runs through the lattice.
+  double touching_radius_cells = 0.9;
   // A surface vertex farther than this from every element (as a fraction
   // of the bounding box's diagonal, and more than 4 cells) is an error
   // naming it: geometry far from everything else.
   double max_outside_fraction = 0.25;
+  // Lattice pieces no bone holds (a thin tail or ear that voxelizes apart
+  // from the body): joined to the nearest held piece along the surface by
+  // default, as resolve_pieces does (snh/pieces.h), with a warning.
+  PieceRule pieces = PieceRule::attach;
 };
 
 // The cube side that puts `resolution` cells along the longest side of the

@@ -2770,6 +2770,14 @@ class CharacterPrepareOptions:
     def max_outside_fraction(self, arg0: float) -> None:
         ...
     @property
+    def pieces(self) -> str:
+        """
+        Lattice pieces no bone holds: 'attach' (default), 'drop' or 'error'.
+        """
+    @pieces.setter
+    def pieces(self, arg1: str) -> None:
+        ...
+    @property
     def touching_radius_cells(self) -> float:
         """
         Cells of radius for a bone touching the skin, unless bones.touching_radius is set.

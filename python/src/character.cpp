@@ -232,7 +232,11 @@ void bind_character(py::module_& m) {
       .def_readwrite("touching_radius_cells", &snh::CharacterPrepareOptions::touching_radius_cells,
                      "Cells of radius for a bone touching the skin, unless bones.touching_radius is set.")
       .def_readwrite("max_outside_fraction", &snh::CharacterPrepareOptions::max_outside_fraction,
-                     "A surface vertex farther than this fraction of the diagonal from every element is an error.");
+                     "A surface vertex farther than this fraction of the diagonal from every element is an error.")
+      .def_property(
+          "pieces", [](const snh::CharacterPrepareOptions& o) { return std::string(snh::to_string(o.pieces)); },
+          [](snh::CharacterPrepareOptions& o, const std::string& rule) { o.pieces = snh::parse_piece_rule(rule); },
+          "Lattice pieces no bone holds: 'attach' (default), 'drop' or 'error'.");
 
   py::class_<snh::CharacterRig>(m, "CharacterRig", "What a character's simulation needs (read-only).")
       .def_readonly("cell", &snh::CharacterRig::cell, "The lattice's cube side.")
