@@ -208,7 +208,7 @@ SurfaceReport surface_report(const TriangleSurface& surface, const std::string& 
   if (r.closed() && !(r.enclosed_volume > 0.0)) {
     std::ostringstream m;
     m << name << ": the enclosed volume is " << r.enclosed_volume
-      << " (not positive): the triangles face inwards; winding numbers then call the inside outside";
+      << " (not positive): the triangles face inwards (the voxelizer turns inside-out shells outwards)";
     r.warnings.push_back(m.str());
   }
   return r;
