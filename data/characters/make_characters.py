@@ -10,7 +10,7 @@ rigged with an armature whose weights come from Automatic Weights
 head nods 30) and written with Blender's own exporters. One file per defect
 that real exported characters have (data/characters/README.md lists them):
 
-    creature.gltf, creature.fbx  clean: closed, manifold, weights summing to 1
+    creature.gltf, .fbx, .dae    clean: closed, manifold, weights summing to 1
     inside_out.gltf              every face flipped (normals inwards)
     open_sheets.gltf             open eyelid caps, an open skirt, loose
                                  vertices and loose edges in the skinned mesh
@@ -278,6 +278,12 @@ def export_fbx(path, **kw):
     print("wrote", path, os.path.getsize(path), "bytes")
 
 
+def export_dae(path):
+    bpy.ops.wm.collada_export(filepath=path, include_animations=True, sampling_rate=1,
+                              include_all_actions=False)
+    print("wrote", path, os.path.getsize(path), "bytes")
+
+
 def gltf_buffer(doc):
     uri = doc["buffers"][0]["uri"]
     head, data = uri.split(",", 1)
@@ -350,9 +356,9 @@ def main():
     creature()
     export_gltf(os.path.join(out, "creature.gltf"))
     export_fbx(os.path.join(out, "creature.fbx"))
+    export_dae(os.path.join(out, "creature.dae"))
     path = os.path.join(out, "missing_joint.dae")
-    bpy.ops.wm.collada_export(filepath=path, include_animations=True, sampling_rate=1,
-                              include_all_actions=False)
+    export_dae(path)
     missing_joint_dae(path)
 
     clear_scene()

@@ -4,7 +4,9 @@
 //
 // The importer runs with aiProcess_Triangulate alone: no step that joins,
 // splits or reorders vertices, so the surface keeps the file's vertex list
-// (seams included) and the weld for the simulation is our own.
+// (seams included) and the weld for the simulation is our own. assimp's
+// Collada loader splits vertices per polygon corner; those are collapsed
+// onto the file's <vertices> (collada_vertices.h).
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -23,6 +25,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "character/collada_vertices.h"
 #include "character/fbx_reader.h"
 #include "character/skin_weights.h"
 #include "snh/character.h"
@@ -220,11 +223,13 @@ void finish_character(Character& c, const CharacterReadOptions& options) {
   weld(c, weld_distance);
 }
 
-bool is_fbx(const std::string& path) {
-  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  return ext == ".fbx";
+bool has_extension(const std::string& path, const std::string& ext) {
+  std::string tail = path.size() >= ext.size() ? path.substr(path.size() - ext.size()) : "";
+  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return tail == ext;
 }
+
+bool is_fbx(const std::string& path) { return has_extension(path, ".fbx"); }
 
 }  // namespace
 
@@ -315,12 +320,14 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
 
   // The skin: every mesh with bones, its vertices as given.
   std::vector<std::vector<std::pair<int32_t, double>>> rows;
+  std::vector<detail::ColladaCornerMesh> corner_meshes;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
     if (mesh->mNumBones == 0) continue;
     const std::string mesh_name =
         "mesh " + std::to_string(m) + (mesh->mName.length ? " '" + std::string(mesh->mName.C_Str()) + "'" : "");
     const int32_t base = static_cast<int32_t>(c.surface.vertex_count());
+    corner_meshes.push_back({mesh->mName.C_Str(), base, static_cast<int32_t>(mesh->mNumVertices)});
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -347,6 +354,20 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
         if (w.mWeight > 0.0f) rows[base + w.mVertexId].push_back({j, w.mWeight});
       }
     }
+  }
+  if (has_extension(path, ".dae")) {
+    // One vertex per <vertices> entry, as Blender and Maya import the file.
+    const size_t corners = c.surface.vertex_count();
+    const std::string why = detail::collapse_collada_corners(
+        path, corner_meshes,
+        [&](const std::string& name) {
+          const auto it = joint_of.find(name);
+          return it == joint_of.end() ? -1 : it->second;
+        },
+        c.surface, rows);
+    if (!why.empty())
+      c.warnings.push_back("Collada: the surface and its caches are per polygon corner (" + std::to_string(corners) +
+                           " vertices, as assimp splits them), not the file's <vertices>: " + why);
   }
   if (c.surface.triangle_count() == 0) fail(path, "the skinned meshes have no triangles");
   for (const auto& row : rows) {

@@ -110,7 +110,9 @@ struct Character {
 
 // Reads a skinned character: FBX through ufbx (the surface in the file's
 // control-point order, as Blender, Maya and 3ds Max import it), every other
-// format assimp reads through assimp. snh::Error naming the file and the item
+// format assimp reads through assimp (Collada with assimp's polygon corners
+// collapsed onto the file's <vertices>, the order Blender and Maya import;
+// a warning where that fails). snh::Error naming the file and the item
 // for a file that cannot be read, no mesh with bones, no animation (when a
 // clip is required), an unknown clip name or index (listing the clips), a
 // frame range outside the clip, non-finite positions, matrices or keys, and,
