@@ -204,13 +204,27 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
     return true;
   };
 
+  // How many skin vertices each joint weighs most.
+  std::vector<int> dominant(n, 0);
+  const SkinWeights& w = character.weights;
+  for (size_t v = 0; v < w.vertex_count(); ++v) {
+    int best = -1;
+    for (int32_t k = w.offset[v]; k < w.offset[v + 1]; ++k)
+      if (best < 0 || w.weight[k] > w.weight[best]) best = k;
+    if (best >= 0 && static_cast<size_t>(w.joint[best]) < n) ++dominant[w.joint[best]];
+  }
+  std::vector<std::string> unboned_leaves;  // leaves skipped although they weigh skin most
+
   CharacterBones out;
   std::vector<std::string> touching;  // bones whose segment touches the skin
   for (size_t j = 0; j < n; ++j) {
     const Joint& joint = character.joints[j];
     if (excluded(joint.name, options.exclude)) continue;
     Vec3 end;
-    if (!end_of(j, end)) continue;
+    if (!end_of(j, end)) {
+      if (children[j].empty() && dominant[j] > 0) unboned_leaves.push_back(joint.name);
+      continue;
+    }
     if (!(norm(sub(end, joint.rest_position)) > 0.0))
       throw Error(file + ": joint '" + joint.name + "': its segment to its child has zero length");
     Capsule capsule{joint.rest_position, end, 0.0};
@@ -243,6 +257,11 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
     out.bones.push_back({joint.name, capsule});
     out.joint.push_back(static_cast<int>(j));
   }
+  if (!unboned_leaves.empty())
+    out.warnings.push_back("bones: " + std::to_string(unboned_leaves.size()) +
+                           " leaf joint(s) weigh skin vertices most but get no bone (" + name_list(unboned_leaves) +
+                           "): a leaf's length is unknown, so their flesh follows its neighbours (leaf_fraction > 0 "
+                           "gives them a segment continuing their parent's)");
   if (!touching.empty())
     out.warnings.push_back(
         "bones: " + std::to_string(touching.size()) + " bone segment(s) touch or cross the skin (" +

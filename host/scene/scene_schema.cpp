@@ -57,7 +57,8 @@ std::map<std::string, Keys> make_table() {
   t["rig"] = {"bones", "animation"};
   t["rig.bones[]"] = {"name", "capsule", "surface"};
   t["rig.bones[].capsule"] = {"a", "b", "radius"};
-  t["character"] = {"file", "clip", "fps", "frames", "cell", "resolution", "weights", "pieces", "bones", "skinned_guess"};
+  t["character"] = {"file",       "clip",    "fps",    "frames", "cell",
+                    "resolution", "weights", "pieces", "bones",  "skinned_guess"};
   // "radius" is an object of joint names (any key), so it has no entry.
   t["character.bones"] = {"radius_fraction", "exclude", "radius", "joint_clearance"};
   t["initial"] = {"scramble_volume_factor", "seed"};
