@@ -3,10 +3,12 @@
 # Usage: fuzz/run.sh [seconds per target, default 300] [targets...]
 # Targets: the mesh readers msh vtk vtu mesh tetgen (fuzz_read_mesh.cpp), the
 # surface readers obj ply stl (fuzz_read_surface.cpp), the animation parsers
-# json csv (fuzz_read_animation.cpp) and the scene-file loader scene
-# (fuzz_load_scene.cpp). Builds fuzz/build/fuzz_<target> with ASan and UBSan
-# from the sources each needs (the scene loader also links build/libsnh.a
-# and OpenCL for what it does not fuzz), seeds fuzz/corpus/<target> from
+# json csv (fuzz_read_animation.cpp), the scene-file loader scene
+# (fuzz_load_scene.cpp) and the skinned-character readers dae fbx gltf
+# (fuzz_read_character.cpp: read_character, then prepare_character on a
+# coarse lattice). Builds fuzz/build/fuzz_<target> with ASan and UBSan
+# from the sources each needs (the scene loader and the character readers
+# also link build/libsnh.a, assimp and OpenCL for what they do not fuzz), seeds fuzz/corpus/<target> from
 # data/ and fuzz/seeds/, runs each fuzzer for the given time, one at a time
 # and niced, and leaves crashing inputs in fuzz/artifacts/<target>/. Copy
 # those to tests/fuzz_regressions/<target>/ with the format's extension once
@@ -17,7 +19,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-300}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(msh vtk vtu mesh tetgen obj ply stl json csv scene)
+[ ${#targets[@]} -eq 0 ] && targets=(msh vtk vtu mesh tetgen obj ply stl json csv scene dae fbx gltf)
 CXX="${CXX:-clang++}"
 mesh_sources=(host/io/mesh_readers.cpp host/io/gmsh_reader.cpp host/io/vtk_reader.cpp host/io/vtu_reader.cpp
               host/io/medit_reader.cpp host/io/tetgen_reader.cpp host/fem/mesh.cpp host/fem/rest_state.cpp)
@@ -29,6 +31,13 @@ surface_sources=("${mesh_sources[@]}" host/io/surface_io.cpp host/io/obj_reader.
 scene_sources=("${surface_sources[@]}" host/scene/scene_loader.cpp host/scene/scene_selectors.cpp
                host/scene/scene_schema.cpp host/rig/animation_reader.cpp host/rig/bone_transform.cpp host/rig/bones.cpp host/rig/winding_number.cpp
                host/fem/embedding.cpp host/fem/selection.cpp)
+# The character readers (ufbx too; assimp is the system's, uninstrumented)
+# and prepare_character's voxelizer, embedding, pieces and bones.
+character_sources=("${surface_sources[@]}" host/character/character_reader.cpp host/character/collada_vertices.cpp
+                   host/character/fbx_reader.cpp host/character/skin_weights.cpp host/character/character_bones.cpp
+                   host/character/skinning.cpp host/third_party/ufbx/ufbx.c host/rig/bone_transform.cpp
+                   host/rig/bones.cpp host/rig/winding_number.cpp host/fem/embedding.cpp host/fem/selection.cpp
+                   host/fem/pieces.cpp)
 flags=(-std=c++17 -g -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -Iinclude -Ihost -Ikernels
        -isystem /usr/include/eigen3 -D_GNU_SOURCE -DCL_TARGET_OPENCL_VERSION=120 -DVIENNACL_WITH_OPENCL)
 link_after=()
@@ -40,7 +49,12 @@ objects() {
   for src in "$@"; do
     local o="fuzz/build/obj/${src//\//_}.o"
     if [ ! -f "$o" ] || [ "$src" -nt "$o" ] || [ -n "$(find include host -name '*.h' -newer "$o" -print -quit)" ]; then
-      nice -n 19 "$CXX" "${flags[@]}" -fsanitize=fuzzer-no-link -c "$src" -o "$o"
+      if [[ "$src" == *.c ]]; then  # ufbx: C99, its warnings upstream's
+        nice -n 19 "${CC:-clang}" -std=c99 -g -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -w \
+          -fsanitize=fuzzer-no-link -c "$src" -o "$o"
+      else
+        nice -n 19 "$CXX" "${flags[@]}" -fsanitize=fuzzer-no-link -c "$src" -o "$o"
+      fi
     fi
     out+=("$o")
   done
@@ -72,6 +86,11 @@ for f in "${targets[@]}"; do
       link_after=(build/libsnh.a -lOpenCL -lassimp)
       link scene fuzz/fuzz_load_scene.cpp -DSNH_DATA_DIR="\"$PWD/data\"" -- "${scene_sources[@]}"
       link_after=() ;;
+    dae|fbx|gltf)
+      [ -f build/libsnh.a ] || { echo "fuzz: build/libsnh.a is missing: build the library first" >&2; exit 1; }
+      link_after=(build/libsnh.a -lOpenCL -lassimp)
+      link "$f" fuzz/fuzz_read_character.cpp -DSNH_FUZZ_FORMAT="$f" -- "${character_sources[@]}"
+      link_after=() ;;
     *) echo "fuzz: unknown target $f" >&2; exit 2 ;;
   esac
   case "$f" in
@@ -79,13 +98,18 @@ for f in "${targets[@]}"; do
     json) cp data/arm/*.json "$corpus/" ;;
     csv) cp fuzz/seeds/csv/*.csv "$corpus/" ;;
     scene) cp data/scenes/*.json "$corpus/" ;;
+    dae|fbx|gltf) cp data/characters/*."$f" tests/data/character/*."$f" examples/character/*."$f" \
+      fuzz/seeds/"$f"/* "$corpus/" 2>/dev/null || true ;;
     tetgen)
       for node in data/meshes/*.node; do
         { cat "$node"; printf '\0'; cat "${node%.node}.ele"; } > "$corpus/$(basename "${node%.node}").tetgen"
       done ;;
   esac
+  # The characters' seeds are up to 84 KB (FBX); longer inputs are cut.
+  max_len=65536
+  case "$f" in dae|fbx|gltf) max_len=131072 ;; esac
   echo "fuzz: $f for ${seconds}s"
   nice -n 19 "fuzz/build/fuzz_$f" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -max_len=65536 -artifact_prefix="fuzz/artifacts/$f/" -print_final_stats=1 2>&1 | tail -n 25 ||
+    -max_len="$max_len" -artifact_prefix="fuzz/artifacts/$f/" -print_final_stats=1 2>&1 | tail -n 25 ||
     echo "fuzz: $f found a problem"
 done
