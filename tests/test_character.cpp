@@ -161,8 +161,21 @@ TEST(CharacterRead, BadFilesNameTheFileAndTheItem) {
 
 TEST(CharacterBones, CapsulesRunJointToChildWithARadiusFromTheSkin) {
   const Character c = read_character(kArm);
+  // The wrist is a leaf: by default its segment continues the elbow's
+  // direction three quarters of the way to the farthest skin it weighs
+  // most (the cap at x = 0.4), trimmed like the others; without
+  // leaf_from_skin it gets no bone.
+  CharacterBoneOptions no_leaves;
+  no_leaves.leaf_from_skin = false;
   CharacterBones b = character_bones(c);
-  // The wrist is a leaf: skipped by default.
+  ASSERT_EQ(b.bones.size(), 3u);
+  EXPECT_EQ(b.bones[2].name, "wrist");
+  const Capsule& wrist = std::get<Capsule>(b.bones[2].shape);
+  EXPECT_GT(wrist.a[0], 0.35);
+  EXPECT_LT(wrist.b[0], 0.35 + 0.75 * 0.05 + 1e-6);
+  EXPECT_NEAR(wrist.a[1], 0.0, 1e-7);
+  EXPECT_GT(wrist.radius, 0.0);
+  b = character_bones(c, no_leaves);
   ASSERT_EQ(b.bones.size(), 2u);
   EXPECT_EQ(b.bones[0].name, "shoulder");
   EXPECT_EQ(b.bones[1].name, "elbow");
@@ -188,6 +201,7 @@ TEST(CharacterBones, CapsulesRunJointToChildWithARadiusFromTheSkin) {
 
   CharacterBoneOptions options;
   options.radius_fraction = 0.25;
+  options.leaf_from_skin = false;
   options.exclude = {"sh*"};
   options.radius["elbow"] = 0.01;
   b = character_bones(c, options);
@@ -231,9 +245,11 @@ TEST(CharacterRig, LatticeEmbeddingAndWeightsCoverTheSurfaceInFileOrder) {
   ASSERT_EQ(rig.embedding.element.size(), c.surface.vertex_count());
   const std::vector<double> x = embedded_positions(rig.embedding, rig.voxels.lattice, rig.voxels.lattice.positions);
   for (size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(x[i], c.surface.positions[i], 1e-9);
-  ASSERT_EQ(rig.constraints.size(), 2u);
+  ASSERT_EQ(rig.constraints.size(), 3u);
   EXPECT_EQ(rig.constraints[0].name, "shoulder");
+  EXPECT_EQ(rig.constraints[2].name, "wrist");
   EXPECT_FALSE(rig.constraints[1].vertices.empty());
+  EXPECT_FALSE(rig.constraints[2].vertices.empty());
   ASSERT_EQ(rig.lattice_weights.vertex_count(), rig.voxels.lattice.vertex_count());
   for (size_t v = 0; v < rig.lattice_weights.vertex_count(); ++v) {
     double sum = 0.0;
@@ -421,7 +437,7 @@ TEST(CharacterScene, SectionKeysAndConflictsAreChecked) {
   EXPECT_EQ(f.rig->animation.frame_count(), 3u);
   EXPECT_EQ(f.embedded->surface.vertex_count(), 359u);
   EXPECT_DOUBLE_EQ(std::get<Capsule>(f.rig->bones[1].shape).radius, 0.02);
-  EXPECT_EQ(f.scene.constraints.size(), 2u);
+  EXPECT_EQ(f.scene.constraints.size(), 3u);  // shoulder, elbow and the wrist (a leaf, from the skin)
   std::string e = error_of([&] { load_scene(write("{" + base + R"(, "mesh": {"cells": [1, 1, 1]}})")); });
   EXPECT_NE(e.find("s.json: character: replaces"), std::string::npos) << e;
   e = error_of([&] { load_scene(write(R"({"mesh": {"cells": [1, 1, 1]}, "output": {"pc2": "a.pc2"}})")); });

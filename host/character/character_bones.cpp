@@ -188,6 +188,28 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
     if (character.joints[j].parent >= 0) children[character.joints[j].parent].push_back(static_cast<int>(j));
   // Each joint's segment end: its child, the centroid of its children, or
   // (a leaf) the parent's direction continued.
+  // How many skin vertices each joint weighs most, and how far along its
+  // parent's direction the farthest of them lies from it (a leaf's reach).
+  std::vector<int> dominant(n, 0);
+  std::vector<double> reach(n, 0.0);
+  const SkinWeights& w = character.weights;
+  for (size_t v = 0; v < w.vertex_count(); ++v) {
+    int best = -1;
+    for (int32_t k = w.offset[v]; k < w.offset[v + 1]; ++k)
+      if (best < 0 || w.weight[k] > w.weight[best]) best = k;
+    if (best < 0 || static_cast<size_t>(w.joint[best]) >= n) continue;
+    const size_t j = static_cast<size_t>(w.joint[best]);
+    ++dominant[j];
+    const int p = character.joints[j].parent;
+    if (p < 0) continue;
+    const Vec3& a = character.joints[j].rest_position;
+    const Vec3 dir = sub(a, character.joints[p].rest_position);
+    const double length = norm(dir);
+    if (!(length > 0.0)) continue;
+    const Vec3 x{character.surface.positions[3 * v], character.surface.positions[3 * v + 1],
+                 character.surface.positions[3 * v + 2]};
+    reach[j] = std::max(reach[j], dot(sub(x, a), dir) / length);
+  }
   const auto end_of = [&](size_t j, Vec3& end) {
     const Vec3& a = character.joints[j].rest_position;
     if (!children[j].empty()) {
@@ -198,21 +220,20 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
       return true;
     }
     const int p = character.joints[j].parent;
-    if (options.leaf_fraction <= 0.0 || p < 0) return false;
+    if (p < 0) return false;
     const Vec3 dir = sub(a, character.joints[p].rest_position);
-    for (int d = 0; d < 3; ++d) end[d] = a[d] + options.leaf_fraction * dir[d];
+    if (options.leaf_fraction > 0.0) {
+      for (int d = 0; d < 3; ++d) end[d] = a[d] + options.leaf_fraction * dir[d];
+      return true;
+    }
+    // From the skin it weighs most: three quarters of the way to the
+    // farthest such vertex along the parent's direction.
+    const double length = norm(dir);
+    if (!options.leaf_from_skin || !(reach[j] > 0.0) || !(length > 0.0)) return false;
+    for (int d = 0; d < 3; ++d) end[d] = a[d] + 0.75 * reach[j] * dir[d] / length;
     return true;
   };
 
-  // How many skin vertices each joint weighs most.
-  std::vector<int> dominant(n, 0);
-  const SkinWeights& w = character.weights;
-  for (size_t v = 0; v < w.vertex_count(); ++v) {
-    int best = -1;
-    for (int32_t k = w.offset[v]; k < w.offset[v + 1]; ++k)
-      if (best < 0 || w.weight[k] > w.weight[best]) best = k;
-    if (best >= 0 && static_cast<size_t>(w.joint[best]) < n) ++dominant[w.joint[best]];
-  }
   std::vector<std::string> unboned_leaves;  // leaves skipped although they weigh skin most
 
   CharacterBones out;
@@ -260,8 +281,8 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
   if (!unboned_leaves.empty())
     out.warnings.push_back("bones: " + std::to_string(unboned_leaves.size()) +
                            " leaf joint(s) weigh skin vertices most but get no bone (" + name_list(unboned_leaves) +
-                           "): a leaf's length is unknown, so their flesh follows its neighbours (leaf_fraction > 0 "
-                           "gives them a segment continuing their parent's)");
+                           "): with no parent, or none of that skin beyond the joint, they have no direction or "
+                           "length, so their flesh follows its neighbours");
   if (!touching.empty())
     out.warnings.push_back(
         "bones: " + std::to_string(touching.size()) + " bone segment(s) touch or cross the skin (" +

@@ -145,9 +145,14 @@ struct CharacterBoneOptions {
   // from the joints (bones meeting at a joint would crush the flesh
   // between them as it bends). Negative: the full segment, joint to joint.
   double joint_clearance = 0.1;
-  // A joint without child joints: a segment of this fraction of its parent's
-  // segment length, continuing the parent's direction; 0 skips such joints.
+  // A joint without child joints (a head, a hand, a tail's tip): a segment
+  // of this fraction of its parent's segment length, continuing the
+  // parent's direction. 0: with leaf_from_skin, a segment along the
+  // parent's direction reaching three quarters of the way to the farthest
+  // skin vertex that the joint weighs most (none weighed: no bone);
+  // without, no bone.
   double leaf_fraction = 0.0;
+  bool leaf_from_skin = true;
   // The radius of a bone whose segment touches or crosses the skin (a thin
   // limb, a tail) and that `radius` does not give: absolute; 0 leaves such
   // bones out. prepare_character sets it to touching_radius_cells cells.

@@ -2692,10 +2692,18 @@ class CharacterBoneOptions:
     @property
     def leaf_fraction(self) -> float:
         """
-        A leaf joint's segment as a fraction of its parent's; 0 skips leaves.
+        A leaf joint's segment as a fraction of its parent's; 0: from the skin (leaf_from_skin) or none.
         """
     @leaf_fraction.setter
     def leaf_fraction(self, arg0: float) -> None:
+        ...
+    @property
+    def leaf_from_skin(self) -> bool:
+        """
+        With leaf_fraction 0, a leaf's segment reaches 3/4 of the way to the farthest skin it weighs most.
+        """
+    @leaf_from_skin.setter
+    def leaf_from_skin(self, arg0: bool) -> None:
         ...
     @property
     def radius(self) -> dict[str, float]:

@@ -204,7 +204,10 @@ void bind_character(py::module_& m) {
       .def_readwrite("joint_clearance", &snh::CharacterBoneOptions::joint_clearance,
                      "Flesh left free at each end, as a fraction of the segment's length; < 0: joint to joint.")
       .def_readwrite("leaf_fraction", &snh::CharacterBoneOptions::leaf_fraction,
-                     "A leaf joint's segment as a fraction of its parent's; 0 skips leaves.")
+                     "A leaf joint's segment as a fraction of its parent's; 0: from the skin (leaf_from_skin) or none.")
+      .def_readwrite(
+          "leaf_from_skin", &snh::CharacterBoneOptions::leaf_from_skin,
+          "With leaf_fraction 0, a leaf's segment reaches 3/4 of the way to the farthest skin it weighs most.")
       .def_readwrite("touching_radius", &snh::CharacterBoneOptions::touching_radius,
                      "Radius of a bone whose segment touches the skin (absolute); 0 leaves such bones out.");
 

@@ -170,9 +170,12 @@ def test_prepare_character(character, rig):
     ):
         assert np.array_equal(other.voxels.lattice.positions, rig.voxels.lattice.positions)
         assert [s.vertices.tolist() for s in other.constraints] == [s.vertices.tolist() for s in rig.constraints]
-    # Without exclusions the wrist, a leaf, still gets no bone (leaf_fraction 0).
+    # Without exclusions the wrist, a leaf, gets a bone from the skin it weighs
+    # most (leaf_from_skin), and none without that.
     default = snh.prepare_character(c, CELL)
-    assert [s.name for s in default.constraints] == ["shoulder", "elbow"]
+    assert [s.name for s in default.constraints] == ["shoulder", "elbow", "wrist"]
+    no_leaves = snh.prepare_character(c, CELL, bones=snh.CharacterBoneOptions(leaf_from_skin=False))
+    assert [s.name for s in no_leaves.constraints] == ["shoulder", "elbow"]
 
 
 def test_character_cell(character):
