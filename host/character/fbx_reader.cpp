@@ -9,10 +9,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -59,6 +62,17 @@ struct SceneFree {
 };
 using ScenePtr = std::unique_ptr<ufbx_scene, SceneFree>;
 
+// What ufbx may allocate while loading a file of `bytes` bytes, in each of
+// its two allocators: an array's header gives its element count, and ufbx
+// allocates that much before it reads (or inflates) the data, so a few
+// corrupt bytes asked for gigabytes. Deflate expands at most 1032-fold; a
+// real file stays far below this, a corrupt count is refused.
+size_t fbx_memory_limit(uintmax_t bytes) {
+  constexpr size_t kFloor = size_t(256) << 20;
+  if (bytes > (SIZE_MAX - kFloor) / 1100) return SIZE_MAX;
+  return kFloor + static_cast<size_t>(bytes) * 1100;
+}
+
 // A joint: a bone node, or a cluster whose bone node is missing (by name).
 struct JointSource {
   const ufbx_node* node = nullptr;
@@ -75,9 +89,17 @@ Character read_fbx_character(const std::string& path, const CharacterReadOptions
   // Clusters whose bone node is missing stay in their skin (held at their
   // bind pose below) instead of being dropped with their weights.
   load.connect_broken_elements = true;
+  std::error_code size_error;
+  const uintmax_t bytes = std::filesystem::file_size(path, size_error);
+  load.temp_allocator.memory_limit = load.result_allocator.memory_limit = fbx_memory_limit(size_error ? 0 : bytes);
   ufbx_error error{};
   const ScenePtr scene(ufbx_load_file(path.c_str(), &load, &error));
-  if (!scene) fail(path, "cannot read the file (ufbx: " + ufbx_text(error) + ")");
+  if (!scene)
+    fail(path, "cannot read the file (ufbx: " + ufbx_text(error) + ")" +
+                   (error.type == UFBX_ERROR_MEMORY_LIMIT
+                        ? ": it needs more than " + std::to_string(load.temp_allocator.memory_limit >> 20) +
+                              " MiB (an array's element count is likely corrupt)"
+                        : ""));
 
   Character c;
   c.file = path;
