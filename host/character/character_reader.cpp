@@ -241,6 +241,8 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
   }
   if (!(options.fps > 0.0) || !std::isfinite(options.fps)) fail(path, "fps must be > 0, got " + number(options.fps));
   if (options.first_frame < 0) fail(path, "the first frame must be >= 0, got " + std::to_string(options.first_frame));
+  // What assimp 5.2 would only assert on (an abort): checked first.
+  if (has_extension(path, ".dae")) detail::check_collada_skins(path);
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
   if (!scene || !scene->mRootNode)

@@ -468,7 +468,101 @@ std::string node_name_for_joint(const XmlElement& scenes, const std::string& nam
 
 bool near(double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(1.0, std::abs(b)); }
 
+// A skin source's array size and accessor offset and stride, as assimp
+// reads them (no check of the accessor's count against the array).
+struct SkinArray {
+  size_t size = 0, offset = 0, stride = 1;
+};
+
+bool skin_array(const std::map<std::string, const XmlElement*>& ids, const std::string& url, SkinArray& out) {
+  if (url.empty() || url[0] != '#') return false;
+  const auto it = ids.find(url.substr(1));
+  if (it == ids.end()) return false;
+  const XmlElement& source = *it->second;
+  if (const XmlElement* a = source.child("float_array")) {
+    try {
+      out.size = numbers(a->text, "").size();
+    } catch (const Error&) {
+      return false;  // assimp reports it
+    }
+  } else if (const XmlElement* n = source.child("Name_array")) {
+    out.size = words(n->text).size();
+  } else if (const XmlElement* r = source.child("IDREF_array")) {
+    out.size = words(r->text).size();
+  } else {
+    return false;
+  }
+  const XmlElement* tc = source.child("technique_common");
+  if (const XmlElement* acc = tc ? tc->child("accessor") : nullptr) {
+    if (acc->has("stride")) out.stride = std::strtoul(acc->attribute("stride").c_str(), nullptr, 10);
+    if (acc->has("offset")) out.offset = std::strtoul(acc->attribute("offset").c_str(), nullptr, 10);
+  }
+  return true;
+}
+
 }  // namespace
+
+void check_collada_skins(const std::string& path) {
+  XmlElement root;
+  std::map<std::string, const XmlElement*> ids;
+  try {
+    std::ifstream in(path, std::ios::binary);
+    const std::string text(std::istreambuf_iterator<char>(in), {});
+    root = XmlReader(text).document();
+  } catch (const Error&) {
+    return;  // not for this reader: assimp reports what it cannot read
+  }
+  index_ids(root, ids);
+  const XmlElement* lib = root.child("library_controllers");
+  if (!lib) return;
+  for (const XmlElement& ctrl : lib->children) {
+    const XmlElement* skin = ctrl.name == "controller" ? ctrl.child("skin") : nullptr;
+    const XmlElement* vw = skin ? skin->child("vertex_weights") : nullptr;
+    if (!vw) continue;
+    const std::string what = path + ": controller '" + ctrl.attribute("id") + "' <vertex_weights>";
+    size_t offsets = 1, joint_offset = SIZE_MAX, weight_offset = SIZE_MAX;
+    SkinArray joints, weights;
+    bool arrays = true;
+    for (const XmlElement& in : vw->children) {
+      if (in.name != "input") continue;
+      const size_t off = std::strtoul(in.attribute("offset").c_str(), nullptr, 10);
+      offsets = std::max(offsets, off + 1);
+      if (in.attribute("semantic") == "JOINT") {
+        joint_offset = off;
+        arrays = arrays && skin_array(ids, in.attribute("source"), joints);
+      } else if (in.attribute("semantic") == "WEIGHT") {
+        weight_offset = off;
+        arrays = arrays && skin_array(ids, in.attribute("source"), weights);
+      }
+    }
+    if (joint_offset == SIZE_MAX || weight_offset == SIZE_MAX || !arrays) continue;
+    const XmlElement* vc = vw->child("vcount");
+    const XmlElement* v = vw->child("v");
+    std::vector<size_t> vcount, pairs;
+    try {
+      vcount = vc ? indices(vc->text, "<vcount>") : std::vector<size_t>{};
+      pairs = v ? indices(v->text, "<v>") : std::vector<size_t>{};
+    } catch (const Error& e) {
+      throw Error(what + ": " + e.what());
+    }
+    const auto in_range = [](const SkinArray& a, size_t index) {
+      return index <= (SIZE_MAX - a.offset) / std::max<size_t>(a.stride, 1) && a.offset + index * a.stride < a.size;
+    };
+    size_t at = 0;
+    for (size_t k = 0; k < vcount.size(); ++k)
+      for (size_t e = 0; e < vcount[k]; ++e, at += offsets) {
+        if (at + offsets > pairs.size() || at + offsets < at)
+          throw Error(what + ": <v> is shorter than <vcount> says (at vertex " + std::to_string(k) + ")");
+        const size_t j = pairs[at + joint_offset], w = pairs[at + weight_offset];
+        if (!in_range(joints, j))
+          throw Error(what + ": vertex " + std::to_string(k) + " names joint " + std::to_string(j) + " of " +
+                      std::to_string(joints.size));
+        if (!in_range(weights, w))
+          throw Error(what + ": vertex " + std::to_string(k) + " names weight " + std::to_string(w) + " of " +
+                      std::to_string(weights.size));
+      }
+  }
+}
 
 std::string collapse_collada_corners(const std::string& path, const std::vector<ColladaCornerMesh>& meshes,
                                      const std::function<int32_t(const std::string&)>& joint, TriangleSurface& surface,
