@@ -160,10 +160,16 @@ std::set<std::pair<std::string, int>> gltf_step_channels(const std::string& path
 void weld(Character& c, double distance) {
   const size_t n = c.surface.vertex_count();
   const double h = distance;
-  std::unordered_map<long long, std::vector<int32_t>> grid;
-  const auto cell = [&](double v) { return static_cast<long long>(std::floor(v / h)); };
-  const auto key = [](long long i, long long j, long long k) {
-    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
+  std::unordered_map<unsigned long long, std::vector<int32_t>> grid;
+  // Clamped before the conversion (a weld distance far below the
+  // coordinates' size, e.g. 1e-9 of a zero diagonal).
+  const auto cell = [&](double v) {
+    const double t = std::floor(v / h);
+    return t >= 0x1p62 ? (1LL << 62) : t <= -0x1p62 ? -(1LL << 62) : static_cast<long long>(t);
+  };
+  const auto key = [](long long i, long long j, long long k) {  // unsigned: wraps
+    return (static_cast<unsigned long long>(i) * 73856093ULL) ^ (static_cast<unsigned long long>(j) * 19349663ULL) ^
+           (static_cast<unsigned long long>(k) * 83492791ULL);
   };
   c.welded_index.assign(n, -1);
   c.welded = TriangleSurface{};

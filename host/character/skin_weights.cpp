@@ -34,8 +34,11 @@ std::vector<size_t> nearest_of(const std::vector<double>& x, const std::vector<s
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300});
   const int n = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(having.size()))));
   const double h = extent / n * (1 + 1e-9);
+  // Clamped before the conversion: a vertex far outside the weighted ones'
+  // box (or all of those at one point) is many cells away.
   const auto cell_of = [&](const double* p, int d) {
-    return std::clamp(static_cast<int>(std::floor((p[d] - lo[d]) / h)), 0, n - 1);
+    const double t = std::floor((p[d] - lo[d]) / h);
+    return t >= n - 1 ? n - 1 : t > 0.0 ? static_cast<int>(t) : 0;
   };
   std::vector<std::vector<size_t>> grid(static_cast<size_t>(n) * n * n);
   for (size_t v : having) {
