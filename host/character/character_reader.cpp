@@ -121,38 +121,67 @@ void decompose(const aiMatrix4x4& m, std::array<double, 3>& t, std::array<double
   s = {ss.x, ss.y, ss.z};
 }
 
-// The channels of glTF animation `clip` whose sampler is STEP, as (node
-// name, 0 translation | 1 rotation | 2 scale): assimp 5.2 does not pass the
-// interpolation on. Read from the file's JSON (.gltf, or a .glb's first
-// chunk); nodes without a name are left linear. Nothing for other formats.
-std::set<std::pair<std::string, int>> gltf_step_channels(const std::string& path, int clip) {
-  std::set<std::pair<std::string, int>> out;
+// A .gltf's JSON, or a .glb's first chunk's; discarded (is_discarded())
+// for another format or what does not parse.
+nlohmann::json gltf_json(const std::string& path) {
   std::string ext = path.size() >= 5 ? path.substr(path.size() - 5) : "";
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  if (ext != ".gltf" && ext.substr(1) != ".glb") return out;
+  if (ext != ".gltf" && ext.substr(1) != ".glb") return nlohmann::json(nlohmann::json::value_t::discarded);
   std::ifstream in(path, std::ios::binary);
   std::string text(std::istreambuf_iterator<char>(in), {});
   if (ext != ".gltf") {  // glb: 12-byte header, then chunk 0 (length, "JSON", data)
-    if (text.size() < 20 || text.compare(0, 4, "glTF") != 0 || text.compare(16, 4, "JSON") != 0) return out;
+    if (text.size() < 20 || text.compare(0, 4, "glTF") != 0 || text.compare(16, 4, "JSON") != 0)
+      return nlohmann::json(nlohmann::json::value_t::discarded);
     uint32_t length = 0;
     for (int i = 0; i < 4; ++i) length |= uint32_t(static_cast<unsigned char>(text[12 + i])) << (8 * i);
     text = text.substr(20, length);
   }
-  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-  if (doc.is_discarded() || !doc.contains("animations") || !doc["animations"].is_array() ||
-      clip >= static_cast<int>(doc["animations"].size()) || !doc.contains("nodes"))
-    return out;
-  const nlohmann::json& a = doc["animations"][clip];
-  if (!a.contains("channels") || !a.contains("samplers")) return out;
-  for (const nlohmann::json& ch : a["channels"]) {
-    const size_t sampler = ch.value("sampler", size_t(0));
-    if (sampler >= a["samplers"].size() || a["samplers"][sampler].value("interpolation", "LINEAR") != "STEP") continue;
-    if (!ch.contains("target") || !ch["target"].contains("node")) continue;
-    const size_t node = ch["target"]["node"].get<size_t>();
-    const std::string p = ch["target"].value("path", "");
-    if (node >= doc["nodes"].size() || !doc["nodes"][node].contains("name")) continue;
-    const int kind = p == "translation" ? 0 : p == "rotation" ? 1 : p == "scale" ? 2 : -1;
-    if (kind >= 0) out.insert({doc["nodes"][node]["name"].get<std::string>(), kind});
+  return nlohmann::json::parse(text, nullptr, false);
+}
+
+// What assimp 5.2 does not check before it reads a glTF file: a skin
+// without inverseBindMatrices (identity matrices by the specification)
+// makes it dereference a null accessor (a crash). snh::Error naming the
+// file and the skin.
+void check_gltf_for_assimp(const std::string& path) {
+  const nlohmann::json doc = gltf_json(path);
+  if (doc.is_discarded() || !doc.is_object() || !doc.contains("skins") || !doc["skins"].is_array()) return;
+  for (size_t k = 0; k < doc["skins"].size(); ++k) {
+    const nlohmann::json& skin = doc["skins"][k];
+    if (!skin.is_object() || !skin.contains("inverseBindMatrices"))
+      fail(path, "skin " + std::to_string(k) +
+                     " has no inverseBindMatrices (assimp 5.2 cannot read such a skin; write the identity "
+                     "matrices explicitly)");
+  }
+}
+
+// The channels of glTF animation `clip` whose sampler is STEP, as (node
+// name, 0 translation | 1 rotation | 2 scale): assimp 5.2 does not pass the
+// interpolation on. Read from the file's JSON (.gltf, or a .glb's first
+// chunk); nodes without a name are left linear. Nothing for other formats, nor for
+// JSON of unexpected types (assimp read the file all the same).
+std::set<std::pair<std::string, int>> gltf_step_channels(const std::string& path, int clip) {
+  std::set<std::pair<std::string, int>> out;
+  const nlohmann::json doc = gltf_json(path);
+  try {
+    if (doc.is_discarded() || !doc.contains("animations") || !doc["animations"].is_array() ||
+        clip >= static_cast<int>(doc["animations"].size()) || !doc.contains("nodes"))
+      return out;
+    const nlohmann::json& a = doc["animations"][clip];
+    if (!a.contains("channels") || !a.contains("samplers")) return out;
+    for (const nlohmann::json& ch : a["channels"]) {
+      const size_t sampler = ch.value("sampler", size_t(0));
+      if (sampler >= a["samplers"].size() || a["samplers"][sampler].value("interpolation", "LINEAR") != "STEP")
+        continue;
+      if (!ch.contains("target") || !ch["target"].contains("node")) continue;
+      const size_t node = ch["target"]["node"].get<size_t>();
+      const std::string p = ch["target"].value("path", "");
+      if (node >= doc["nodes"].size() || !doc["nodes"][node].contains("name")) continue;
+      const int kind = p == "translation" ? 0 : p == "rotation" ? 1 : p == "scale" ? 2 : -1;
+      if (kind >= 0) out.insert({doc["nodes"][node]["name"].get<std::string>(), kind});
+    }
+  } catch (const nlohmann::json::exception&) {
+    return {};
   }
   return out;
 }
@@ -248,7 +277,8 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
   if (!(options.fps > 0.0) || !std::isfinite(options.fps)) fail(path, "fps must be > 0, got " + number(options.fps));
   if (options.first_frame < 0) fail(path, "the first frame must be >= 0, got " + std::to_string(options.first_frame));
   // What assimp 5.2 would only assert on (an abort): checked first.
-  if (has_extension(path, ".dae")) detail::check_collada_skins(path);
+  if (has_extension(path, ".dae")) detail::check_collada_for_assimp(path);
+  check_gltf_for_assimp(path);
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
   if (!scene || !scene->mRootNode)

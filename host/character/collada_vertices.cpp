@@ -500,9 +500,19 @@ bool skin_array(const std::map<std::string, const XmlElement*>& ids, const std::
   return true;
 }
 
+// The first <p>, <vcount> or <v> (under `e`) that is not integers only:
+// "<p> in <geometry> 'id': not an integer near ...".
+void check_index_lists(const XmlElement& e, const std::string& owner) {
+  const std::string here = e.has("id") ? "<" + e.name + "> '" + e.attribute("id") + "'" : owner;
+  for (const XmlElement& c : e.children) {
+    if (c.name == "p" || c.name == "vcount" || c.name == "v") indices(c.text, "<" + c.name + "> in " + here);
+    check_index_lists(c, here);
+  }
+}
+
 }  // namespace
 
-void check_collada_skins(const std::string& path) {
+void check_collada_for_assimp(const std::string& path) {
   XmlElement root;
   std::map<std::string, const XmlElement*> ids;
   try {
@@ -513,6 +523,11 @@ void check_collada_skins(const std::string& path) {
     return;  // not for this reader: assimp reports what it cannot read
   }
   index_ids(root, ids);
+  try {
+    check_index_lists(root, "<" + root.name + ">");
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
   const XmlElement* lib = root.child("library_controllers");
   if (!lib) return;
   for (const XmlElement& ctrl : lib->children) {

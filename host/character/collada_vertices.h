@@ -47,12 +47,14 @@ std::string collapse_collada_corners(const std::string& path, const std::vector<
                                      const std::function<int32_t(const std::string&)>& joint, TriangleSurface& surface,
                                      WeightRows& rows);
 
-// Checks each controller's <skin> <vertex_weights> before assimp reads the
-// file: every joint and weight index in <v>, through its source's accessor
-// (offset + index x stride), must lie in its array, and <v> must hold what
-// <vcount> says. assimp 5.2 only asserts this (an abort). snh::Error naming
-// the file, the controller and the vertex otherwise; nothing for a file
+// Checks what assimp 5.2 does not before it reads the file: each
+// controller's <skin> <vertex_weights> joint and weight index in <v>,
+// through its source's accessor (offset + index x stride), must lie in its
+// array, and <v> must hold what <vcount> says (assimp only asserts: an
+// abort); every <p>, <vcount> and <v> must be integers only (assimp loops
+// on another character, growing its lists until memory runs out).
+// snh::Error naming the file and the element otherwise; nothing for a file
 // this XML reader cannot parse (assimp reports it).
-void check_collada_skins(const std::string& path);
+void check_collada_for_assimp(const std::string& path);
 
 }  // namespace snh::detail
