@@ -492,6 +492,10 @@ bool skin_array(const std::map<std::string, const XmlElement*>& ids, const std::
   } else {
     return false;
   }
+  // assimp reads as many values as the array's count says, no more.
+  for (const char* kind : {"float_array", "Name_array", "IDREF_array"})
+    if (const XmlElement* a = source.child(kind); a && a->has("count"))
+      out.size = std::min<size_t>(out.size, std::strtoul(a->attribute("count").c_str(), nullptr, 10));
   const XmlElement* tc = source.child("technique_common");
   if (const XmlElement* acc = tc ? tc->child("accessor") : nullptr) {
     if (acc->has("stride")) out.stride = std::strtoul(acc->attribute("stride").c_str(), nullptr, 10);

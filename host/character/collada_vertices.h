@@ -50,8 +50,9 @@ std::string collapse_collada_corners(const std::string& path, const std::vector<
 // Checks what assimp 5.2 does not before it reads the file: each
 // controller's <skin> <vertex_weights> joint and weight index in <v>,
 // through its source's accessor (offset + index x stride), must lie in its
-// array, and <v> must hold what <vcount> says (assimp only asserts: an
-// abort); every <p>, <vcount> and <v> must be integers only (assimp loops
+// array (the values its count attribute says: what assimp reads), and <v>
+// must hold what <vcount> says (assimp only asserts, an abort, or reads
+// past the array); every <p>, <vcount> and <v> must be integers only (assimp loops
 // on another character, growing its lists until memory runs out).
 // snh::Error naming the file and the element otherwise; nothing for a file
 // this XML reader cannot parse (assimp reports it).
