@@ -133,8 +133,12 @@ class XmlReader {
         out += s_[i_++];
         continue;
       }
+      // A bare '&' (no entity) is kept as it is, as assimp's XML parser does.
       const size_t semi = s_.find(';', i_);
-      if (semi == std::string::npos || semi > stop) fail("unterminated entity");
+      if (semi == std::string::npos || semi > stop) {
+        out += s_[i_++];
+        continue;
+      }
       const std::string e = s_.substr(i_ + 1, semi - i_ - 1);
       if (e == "lt") {
         out += '<';
@@ -150,7 +154,8 @@ class XmlReader {
         const bool hex = e[1] == 'x' || e[1] == 'X';
         append_utf8(out, std::strtoul(e.c_str() + (hex ? 2 : 1), nullptr, hex ? 16 : 10));
       } else {
-        fail("unknown entity &" + e + ";");
+        out += s_[i_++];
+        continue;
       }
       i_ = semi + 1;
     }
