@@ -114,6 +114,6 @@ for f in "${targets[@]}"; do
   echo "fuzz: $f for ${seconds}s"
   LSAN_OPTIONS="suppressions=$PWD/fuzz/build/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}" \
   nice -n 19 "fuzz/build/fuzz_$f" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -max_len="$max_len" -artifact_prefix="fuzz/artifacts/$f/" -print_final_stats=1 2>&1 | tail -n 25 ||
+    -max_len="$max_len" -artifact_prefix="fuzz/artifacts/$f/" -print_final_stats=1 2>&1 | grep -v " # Uses: " | tail -n 25 ||
     echo "fuzz: $f found a problem"
 done
