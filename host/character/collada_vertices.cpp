@@ -537,6 +537,30 @@ void check_collada_for_assimp(const std::string& path) {
   } catch (const Error& e) {
     throw Error(path + ": " + e.what());
   }
+  // Animation sources: assimp reads each accessor's items from the array
+  // (as many values as its count says) and only asserts that they are there.
+  if (const XmlElement* anims = root.child("library_animations")) {
+    const std::function<void(const XmlElement&)> visit = [&](const XmlElement& e) {
+      for (const XmlElement& c : e.children) {
+        if (c.name == "source") {
+          SkinArray a;
+          const XmlElement* tc = c.child("technique_common");
+          const XmlElement* acc = tc ? tc->child("accessor") : nullptr;
+          if (acc && skin_array(ids, "#" + c.attribute("id"), a)) {
+            const size_t count = std::strtoul(acc->attribute("count").c_str(), nullptr, 10);
+            // Whole items: a param can be wider than one value (float4x4).
+            const double need = double(a.offset) + double(count) * double(a.stride);
+            if (need > double(a.size))
+              throw Error(path + ": animation <source> '" + c.attribute("id") + "': its accessor reads " +
+                          std::to_string(static_cast<unsigned long long>(need)) + " values of " +
+                          std::to_string(a.size));
+          }
+        }
+        visit(c);
+      }
+    };
+    visit(*anims);
+  }
   const XmlElement* lib = root.child("library_controllers");
   if (!lib) return;
   for (const XmlElement& ctrl : lib->children) {
