@@ -17,8 +17,8 @@
 
 #include "commands.h"
 #include "errtime.h"
+#include "material/element_reference.h"
 #include "record_writer.h"
-#include "reference/element_reference.h"
 #include "scale.h"
 #include "snh/device.h"
 #include "snh/error.h"

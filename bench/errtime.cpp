@@ -29,6 +29,7 @@
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
+#include "solver/simulation/load_stepping.h"
 #include "warm_up.h"
 
 namespace snh::bench {
@@ -202,7 +203,7 @@ Reference solve_reference(const Scene& scene, const ErrtimeOptions& o) {
   options.product = ProductVariant::cached;
   Reference ref;
   QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
-  ref.result = solver.solve([&](int, const std::vector<double>& x) { ref.positions.push_back(x); });
+  ref.result = solver.solve({}, [&](int, const std::vector<double>& x) { ref.positions.push_back(x); });
   const double initial = distance(initial_positions(scene), scene.mesh.positions);
   for (const auto& x : ref.positions) {
     const double scale = std::max(distance(x, scene.mesh.positions), initial);

@@ -1,4 +1,4 @@
-// The host CPU baseline: the engine's Newton driver (solver/newton_driver.h,
+// The host CPU baseline: the engine's Newton driver (solver/newton/newton_driver.h,
 // the very loop the device solver runs) over a host problem in double, with
 // the stiffness assembled by Eigen and solved by Eigen's diagonally
 // preconditioned ConjugateGradient.
@@ -12,15 +12,17 @@
 #include <limits>
 #include <string>
 
+#include "device/phase_profile.h"
 #include "fem/rest_state.h"
 #include "reference/fem_reference.h"
 #include "snh/error.h"
 #include "snh/loads.h"
 #include "snh/regions.h"
-#include "solver/constraint_checks.h"
-#include "solver/load_stepping.h"
-#include "solver/newton_driver.h"
-#include "solver/phase_profile.h"
+#include "solver/newton/newton_driver.h"
+#include "solver/newton/stopping_test.h"
+#include "solver/simulation/constraint_checks.h"
+#include "solver/simulation/load_stepping.h"
+#include "solver/simulation/solve_input_validation.h"
 
 namespace snh::bench {
 
@@ -236,13 +238,14 @@ HostBaselineResult solve_on_host(const Scene& scene, const SolveOptions& options
       callback(rec, x);
       return true;
     };
-  const double tolerance = residual_tolerance(scene.mesh, uniform_material(scene.mesh, scene.material), options);
+  const solver::StoppingTest stop =
+      solver::stopping_test(scene.mesh, uniform_material(scene.mesh, scene.material), options);
 
   std::vector<double> x = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
   result.converged = true;
   for (int s = 1; s <= options.load_steps; ++s) {
     problem.apply_load(solver::load_fraction(s, options.load_steps), x);
-    const StepResult step = newton.solve_step(s, x, tolerance, result.history, start, observe);
+    const StepResult step = newton.solve_step(s, x, stop, result.history, start, observe);
     result.converged = result.converged && step.converged;
     result.steps.push_back(step);
   }

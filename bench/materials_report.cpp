@@ -11,9 +11,9 @@
 #include <sstream>
 
 #include "enum_names.h"
+#include "material/element_reference.h"
 #include "material_options.h"
 #include "record_writer.h"
-#include "reference/element_reference.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"

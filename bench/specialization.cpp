@@ -22,7 +22,7 @@
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/simulation.h"
-#include "solver/elastic_model.h"
+#include "solver/model/elastic_model.h"
 #include "timing.h"
 
 namespace snh::bench {

@@ -17,6 +17,7 @@
 #include "snh/error.h"
 #include "snh/surface.h"
 #include "snh/surface_intersections.h"
+#include "solver/simulation/load_stepping.h"
 
 namespace snh::bench {
 namespace {
@@ -536,7 +537,7 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
   try {
     QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
     r.min_volume_ratio = std::numeric_limits<double>::infinity();
-    const SolveResult s = solver.solve([&](int, const std::vector<double>& x) {
+    const SolveResult s = solver.solve({}, [&](int, const std::vector<double>& x) {
       for (double v : x)
         if (!std::isfinite(v)) {
           r.surface_intersections.push_back(-1);

@@ -24,7 +24,7 @@
 #include "snh/error.h"
 #include "snh/mesh.h"
 #include "snh/simulation.h"
-#include "solver/elastic_model.h"
+#include "solver/model/elastic_model.h"
 #include "timing.h"
 
 namespace snh::bench {
@@ -318,7 +318,7 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
       std::cerr << "  " << type << " " << n << "^3 (" << mesh.element_count() << " elements, " << pname << ")\n";
       const size_t ne = mesh.element_count();
       // The model's operations wait for their kernels (each is a phase scope,
-      // solver/phase_profile.h), so they are timed as they are.
+      // device/phase_profile.h), so they are timed as they are.
       ops.push_back({type, pname, "residual", n, ne, best_seconds([&] { model.residual(x, r); }, o.min_seconds)});
       ops.push_back({type, pname, "energy", n, ne, best_seconds([&] { model.energy(x); }, o.min_seconds)});
       ops.push_back({type, pname, "linearize", n, ne, best_seconds([&] { model.linearize(x); }, o.min_seconds)});

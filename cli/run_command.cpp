@@ -16,6 +16,7 @@ struct RunCommand {
   SolverFlags solver;
   SceneOutputs outputs;
   bool fail_on_inverted = false;
+  bool explain = false;
 };
 
 }  // namespace
@@ -32,6 +33,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--device", o->device, "substring of '<platform> / <device>'");
   o->solver.add_to(cmd, "load steps (per frame with a rig; time steps with dynamics; 0: the file's solver.steps)");
   cmd->add_flag("--quiet,-q", o->outputs.quiet, "no progress lines on stderr");
+  cmd->add_flag("--explain", o->explain,
+                "print the resolved configuration (every automatic choice, its value and why) and exit without "
+                "solving");
   cmd->add_flag("--fail-on-inverted", o->fail_on_inverted,
                 "fail (exit code 4, naming the step or frame) when a step or frame ends with inverted elements "
                 "(the file's solver.fail_on_inverted, default false)");
@@ -41,6 +45,11 @@ void add_run_command(CLI::App& app, int& exit_code) {
     warn_surface_defects(file);
     SolveOptions options = o->solver.file_options(file, o->device);
     if (o->fail_on_inverted) options.fail_on_inverted = true;
+    if (o->explain) {
+      explain_scene_file(file, options, std::cout);
+      exit_code = 0;
+      return;
+    }
     exit_code = run_scene_file(file, options, o->outputs);
   });
 }

@@ -215,6 +215,21 @@ void add_output_options(CLI::App* cmd, SceneOutputs& outputs) {
   cmd->add_option("--frames", outputs.frames, "scene files with \"rig\": run only the first N frames (0: all)");
 }
 
+void explain_scene_file(const SceneFile& file, const SolveOptions& options, std::ostream& out) {
+  const Simulation simulation(file.scene.mesh, file.materials, file.scene.constraints, options);
+  const ResolvedConfiguration& config = simulation.configuration();
+  size_t name_width = 0, value_width = 0;
+  for (const ResolvedSetting& s : config.settings) {
+    name_width = std::max(name_width, s.name.size());
+    value_width = std::max(value_width, s.value.size());
+  }
+  out << "resolved configuration of " << file.scene.name << " (" << 3 * file.scene.mesh.vertex_count() << " DOFs, "
+      << to_string(file.scene.mesh.type) << "):\n";
+  for (const ResolvedSetting& s : config.settings)
+    out << "  " << std::left << std::setw(static_cast<int>(name_width)) << s.name << "  "
+        << std::setw(static_cast<int>(value_width)) << s.value << "  " << s.reason << '\n';
+}
+
 int run_scene_file(const SceneFile& file, const SolveOptions& options, const SceneOutputs& given) {
   SceneOutputs o = given;
   if (o.json_path.empty()) o.json_path = file.json_path;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <ostream>
 #include <set>
 #include <string>
 
@@ -61,5 +62,10 @@ void add_output_options(CLI::App* cmd, SceneOutputs& outputs);
 // Runs the scene (snh::run_scene) with `options`, writes the outputs and
 // prints the table. Returns 0 when every step or frame converged, else 3.
 int run_scene_file(const SceneFile& file, const SolveOptions& options, const SceneOutputs& outputs);
+
+// Builds the scene's simulation with `options` as a run would and prints its
+// resolved configuration (snh/configuration.h): each setting, its value and
+// why, one per line. Solves nothing.
+void explain_scene_file(const SceneFile& file, const SolveOptions& options, std::ostream& out);
 
 }  // namespace snh::cli

@@ -1,5 +1,5 @@
 /* Preconditioned conjugate gradients with its scalars on the device
- * (host/solver/device_cg.h): inner products are reduced to per-group partial
+ * (host/solver/linear/device_cg.h): inner products are reduced to per-group partial
  * sums, and the kernel that needs a product's value (alpha in the update,
  * beta and the convergence test in the new direction) adds that product's
  * partials itself, in index order, in every work-group; no value crosses to

@@ -18,7 +18,7 @@
  *   SNH_SURFACE_CONTACT an embedded surface's points in contact with the
  *                     obstacles (contact/obstacle.h, surface_point_contact)
  *                     in snh_contact_vertices; only with SNH_OBSTACLES
- *   SNH_SELF_CONTACT  self-collision springs (solver/self_contact.h): the
+ *   SNH_SELF_CONTACT  self-collision springs (solver/contact/self_contact.h): the
  *                     per-contact differences d_c = a_c^T u and their
  *                     per-vertex gather k a_i d_c in the same kernels
  *   SNH_SELF_BARRIER  barrier self-contact: block-Jacobi adds its diagonal
@@ -540,7 +540,7 @@ __kernel void snh_friction_anchors(__global const real* x, __global const real* 
 #endif
 
 #if SNH_SELF_CONTACT
-/* Per self-contact c (solver/self_contact.h): d_c = u_s - sum_j w_j u_j,
+/* Per self-contact c (solver/contact/self_contact.h): d_c = u_s - sum_j w_j u_j,
  * i.e. a_c^T u with a_c = [1, -w0, -w1, -w2] over pairs[4c..4c+3] =
  * (s, j0, j1, j2); u = x gives the spring, u = p the Hessian's a^T p. */
 __kernel void snh_self_contact_differences(__global const real* u, __global const int* pairs,
@@ -563,7 +563,7 @@ __kernel void snh_narrow(__global const real* in, const int n, __global float* o
 }
 
 /* out = (double)in over n values: a float V-cycle's result for a double
- * solve's CG (solver/multigrid.h). */
+ * solve's CG (solver/multigrid/multigrid.h). */
 __kernel void snh_widen(__global const float* in, const int n, __global real* out) {
   const int i = get_global_id(0);
   if (i < n) out[i] = (real)in[i];

@@ -1,4 +1,4 @@
-/* Geometric multigrid on hex8 lattices (host/solver/multigrid.h): Galerkin
+/* Geometric multigrid on hex8 lattices (host/solver/multigrid/multigrid.h): Galerkin
  * coarse operators built cell by cell, transfers, and the smoother's block
  * diagonal. Built with the same switches as fem.cl (SNH_HEX8 must be 1).
  *
@@ -7,7 +7,7 @@
  * a (VTK order) interpolates the coarse cell's corners A with the weights
  * W_o[a][A] = prod_d (1 - |p_d - c_d| / 2), p = octant + node offset in
  * {0,1,2}^3 and c = 2 * corner offset, in units of the fine spacing (the
- * host's child_weight, solver/lattice_hierarchy.h, passed as the table
+ * host's child_weight, solver/multigrid/lattice_hierarchy.h, passed as the table
  * octant_weights[64 o + 8 a + A]). The
  * Galerkin operator A_c = P^T D A_f D P (D: the fine level's mask, 0 on
  * constrained DOFs) is then a sum over coarse cells of
@@ -230,7 +230,7 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
       for (int i = 0; i < 9; ++i) b[i] += contact_blocks[9 * v + i];
 #endif
 #if SNH_SELF_BARRIER
-      /* row-major and symmetric (solver/barrier_terms.h): either order */
+      /* row-major and symmetric (solver/contact/barrier_terms.h): either order */
       for (int i = 0; i < 9; ++i) b[i] += barrier_diagonal[9 * v + i];
 #endif
       /* b(i, j) column-major (as the model's 3x3 blocks), masked on both sides */
@@ -269,8 +269,8 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
  * are in the upper layout (kernels/fem/block_stencil.h): 14 stored a
  * vertex on a box, the other 13 read as their mirrors' transposes. */
 
-/* Chebyshev smoothing over block-Jacobi (Levels::chebyshev in host/solver/multigrid.cpp,
- * the recurrence of solver/chebyshev.h) in one pass per degree on the
+/* Chebyshev smoothing over block-Jacobi (Levels::chebyshev in host/solver/multigrid/multigrid.cpp,
+ * the recurrence of solver/linear/chebyshev.h) in one pass per degree on the
  * assembled levels. Start: d = c Dinv r, x += beta d (x = beta d with
  * accumulate 0: smoothing from x = 0, r = b, reading b for r). Step:
  * r = base - A d (base: r, or b the first time from x = 0),

@@ -1,5 +1,5 @@
 /* Deterministic partial sums and minima for the Newton loop's energies,
- * norms and dot products (host/solver/device_reduction.h), so that only one
+ * norms and dot products (host/solver/linear/device_reduction.h), so that only one
  * double per SNH_REDUCE_SPAN entries crosses to the host instead of every
  * entry. Work-group g covers the entries [g SPAN, (g + 1) SPAN); its item l
  * adds the entries l, l + GROUP, l + 2 GROUP, ... in that order, and the
@@ -96,7 +96,7 @@ __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_
 }
 
 /* sum over each span of 1/2 c_v (x_i - y_i)^2, v = i / 3, into partial[g]:
- * implicit Euler's inertia energy (host/solver/implicit_euler.h) at x, with
+ * implicit Euler's inertia energy (host/solver/newton/implicit_euler.h) at x, with
  * the target y and the per-vertex coefficients c kept in double as the host
  * holds them, each term the host's own (VertexTerms::add_inertia_energy). */
 __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_partial_inertia(
@@ -114,7 +114,7 @@ __kernel __attribute__((reqd_work_group_size(SNH_REDUCE_GROUP, 1, 1))) void snh_
   if (l == 0) partial[g] = sum;
 }
 
-/* The obstacle contact set (solver/vertex_terms.h): over each span, the
+/* The obstacle contact set (solver/model/vertex_terms.h): over each span, the
  * number of vertices v with depth[v] > 0 and the sum of snh_mix64(v) over
  * them, into partial[2 g] and partial[2 g + 1]. Integer sums wrap exactly
  * modulo 2^64: the same value in any order. */

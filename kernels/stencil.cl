@@ -17,7 +17,7 @@
  * parts[width v + s] and the next offset in increasing element order, so
  * that blocks (v, n) and (n, v) add the same elements' mutually transposed
  * blocks in the same order and, from exactly symmetric element matrices,
- * come out exactly transposed (host/solver/block_stencil.h). */
+ * come out exactly transposed (host/solver/model/block_stencil.h). */
 __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __global const int* part_offsets,
                                    __global const int* parts, const int blocks, const int width,
                                    __global matrix_real* stencil /* null: the float copy only */,

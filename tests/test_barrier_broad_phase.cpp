@@ -10,12 +10,12 @@
 #include <random>
 #include <vector>
 
-#include "device_test_support.h"
 #include "snh/simulation.h"
 #include "snh/surface.h"
-#include "solver/barrier_contact.h"
-#include "solver/barrier_terms.h"
+#include "solver/contact/barrier_contact.h"
+#include "solver/contact/barrier_terms.h"
 #include "stability.h"
+#include "support/device_test_support.h"
 
 namespace snh::test {
 namespace {

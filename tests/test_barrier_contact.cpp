@@ -1,4 +1,4 @@
-// Barrier self-contact (solver/barrier_contact.h, barrier_terms.h): the host
+// Barrier self-contact (solver/contact/barrier_contact.h, barrier_terms.h): the host
 // detection (no pair at rest, pairs sharing a vertex excluded, gradient
 // against differences, assembled Hessian symmetric and PSD, bitwise
 // repeatable), the CCD step bound on a lattice, the device terms (the mesh's
@@ -19,7 +19,6 @@
 #include <string>
 #include <vector>
 
-#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
 #include "snh/scene.h"
@@ -27,10 +26,11 @@
 #include "snh/simulation.h"
 #include "snh/surface.h"
 #include "snh/surface_intersections.h"
-#include "solver/barrier_contact.h"
-#include "solver/elastic_model.h"
-#include "solver/newton_driver.h"
+#include "solver/contact/barrier_contact.h"
+#include "solver/model/elastic_model.h"
+#include "solver/newton/newton_driver.h"
 #include "stability.h"
+#include "support/device_test_support.h"
 
 namespace snh::test {
 namespace {
@@ -593,7 +593,8 @@ TEST(BarrierContact, DriverWithoutABoundIsUnchangedAndABoundCapsEveryStep) {
     solver::NewtonDriver<std::decay_t<decltype(problem)>> driver(problem, options);
     std::vector<double> x{-2.0, 3.0};
     std::vector<NewtonIteration> history;
-    const StepResult r = driver.solve_step(0, x, 1e-10, history, std::chrono::steady_clock::now());
+    const StepResult r =
+        driver.solve_step(0, x, solver::StoppingTest{1e-10, 0.0}, history, std::chrono::steady_clock::now());
     return std::make_pair(history, x);
   };
   Quartic plain;
@@ -649,7 +650,8 @@ TEST(BarrierContact, DriverExtrapolatesPastABarriersUnitBoundWhereTheWayIsClear)
     solver::NewtonDriver<Slide> driver(problem, options);
     std::vector<double> x{0.01};
     std::vector<NewtonIteration> history;
-    const StepResult r = driver.solve_step(0, x, 1e-10, history, std::chrono::steady_clock::now());
+    const StepResult r =
+        driver.solve_step(0, x, solver::StoppingTest{1e-10, 0.0}, history, std::chrono::steady_clock::now());
     double longest = 0.0;
     for (const NewtonIteration& it : history) longest = std::max(longest, it.step_length);
     return std::make_tuple(r, x[0], longest);

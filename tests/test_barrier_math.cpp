@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "solver/barrier_contact.h"
+#include "solver/contact/barrier_contact.h"
 
 namespace snh::test {
 namespace ipc {

@@ -1,4 +1,4 @@
-// The block stencil (host/solver/block_stencil.h, kernels/stencil.cl): its
+// The block stencil (host/solver/model/block_stencil.h, kernels/stencil.cl): its
 // tables on an irregular tet mesh (gmsh's blob, vertices with up to 21
 // neighbours, 11.6 on average: most rows padded), and the assembled product built from them
 // against the element-matrix product, the constraint mask and run-to-run
@@ -14,14 +14,14 @@
 #include <type_traits>
 #include <vector>
 
-#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "fem/vertex_slots.h"
 #include "snh/material.h"
 #include "snh/mesh_io.h"
 #include "snh/regions.h"
-#include "solver/block_stencil.h"
-#include "solver/elastic_model.h"
+#include "solver/model/block_stencil.h"
+#include "solver/model/elastic_model.h"
+#include "support/device_test_support.h"
 #include "vector_compare.h"
 
 namespace snh::test {

@@ -10,10 +10,10 @@
 #include <functional>
 #include <iterator>
 
-#include "plane_selection.h"
 #include "snh/checkpoint.h"
 #include "snh/error.h"
 #include "snh/simulation.h"
+#include "support/plane_selection.h"
 
 namespace snh::test {
 namespace {

@@ -1,5 +1,5 @@
 // The obstacle contact set's signature (ElasticModel::contact_set_signature,
-// solver/vertex_terms.h), which decides whether multigrid rebuilds: reduced
+// solver/model/vertex_terms.h), which decides whether multigrid rebuilds: reduced
 // on the device to the host's value in one read of two integers, 0 without
 // contact, and changed exactly when the set of vertices in a contact layer
 // changes, whatever their depths.
@@ -12,12 +12,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "snh/simulation.h"
-#include "solver/elastic_model.h"
-#include "solver/obstacles.h"
-#include "solver/vertex_terms.h"
+#include "solver/contact/obstacles.h"
+#include "solver/model/elastic_model.h"
+#include "solver/model/vertex_terms.h"
+#include "support/device_test_support.h"
 
 namespace snh::test {
 namespace {

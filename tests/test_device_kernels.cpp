@@ -8,7 +8,7 @@
 #include "probe/probe_kernel.h"
 #include "snh/error.h"
 #include "snh/probe.h"
-#include "snh_test_support.h"
+#include "support/snh_test_support.h"
 
 namespace snh::test {
 namespace {

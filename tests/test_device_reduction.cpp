@@ -1,4 +1,4 @@
-// Device reductions (solver/device_reduction.h): the Newton loop's energies,
+// Device reductions (solver/linear/device_reduction.h): the Newton loop's energies,
 // norms and dot products summed on the device in a fixed order. And
 // ViennaCL's element-wise vector kernels (CG's updates) at the work-group
 // sizes device/viennacl_binding.h sets on CPU devices: the same values as
@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "device_test_support.h"
-#include "solver/device_reduction.h"
-#include "solver/vertex_terms.h"
+#include "solver/linear/device_reduction.h"
+#include "solver/model/vertex_terms.h"
+#include "support/device_test_support.h"
 #include "viennacl/linalg/opencl/kernels/vector.hpp"
 
 namespace snh::test {

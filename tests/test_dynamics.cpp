@@ -6,10 +6,10 @@
 
 #include <cmath>
 
-#include "plane_selection.h"
 #include "snh/error.h"
 #include "snh/loads.h"
 #include "snh/simulation.h"
+#include "support/plane_selection.h"
 
 namespace snh::test {
 namespace {

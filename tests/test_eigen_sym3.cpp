@@ -5,7 +5,7 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "reference/element_reference.h"
+#include "material/element_reference.h"
 
 namespace snh::test {
 namespace {

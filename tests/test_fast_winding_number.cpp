@@ -14,7 +14,7 @@
 #include "snh/error.h"
 #include "snh/surface.h"
 #include "support/errors.h"
-#include "surface_shapes.h"
+#include "support/surface_shapes.h"
 
 namespace snh {
 namespace {

@@ -30,16 +30,16 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
-#include "device_test_support.h"
 #include "fem/rest_state.h"
-#include "reference/element_reference.h"
+#include "material/element_reference.h"
 #include "reference/fem_reference.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
-#include "solver/elastic_model.h"
-#include "solver/matrix_free.h"
+#include "solver/model/elastic_model.h"
+#include "solver/newton/matrix_free.h"
+#include "support/device_test_support.h"
 #include "support/random_vectors.h"
 #include "vector_compare.h"
 #include "viennacl/ocl/backend.hpp"
@@ -714,7 +714,7 @@ void check_determinism() {
 TEST(FemOperator, DeterministicResidualAndProductDouble) { check_determinism<double>(); }
 TEST(FemOperator, DeterministicResidualAndProductFloat) { check_determinism<float>(); }
 
-// What CG multiplies by (solver/matrix_free.h's HessianOperator) at a true-
+// What CG multiplies by (solver/newton/matrix_free.h's HessianOperator) at a true-
 // Hessian linearization with negative curvature: K p as it is along a
 // direction of positive curvature, the infinitely stiff response p / eps^2
 // with the flag set along the most negative eigenvector, and nothing flagged

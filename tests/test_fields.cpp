@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "fem/rest_state.h"
-#include "reference/element_reference.h"
+#include "material/element_reference.h"
 #include "reference/fem_reference.h"
 #include "snh/error.h"
 #include "snh/fields.h"

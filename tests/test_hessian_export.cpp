@@ -18,11 +18,11 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
-#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "hessian_export.h"
 #include "snh/scenes.h"
-#include "solver/elastic_model.h"
+#include "solver/model/elastic_model.h"
+#include "support/device_test_support.h"
 #include "vector_compare.h"
 #include "viennacl/vector.hpp"
 

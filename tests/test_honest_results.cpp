@@ -14,7 +14,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "plane_selection.h"
 #include "snh/error.h"
 #include "snh/frames.h"
 #include "snh/loads.h"
@@ -25,8 +24,9 @@
 #include "snh/surface.h"
 #include "stability.h"
 #include "support/cli_run.h"
+#include "support/plane_selection.h"
 #include "support/scenes.h"
-#include "surface_shapes.h"
+#include "support/surface_shapes.h"
 
 namespace snh::test {
 namespace {

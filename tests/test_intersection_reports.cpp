@@ -18,7 +18,7 @@
 #include "snh/surface_intersections.h"
 #include "support/cli_run.h"
 #include "support/errors.h"
-#include "surface_shapes.h"
+#include "support/surface_shapes.h"
 
 namespace snh::test {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "device/kernel_args.h"
 #include "device/material_args.h"
-#include "device_test_support.h"
 #include "snh/error.h"
+#include "support/device_test_support.h"
 
 namespace snh::test {
 namespace {

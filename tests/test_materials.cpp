@@ -13,7 +13,7 @@
 #include "snh/probe.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
-#include "snh_test_support.h"
+#include "support/snh_test_support.h"
 
 namespace snh::test {
 namespace {

@@ -1,4 +1,4 @@
-// The multigrid preconditioner (solver/lattice_hierarchy.h, solver/multigrid.h):
+// The multigrid preconditioner (solver/multigrid/lattice_hierarchy.h, solver/multigrid/multigrid.h):
 // the hierarchy on boxes, partly filled and non-box lattices and across a
 // slit; the coarse operators against the assembled Galerkin product
 // P^T D K D P; the V-cycle's symmetry, positivity and exact zeros on
@@ -16,7 +16,6 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
-#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
@@ -24,13 +23,14 @@
 #include "snh/mesh.h"
 #include "snh/regions.h"
 #include "snh/simulation.h"
-#include "solver/block_stencil.h"
-#include "solver/chebyshev.h"
-#include "solver/device_problem.h"
-#include "solver/elastic_model.h"
-#include "solver/lattice_hierarchy.h"
-#include "solver/multigrid.h"
-#include "solver/obstacles.h"
+#include "solver/contact/obstacles.h"
+#include "solver/linear/chebyshev.h"
+#include "solver/model/block_stencil.h"
+#include "solver/model/elastic_model.h"
+#include "solver/multigrid/lattice_hierarchy.h"
+#include "solver/multigrid/multigrid.h"
+#include "solver/newton/device_problem.h"
+#include "support/device_test_support.h"
 #include "vector_compare.h"
 #include "viennacl/vector.hpp"
 
@@ -98,7 +98,7 @@ void expect_affine_prolongation(const solver::LatticeHierarchy& h) {
   }
 }
 
-// solver/chebyshev.h: the steps' residual factors p(t) are the polynomials
+// solver/linear/chebyshev.h: the steps' residual factors p(t) are the polynomials
 // each kind is defined by, checked on a fine sampling of the spectrum
 // (lambda = 2: upper = 2.2, lower = 0.2).
 double sampled_max(const solver::ChebyshevSteps& steps, double from, double to, bool weighted, double upper) {

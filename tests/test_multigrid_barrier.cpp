@@ -1,4 +1,4 @@
-// Multigrid with barrier self-contact (solver/multigrid.h): the first coarse
+// Multigrid with barrier self-contact (solver/multigrid/multigrid.h): the first coarse
 // level is P^T D (K + the barrier's diagonal blocks) D P exactly, the V-cycle
 // with the barrier active is symmetric positive, the fine level follows the
 // model's product (built is refused by name, as is the penalty), and a
@@ -15,16 +15,16 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
-#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
 #include "snh/simulation.h"
 #include "snh/surface_intersections.h"
-#include "solver/barrier_contact.h"
-#include "solver/elastic_model.h"
-#include "solver/lattice_hierarchy.h"
-#include "solver/multigrid.h"
+#include "solver/contact/barrier_contact.h"
+#include "solver/model/elastic_model.h"
+#include "solver/multigrid/lattice_hierarchy.h"
+#include "solver/multigrid/multigrid.h"
 #include "stability.h"
+#include "support/device_test_support.h"
 #include "viennacl/vector.hpp"
 
 namespace snh::test {

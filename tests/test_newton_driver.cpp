@@ -1,4 +1,4 @@
-// The Newton loop (solver/newton_driver.h) on a two-DOF energy with a saddle,
+// The Newton loop (solver/newton/newton_driver.h) on a two-DOF energy with a saddle,
 // E(x, y) = x^2 / 2 + y^4 / 4 - eps y^2 / 2, whose linear solve behaves as
 // a projected Hessian that, like the per-element projection at a
 // bifurcation, keeps positive curvature where the energy has none:
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "snh/simulation.h"
-#include "solver/newton_driver.h"
+#include "solver/newton/newton_driver.h"
 
 namespace snh::test {
 namespace {
@@ -74,7 +74,8 @@ SaddleRun run_from(double x0, double y0) {
   solver::NewtonDriver<SaddleProblem> newton(problem, options);
   SaddleRun run;
   run.x = {x0, y0};
-  run.result = newton.solve_step(1, run.x, 1e-12, run.history, std::chrono::steady_clock::now());
+  run.result =
+      newton.solve_step(1, run.x, solver::StoppingTest{1e-12, 0.0}, run.history, std::chrono::steady_clock::now());
   for (const NewtonIteration& h : run.history)
     if (contains(h.recovery, RecoveryAction::extended_step)) ++run.extended;
   return run;
@@ -147,7 +148,8 @@ TEST(NewtonDriver, ProgressIsJudgedWithinOneActiveSet) {
   solver::NewtonDriver<ChangingSetProblem> newton(problem, options);
   std::vector<double> x = {0.0};
   std::vector<NewtonIteration> history;
-  const StepResult r = newton.solve_step(1, x, 1e-12, history, std::chrono::steady_clock::now());
+  const StepResult r =
+      newton.solve_step(1, x, solver::StoppingTest{1e-12, 0.0}, history, std::chrono::steady_clock::now());
   EXPECT_TRUE(r.converged) << r.status << " after " << r.newton_iterations;
   EXPECT_NEAR(x[0], 13.0, 1e-12);
   EXPECT_EQ(r.newton_iterations, 13);
@@ -194,7 +196,8 @@ TEST(NewtonDriver, CrawlingProjectionTriesTheTrueHessianDespiteInversion) {
   solver::NewtonDriver<InvertedEquilibriumProblem> newton(problem, options);
   std::vector<NewtonIteration> history;
   std::vector<double> x = {0.0};
-  const StepResult result = newton.solve_step(1, x, 1e-12, history, std::chrono::steady_clock::now());
+  const StepResult result =
+      newton.solve_step(1, x, solver::StoppingTest{1e-12, 0.0}, history, std::chrono::steady_clock::now());
   EXPECT_TRUE(result.converged) << result.status << " after " << result.newton_iterations;
   EXPECT_NEAR(x[0], 1.0, 1e-12);
   EXPECT_LT(result.newton_iterations, 10);

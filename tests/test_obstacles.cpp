@@ -13,17 +13,17 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
-#include "device_test_support.h"
 #include "fem/rest_state.h"
-#include "plane_selection.h"
-#include "reference/element_reference.h"
+#include "material/element_reference.h"
 #include "snh/error.h"
 #include "snh/loads.h"
 #include "snh/simulation.h"
-#include "solver/elastic_model.h"
-#include "solver/obstacles.h"
+#include "solver/contact/obstacles.h"
+#include "solver/model/elastic_model.h"
 #include "support/contact_options.h"
+#include "support/device_test_support.h"
 #include "support/finite_differences.h"
+#include "support/plane_selection.h"
 
 namespace snh::test {
 namespace {

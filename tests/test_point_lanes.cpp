@@ -29,13 +29,13 @@
 #include <utility>
 #include <vector>
 
-#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
 #include "snh/material.h"
 #include "snh/mesh.h"
 #include "snh/regions.h"
-#include "solver/elastic_model.h"
+#include "solver/model/elastic_model.h"
+#include "support/device_test_support.h"
 #include "support/random_vectors.h"
 
 namespace snh::test {

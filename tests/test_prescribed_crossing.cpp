@@ -2,7 +2,7 @@
 // self-contact cannot stop it (the target is placed as given), so the step
 // says so with a `surface_intersections` warning; a motion that stays clear,
 // or comes close without crossing (where the conservative CCD does not
-// clear the whole move), gives none (solver/prescribed_crossing.h).
+// clear the whole move), gives none (solver/contact/prescribed_crossing.h).
 #include <gtest/gtest.h>
 
 #include <array>

@@ -11,7 +11,7 @@
 #include <set>
 #include <sstream>
 
-#include "snh_test_support.h"
+#include "support/snh_test_support.h"
 
 namespace snh::test {
 namespace {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "snh/configuration.h"
 #include "snh/error.h"
 #include "snh/frames.h"
 #include "snh/regions.h"
@@ -94,14 +95,18 @@ TEST(SceneFiles, StrainToleranceFollowsTheLibrarysRule) {
   const double h = vertex_spacing(plain.scene.mesh);
   EXPECT_NEAR(h, std::cbrt(0.25 / 45.0), 1e-12);  // 45 vertices over a 1 x 0.5 x 0.5 box
   const double n = static_cast<double>(plain.scene.mesh.vertex_count());
-  EXPECT_NEAR(residual_tolerance(plain.scene.mesh, plain.materials, plain.scene.options),
-              1e-6 * 1.0 * h * h * std::sqrt(n), 1e-15);
+  EXPECT_NEAR(
+      resolve_configuration(plain.scene.options, plain.scene.mesh, plain.materials, DeviceInfo{}).absolute_tolerance,
+      1e-6 * 1.0 * h * h * std::sqrt(n), 1e-15);
   const SceneFile given = load(R"({"strain_tolerance": 1e-5, "precision": "float"})");
-  EXPECT_NEAR(residual_tolerance(given.scene.mesh, given.materials, given.scene.options), 1e-5 * h * h * std::sqrt(n),
-              1e-15);
+  EXPECT_NEAR(
+      resolve_configuration(given.scene.options, given.scene.mesh, given.materials, DeviceInfo{}).absolute_tolerance,
+      1e-5 * h * h * std::sqrt(n), 1e-15);
   const SceneFile absolute = load(R"({"absolute_tolerance": 1e-3})");
   EXPECT_FALSE(absolute.scene.options.strain_tolerance.has_value());
-  EXPECT_EQ(residual_tolerance(absolute.scene.mesh, absolute.materials, absolute.scene.options), 1e-3);
+  EXPECT_EQ(resolve_configuration(absolute.scene.options, absolute.scene.mesh, absolute.materials, DeviceInfo{})
+                .absolute_tolerance,
+            1e-3);
   std::filesystem::remove(path);
 }
 

@@ -1,4 +1,4 @@
-// Self-collision (solver/self_contact.h): detection of a sample pushed into a
+// Self-collision (solver/contact/self_contact.h): detection of a sample pushed into a
 // non-adjacent element (hex8 and tet4), its rest-space closest point, the
 // exclusion of adjacent elements, the frozen-weight penalty's gradient and
 // Hessian against finite differences and PSD, the device terms against the
@@ -12,13 +12,13 @@
 
 #include "device/opencl_context.h"
 #include "device/viennacl_binding.h"
-#include "device_test_support.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
 #include "snh/scenes.h"
 #include "snh/simulation.h"
-#include "solver/elastic_model.h"
-#include "solver/self_contact.h"
+#include "solver/contact/self_contact.h"
+#include "solver/model/elastic_model.h"
+#include "support/device_test_support.h"
 
 namespace snh::test {
 namespace {

@@ -2,7 +2,7 @@
 // HOBAK's tests): PK1 against psi, Hessian against PK1, over the hard set.
 #include <gtest/gtest.h>
 
-#include "snh_test_support.h"
+#include "support/snh_test_support.h"
 
 namespace snh::test {
 namespace {

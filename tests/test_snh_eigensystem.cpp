@@ -7,7 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 
-#include "snh_test_support.h"
+#include "support/snh_test_support.h"
 
 namespace snh::test {
 namespace {

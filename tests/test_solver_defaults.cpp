@@ -7,9 +7,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "snh/configuration.h"
 #include "snh/scene.h"
 #include "snh/simulation.h"
-#include "solver/load_stepping.h"
+#include "solver/simulation/load_stepping.h"
 
 namespace snh::test {
 namespace {
@@ -47,8 +48,8 @@ TEST(SolverDefaults, SceneFilesTakeTheLibrarysDefaults) {
     // The library's rule gives the same tolerance with the strain unset.
     SolveOptions unset = options;
     unset.strain_tolerance.reset();
-    EXPECT_EQ(residual_tolerance(file.scene.mesh, file.materials, unset),
-              residual_tolerance(file.scene.mesh, file.materials, options));
+    EXPECT_EQ(resolve_configuration(unset, file.scene.mesh, file.materials, DeviceInfo{}).absolute_tolerance,
+              resolve_configuration(options, file.scene.mesh, file.materials, DeviceInfo{}).absolute_tolerance);
   }
   std::filesystem::remove(path);
 }

@@ -16,7 +16,7 @@
 #include "snh/surface.h"
 #include "snh/surface_intersections.h"
 #include "support/errors.h"
-#include "surface_shapes.h"
+#include "support/surface_shapes.h"
 
 namespace snh {
 namespace {

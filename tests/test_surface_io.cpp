@@ -19,7 +19,7 @@
 #include "support/data_dir.h"
 #include "support/errors.h"
 #include "support/scratch.h"
-#include "surface_shapes.h"
+#include "support/surface_shapes.h"
 
 namespace snh {
 namespace {

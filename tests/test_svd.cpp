@@ -8,8 +8,8 @@
 #include <limits>
 #include <random>
 
-#include "hard_deformations.h"
-#include "reference/element_reference.h"
+#include "material/element_reference.h"
+#include "support/hard_deformations.h"
 
 namespace snh::test {
 namespace {

@@ -7,4 +7,4 @@
 // which do not stop early.
 #define SNH_DOUBLE 1
 #define SNH_SWEEPS_TEST EarlyStopGivesTheFixedSweepsValuesDouble
-#include "svd_sweeps_test.inc"
+#include "support/svd_sweeps_test.inc"

@@ -28,7 +28,7 @@
 #include "snh/scene.h"
 #include "snh/surface.h"
 #include "support/errors.h"
-#include "surface_shapes.h"
+#include "support/surface_shapes.h"
 
 namespace snh {
 namespace {

@@ -29,7 +29,7 @@ struct KernelConfig {
   bool point_major = false;                   // SNH_POINT_MAJOR: hex8 per-point data point-major
   int cache_tile = 0;                         // SNH_CACHE_TILE (0: untiled)
   int stencil_tile = 0;                       // SNH_STENCIL_TILE (0: untiled)
-  // The per-vertex terms (solver/vertex_terms.h, solver/self_contact_terms.h).
+  // The per-vertex terms (solver/model/vertex_terms.h, solver/contact/self_contact_terms.h).
   bool inertia = false;          // SNH_INERTIA
   int obstacles = 0;             // SNH_OBSTACLES
   bool self_contact = false;     // SNH_SELF_CONTACT

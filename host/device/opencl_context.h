@@ -95,7 +95,7 @@ class OpenClContext {
   void copy(cl_mem from, cl_mem to, size_t bytes);
   // Queues `kernel` over global_size work-items (rounded up to whole groups)
   // without waiting for it: the queue is in order, and reads, phase
-  // boundaries (solver/phase_profile.h) and finish() wait. A wait after each
+  // boundaries (device/phase_profile.h) and finish() wait. A wait after each
   // launch cost pocl about 0.1 ms: twist res 32 multigrid 12.7-13.1 s with
   // it, 12.0-12.7 without (docs/performance.md).
   void run(cl_kernel kernel, size_t global_size);

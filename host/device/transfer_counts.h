@@ -4,7 +4,7 @@
 // between host and device. Counted on the host at the call, so the figures
 // are the same on every device (pocl included) and never depend on timing.
 // Plain data without OpenCL types: the phase profiler
-// (solver/phase_profile.h) attributes the counts to phases.
+// (device/phase_profile.h) attributes the counts to phases.
 #pragma once
 
 #include <cstdint>

@@ -6,15 +6,13 @@
 #include <array>
 #include <sstream>
 
-#include "io/writers.h"
+#include "fem/element_faces.h"
 #include "snh/error.h"
 #include "snh/surface.h"
 
 namespace snh::fem {
 
 BoundaryFaces boundary_faces(const Mesh& mesh, const std::string& context) {
-  using io::kHexFaces;
-  using io::kTetFaces;
   const int n = nodes_per_element(mesh.type);
   if (mesh.positions.size() % 3 != 0 || mesh.elements.size() % n != 0) {
     std::ostringstream s;

@@ -1,6 +1,6 @@
 // Element fields, elastic forces and reactions on the host, in double: the
 // kinematics of fem/rest_state.h and the kernels' own material math (the
-// double instantiation of reference/element_reference.h), so what ParaView
+// double instantiation of material/element_reference.h), so what ParaView
 // shows is what the device solved.
 #include "snh/fields.h"
 
@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "fem/rest_state.h"
-#include "reference/element_reference.h"
+#include "material/element_reference.h"
 #include "snh/error.h"
 #include "snh/simulation.h"
 

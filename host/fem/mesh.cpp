@@ -8,10 +8,10 @@
 #include <limits>
 #include <sstream>
 
+#include "fem/name_table.h"
 #include "fem/rest_state.h"
 #include "snh/error.h"
 #include "snh/surface.h"
-#include "solver/name_table.h"
 
 namespace snh {
 

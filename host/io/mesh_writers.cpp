@@ -7,6 +7,7 @@
 #include <locale>
 #include <map>
 
+#include "fem/element_faces.h"
 #include "io/readers.h"
 #include "io/writers.h"
 #include "snh/error.h"
@@ -70,7 +71,7 @@ GroupCells group_cells(const Mesh& mesh, const MeshGroup& group) {
       bool inside = true;
       for (int k = 0; k < out.corners; ++k) {
         const int local = group.dimension == 1 ? (hex ? kHexEdges[c][k] : kTetEdges[c][k])
-                                               : (hex ? kHexFaces[c][k] : kTetFaces[c][k]);
+                                               : (hex ? fem::kHexFaces[c][k] : fem::kTetFaces[c][k]);
         cell[k] = nodes[local];
         inside = inside && in[static_cast<size_t>(cell[k])];
       }

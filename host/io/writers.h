@@ -19,12 +19,6 @@ void open_for_writing(std::ofstream& file, const std::string& path);
 // Flushes and closes, throwing when writing failed part way.
 void finish_writing(std::ofstream& file, const std::string& path);
 
-// Outward faces of a positively oriented tet4 and of a VTK-ordered hex8
-// (counter-clockwise seen from outside), as local nodes.
-inline constexpr int kTetFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-inline constexpr int kHexFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                        {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-
 // A group of dimension 0, 1 or 2 holds only vertices (mesh.h). A format that
 // stores such a group as cells gets the cells of that dimension whose
 // vertices all lie in the group: single vertices (0), element edges (1) or

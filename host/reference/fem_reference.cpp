@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "reference/element_reference.h"
+#include "material/element_reference.h"
 #include "snh/error.h"
 
 namespace snh::reference {

@@ -114,6 +114,7 @@ SceneRun run_character_scene(const SceneFile& file, const SolveOptions& options,
   Simulation simulation(file.scene.mesh, file.materials, file.scene.constraints, options);
   SceneRun out;
   out.options = options;
+  out.resolved = simulation.configuration();
   out.device = simulation.device();
   CharacterFrameOptions frame_options;
   frame_options.frames.load_steps = options.load_steps;

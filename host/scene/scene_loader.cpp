@@ -16,7 +16,7 @@
 #include "snh/pieces.h"
 #include "snh/rig.h"
 #include "snh/scene.h"
-#include "solver/obstacles.h"
+#include "solver/contact/obstacles.h"
 
 namespace snh {
 namespace {

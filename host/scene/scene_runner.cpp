@@ -14,7 +14,7 @@
 #include "snh/error.h"
 #include "snh/scene.h"
 #include "snh/shape.h"
-#include "solver/self_contact.h"
+#include "solver/contact/self_contact.h"
 
 namespace snh {
 namespace {
@@ -52,6 +52,7 @@ SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const
   if (file.embedded && !options.obstacles.empty()) simulation.set_contact_surface(file.embedded->embedding);
   SceneRun out;
   out.options = options;
+  out.resolved = simulation.configuration();
   out.device = simulation.device();
   FrameOptions frame_options;
   frame_options.load_steps = options.load_steps;
@@ -118,47 +119,47 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
     progress.residual_norm = it.residual_norm;
     return true;
   };
-  out.result = solver.solve(
-      [&](int step, const std::vector<double>& x) {
-        SceneStep record;
-        record.shape = step_shape(mesh, x);
-        if (unresolved) {
-          record.self_contact_measured = true;
-          const auto pairs = unresolved->detect(x);
-          record.unresolved_self_contacts = static_cast<int>(pairs.size());
-          for (const auto& c : pairs)
-            record.max_self_penetration = std::max(record.max_self_penetration, solver::self_contact_length(c, x));
-        }
-        out.steps.push_back(std::move(record));
-        const std::vector<double> surface = surface_of(mesh, x);
-        std::string intersections;
-        if (check) {
-          out.surface_intersections.push_back(check->count(x, surface));
-          intersections = scene_io::OutputSurfaceCheck::warning(out.surface_intersections.back());
-          if (!intersections.empty()) out.warnings.push_back("step " + std::to_string(step) + ": " + intersections);
-        }
-        if (run.reactions) {
-          step_positions.push_back(x);
-          step_forces.push_back(solver.simulation().applied_force());
-        }
-        const double time = options.dynamics ? solver.simulation().time() : static_cast<double>(step);
-        if (run.progress) {
-          const StepResult& done = solver.simulation().last_step();
-          progress.index = step;
-          progress.status = done.status;
-          progress.min_j = done.min_j;
-          progress.inverted_elements = done.inverted_elements;
-          progress.warnings = done.warnings;
-          if (!intersections.empty()) progress.warnings.push_back(intersections);
-          progress.seconds = std::chrono::duration<double>(Clock::now() - step_start).count();
-          progress.time = options.dynamics ? time : 0.0;
-          run.progress(progress);
-        }
-        write_all(run, step, time, x, surface);
-        progress.newton_iterations = progress.cg_iterations = 0;
-        step_start = Clock::now();
-      },
-      on_newton);
+  const StepCallback on_step = [&](int step, const std::vector<double>& x) {
+    SceneStep record;
+    record.shape = step_shape(mesh, x);
+    if (unresolved) {
+      record.self_contact_measured = true;
+      const auto pairs = unresolved->detect(x);
+      record.unresolved_self_contacts = static_cast<int>(pairs.size());
+      for (const auto& c : pairs)
+        record.max_self_penetration = std::max(record.max_self_penetration, solver::self_contact_length(c, x));
+    }
+    out.steps.push_back(std::move(record));
+    const std::vector<double> surface = surface_of(mesh, x);
+    std::string intersections;
+    if (check) {
+      out.surface_intersections.push_back(check->count(x, surface));
+      intersections = scene_io::OutputSurfaceCheck::warning(out.surface_intersections.back());
+      if (!intersections.empty()) out.warnings.push_back("step " + std::to_string(step) + ": " + intersections);
+    }
+    if (run.reactions) {
+      step_positions.push_back(x);
+      step_forces.push_back(solver.simulation().applied_force());
+    }
+    const double time = options.dynamics ? solver.simulation().time() : static_cast<double>(step);
+    if (run.progress) {
+      const StepResult& done = solver.simulation().last_step();
+      progress.index = step;
+      progress.status = done.status;
+      progress.min_j = done.min_j;
+      progress.inverted_elements = done.inverted_elements;
+      progress.warnings = done.warnings;
+      if (!intersections.empty()) progress.warnings.push_back(intersections);
+      progress.seconds = std::chrono::duration<double>(Clock::now() - step_start).count();
+      progress.time = options.dynamics ? time : 0.0;
+      run.progress(progress);
+    }
+    write_all(run, step, time, x, surface);
+    progress.newton_iterations = progress.cg_iterations = 0;
+    step_start = Clock::now();
+  };
+  out.result = solver.solve(on_newton, on_step);
+  out.resolved = solver.simulation().configuration();
   // A step without defined forces (a non-finite state) keeps its record
   // without reactions.
   for (size_t i = 0; i < step_positions.size() && i < out.steps.size(); ++i) {

@@ -468,12 +468,25 @@ SceneStepWriter surface_obj_writer(const std::string& prefix, const SceneFile& f
   };
 }
 
+namespace {
+
+// The resolved configuration (snh/configuration.h): per setting its value
+// and the reason for it, in the resolver's order.
+json resolved_json(const ResolvedConfiguration& config) {
+  json j = json::object();
+  for (const ResolvedSetting& s : config.settings) j[s.name] = {{"value", s.value}, {"reason", s.reason}};
+  return j;
+}
+
+}  // namespace
+
 void write_scene_json(const std::string& path, const SceneFile& file, const SceneRun& run) {
   create_parent(path);
   std::ofstream out(path);
   if (!out) throw Error("cannot write " + path);
   json j = file.rig ? frames_json(file, run) : load_steps_json(file, run);
   add_setup_json(j, file);
+  j["resolved"] = resolved_json(run.resolved);
   out << j.dump(2) << '\n';
 }
 

@@ -21,6 +21,7 @@
 
 #include "snh/animation.h"
 #include "snh/character.h"
+#include "snh/configuration.h"
 #include "snh/fields.h"
 #include "snh/frames.h"
 #include "snh/io.h"
@@ -148,6 +149,8 @@ struct SceneStep {
 
 struct SceneRun {
   SolveOptions options;  // as run
+  // Every automatic choice made, with its reason (snh/configuration.h).
+  ResolvedConfiguration resolved;
   // Load steps (no rig): the solve and a record per completed step.
   SolveResult result;
   std::vector<SceneStep> steps;

@@ -1,13 +1,18 @@
-// Quasistatic simulation: a mesh, materials and kinematic constraints in;
-// equilibrium positions and the solver's history out. Newton with a
-// backtracking line search on the energy; each linear system solved by
-// ViennaCL's conjugate gradient through the matrix-free, eigen-projected
-// Hessian on the OpenCL device.
+// Simulation: a mesh, materials and kinematic constraints in; positions, the
+// solver's history and honest diagnostics out. Each load step (quasistatic)
+// or implicit Euler time step (SolveOptions::dynamics) is one Newton solve
+// with a backtracking line search on the energy; its linear systems are
+// solved by conjugate gradients on the OpenCL device (the device's own CG by
+// default, ViennaCL's on request or without fp64) through the matrix-free,
+// eigen-projected Hessian, preconditioned by block-Jacobi or, on hex8
+// lattices, geometric multigrid. Obstacles, friction and barrier
+// self-contact are terms of the same energy.
 //
-// Simulation is the object a host application keeps: built once (kernels
-// compiled, mesh uploaded), then driven frame by frame (new constraint
-// targets and forces, solve from the current state, read positions, fields
-// and reaction forces). QuasistaticSolver is the one-shot convenience on top.
+// Simulation is the object a host application keeps: built once (options
+// resolved, snh/configuration.h; kernels compiled, mesh uploaded), then
+// driven frame by frame (new constraint targets and forces, solve from the
+// current state, read positions, fields and reaction forces).
+// QuasistaticSolver is the one-shot convenience on top.
 #pragma once
 
 #include <array>
@@ -28,6 +33,8 @@
 #include "snh/surface.h"
 
 namespace snh {
+
+struct ResolvedConfiguration;  // snh/configuration.h
 
 // x = rotation (X - center) + center + translation; rotation column-major.
 struct RigidTransform {
@@ -97,7 +104,7 @@ enum class Preconditioner {
   automatic,     // the measured choice: multigrid on hex8 lattices from 5,000 DOFs, else block-Jacobi
   none,          // plain CG
   block_jacobi,  // the inverted 3x3 diagonal blocks of the projected Hessian
-  multigrid,     // a geometric V-cycle on the hex8 lattice (solver/multigrid.h); hex8 lattices only
+  multigrid,     // a geometric V-cycle on the hex8 lattice (solver/multigrid/multigrid.h); hex8 lattices only
 };
 
 const char* to_string(Preconditioner p);                       // "automatic", "none", "block-jacobi", "multigrid"
@@ -138,7 +145,7 @@ const char* to_string(MultigridFineLevel f);                             // "aut
 MultigridFineLevel parse_multigrid_fine_level(const std::string& text);  // the names above
 
 // The polynomial of the multigrid's Chebyshev smoothing over block-Jacobi
-// (solver/chebyshev.h); lambda below is each level's power-iteration
+// (solver/linear/chebyshev.h); lambda below is each level's power-iteration
 // estimate of lambda_max(D^-1 A).
 enum class ChebyshevKind {
   // The measured choice for the problem, with MultigridOptions::smoother_degree
@@ -442,9 +449,6 @@ struct SolverTuning {
   double forcing_max = 0.5;
   Preconditioner preconditioner = Preconditioner::automatic;
   MultigridOptions multigrid;
-  // Older switch, kept for existing callers: false with preconditioner
-  // `automatic` means none.
-  bool block_jacobi = true;
   // Backtracking halvings the line search may take before it gives up (and
   // retries once along the preconditioned steepest-descent direction).
   int line_search_halvings = 40;
@@ -819,7 +823,10 @@ class Simulation {
   const MaterialMap& materials() const;
   const std::vector<ConstraintSet>& constraints() const;
   const DeviceInfo& device() const;
-  double tolerance() const;  // the absolute residual tolerance (SolveOptions)
+  double tolerance() const;  // the stopping test's absolute part (SolveOptions::strain_tolerance)
+  // The options with every automatic choice made, each with its reason
+  // (snh/configuration.h): what this simulation runs with.
+  const ResolvedConfiguration& configuration() const;
 
  private:
   struct Impl;
@@ -840,7 +847,8 @@ class QuasistaticSolver {
   QuasistaticSolver(QuasistaticSolver&&) noexcept;
   QuasistaticSolver& operator=(QuasistaticSolver&&) noexcept;
 
-  SolveResult solve(const StepCallback& on_step = {}, const ProgressCallback& progress = {});
+  // The callbacks in Simulation::solve's order.
+  SolveResult solve(const ProgressCallback& progress = {}, const StepCallback& on_step = {});
 
   const Mesh& mesh() const;
   const DeviceInfo& device() const;
@@ -849,26 +857,6 @@ class QuasistaticSolver {
  private:
   Simulation simulation_;
 };
-
-// Checks constraint sets (non-empty, vertices in range, a vertex component
-// prescribed by two sets, duplicate names) and solve options (initial
-// positions, external and body force, steps, limits, tolerances); throws
-// snh::Error naming the set or option at fault. Simulation calls it on
-// construction.
-void validate_solve_inputs(const Mesh& mesh, const std::vector<ConstraintSet>& constraints,
-                           const SolveOptions& options);
-
-// The absolute residual tolerance SolveOptions asks for on this mesh and
-// these materials, before the relative criterion (see SolveOptions).
-double residual_tolerance(const Mesh& mesh, const MaterialMap& materials, const SolveOptions& options);
-
-// Writes every constrained vertex's target at load parameter t into x (xyz
-// per vertex; the set's prescribed components only): `targets` if set, else
-// `motion(t)` applied to the rest position, else the rest position. Throws
-// snh::Error naming the set for a wrong-sized targets callback or a
-// non-finite target.
-void apply_constraints(const Mesh& mesh, const std::vector<ConstraintSet>& constraints, double t,
-                       std::vector<double>& x);
 
 // Deformation statistics of positions x: volume ratio, min/max J over the
 // quadrature points, number of elements with J <= 0 somewhere.

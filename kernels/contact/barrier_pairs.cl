@@ -1,4 +1,4 @@
-/* Barrier self-contact on the device (solver/barrier_terms.h): the narrow
+/* Barrier self-contact on the device (solver/contact/barrier_terms.h): the narrow
  * phase of Li et al. 2020, "Incremental Potential Contact", per candidate
  * pair, and its deterministic reductions.
  *
@@ -9,7 +9,7 @@
  * own boundary). Per pair: the squared distance, the barrier b, its
  * gradient (12) and its Hessian (12 x 12) projected to PSD by the cyclic
  * Jacobi method (psd_jacobi.h), all by the same headers as the host
- * reference (solver/barrier_contact.cpp).
+ * reference (solver/contact/barrier_contact.cpp).
  *
  * No atomics anywhere. Per-vertex sums run through index lists built on the
  * host in pair order (a CSR of pair incidences, per surface vertex; a CSR of

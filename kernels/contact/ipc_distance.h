@@ -2,7 +2,7 @@
  * classification, gradients and Hessians in closed form: the geometry of the
  * incremental-potential barrier (Li et al. 2020, "Incremental Potential
  * Contact", sec. 4.1 and supplementary A). Shared by the host detection
- * (solver/barrier_contact.h) and the device's (contact/barrier_pairs.cl).
+ * (solver/contact/barrier_contact.h) and the device's (contact/barrier_pairs.cl).
  *
  * A pair is four vertices, 12 reals vertex-major:
  *   point-triangle  p, t0, t1, t2

@@ -5,7 +5,7 @@
  * entries in row order, each zeroed by the rotation with the smaller angle
  * (tan = sgn(theta) / (|theta| + sqrt(theta^2 + 1)), theta = (a_qq - a_pp) /
  * (2 a_pq)), until the off-diagonal part is below SNH_EPS of the whole in
- * Frobenius norm. Written once: the host (solver/barrier_contact.cpp) and
+ * Frobenius norm. Written once: the host (solver/contact/barrier_contact.cpp) and
  * the device (contact/barrier_pairs.cl) project alike; Eigen's solver is
  * only the tests' reference. Quadratic convergence makes 6 to 10 sweeps
  * the rule; SNH_JACOBI_MAX_SWEEPS bounds a pathological input. */

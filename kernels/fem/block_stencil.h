@@ -3,15 +3,15 @@
  * first, the vertices sharing an element with it in increasing order, then v
  * again as padding with zero blocks) at neighbours[width v + s], and the
  * blocks A(v, n) column-major at stencil[9 (width v + s) + 3 j + i]. The
- * storage of the assembled product variant (host/solver/elastic_model.h) and
- * of the multigrid's assembled levels (host/solver/multigrid.h). OpenCL only.
+ * storage of the assembled product variant (host/solver/model/elastic_model.h) and
+ * of the multigrid's assembled levels (host/solver/multigrid/multigrid.h). OpenCL only.
  *
  * Tiled (SNH_STENCIL_TILE = T > 1, the GPUs' layout with the tiled cache,
  * solver::PointDataLayout::tiled): vertices in tiles of T, entry m of block
  * s of vertex v at 9 width T (v / T) + T (9 s + m) + v % T and its neighbour
  * at width T (v / T) + T s + v % T, so that consecutive work-items read
  * consecutive words; T = 1 is the layout above. The buffers hold whole
- * tiles (host/solver/block_stencil.h).
+ * tiles (host/solver/model/block_stencil.h).
  *
  * Upper (SNH_STENCIL_LOWER = L > 0, with SNH_STENCIL_WIDTH = W; per vertex,
  * tile 1: the CPUs' assembled variant and multigrid levels): vertex v stores its W blocks against

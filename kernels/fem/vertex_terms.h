@@ -1,5 +1,5 @@
 /* The per-vertex terms a scene compiles into the kernels (kernels/fem.cl,
- * kernels/multigrid.cl; set by the host's ElasticModel, solver/elastic_model.h),
+ * kernels/multigrid.cl; set by the host's ElasticModel, solver/model/elastic_model.h),
  * 0 where the build leaves them out. */
 #ifndef SNH_FEM_VERTEX_TERMS_H
 #define SNH_FEM_VERTEX_TERMS_H
@@ -16,13 +16,13 @@
 #ifndef SNH_FRICTION
 #define SNH_FRICTION 0
 #endif
-/* Barrier self-contact (solver/barrier_terms.h): its products run in
+/* Barrier self-contact (solver/contact/barrier_terms.h): its products run in
  * contact/barrier_pairs.cl; block-Jacobi's setup adds its diagonal blocks. */
 #ifndef SNH_SELF_BARRIER
 #define SNH_SELF_BARRIER 0
 #endif
 /* An embedded surface in contact with the obstacles (with SNH_OBSTACLES only;
- * solver/vertex_terms.h): snh_contact_vertices adds its points' shares. */
+ * solver/model/vertex_terms.h): snh_contact_vertices adds its points' shares. */
 #ifndef SNH_SURFACE_CONTACT
 #define SNH_SURFACE_CONTACT 0
 #endif

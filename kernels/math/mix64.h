@@ -1,7 +1,7 @@
 /* splitmix64's output function (Steele, Lea and Flood, "Fast splittable
  * pseudorandom number generators", OOPSLA 2014): a one-to-one mix of 64-bit
  * integers. The obstacle contact set's signature (kernels/reduce.cl,
- * host/solver/vertex_terms.h) adds it up over the vertices in contact; the
+ * host/solver/model/vertex_terms.h) adds it up over the vertices in contact; the
  * sum wraps exactly modulo 2^64, so it is the same in any order, on the
  * device and on the host. Self-contained: C++ (after <cstdint>) and OpenCL C,
  * whose ulong is 64 bits. */

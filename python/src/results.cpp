@@ -2,6 +2,7 @@
 // fields and reactions, as read-only Python objects. Every result field is
 // bound here and nowhere else.
 #include "common.h"
+#include "snh/configuration.h"
 #include "snh/fields.h"
 #include "snh/frames.h"
 #include "snh/scene.h"
@@ -19,6 +20,34 @@ void bind_results(py::module_& m) {
       .def_readonly("compute_units", &snh::DeviceInfo::compute_units, "Compute units.")
       .def_readonly("global_memory_bytes", &snh::DeviceInfo::global_memory_bytes, "Global memory in bytes.")
       .def("__repr__", [](const snh::DeviceInfo& d) { return "DeviceInfo('" + d.platform + " / " + d.name + "')"; });
+
+  py::class_<snh::ResolvedSetting>(m, "ResolvedSetting", "One resolved setting: its name, value and reason.")
+      .def_readonly("name", &snh::ResolvedSetting::name, "The option's name (as in scene files).")
+      .def_readonly("value", &snh::ResolvedSetting::value, "Its value as printed.")
+      .def_readonly("reason", &snh::ResolvedSetting::reason, "'given', 'default', or the rule that chose it.")
+      .def("__repr__", [](const snh::ResolvedSetting& s) {
+        return "ResolvedSetting('" + s.name + "', '" + s.value + "', '" + s.reason + "')";
+      });
+  py::class_<snh::ResolvedConfiguration>(
+      m, "ResolvedConfiguration", "The options with every automatic choice made, each with its reason (read-only).")
+      .def_readonly("options", &snh::ResolvedConfiguration::options, "The resolved SolveOptions.")
+      .def_readonly("barrier_stiffness", &snh::ResolvedConfiguration::barrier_stiffness,
+                    "Barrier self-contact's kappa (0 without the barrier).")
+      .def_readonly("absolute_tolerance", &snh::ResolvedConfiguration::absolute_tolerance,
+                    "The stopping test's absolute part.")
+      .def_readonly("relative_tolerance", &snh::ResolvedConfiguration::relative_tolerance,
+                    "The stopping test's relative part.")
+      .def_readonly("settings", &snh::ResolvedConfiguration::settings, "Every setting, in a fixed order.")
+      .def("setting", &snh::ResolvedConfiguration::setting, py::arg("name"),
+           "The setting named `name`; raises snh.Error when there is none.")
+      .def(
+          "as_dict",
+          [](const snh::ResolvedConfiguration& c) {
+            py::dict d;
+            for (const snh::ResolvedSetting& s : c.settings) d[py::str(s.name)] = py::make_tuple(s.value, s.reason);
+            return d;
+          },
+          "{name: (value, reason)} in order.");
 
   auto step_status = py::enum_<snh::StepStatus>(m, "StepStatus", "How a load or time step's Newton solve ended.")
                          .value("none", snh::StepStatus::none)
@@ -252,6 +281,7 @@ void bind_scene_results(py::module_& m) {
       .def_readonly("steps", &snh::SceneRun::steps, "SceneStep per step or frame.")
       .def_readonly("frames", &snh::SceneRun::frames, "FrameRecord per frame of a rig.")
       .def_readonly("device", &snh::SceneRun::device)
+      .def_readonly("resolved", &snh::SceneRun::resolved, "The ResolvedConfiguration it ran with.")
       .def_readonly("converged", &snh::SceneRun::converged, "Every step or frame converged.")
       .def_readonly("warnings", &snh::SceneRun::warnings);
 }

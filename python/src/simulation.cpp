@@ -5,6 +5,7 @@
 #include "callbacks.h"
 #include "common.h"
 #include "snh/checkpoint.h"
+#include "snh/configuration.h"
 #include "snh/device.h"
 #include "snh/fields.h"
 
@@ -430,6 +431,8 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("constraints", &snh::Simulation::constraints, "The constraint sets (copies).")
       .def_property_readonly("device", &snh::Simulation::device, "The OpenCL device (DeviceInfo).")
       .def_property_readonly("tolerance", &snh::Simulation::tolerance, "The absolute residual tolerance.")
+      .def_property_readonly("configuration", &snh::Simulation::configuration,
+                             "The ResolvedConfiguration: every automatic choice made, with its reason.")
       .def("checkpoint", &snh::Simulation::checkpoint,
            "The full state (SimulationState): positions, velocities, time, friction anchors, constraint targets "
            "and loads. The next solve rebuilds the preconditioner, as after restore, so that both continue "

@@ -213,3 +213,19 @@ def test_moving_obstacle():
     result = sim.solve()
     assert result.converged and calls
     assert result.steps[-1].contacts > 0
+
+
+def test_configuration_reports_each_choice_and_the_run_uses_it(bar_problem):
+    mesh, material, sets, options = bar_problem
+    sim = snh.Simulation(mesh, material, sets, options)
+    config = sim.configuration
+    names = [s.name for s in config.settings]
+    assert "preconditioner" in names and "absolute_tolerance" in names
+    assert all(s.value and s.reason for s in config.settings)
+    chosen = config.as_dict()
+    assert chosen["preconditioner"][0] == config.setting("preconditioner").value
+    result = sim.solve()
+    assert result.preconditioner == config.options.preconditioner
+    assert result.tolerance == config.absolute_tolerance
+    with pytest.raises(snh.Error, match="no setting named"):
+        config.setting("no_such_setting")

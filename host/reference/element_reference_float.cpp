@@ -1,3 +1,0 @@
-// Host reference in single precision.
-#define SNH_DOUBLE 0
-#include "reference/element_reference_impl.inc"
