@@ -148,7 +148,7 @@ void resolve_multigrid(Resolution& r) {
         asked.rebuild_each_load_step ? "given"
         : r.given.dynamics           ? "dynamics: the hierarchy is carried across time steps"
                                      : "quasistatic load steps");
-  m.rebuild_every = solver::resolved_rebuild_every(m);
+  if (m.rebuild_every == 0) m.rebuild_every = solver::resolved_rebuild_every(m);  // < 0: the multigrid refuses it
   r.add("multigrid.rebuild_every", std::to_string(m.rebuild_every),
         asked.rebuild_every > 0 ? "given" : "measured for the rebuilds above");
   const bool built = m.fine_level == MultigridFineLevel::built, wide = o.precision == Precision::double_;

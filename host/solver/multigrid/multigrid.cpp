@@ -133,6 +133,14 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   void residual(int level, const VectorBase& p, const VectorBase& base, VectorBase& r) const;
   // to <- from in the other precision (kNarrow only): snh_narrow, snh_widen.
   void convert(const device::Kernel& k, cl_mem from, size_t values, cl_mem to) const;
+  // Construction's phases: the shared kernels, and each level's tables.
+  void build_kernels(const Mesh& mesh, const MultigridOptions& options);
+  std::unique_ptr<Level> make_level(size_t l);
+  // The V-cycle's kernel switches: the coarse ones, in float for a float cycle.
+  device::KernelConfig cycle_config() const {
+    const device::KernelConfig& coarse = model_.elastic_kernel_config();
+    return kNarrow ? coarse.with_float_cycle() : coarse;
+  }
 
   ElasticModel<Real>& model_;
   device::OpenClContext& cl_;
@@ -222,17 +230,12 @@ const typename Levels<Real, C>::StencilKernels& Levels<Real, C>::stencil_kernels
   return levels_[level]->stencil_kernels;
 }
 
-template <typename Real, typename C>
-Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::vector<char>& mask,
-                        const MultigridOptions& options)
-    : model_(model),
-      cl_(model.context()),
-      options_(resolved_smoothing(options, 3 * mesh.vertex_count(), model.max_poisson_ratio())) {
+// The options' limits and what the model's terms allow; throws snh::Error.
+template <typename Real>
+void check_multigrid_options(const ElasticModel<Real>& model, const MultigridOptions& options) {
   if (options.smoother_degree < 0 || options.smoother_degree > 16)
     throw Error("multigrid: smoother_degree must be in 1..16 (0: automatic), got " +
                 std::to_string(options.smoother_degree));
-  // Throws for a degree without coefficients.
-  chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, 1.0);
   if (options.max_levels < 2) throw Error("multigrid: max_levels must be at least 2");
   if (options.rebuild_every < 0)
     throw Error(
@@ -245,17 +248,89 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
     throw Error(
         "multigrid: its coarse levels do not carry the self-contact penalty's springs (use block-jacobi, or the "
         "barrier)");
+  if (options.fine_level == MultigridFineLevel::built && has_vertex_terms(model))
+    throw Error(
+        "multigrid: fine_level built does not carry the inertia, obstacle contact or self-contact barrier blocks "
+        "(use automatic or current)");
+}
+
+// A read-only device copy of `v` as T (at least one entry), its bytes added
+// to `bytes`.
+template <typename T, typename V>
+device::Buffer upload_as(device::OpenClContext& cl, const V& v, size_t& bytes) {
+  const std::vector<T> r(v.begin(), v.end());
+  bytes += r.size() * sizeof(T);
+  return cl.buffer(CL_MEM_READ_ONLY, std::max<size_t>(r.size(), 1) * sizeof(T), r.empty() ? nullptr : r.data());
+}
+
+// The coarsest operator's sparsity (3x3 blocks of vertices sharing a cell)
+// in `matrix`, analysed by `factor`; where each cell-matrix entry (c, col,
+// row) and each DOF's diagonal go among the matrix's values, so that a build
+// adds them up in place.
+void prepare_coarsest(const LatticeLevel& h, Eigen::SparseMatrix<double>& matrix,
+                      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& factor, std::vector<int>& slots,
+                      std::vector<int>& diagonal) {
+  std::vector<Eigen::Triplet<double>> pattern;
+  for (size_t c = 0; c < h.cells.size(); ++c)
+    for (int a = 0; a < 8; ++a)
+      for (int b = 0; b < 8; ++b)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            pattern.emplace_back(3 * h.elements[8 * c + a] + i, 3 * h.elements[8 * c + b] + j, 1.0);
+  matrix = Eigen::SparseMatrix<double>(3 * h.vertex_count, 3 * h.vertex_count);
+  matrix.setFromTriplets(pattern.begin(), pattern.end());
+  matrix.makeCompressed();
+  factor.analyzePattern(matrix);
+  auto slot = [&](int row, int col) {
+    const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[col];
+    const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[col + 1];
+    return static_cast<int>(std::lower_bound(begin, end, row) - matrix.innerIndexPtr());
+  };
+  slots.resize(h.cells.size() * kCellMatrix);
+  for (size_t c = 0; c < h.cells.size(); ++c)
+    for (int col = 0; col < 24; ++col)
+      for (int row = 0; row < 24; ++row)
+        slots[kCellMatrix * c + 24 * col + row] =
+            slot(3 * h.elements[8 * c + row / 3] + row % 3, 3 * h.elements[8 * c + col / 3] + col % 3);
+  diagonal.resize(3 * h.vertex_count);
+  for (size_t i = 0; i < 3 * h.vertex_count; ++i) diagonal[i] = slot(static_cast<int>(i), static_cast<int>(i));
+}
+
+template <typename Real, typename C>
+Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::vector<char>& mask,
+                        const MultigridOptions& options)
+    : model_(model),
+      cl_(model.context()),
+      options_(resolved_smoothing(options, 3 * mesh.vertex_count(), model.max_poisson_ratio())) {
+  check_multigrid_options(model, options);
+  // Throws for a degree without coefficients.
+  chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, 1.0);
   hierarchy_ = build_lattice_hierarchy(mesh, mask, options.coarsest_dofs, options.max_levels);
-  // The coarse levels carry the per-vertex terms inside their cell matrices
-  // (snh_galerkin_vertex_terms): their products, gathers and smoothers are
-  // the elastic-only builds.
-  const device::KernelConfig& defines = model.kernel_config();
-  const device::KernelConfig& coarse = model.elastic_kernel_config();
+  build_kernels(mesh, options);
+  octant_weights_ = upload_as<Real>(cl_, octant_weights(), table_bytes_);
+  if (kNarrow) {  // the fine level's size (a float cycle's is built), the largest
+    const size_t bytes = hierarchy_.levels[0].vertex_count * 9 * sizeof(Real);
+    wide_inverse_ = cl_.buffer(CL_MEM_READ_WRITE, bytes);
+    table_bytes_ += bytes;
+  }
+  for (size_t l = 0; l < hierarchy_.levels.size(); ++l) levels_.push_back(make_level(l));
+  if (hierarchy_.levels.size() > 1)
+    prepare_coarsest(hierarchy_.levels.back(), coarsest_matrix_, coarsest_, coarsest_slots_, coarsest_diagonal_);
+}
+
+// The kernels every level shares (the coarse levels carry the per-vertex
+// terms inside their cell matrices, snh_galerkin_vertex_terms: their
+// products, gathers and smoothers are the elastic-only builds), the fine
+// level's kind, and each vertex's share of the per-vertex terms.
+template <typename Real, typename C>
+void Levels<Real, C>::build_kernels(const Mesh& mesh, const MultigridOptions& options) {
+  const device::KernelConfig& defines = model_.kernel_config();
+  const device::KernelConfig& coarse = model_.elastic_kernel_config();
   galerkin_cache_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_cache");
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
   // The V-cycle's builds: a float cycle's are the same switches compiled in
   // float (SNH_FLOAT, kernels/snh_portable.h).
-  const device::KernelConfig cycle = kNarrow ? coarse.with_float_cycle() : coarse;
+  const device::KernelConfig cycle = cycle_config();
   prolong_k_ = cl_.kernel("multigrid.cl", cycle, "snh_prolong_add");
   if (cl_.info().has_fp64) {
     device::KernelConfig power;
@@ -273,12 +348,8 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
     narrow_k_ = cl_.kernel("fem.cl", coarse, "snh_narrow");
     widen_k_ = cl_.kernel("fem.cl", coarse, "snh_widen");
   }
-  vertex_terms_ = has_vertex_terms(model);
-  if (options.fine_level == MultigridFineLevel::built && vertex_terms_)
-    throw Error(
-        "multigrid: fine_level built does not carry the inertia, obstacle contact or self-contact barrier blocks "
-        "(use automatic or current)");
-  fine_built_ = builds_fine_level(model, options);
+  vertex_terms_ = has_vertex_terms(model_);
+  fine_built_ = builds_fine_level(model_, options);
   if (kNarrow && !fine_built_) throw Error("multigrid: a float V-cycle needs a built fine level");
   fine_float_ = fine_built_ && options.fine_level_float && sizeof(Real) > sizeof(float);
   if (fine_float_)
@@ -294,115 +365,72 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
     vertex_share_ = cl_.buffer(CL_MEM_READ_ONLY, share.size() * sizeof(Real), share.data());
     table_bytes_ += share.size() * sizeof(Real);
   }
+}
 
-  auto upload_int = [&](const std::vector<int>& v, size_t& bytes) {
-    bytes += v.size() * sizeof(int);
-    return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(v.size(), 1) * sizeof(int), v.empty() ? nullptr : v.data());
-  };
-  auto upload_as = [&](auto zero, const auto& v, size_t& bytes) {
-    using T = decltype(zero);
-    const std::vector<T> r(v.begin(), v.end());
-    bytes += r.size() * sizeof(T);
-    return cl_.buffer(CL_MEM_READ_ONLY, std::max<size_t>(r.size(), 1) * sizeof(T), r.empty() ? nullptr : r.data());
-  };
-  auto upload_real = [&](const auto& v, size_t& bytes) { return upload_as(Real(0), v, bytes); };
-  auto upload_cycle = [&](const auto& v, size_t& bytes) { return upload_as(C(0), v, bytes); };
-  octant_weights_ = upload_real(octant_weights(), table_bytes_);
-  if (kNarrow) {  // the fine level's size (a float cycle's is built), the largest
-    const size_t bytes = hierarchy_.levels[0].vertex_count * 9 * sizeof(Real);
-    wide_inverse_ = cl_.buffer(CL_MEM_READ_WRITE, bytes);
-    table_bytes_ += bytes;
+// Level l of the hierarchy on the device: its mask, elements, cell
+// matrices with their blocks and assembled stencil (the coarse levels, and
+// a built fine level), transfers and vectors.
+template <typename Real, typename C>
+std::unique_ptr<typename Levels<Real, C>::Level> Levels<Real, C>::make_level(size_t l) {
+  const LatticeLevel& h = hierarchy_.levels[l];
+  auto level = std::make_unique<Level>();
+  Level& L = *level;
+  L.cells = h.cells.size();
+  L.vertices = h.vertex_count;
+  const size_t n = 3 * L.vertices;
+  L.mask = upload_as<Real>(cl_, h.mask, L.bytes);
+  if (kNarrow) L.cycle_mask = upload_as<C>(cl_, h.mask, L.bytes);
+  if (l == 0) {
+    L.element_handle = model_.elements_buffer();
+  } else {
+    L.elements = upload_as<int>(cl_, h.elements, L.bytes);
+    L.element_handle = L.elements.get();
+    L.children = upload_as<int>(cl_, h.children, L.bytes);
   }
-  for (size_t l = 0; l < hierarchy_.levels.size(); ++l) {
-    const LatticeLevel& h = hierarchy_.levels[l];
-    auto level = std::make_unique<Level>();
-    Level& L = *level;
-    L.cells = h.cells.size();
-    L.vertices = h.vertex_count;
-    const size_t n = 3 * L.vertices;
-    L.mask = upload_real(h.mask, L.bytes);
-    if (kNarrow) L.cycle_mask = upload_cycle(h.mask, L.bytes);
-    if (l == 0) {
-      L.element_handle = model.elements_buffer();
-    } else {
-      L.elements = upload_int(h.elements, L.bytes);
-      L.element_handle = L.elements.get();
-      L.children = upload_int(h.children, L.bytes);
-    }
-    if (l > 0 || fine_built_) {  // cell matrices, their blocks and the assembled operator
-      const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
-      L.offsets = upload_int(slots.offsets, L.bytes);
-      L.adjacency = upload_int(slots.adjacency, L.bytes);
-      const size_t tile = model.stencil_tile();
-      const StencilTables stencil = device_stencil_tables(h.elements, L.vertices, 8, slots, tile);
-      L.width = stencil.width;
-      // Float matrices at a float fine level: assembled from float
-      // (SNH_MATRIX_FLOAT), and in a Real cycle read by mixed kernels.
-      const bool float_matrices = l == 0 && fine_float_;
-      const device::KernelConfig assembly =
-          stencil_build(float_matrices ? coarse.with_matrix_float() : coarse, L.width, tile, stencil.lower);
-      const device::KernelConfig apply =
-          stencil_build(float_matrices && !kNarrow ? cycle.with_matrix_float() : cycle, L.width, tile, stencil.lower);
-      L.stencil_kernels = StencilKernels{cl_.kernel("stencil.cl", assembly, "snh_stencil_assemble"),
-                                         cl_.kernel("stencil.cl", apply, "snh_stencil_product"),
-                                         cl_.kernel("stencil.cl", apply, "snh_stencil_residual"),
-                                         cl_.kernel("stencil.cl", apply, "snh_chebyshev_step")};
-      L.neighbours = upload_int(tiled_neighbours(stencil, L.vertices, tile), L.bytes);
-      L.part_offsets = upload_int(stencil.part_offsets, L.bytes);
-      L.parts = upload_int(stencil.parts, L.bytes);
-      const size_t entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(Real);
-      const size_t stencil_entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(C);
-      const size_t matrix_bytes = L.cells * kCellMatrix * entry,
-                   stencil_bytes = stencil_entries(stencil, L.vertices, tile) * stencil_entry;
-      L.matrices = cl_.buffer(CL_MEM_READ_WRITE, matrix_bytes);
-      L.stencil = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_bytes, 1));
-      L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
-      L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(C));
-      L.bytes += matrix_bytes + stencil_bytes + L.cells * 72 * sizeof(Real) + L.vertices * 9 * sizeof(C);
-    }
-    if (l + 1 < hierarchy_.levels.size()) {
-      L.prolong_vertices = upload_int(h.prolongation_vertices, L.bytes);
-      L.prolong_weights = upload_cycle(h.prolongation_weights, L.bytes);
-      L.restrict_offsets = upload_int(h.restriction_offsets, L.bytes);
-      L.restrict_vertices = upload_int(h.restriction_vertices, L.bytes);
-      L.restrict_weights = upload_cycle(h.restriction_weights, L.bytes);
-    }
-    for (auto* v : {&L.b, &L.x, &L.r, &L.d, &L.t, &L.d_next, &L.eigenvector})
-      *v = viennacl::vector<C>(viennacl::scalar_vector<C>(n, C(0)));
-    L.bytes += 7 * n * sizeof(C);
-    levels_.push_back(std::move(level));
+  if (l > 0 || fine_built_) {  // cell matrices, their blocks and the assembled operator
+    const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
+    L.offsets = upload_as<int>(cl_, slots.offsets, L.bytes);
+    L.adjacency = upload_as<int>(cl_, slots.adjacency, L.bytes);
+    const size_t tile = model_.stencil_tile();
+    const StencilTables stencil = device_stencil_tables(h.elements, L.vertices, 8, slots, tile);
+    L.width = stencil.width;
+    // Float matrices at a float fine level: assembled from float
+    // (SNH_MATRIX_FLOAT), and in a Real cycle read by mixed kernels.
+    const bool float_matrices = l == 0 && fine_float_;
+    const device::KernelConfig& coarse = model_.elastic_kernel_config();
+    const device::KernelConfig cycle = cycle_config();
+    const device::KernelConfig assembly =
+        stencil_build(float_matrices ? coarse.with_matrix_float() : coarse, L.width, tile, stencil.lower);
+    const device::KernelConfig apply =
+        stencil_build(float_matrices && !kNarrow ? cycle.with_matrix_float() : cycle, L.width, tile, stencil.lower);
+    L.stencil_kernels = StencilKernels{cl_.kernel("stencil.cl", assembly, "snh_stencil_assemble"),
+                                       cl_.kernel("stencil.cl", apply, "snh_stencil_product"),
+                                       cl_.kernel("stencil.cl", apply, "snh_stencil_residual"),
+                                       cl_.kernel("stencil.cl", apply, "snh_chebyshev_step")};
+    L.neighbours = upload_as<int>(cl_, tiled_neighbours(stencil, L.vertices, tile), L.bytes);
+    L.part_offsets = upload_as<int>(cl_, stencil.part_offsets, L.bytes);
+    L.parts = upload_as<int>(cl_, stencil.parts, L.bytes);
+    const size_t entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(Real);
+    const size_t stencil_entry = l == 0 && fine_float_ ? sizeof(float) : sizeof(C);
+    const size_t matrix_bytes = L.cells * kCellMatrix * entry,
+                 stencil_bytes = stencil_entries(stencil, L.vertices, tile) * stencil_entry;
+    L.matrices = cl_.buffer(CL_MEM_READ_WRITE, matrix_bytes);
+    L.stencil = cl_.buffer(CL_MEM_READ_WRITE, std::max<size_t>(stencil_bytes, 1));
+    L.blocks = cl_.buffer(CL_MEM_READ_WRITE, L.cells * 72 * sizeof(Real));
+    L.inverse = cl_.buffer(CL_MEM_READ_WRITE, L.vertices * 9 * sizeof(C));
+    L.bytes += matrix_bytes + stencil_bytes + L.cells * 72 * sizeof(Real) + L.vertices * 9 * sizeof(C);
   }
-  if (hierarchy_.levels.size() > 1) {
-    // The coarsest operator's sparsity: 3x3 blocks of vertices sharing a cell.
-    const LatticeLevel& h = hierarchy_.levels.back();
-    std::vector<Eigen::Triplet<double>> pattern;
-    for (size_t c = 0; c < h.cells.size(); ++c)
-      for (int a = 0; a < 8; ++a)
-        for (int b = 0; b < 8; ++b)
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-              pattern.emplace_back(3 * h.elements[8 * c + a] + i, 3 * h.elements[8 * c + b] + j, 1.0);
-    coarsest_matrix_ = Eigen::SparseMatrix<double>(3 * h.vertex_count, 3 * h.vertex_count);
-    coarsest_matrix_.setFromTriplets(pattern.begin(), pattern.end());
-    coarsest_matrix_.makeCompressed();
-    coarsest_.analyzePattern(coarsest_matrix_);
-    // Where each cell-matrix entry (c, col, row) and each DOF's diagonal go
-    // among the matrix's values, so that a build adds them up in place.
-    auto slot = [&](int row, int col) {
-      const int* begin = coarsest_matrix_.innerIndexPtr() + coarsest_matrix_.outerIndexPtr()[col];
-      const int* end = coarsest_matrix_.innerIndexPtr() + coarsest_matrix_.outerIndexPtr()[col + 1];
-      return static_cast<int>(std::lower_bound(begin, end, row) - coarsest_matrix_.innerIndexPtr());
-    };
-    coarsest_slots_.resize(h.cells.size() * kCellMatrix);
-    for (size_t c = 0; c < h.cells.size(); ++c)
-      for (int col = 0; col < 24; ++col)
-        for (int row = 0; row < 24; ++row)
-          coarsest_slots_[kCellMatrix * c + 24 * col + row] =
-              slot(3 * h.elements[8 * c + row / 3] + row % 3, 3 * h.elements[8 * c + col / 3] + col % 3);
-    coarsest_diagonal_.resize(3 * h.vertex_count);
-    for (size_t i = 0; i < 3 * h.vertex_count; ++i)
-      coarsest_diagonal_[i] = slot(static_cast<int>(i), static_cast<int>(i));
+  if (l + 1 < hierarchy_.levels.size()) {
+    L.prolong_vertices = upload_as<int>(cl_, h.prolongation_vertices, L.bytes);
+    L.prolong_weights = upload_as<C>(cl_, h.prolongation_weights, L.bytes);
+    L.restrict_offsets = upload_as<int>(cl_, h.restriction_offsets, L.bytes);
+    L.restrict_vertices = upload_as<int>(cl_, h.restriction_vertices, L.bytes);
+    L.restrict_weights = upload_as<C>(cl_, h.restriction_weights, L.bytes);
   }
+  for (auto* v : {&L.b, &L.x, &L.r, &L.d, &L.t, &L.d_next, &L.eigenvector})
+    *v = viennacl::vector<C>(viennacl::scalar_vector<C>(n, C(0)));
+  L.bytes += 7 * n * sizeof(C);
+  return level;
 }
 
 template <typename Real, typename C>
