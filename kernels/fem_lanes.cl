@@ -116,8 +116,8 @@ SNH_FN void lanes_load_nodes(__global const vector_real* x, __global const int* 
 
 /* Rest gradients: lane q of a part holds point q's (layout [element][3 a +
  * j][q]: one vector per value; point by point, 192 lane inserts per
- * element, the cached product took 5.74 instead of 4.67 ms at 32^3 in
- * double). With SNH_POINT_MAJOR (element_data.h's [element][q][3 a + j],
+ * element, measured slower: docs/performance.md, "Lanes kernels' loads and
+ * stores"). With SNH_POINT_MAJOR (element_data.h's [element][q][3 a + j],
  * the GPUs' layout) point by point. */
 SNH_FN void lanes_load_gradients(__global const scalar_real* gradients, size_t w, int count, real* g) {
   SNH_UNROLL
@@ -245,7 +245,8 @@ SNH_FN principal_hessian lanes_linearization_load(__global const scalar_real* in
 #else
 /* Point-major cache (tet4; hex8 with SNH_POINT_MAJOR): lanes
  * 0 .. lanes - 1 at out + 30 l, lane by lane
- * (value by value measured 2.2x slower in float). */
+ * (value by value measured slower: docs/performance.md, "Lanes kernels'
+ * loads and stores"). */
 SNH_FN void lanes_linearization_store(const principal_hessian* h, int lanes, __global scalar_real* out) {
   SNH_UNROLL
   for (int l = 0; l < SNH_LANES; ++l) {
@@ -375,7 +376,8 @@ __kernel void snh_element_product_recompute(__global const scalar_real* p, __glo
  * linearization, column by column (element.h's rank-one columns), its lower
  * triangle only (element_matrix_store mirrors it), the points in lanes; a
  * hex8 column's points summed in the scalar kernel's order. (The lower
- * triangle only: twist res 32 multigrid, 14 builds, 0.435 -> 0.375 s.)
+ * triangle only, measured faster: docs/performance.md, "Lanes kernels'
+ * loads and stores".)
  * SNH_MIXED: from the float copies, in float, the diagonal blocks written
  * in double (a double solve's multigrid fine level with float products). */
 __kernel void snh_element_matrices(__global const int* elements, __global const scalar_real* gradients,

@@ -114,11 +114,10 @@ typedef float8 corners8;
  * rows are formed, in three named vectors, and at once spread by the second
  * (the same sums in the same order as forming a column's 24
  * rows first into an indexed array, which pocl kept in memory with a load
- * and a store per term; twist res 32, 12 builds: 0.30 -> 0.19 s).
- * Twist res 32, 14 builds: 0.26 s, against
- * 0.50 s with one scalar work-item per coarse column skipping zeros in both
- * products (pocl ran those one by one; also with the columns of 8 cells side
- * by side, 1.4 s, or the corners of a cell side by side, 0.48 s). */
+ * and a store per term). Measured faster on pocl than that array and than
+ * one scalar work-item per coarse column skipping zeros in both products,
+ * which pocl ran one by one (docs/performance.md, "Galerkin products on the
+ * device"). */
 __kernel void snh_galerkin_from_matrices(__global const real* octant_weights, __global const int* children,
                                          __global const int* fine_elements, __global const matrix_real* fine_matrices,
                                          __global const real* fine_mask, const int count, __global real* out,
@@ -265,7 +264,8 @@ __kernel void snh_galerkin_vertex_terms(__global const real* octant_weights, __g
  * matrices and gather, read as about a third of the bytes (27 blocks a
  * vertex against 8 cells' 64 blocks of which each vertex owns 8) and without
  * the per-cell scratch. (Vertex-minor blocks, [(9 s + 3 j + i) count + v],
- * measured 2.2x slower on pocl: 243 streams at once.) On CPUs the blocks
+ * measured slower on pocl: 243 streams at once; docs/performance.md, "Block
+ * stencil layout".) On CPUs the blocks
  * are in the upper layout (kernels/fem/block_stencil.h): 14 stored a
  * vertex on a box, the other 13 read as their mirrors' transposes. */
 

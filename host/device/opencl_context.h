@@ -82,8 +82,8 @@ class OpenClContext {
   // zeros are written when the buffer is made, in queue order: its contents
   // never depend on what the memory held before, and a device whose memory
   // is the host's (pocl) maps its pages here rather than in the first kernel
-  // that writes them, inside a solve (twist res 32: the first linearization
-  // 105-159 ms against 17 ms for the next ones; docs/performance.md).
+  // that writes them, inside a solve, where that slowed the first
+  // linearization (docs/performance.md, "Buffers zero-filled when made").
   Buffer buffer(cl_mem_flags flags, size_t bytes, const void* host = nullptr);
   // The size of a buffer (0 for none).
   static size_t bytes(cl_mem buffer);
@@ -96,8 +96,8 @@ class OpenClContext {
   // Queues `kernel` over global_size work-items (rounded up to whole groups)
   // without waiting for it: the queue is in order, and reads, phase
   // boundaries (device/phase_profile.h) and finish() wait. A wait after each
-  // launch cost pocl about 0.1 ms: twist res 32 multigrid 12.7-13.1 s with
-  // it, 12.0-12.7 without (docs/performance.md).
+  // launch measured slower on pocl (docs/performance.md, "Kernel launches
+  // without a wait").
   void run(cl_kernel kernel, size_t global_size);
   // Seconds each kernel run() queued ran on the device (its profiling
   // event's start to end), by kernel name, since this context was made

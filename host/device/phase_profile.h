@@ -63,7 +63,8 @@ class PhaseProfiler {
 
   // A scope charged to the phase already charged (nested in a
   // preconditioner's setup or apply) neither waits nor reads the clock: the
-  // V-cycle opens one per level product, and a wait costs pocl about 0.1 ms.
+  // V-cycle opens one per level product, and each wait costs pocl time
+  // (docs/performance.md, "Kernel launches without a wait").
   void enter(Phase requested) {
     Phase phase = requested;
     if (!stack_.empty()) {

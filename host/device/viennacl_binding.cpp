@@ -20,11 +20,9 @@ void use_viennacl(long id) { viennacl::ocl::switch_context(id); }
 namespace {
 
 size_t element_wise_local_size(size_t size, size_t device_max) {
-  // The largest power of two at most size / 512, or ViennaCL's 1 below 16
-  // (measured on pocl, 2 AVX-512 cores, x += a y in double: 2,154 entries
-  // 5.6 us at 1 against 10-12 at 4-32; 20,000: 57 -> 21 us at 32; 107,811:
-  // 218 -> 70 us at 128; 300,000: 1,690 -> 194 us at 512; 10^6: 6,500 ->
-  // 710 us at 1,024).
+  // The largest power of two at most size / 512, or ViennaCL's 1 below 16:
+  // measured fastest on pocl across sizes (docs/performance.md, "ViennaCL
+  // work-group sizes").
   size_t local = 1;
   while (local * 2 <= size / 512 && local * 2 <= device_max && local < 4096) local *= 2;
   return local < 16 ? 1 : local;

@@ -18,9 +18,9 @@ void use_viennacl(long id);
 // context, for vectors of `size` entries of Real, on CPU devices; GPUs keep
 // ViennaCL's defaults. ViennaCL's CPU default is one work-item per group and
 // 128 work-items in all, each looping over a strided share of the vector,
-// which pocl runs as scalar code (a 10^6-entry axpy in 6.5 ms, a fifth of
-// the triad bandwidth); larger groups let pocl vectorize across work-items
-// (docs/performance.md). Values and their order are the
+// which pocl runs as scalar code, far below the triad bandwidth; larger
+// groups let pocl vectorize across work-items (docs/performance.md,
+// "ViennaCL work-group sizes"). Values and their order are the
 // same at any size: the kernels are element-wise. Inner products keep
 // ViennaCL's sizes. Returns the local size set (1: ViennaCL's default).
 template <typename Real>

@@ -171,11 +171,9 @@ struct MultigridOptions {
   // each), and its polynomial. Both automatic by default (0 and automatic;
   // resolved_smoothing below): degree 1 of the optimized fourth kind on
   // fine levels of fewer than 600,000 DOFs whose materials all have
-  // Poisson's ratio below 0.495, degree 2 of the first kind otherwise. The
-  // former measured 4-30% faster from 10^5 to 5.5 * 10^5 DOFs at nu = 0.49
-  // (twist res 32, 40 and 48, stretch res 32, 40 and 48), as fast at nu = 0.495,
-  // and 10-26% slower at nu = 0.499 and on the 969,111-DOF cylinder
-  // (docs/performance.md). Set one
+  // Poisson's ratio below 0.495, degree 2 of the first kind otherwise: the
+  // former measured faster below those bounds, slower above them
+  // (docs/performance.md, "Multigrid smoothing (degree and kind)"). Set one
   // of the two and the other, left automatic, takes the fixed default:
   // degree 2, the first kind.
   int smoother_degree = 0;
@@ -193,7 +191,7 @@ struct MultigridOptions {
   // says what of the fine level follows each linearization). 1: rebuild at
   // every linearization; 0 (default): 2 when each load step rebuilds
   // (quasistatic), 4 when the hierarchy is carried across time steps
-  // (dynamics), as measured (docs/performance.md).
+  // (dynamics), as measured (docs/performance.md, "Multigrid rebuilds (rebuild_every)").
   int rebuild_every = 0;
   double rebuild_growth = 2.0;
   // Whether each load step's first linearization rebuilds; unset: yes for
@@ -224,9 +222,8 @@ struct MultigridOptions {
   // V-cycle never waits for the host and a build reads only its smoothing
   // bounds. false (default): the level's exact LDL^T solve on the host, its
   // vector read back and written again in every V-cycle. On pocl the two
-  // ran equally fast (the device's set-up 35% shorter, Newton and CG counts
-  // up to 27% apart either way; docs/performance.md); not yet measured on a
-  // GPU.
+  // ran equally fast (docs/performance.md, "Coarse solve on the device"); not
+  // yet measured on a GPU.
   bool coarse_solve_on_device = false;
 };
 
@@ -460,8 +457,7 @@ struct SolverTuning {
   // while CG's vectors, the residual, the energy, the linearization and the
   // preconditioners stay double, so Newton converges to double's
   // tolerance; element_matrices and recompute keep double. Unset: float,
-  // as measured (the products' time halved for cached hex8, 1.5x faster for
-  // assembled; twist and stretch res 32 5-16% faster in all; docs/performance.md). Ignored in float.
+  // measured faster (docs/performance.md, "Mixed-precision products"). Ignored in float.
   // Reported in SolveResult::product_precision.
   std::optional<Precision> product_precision;
   HessianMode hessian = HessianMode::adaptive;

@@ -41,11 +41,10 @@
 
 /* (A p) at vertex v: its row of blocks in order (deterministic sums), the
  * padding's zero blocks too (stopping at the padding, a compare per block,
- * measured 20-45% slower on pocl on box lattices and tet boxes at 48^3).
- * With SNH_STENCIL_WIDTH (the host's stencil_width_define: the width
- * argument's value, known when the kernel is built) the loop's count is a
- * constant and unrolled: on pocl the multigrid's stencil passes of twist res
- * 32 took 0.87-0.91 s against 1.24-1.26 s. */
+ * measured slower on pocl). With SNH_STENCIL_WIDTH (the host's
+ * stencil_width_define: the width argument's value, known when the kernel
+ * is built) the loop's count is a constant and unrolled, measured faster on
+ * pocl (docs/performance.md, "Block stencil rows"). */
 /* s += B p for a block whose entry (i, j) is at b[i r + j c]: stored
  * column-major (r = tile, c = 3 tile), or read transposed (r = 3, c = 1). */
 SNH_FN void stencil_block_add(__global const matrix_real* b, const int r, const int c, const real p0, const real p1,

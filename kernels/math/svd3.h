@@ -32,11 +32,11 @@
  * moved from reconstruction 1.68e-15, orthogonality 2.51e-15 and singular
  * values 1.04e-15 (double; float 8.5e-7, 1.23e-6, 5.1e-7) to 2.09e-15,
  * 2.71e-15 and 1.2e-15 (float 1.05e-6, 1.37e-6, 5.6e-7), inside the test's
- * bounds; throughput's recompute product 12-16% faster in double, 8% in
- * float. Where a data-dependent loop costs nothing in vectorization (the
- * host, the lanes programs, GPUs in float), the sweeps stop once converged
- * with the same values (SNH_SVD_EARLY_EXIT below). A non-finite
- * F gives non-finite sigma. */
+ * bounds; the recompute product measured faster (docs/performance.md, "SVD
+ * rotations in closed form"). Where a data-dependent loop costs nothing in
+ * vectorization (the host, the lanes programs, GPUs in float), the sweeps
+ * stop once converged with the same values (SNH_SVD_EARLY_EXIT below). A
+ * non-finite F gives non-finite sigma. */
 #ifndef SNH_SVD3_H
 #define SNH_SVD3_H
 
@@ -162,10 +162,9 @@ SNH_FN snh_mask svd3_sweep_changes(mat3 b) {
  * kernels, which it vectorizes across work-items only without
  * data-dependent loops. A test costs less than a sweep but not nothing:
  * the first is before the second sweep in float and before the fourth in
- * double (throughput's hex8 linearization at 48^3 on pocl: 57 ms without
- * the stop, 57-60 with tests before every sweep or every one from the
- * second, 43-46 before the fourth and fifth only). Double on GPUs is
- * not yet measured (docs/performance.md). */
+ * double; tests before earlier sweeps measured no faster than no test
+ * (docs/performance.md, "SVD early exit"). Double on GPUs is not yet
+ * measured. */
 #ifndef SNH_SVD_EARLY_EXIT
 #if SNH_LANES > 1 || !SNH_IS_OPENCL || (SNH_GPU && !SNH_DOUBLE)
 #define SNH_SVD_EARLY_EXIT 1

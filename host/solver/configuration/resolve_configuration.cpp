@@ -66,8 +66,8 @@ void resolve_preconditioner(Resolution& r) {
   if (r.given.preconditioner != Preconditioner::automatic) {
     r.add("preconditioner", to_string(o.preconditioner), "given");
   } else if (r.given.contact.self) {
-    // Multigrid took 2.3 times fewer CG but 1.5-2 times the time with
-    // self-contact (elbow_150; docs/performance.md).
+    // With self-contact multigrid takes fewer CG iterations but measured slower
+    // (docs/performance.md, "Default preconditioner with self-contact").
     o.preconditioner = Preconditioner::block_jacobi;
     r.add("preconditioner", to_string(o.preconditioner), "self-contact is on: block-Jacobi measured faster");
   } else {

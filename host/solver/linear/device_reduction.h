@@ -4,9 +4,9 @@
 // same value): deterministic, accumulated in double, and only the totals
 // cross to the host, a few bytes whatever the size. Several totals queued
 // into slots are read together (queue_* then read_totals): the energy's
-// sums and minimum are one read. Measured on an H100 at
-// 969,111 DOF: reading whole vectors and per-element energies back for the
-// Newton loop's norms, dots and energies was 3.8 of 16.4 s (docs/performance.md).
+// sums and minimum are one read. Reading whole vectors and per-element
+// energies back instead took a large share of a solve (docs/performance.md,
+// "Device reductions").
 // Without fp64 on the device (a float-only device) every entry is read back
 // and summed on the host, as before. Internal to the library.
 #pragma once

@@ -24,11 +24,11 @@ namespace snh::solver {
 // kernel reads transposed, so that a vertex's blocks come from its own
 // nodes' columns, contiguous (exactly block (a, b): element matrices and
 // the multigrid's Galerkin cell matrices are stored exactly symmetric;
-// twist res 32 block-Jacobi's
-// assemblies 1.56 -> 1.15 s, against block (a, b) read across the columns
-// of every node b); between part_offsets[width v + s] and the next, in
-// increasing element order (deterministic sums, exactly transposed blocks
-// (v, n) and (n, v) from symmetric element matrices).
+// assembled faster than block (a, b) read across the columns of every node
+// b: docs/performance.md, "Block stencil layout"); between
+// part_offsets[width v + s] and the next, in increasing element order
+// (deterministic sums, exactly transposed blocks (v, n) and (n, v) from
+// symmetric element matrices).
 //
 // The upper layout (upper_stencil_tables, lower > 0): per vertex v its
 // blocks against itself and the neighbours after it (n > v), `width` of
@@ -55,9 +55,9 @@ StencilTables stencil_tables(const std::vector<int>& elements, size_t vertex_cou
 
 // The same operator in the upper layout (above), for per-vertex blocks (tile
 // 1, CPUs: the assembled variant and the multigrid's levels): its parts
-// list those of the full layout's blocks it keeps. On pocl, twist res 32
-// with multigrid: the V-cycle's stencil passes 0.94-1.12 ->
-// 0.83-0.86 s, the assemblies 0.19 -> 0.13 s.
+// list those of the full layout's blocks it keeps. On pocl its stencil passes
+// and assemblies measured faster than the full layout's (docs/performance.md,
+// "Block stencil layout").
 StencilTables upper_stencil_tables(const StencilTables& full, size_t vertex_count);
 
 // The tables in the layout for blocks in tiles of `tile` vertices: the
@@ -82,7 +82,8 @@ std::vector<int> tiled_neighbours(const StencilTables& t, size_t vertex_count, s
 
 // The build that makes a stencil's width a constant of the kernels
 // that read it (SNH_STENCIL_WIDTH: their loop over a vertex's blocks
-// unrolled), with the per-vertex blocks (tile 1, CPUs; measured there). The
+// unrolled), with the per-vertex blocks (tile 1, CPUs; measured faster there:
+// docs/performance.md, "Block stencil rows"). The
 // tiled layout (GPUs) keeps the width an argument: `config` unchanged.
 inline device::KernelConfig stencil_build(const device::KernelConfig& config, int width, size_t tile, int lower = 0) {
   return tile == 1 && width > 0 ? config.with_stencil(width, lower) : config;

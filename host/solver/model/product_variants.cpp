@@ -54,7 +54,8 @@ void ProductVariants<Real>::set_point_lanes(int material_lanes) {
   // cache value-major per element: one vector load per value); tet4 in
   // double keeps the scalar kernel, which pocl vectorizes across
   // work-items: the lanes version, gathering each element's 30 cached
-  // values into 8-wide vectors, measured 1.8x slower (docs/performance.md).
+  // values into 8-wide vectors, measured slower (docs/performance.md,
+  // "Cached products of tet4 in double").
   cached_lanes_ = data_.point_lanes && (sizeof(Real) == sizeof(float) || data_.nodes == 8);
   product_cached_k_ = cached_lanes_ ? data_.point_kernel("snh_element_product_cached")
                                     : data_.cl.kernel("fem.cl", data_.config, "snh_element_product_cached");
@@ -110,8 +111,8 @@ void ProductVariants<Real>::prepare_float_products() {
 // The mixed product reads p and writes its results in double, so it takes
 // lanes where the double cached product does: hex8 (value-major cache), not
 // tet4, whose lanes gather 8 elements' double p into vectors (measured
-// slower than the scalar kernel, as in double: `throughput --element tet4
-// --size 48 --variant cached-float-products`, docs/performance.md).
+// slower than the scalar kernel, as in double: docs/performance.md, "Cached
+// products of tet4 in double").
 template <typename Real>
 bool ProductVariants<Real>::float_product_lanes() const {
   return data_.point_lanes && data_.nodes == 8;

@@ -24,17 +24,14 @@ using device::KernelArgs;
 constexpr int kCellMatrix = 24 * 24;
 // Power iterations for lambda_max(D^-1 A): from the fixed start, and warm
 // from the last estimate, whose operator changed by a Newton step or two.
-// Warm 2 against 4 (same machine, alternating): twist res 32
-// 3.79 -> 3.64 s (176 -> 170 CG), at nu = 0.499 7.76 -> 7.21 s (304 -> 291),
-// drop_block (a current fine level, re-estimated at every linearization)
-// 1.30 -> 1.04 s with the same Newton and CG counts.
+// Warm starts take 2, measured faster than 4 (docs/performance.md, "Multigrid
+// power iterations (warm 2)").
 constexpr int kPowerIterations = 10, kWarmPowerIterations = 2;
 // The coarsest level's solve on the device: first-kind Chebyshev of degree
 // 8 on [1.1 lambda / 60, 1.1 lambda] (lambda its lambda_max(D^-1 A)
-// estimate). Against the factor's exact solve, twist and stretch res 10
-// (648-DOF coarsest levels): 26 / 141 and 83 / 743 Newton / CG against
-// 26 / 134 and 87 / 741; degree 4 on [.., / 10] 29 / 188 twist, 12 on
-// [.., / 100] 28 / 158 (docs/performance.md).
+// estimate), chosen by Newton and CG counts against the factor's exact
+// solve and other degrees and intervals (docs/performance.md, "Coarse solve
+// on the device").
 constexpr int kCoarseDegree = 8;
 constexpr double kUpperBound = 1.1, kCoarseSpread = 60.0;
 
@@ -609,10 +606,9 @@ void Levels<Real, C>::update_fine_bound() {
   if (fine_built_) return;
   // Barrier self-contact: pairs come within dhat and leave between builds,
   // each with a diagonal block that can outweigh the elastic one by orders
-  // of magnitude, so the fine smoother takes this linearization's blocks.
-  // Against the build's: the 4^3 squash to 5% (dynamics, reuse over 4
-  // linearizations) 1,194 Newton / 7,277 CG -> 758 / 1,251, elbow_150
-  // 1,268 / 39,597 -> 1,110 / 25,222 (docs/performance.md).
+  // of magnitude, so the fine smoother takes this linearization's blocks:
+  // fewer Newton and CG iterations than with the build's (docs/performance.md,
+  // "Fine smoother with barrier self-contact").
   if (model_.self_barrier()) model_.setup_preconditioner();
   estimate_bounds(0, 1);
 }

@@ -17,7 +17,7 @@
 //   - Products on the built levels: each level's cell matrices assembled
 //     per vertex after each build, 3x3 blocks against the vertices sharing
 //     a cell (snh_stencil_assemble: a third of the cell matrices' bytes and
-//     no gather pass; twist res 32 8.27 -> 7.65 s).
+//     no gather pass; docs/performance.md, "Multigrid levels as block stencils").
 //   - Smoother: Chebyshev of degree k over block-Jacobi (solver/linear/chebyshev.h:
 //     first kind on [0.1, 1.1] * lambda_max(D^-1 A), or Lottes' fourth kind
 //     on [0, 1.1] * lambda_max; lambda_max by power iteration per level and
@@ -25,7 +25,8 @@
 //     estimate); the same before and after the coarse correction, so the
 //     V-cycle is symmetric. On the assembled levels one kernel per degree
 //     does the product, the residual, the block-Jacobi solve and both
-//     updates (snh_chebyshev_step; twist res 32: 2.41 -> 1.77 s applying).
+//     updates (snh_chebyshev_step; docs/performance.md, "One Chebyshev kernel
+//     per degree").
 //   - Coarsest level: assembled and factored (sparse LDL^T, Eigen) on the
 //     host; where that factor is not positive (a true Hessian that is not
 //     positive definite there) the coarsest level is smoothed instead. Or
@@ -41,8 +42,8 @@
 //   - Float cycle (MultigridOptions::float_cycle; double solves with a
 //     built fine level): the V-cycle's vectors, stencils, inverse blocks,
 //     masks and transfer weights in float, the builds above in double, the
-//     residual narrowed at entry and the correction widened at exit (twist
-//     res 32: applying 1.10-1.21 -> 0.80 s, the same 170 CG).
+//     residual narrowed at entry and the correction widened at exit (faster
+//     to apply, the same CG count: docs/performance.md, "V-cycle in float").
 // Constrained DOFs stay exactly zero on every level (masked transfers).
 #pragma once
 
@@ -57,10 +58,8 @@ namespace snh::solver {
 
 // MultigridOptions::rebuild_every with 0 resolved: 2 when each load step
 // rebuilds (quasistatic), else 4 (dynamics, whose time steps carry the
-// hierarchy). Measured with the fine level built or current alike: twist res
-// 32 17.7-14.3 s against 20.0-16.7 s with 4, the arm at 60,849 DOFs 15.7
-// against 17.2 s; a 16^3 drop_block 14.1 s against 12.7 s (104 builds
-// against 58, the same CG count).
+// hierarchy), each measured the faster there with the fine level built or
+// current alike (docs/performance.md, "Multigrid rebuilds (rebuild_every)").
 inline int resolved_rebuild_every(const MultigridOptions& options) {
   if (options.rebuild_every > 0) return options.rebuild_every;
   return options.rebuild_each_load_step.value_or(true) ? 2 : 4;

@@ -105,8 +105,8 @@ class DeviceProblem {
     // Obstacle contact: a vertex entering or leaving a layer gains or loses a
     // contact block (k n n^T, 10^4 times the elastic diagonal in a squash)
     // that a reused hierarchy and its fine smoother's blocks lack, and CG
-    // with that V-cycle crawled (measured: a squash that block-Jacobi solves
-    // in 6 s did not finish in 300 s).
+    // with that V-cycle crawled (docs/performance.md, "Multigrid rebuilds on
+    // obstacle contact").
     uint64_t contacts = 0;
     if (multigrid_ && model_.terms().obstacles > 0) {
       contacts = model_.contact_set_signature();
