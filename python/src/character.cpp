@@ -82,9 +82,7 @@ snh::SkinWeights make_skin_weights(py::handle offset, py::handle joint, py::hand
   return w;
 }
 
-}  // namespace
-
-void bind_character(py::module_& m) {
+void bind_read_options(py::module_& m) {
   py::enum_<snh::WeightPolicy>(m, "WeightPolicy",
                                "What read_character does with skin weights that do not sum to 1: normalize divides "
                                "them by their sum (one warning), strict refuses the file naming the vertex.")
@@ -107,7 +105,9 @@ void bind_character(py::module_& m) {
                      "Sums within this of 1 are taken as they are.")
       .def_readwrite("weld_distance", &snh::CharacterReadOptions::weld_distance,
                      "Positions closer than this are welded (0: 1e-9 of the bounding box's diagonal).");
+}
 
+void bind_skeleton(py::module_& m) {
   py::class_<snh::Joint>(m, "Joint", "A joint of the skeleton: a node that skins vertices (read-only).")
       .def_readonly("name", &snh::Joint::name)
       .def_readonly("parent", &snh::Joint::parent, "The nearest ancestor that is a joint, or -1.")
@@ -130,7 +130,9 @@ void bind_character(py::module_& m) {
       .def_property_readonly(
           "weight", [](const snh::SkinWeights& w) { return value_array(w.weight); }, "float64 (k,).")
       .def_property_readonly("vertex_count", &snh::SkinWeights::vertex_count);
+}
 
+void bind_clip_and_character(py::module_& m) {
   py::class_<snh::CharacterClip>(m, "CharacterClip", "A clip sampled at fps (read-only).")
       .def_readonly("name", &snh::CharacterClip::name)
       .def_readonly("index", &snh::CharacterClip::index, "Among the file's clips.")
@@ -171,7 +173,9 @@ void bind_character(py::module_& m) {
         return "Character('" + c.file + "', " + std::to_string(c.surface.vertex_count()) + " vertices, " +
                std::to_string(c.joints.size()) + " joints)";
       });
+}
 
+void bind_reading_and_skinning(py::module_& m) {
   m.def(
       "read_character",
       [](const std::string& path, std::optional<snh::CharacterReadOptions> options) {
@@ -191,7 +195,9 @@ void bind_character(py::module_& m) {
       },
       py::arg("rest"), py::arg("weights"), py::arg("matrices"),
       "sum_j w_j M_j x per vertex of rest (n, 3) with one matrix (joints, 4, 4) per joint: (n, 3).");
+}
 
+void bind_character_bones(py::module_& m) {
   py::class_<snh::CharacterBoneOptions>(m, "CharacterBoneOptions", "How bones are made from the skeleton.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::CharacterBoneOptions>(kw); }),
            "Keyword arguments set the fields of the same names.")
@@ -224,7 +230,9 @@ void bind_character(py::module_& m) {
       },
       py::arg("character"), py::arg("options") = py::none(),
       "A capsule per kept joint's segment (joint to child, trimmed by joint_clearance) and its animation.");
+}
 
+void bind_character_rig(py::module_& m) {
   py::class_<snh::CharacterPrepareOptions>(m, "CharacterPrepareOptions", "How prepare_character rigs a character.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::CharacterPrepareOptions>(kw); }),
            "Keyword arguments set the fields of the same names.")
@@ -277,7 +285,9 @@ void bind_character(py::module_& m) {
       },
       py::arg("character"), py::arg("cell"), py::arg("bones") = py::none(), py::arg("voxelize") = py::none(),
       "The same with bone and voxelizer options alone (the other options' defaults).");
+}
 
+void bind_character_frames(py::module_& m) {
   py::class_<snh::SkinDeviation>(m, "SkinDeviation",
                                  "How far a frame's simulated surface is from the linear-blend-skinned one.")
       .def_readonly("max_distance", &snh::SkinDeviation::max_distance)
@@ -328,7 +338,9 @@ void bind_character(py::module_& m) {
       "Runs the clip's frames on a Simulation of rig.voxels.lattice with rig.constraints. on_frame(frame, lattice "
       "(n, 3), surface (k, 3), skinned (k, 3)) after each frame; returning False stops (None goes on); an "
       "exception raised in it propagates. Runs without the GIL. Returns CharacterFrames.");
+}
 
+void bind_outputs(py::module_& m) {
   m.def(
       "write_surface_ply",
       [](const std::string& path, const snh::TriangleSurface& s, py::handle x) {
@@ -375,6 +387,19 @@ void bind_character(py::module_& m) {
           py::arg("clip_frame"), py::arg("surface"),
           "A frame (numbered as in the clip) with the simulated surface (n, 3).")
       .def("finish", &snh::CharacterCacheSeries::finish, "Writes the files.");
+}
+
+}  // namespace
+
+void bind_character(py::module_& m) {
+  bind_read_options(m);
+  bind_skeleton(m);
+  bind_clip_and_character(m);
+  bind_reading_and_skinning(m);
+  bind_character_bones(m);
+  bind_character_rig(m);
+  bind_character_frames(m);
+  bind_outputs(m);
 }
 
 }  // namespace snh_python

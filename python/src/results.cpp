@@ -10,7 +10,9 @@
 
 namespace snh_python {
 
-void bind_results(py::module_& m) {
+namespace {
+
+void bind_device_info(py::module_& m) {
   py::class_<snh::DeviceInfo>(m, "DeviceInfo", "An OpenCL device.")
       .def_readonly("platform", &snh::DeviceInfo::platform, "Platform name.")
       .def_readonly("name", &snh::DeviceInfo::name, "Device name.")
@@ -20,7 +22,9 @@ void bind_results(py::module_& m) {
       .def_readonly("compute_units", &snh::DeviceInfo::compute_units, "Compute units.")
       .def_readonly("global_memory_bytes", &snh::DeviceInfo::global_memory_bytes, "Global memory in bytes.")
       .def("__repr__", [](const snh::DeviceInfo& d) { return "DeviceInfo('" + d.platform + " / " + d.name + "')"; });
+}
 
+void bind_resolved_configuration(py::module_& m) {
   py::class_<snh::ResolvedSetting>(m, "ResolvedSetting", "One resolved setting: its name, value and reason.")
       .def_readonly("name", &snh::ResolvedSetting::name, "The option's name (as in scene files).")
       .def_readonly("value", &snh::ResolvedSetting::value, "Its value as printed.")
@@ -48,7 +52,9 @@ void bind_results(py::module_& m) {
             return d;
           },
           "{name: (value, reason)} in order.");
+}
 
+void bind_status_enums(py::module_& m) {
   auto step_status = py::enum_<snh::StepStatus>(m, "StepStatus", "How a load or time step's Newton solve ended.")
                          .value("none", snh::StepStatus::none)
                          .value("converged", snh::StepStatus::converged)
@@ -83,6 +89,9 @@ void bind_results(py::module_& m) {
           .value("inverted_equilibrium_kept", snh::RecoveryAction::inverted_equilibrium_kept);
   recovery_action.attr("__str__") = py::cpp_function(
       [](snh::RecoveryAction a) { return std::string(snh::to_string(a)); }, py::is_method(recovery_action));
+}
+
+void bind_newton_records(py::module_& m) {
   py::class_<snh::Recovery>(m, "Recovery", "One recovery of a Newton iteration (read-only).")
       .def_readonly("action", &snh::Recovery::action)
       .def_readonly("factor", &snh::Recovery::factor, "extended_step: the step's factor.")
@@ -112,7 +121,9 @@ void bind_results(py::module_& m) {
         return "NewtonIteration(step=" + std::to_string(r.step) + ", iteration=" + std::to_string(r.iteration) +
                ", residual_norm=" + std::to_string(r.residual_norm) + ")";
       });
+}
 
+void bind_solve_profile(py::module_& m) {
   py::class_<snh::SolveProfile>(m, "SolveProfile", "Where a solve's time went, in seconds (read-only).")
       .def_readonly("linearization", &snh::SolveProfile::linearization)
       .def_readonly("products", &snh::SolveProfile::products)
@@ -130,7 +141,9 @@ void bind_results(py::module_& m) {
       .def_readonly("bytes_to_host", &snh::SolveProfile::bytes_to_host)
       .def_readonly("bytes_to_device", &snh::SolveProfile::bytes_to_device)
       .def_readonly("cg_iterations_past_convergence", &snh::SolveProfile::cg_iterations_past_convergence);
+}
 
+void bind_solve_results(py::module_& m) {
   py::class_<snh::StepResult>(m, "StepResult", "One load or time step's outcome (read-only).")
       .def_readonly("step", &snh::StepResult::step)
       .def_readonly("newton_iterations", &snh::StepResult::newton_iterations)
@@ -187,7 +200,9 @@ void bind_results(py::module_& m) {
                ", cancelled=" + (r.cancelled ? "True" : "False") + ", steps=" + std::to_string(r.steps.size()) +
                ", newton_iterations=" + std::to_string(r.history.size()) + ")";
       });
+}
 
+void bind_field_results(py::module_& m) {
   py::class_<snh::DeformationStatistics>(m, "DeformationStatistics", "Volume ratio and J range of positions.")
       .def_readonly("volume_ratio", &snh::DeformationStatistics::volume_ratio)
       .def_readonly("min_j", &snh::DeformationStatistics::min_j)
@@ -229,7 +244,9 @@ void bind_results(py::module_& m) {
       .def_readonly("torque", &snh::Reaction::torque)
       .def_readonly("about", &snh::Reaction::about, "The torque's reference point.")
       .def("__repr__", [](const snh::Reaction& r) { return "Reaction('" + r.name + "')"; });
+}
 
+void bind_frame_record(py::module_& m) {
   py::class_<snh::FrameRecord>(m, "FrameRecord", "One animation frame's solve (read-only).")
       .def_readonly("frame", &snh::FrameRecord::frame)
       .def_readonly("time", &snh::FrameRecord::time)
@@ -246,6 +263,19 @@ void bind_results(py::module_& m) {
       .def_readonly("warnings", &snh::FrameRecord::warnings, "Damage the frame shows (empty: a clean frame).")
       .def_readonly("reactions", &snh::FrameRecord::reactions, "Reaction per constraint set at the frame's end.")
       .def_readonly("history", &snh::FrameRecord::history);
+}
+
+}  // namespace
+
+void bind_results(py::module_& m) {
+  bind_device_info(m);
+  bind_resolved_configuration(m);
+  bind_status_enums(m);
+  bind_newton_records(m);
+  bind_solve_profile(m);
+  bind_solve_results(m);
+  bind_field_results(m);
+  bind_frame_record(m);
 }
 
 // After SolveOptions (simulation.cpp), which a SceneRun holds.

@@ -25,9 +25,7 @@ snh::Matrix4 to_matrix4(py::handle value) {
   return m;
 }
 
-}  // namespace
-
-void bind_rig(py::module_& m) {
+void bind_surfaces(py::module_& m) {
   py::class_<snh::TriangleSurface>(m, "TriangleSurface", "A triangle surface: positions (n, 3), triangles (t, 3).")
       .def(py::init([](py::handle positions, py::handle triangles) {
              snh::TriangleSurface s;
@@ -76,7 +74,9 @@ void bind_rig(py::module_& m) {
         "snh.Error (starting with name) unless closed and consistently oriented.");
   m.def("enclosed_volume", &snh::enclosed_volume, py::arg("surface"), "Volume by the divergence theorem.");
   m.def("surface_area", &snh::surface_area, py::arg("surface"), "Sum of the triangles' areas.");
+}
 
+void bind_voxelization(py::module_& m) {
   py::class_<snh::VoxelizeOptions>(m, "VoxelizeOptions", "Voxelizer settings.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::VoxelizeOptions>(kw); }))
       .def_readwrite("max_grid_cells", &snh::VoxelizeOptions::max_grid_cells, "Refuse larger grids.")
@@ -110,7 +110,9 @@ void bind_rig(py::module_& m) {
       },
       py::arg("surface"), py::arg("cell"), py::arg("options") = py::none(),
       "Voxelizes a closed surface into a hex8 lattice of cubes of side cell.");
+}
 
+void bind_embedding(py::module_& m) {
   py::class_<snh::Embedding>(m, "Embedding", "Each surface vertex's element and trilinear weights.")
       .def_property_readonly(
           "element", [](const snh::Embedding& e) { return copy_array(e.element, {py::ssize_t(e.element.size())}); },
@@ -130,7 +132,9 @@ void bind_rig(py::module_& m) {
       },
       py::arg("embedding"), py::arg("lattice"), py::arg("positions"),
       "Surface positions (k, 3) for lattice positions (n, 3).");
+}
 
+void bind_bones(py::module_& m) {
   py::class_<snh::Capsule>(m, "Capsule", "Points within radius of the segment a-b.")
       .def(py::init([](std::array<double, 3> a, std::array<double, 3> b, double radius) {
              return snh::Capsule{a, b, radius};
@@ -156,7 +160,9 @@ void bind_rig(py::module_& m) {
       },
       py::arg("matrix"), py::arg("center") = std::array<double, 3>{0, 0, 0},
       "A 4x4 affine bone matrix (last row 0 0 0 1) as a RigidTransform about center.");
+}
 
+void bind_animation(py::module_& m) {
   py::class_<snh::Animation>(m, "Animation", "Per frame, a 4x4 transform for each animated bone.")
       .def(py::init([](std::vector<std::string> bones, py::handle times, py::handle transforms) {
              snh::Animation a;
@@ -196,7 +202,9 @@ void bind_rig(py::module_& m) {
   m.def("parse_animation_csv", &snh::parse_animation_csv, py::arg("text"), py::arg("name") = "<string>");
   m.def(
       "identity_matrix4", []() { return matrix4_array(snh::identity_matrix4()); }, "The 4x4 identity.");
+}
 
+void bind_frame_driver(py::module_& m) {
   py::class_<snh::FrameOptions>(m, "FrameOptions", "Frame driver settings.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::FrameOptions>(kw); }))
       .def_readwrite("load_steps", &snh::FrameOptions::load_steps, "Load steps per frame.")
@@ -225,6 +233,17 @@ void bind_rig(py::module_& m) {
       py::arg("on_frame") = py::none(),
       "Runs every frame: each bone's matrix to its constraint set, a warm-started solve. "
       "on_frame(record, lattice (n, 3), surface (k, 3) or None) returning False stops. Returns FrameRecords.");
+}
+
+}  // namespace
+
+void bind_rig(py::module_& m) {
+  bind_surfaces(m);
+  bind_voxelization(m);
+  bind_embedding(m);
+  bind_bones(m);
+  bind_animation(m);
+  bind_frame_driver(m);
 }
 
 }  // namespace snh_python

@@ -116,9 +116,9 @@ void bind_solver_enums(py::module_& m) {
       .value("cylinder", snh::ObstacleType::cylinder);
 }
 
-void bind_simulation(py::module_& m) {
-  m.def("list_devices", &snh::list_devices, "Every OpenCL device on this machine (DeviceInfo list).");
+namespace {
 
+void bind_rigid_transform(py::module_& m) {
   py::class_<snh::RigidTransform>(m, "RigidTransform",
                                   "x = rotation (X - center) + center + translation; rotation a (3, 3) matrix.")
       .def(py::init([](py::object rotation, py::object translation, py::object center) {
@@ -160,7 +160,9 @@ void bind_simulation(py::module_& m) {
         return "RigidTransform(translation=(" + std::to_string(t.translation[0]) + ", " +
                std::to_string(t.translation[1]) + ", " + std::to_string(t.translation[2]) + "))";
       });
+}
 
+void bind_constraint_sets(py::module_& m) {
   py::class_<snh::ConstraintSet>(m, "ConstraintSet",
                                  "Vertices whose positions are prescribed: at rest, or moved by motion(t) -> "
                                  "RigidTransform at load parameter t in (0, 1], or placed by targets(t) -> (k, 3).")
@@ -187,7 +189,9 @@ void bind_simulation(py::module_& m) {
       .def("__repr__", [](const snh::ConstraintSet& s) {
         return "ConstraintSet('" + s.name + "', " + std::to_string(s.vertices.size()) + " vertices)";
       });
+}
 
+void bind_dynamics_options(py::module_& m) {
   py::class_<snh::DynamicsOptions>(m, "DynamicsOptions", "Implicit Euler time stepping.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::DynamicsOptions>(kw); }),
            "Keyword arguments set the fields (time_step, density, damping_mass, damping_stiffness, substeps).")
@@ -200,7 +204,9 @@ void bind_simulation(py::module_& m) {
           "damping_stiffness", [](const snh::DynamicsOptions& d) { return d.damping.stiffness; },
           [](snh::DynamicsOptions& d, double v) { d.damping.stiffness = v; }, "Rayleigh stiffness damping b, s.")
       .def_readwrite("substeps", &snh::DynamicsOptions::substeps, "Backward Euler steps per time step (>= 1).");
+}
 
+void bind_obstacles(py::module_& m) {
   py::class_<snh::Obstacle>(m, "Obstacle", "A kinematic plane, sphere or cylinder the body cannot enter.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::Obstacle>(kw); }),
            "Keyword arguments set the fields.")
@@ -253,7 +259,9 @@ void bind_simulation(py::module_& m) {
           },
           "Callable t -> RigidTransform, or None.")
       .def_readwrite("friction", &snh::Obstacle::friction, "Coulomb coefficient, or None for ContactOptions'.");
+}
 
+void bind_contact_options(py::module_& m) {
   py::class_<snh::ContactOptions>(m, "ContactOptions", "Penalty contact with obstacles and self-contact.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::ContactOptions>(kw); }),
            "Keyword arguments set the fields.")
@@ -263,7 +271,9 @@ void bind_simulation(py::module_& m) {
       .def_readwrite("self_stiffness", &snh::ContactOptions::self_stiffness, "0: stiffness.")
       .def_readwrite("friction", &snh::ContactOptions::friction, "Default Coulomb coefficient.")
       .def_readwrite("friction_slip", &snh::ContactOptions::friction_slip, "Stick-slip length; 0: automatic.");
+}
 
+void bind_solve_options(py::module_& m) {
   py::class_<snh::SolveOptions>(m, "SolveOptions",
                                 "What a solve does. Enum fields also take their names, e.g. precision='float'.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::SolveOptions>(kw); }),
@@ -329,7 +339,9 @@ void bind_simulation(py::module_& m) {
           "initial_velocities", [](const snh::SolveOptions& o) { return xyz_or_none(o.initial_velocities); },
           [](snh::SolveOptions& o, py::handle v) { o.initial_velocities = optional_xyz(v, "initial_velocities"); },
           "Starting velocities (n, 3) with dynamics, or None for zero.");
+}
 
+void bind_simulation_class(py::module_& m) {
   py::class_<snh::Simulation>(m, "Simulation",
                               "A simulation driven frame by frame: built once (kernels compiled, mesh uploaded), "
                               "then solved from its current state after new targets and loads.")
@@ -446,7 +458,9 @@ void bind_simulation(py::module_& m) {
           py::arg("state"),
           "Replaces the state by a checkpoint of a simulation built from the same mesh, materials, constraint "
           "sets and options; the solves that follow give bitwise the results the original gave.");
+}
 
+void bind_checkpoints(py::module_& m) {
   py::class_<snh::SimulationState>(m, "SimulationState",
                                    "A simulation's full state (Simulation.checkpoint), to restore or to write with "
                                    "write_checkpoint.")
@@ -460,7 +474,9 @@ void bind_simulation(py::module_& m) {
         "Writes a SimulationState to a versioned binary file (doubles bit for bit).");
   m.def("read_checkpoint", &snh::read_checkpoint, py::arg("path"),
         "Reads a checkpoint file; snh.Error names the file and the item for a damaged one.");
+}
 
+void bind_field_functions(py::module_& m) {
   m.def(
       "deformation_statistics",
       [](const snh::Mesh& mesh, py::handle x) {
@@ -480,6 +496,21 @@ void bind_simulation(py::module_& m) {
                         {static_cast<py::ssize_t>(mesh.vertex_count()), 3});
       },
       py::arg("mesh"), py::arg("materials"), py::arg("positions"), "Elastic nodal forces -dE/dx, (n, 3).");
+}
+
+}  // namespace
+
+void bind_simulation(py::module_& m) {
+  m.def("list_devices", &snh::list_devices, "Every OpenCL device on this machine (DeviceInfo list).");
+  bind_rigid_transform(m);
+  bind_constraint_sets(m);
+  bind_dynamics_options(m);
+  bind_obstacles(m);
+  bind_contact_options(m);
+  bind_solve_options(m);
+  bind_simulation_class(m);
+  bind_checkpoints(m);
+  bind_field_functions(m);
 }
 
 }  // namespace snh_python
