@@ -266,38 +266,29 @@ bool has_extension(const std::string& path, const std::string& ext) {
 
 bool is_fbx(const std::string& path) { return has_extension(path, ".fbx"); }
 
-}  // namespace
-
-Character read_character(const std::string& path, const CharacterReadOptions& options) {
-  if (is_fbx(path)) {
-    Character c = detail::read_fbx_character(path, options);
-    finish_character(c, options);
-    return c;
-  }
-  if (!(options.fps > 0.0) || !std::isfinite(options.fps)) fail(path, "fps must be > 0, got " + number(options.fps));
-  if (options.first_frame < 0) fail(path, "the first frame must be >= 0, got " + std::to_string(options.first_frame));
-  // What assimp 5.2 would only assert on (an abort): checked first.
-  if (has_extension(path, ".dae")) detail::check_collada_for_assimp(path);
-  check_gltf_for_assimp(path);
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
-  if (!scene || !scene->mRootNode)
-    fail(path, std::string("cannot read the file (assimp: ") + importer.GetErrorString() + ")");
-
-  Character c;
-  c.file = path;
-  // Nodes by name, and each node's parent chain.
+// A scene's node hierarchy (read_hierarchy).
+struct Hierarchy {
   std::map<std::string, const aiNode*> nodes;
   std::vector<const aiNode*> order;  // depth first, parents first
+};
+
+// Nodes by name, and each node's parent chain.
+Hierarchy read_hierarchy(const aiScene* scene) {
+  Hierarchy h;
   const std::function<void(const aiNode*)> visit = [&](const aiNode* n) {
-    nodes.emplace(n->mName.C_Str(), n);
-    order.push_back(n);
+    h.nodes.emplace(n->mName.C_Str(), n);
+    h.order.push_back(n);
     for (unsigned i = 0; i < n->mNumChildren; ++i) visit(n->mChildren[i]);
   };
   visit(scene->mRootNode);
+  return h;
+}
 
-  // Joints: the nodes the skinned meshes' bones name, with their offset
-  // matrices (one per joint: meshes that share a joint must agree).
+// Joints: the nodes the skinned meshes' bones name, with their offset
+// matrices (one per joint: meshes that share a joint must agree). Fills
+// c.joints; gives each joint's index by name.
+std::map<std::string, int> read_joints(const std::string& path, const aiScene* scene, const Hierarchy& h,
+                                       Character& c) {
   std::map<std::string, Matrix4> offsets;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
@@ -318,7 +309,7 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
   // hierarchy lacks (held at their bind pose, parentless).
   std::vector<const aiNode*> joint_nodes;
   std::set<std::string> listed;
-  for (const aiNode* n : order)
+  for (const aiNode* n : h.order)
     if (offsets.count(n->mName.C_Str()) && listed.insert(n->mName.C_Str()).second) joint_nodes.push_back(n);
   std::vector<std::string> missing;
   for (const auto& [name, offset] : offsets)
@@ -355,8 +346,13 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
                          " joint(s) named by skin weights have no node in the hierarchy (" + names +
                          "); held at their bind pose");
   }
+  return joint_of;
+}
 
-  // The skin: every mesh with bones, its vertices as given.
+// The skin: every mesh with bones, its vertices as given. Fills c.surface
+// and c.weights (raw, as the file gives them).
+void read_skin(const std::string& path, const aiScene* scene, const std::map<std::string, int>& joint_of,
+               Character& c) {
   std::vector<std::vector<std::pair<int32_t, double>>> rows;
   std::vector<detail::ColladaCornerMesh> corner_meshes;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
@@ -415,9 +411,11 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
     }
     c.weights.offset.push_back(static_cast<int32_t>(c.weights.joint.size()));
   }
-  finish_character(c, options);
+}
 
-  // The clip.
+// The clip: fills c.clip_names and gives the index options select, or -1
+// for none (refused where options.require_clip).
+int select_clip(const std::string& path, const aiScene* scene, const CharacterReadOptions& options, Character& c) {
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) c.clip_names.push_back(scene->mAnimations[a]->mName.C_Str());
   const auto listing = [&]() {
     std::string s;
@@ -437,13 +435,22 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
   } else if (!c.clip_names.empty()) {
     clip = 0;
   }
-  if (clip < 0) {
-    if (options.require_clip) fail(path, "no animation (an animation clip is needed)");
-    return c;
-  }
-  const aiAnimation* anim = scene->mAnimations[clip];
-  const double ticks_per_second = anim->mTicksPerSecond > 0.0 ? anim->mTicksPerSecond : 25.0;
-  const std::string clip_name = "clip '" + c.clip_names[clip] + "'";
+  if (clip < 0 && options.require_clip) fail(path, "no animation (an animation clip is needed)");
+  return clip;
+}
+
+// What a clip's frames are sampled from.
+struct ClipAnimation {
+  std::string name;  // "clip '<name>'", for messages
+  double ticks_per_second = 25.0;
+  std::map<std::string, const aiNodeAnim*> channels;  // by node name
+  std::set<std::pair<std::string, int>> step;         // gltf_step_channels
+  Matrix4 to_skin{};                                  // skin_space
+};
+
+// The clip's channels by node name, their keys checked.
+std::map<std::string, const aiNodeAnim*> read_channels(const std::string& path, const aiAnimation* anim,
+                                                       const std::string& clip_name, const Hierarchy& h) {
   std::map<std::string, const aiNodeAnim*> channels;
   for (unsigned ci = 0; ci < anim->mNumChannels; ++ci) {
     const aiNodeAnim* ch = anim->mChannels[ci];
@@ -471,10 +478,90 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
           !std::isfinite(k.mValue.z))
         bad("scale", i);
     }
-    if (!nodes.count(node)) fail(path, clip_name + ": animates node '" + node + "', which the scene does not have");
+    if (!h.nodes.count(node)) fail(path, clip_name + ": animates node '" + node + "', which the scene does not have");
     channels[node] = ch;
   }
-  const double duration = anim->mDuration / ticks_per_second;
+  return channels;
+}
+
+// The skin's own space. Where every joint's skinning matrix in the
+// scene's static (unanimated) pose is one and the same M (a bind pose
+// placed by the mesh's node, as Collada exporters write it), the frames
+// are M^-1 S(t): the bind pose is the identity and the surface stays in the
+// coordinates the file, and every importer, gives its vertices.
+Matrix4 skin_space(const Hierarchy& h, const std::vector<Joint>& joints) {
+  std::map<const aiNode*, Matrix4> world;
+  Matrix4 to_skin = compose_trs({0, 0, 0}, {1, 0, 0, 0}, {1, 1, 1});
+  for (const aiNode* n : h.order) {
+    const Matrix4 local = to_matrix4(n->mTransformation);
+    world[n] = n->mParent ? multiply_matrix4(world.at(n->mParent), local) : local;
+  }
+  std::vector<Matrix4> bind;
+  for (const Joint& j : joints)
+    if (h.nodes.count(j.name)) bind.push_back(multiply_matrix4(world.at(h.nodes.at(j.name)), j.inverse_bind));
+  bool same = !bind.empty(), identity = true;
+  double scale = 1.0;
+  for (double v : bind.front()) scale = std::max(scale, std::abs(v));
+  for (const Matrix4& m : bind)
+    for (int k = 0; k < 16; ++k) {
+      if (std::abs(m[k] - bind.front()[k]) > 1e-5 * scale) same = false;
+      if (std::abs(m[k] - to_skin[k]) > 1e-9 * scale) identity = false;
+    }
+  if (same && !identity && std::abs(determinant3(bind.front())) > 1e-12 * scale * scale * scale)
+    to_skin = inverse_matrix4(bind.front());
+  return to_skin;
+}
+
+// The skinning matrices of frames options.first_frame..last, into c.clip.
+void sample_frames(const std::string& path, const CharacterReadOptions& options, int last, const Hierarchy& h,
+                   const ClipAnimation& clip, Character& c) {
+  std::map<const aiNode*, Matrix4> world;
+  for (int f = options.first_frame; f <= last; ++f) {
+    const double seconds = f / options.fps, ticks = seconds * clip.ticks_per_second;
+    world.clear();
+    for (const aiNode* n : h.order) {
+      Matrix4 local = to_matrix4(n->mTransformation);
+      const auto it = clip.channels.find(n->mName.C_Str());
+      if (it != clip.channels.end()) {
+        const aiNodeAnim* ch = it->second;
+        std::array<double, 3> t, s;
+        std::array<double, 4> q;
+        decompose(n->mTransformation, t, q, s);  // a channel without keys of a kind keeps the node's own
+        const std::string name = n->mName.C_Str();
+        local =
+            compose_trs(sample_vector(ch->mPositionKeys, ch->mNumPositionKeys, ticks, t, clip.step.count({name, 0})),
+                        sample_rotation(ch->mRotationKeys, ch->mNumRotationKeys, ticks, q, clip.step.count({name, 1})),
+                        sample_vector(ch->mScalingKeys, ch->mNumScalingKeys, ticks, s, clip.step.count({name, 2})));
+      }
+      world[n] = n->mParent ? multiply_matrix4(world.at(n->mParent), local) : local;
+    }
+    std::vector<Matrix4> skinning;
+    for (const Joint& j : c.joints) {
+      const auto node = h.nodes.find(j.name);
+      if (node == h.nodes.end()) {  // not in the hierarchy: held at the bind pose
+        skinning.push_back(compose_trs({0, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}));
+        continue;
+      }
+      const Matrix4 m = multiply_matrix4(clip.to_skin, multiply_matrix4(world.at(node->second), j.inverse_bind));
+      if (!finite(m))
+        fail(path, clip.name + ": joint '" + j.name + "' at frame " + std::to_string(f) + " is not finite");
+      skinning.push_back(m);
+    }
+    c.clip.times.push_back(seconds);
+    c.clip.skinning.push_back(std::move(skinning));
+  }
+}
+
+// Animation `clip`: its channels and frame range checked, then sampled.
+void read_clip(const std::string& path, const aiScene* scene, const CharacterReadOptions& options, const Hierarchy& h,
+               int clip, Character& c) {
+  const aiAnimation* anim = scene->mAnimations[clip];
+  ClipAnimation animation;
+  animation.ticks_per_second = anim->mTicksPerSecond > 0.0 ? anim->mTicksPerSecond : 25.0;
+  animation.name = "clip '" + c.clip_names[clip] + "'";
+  const std::string& clip_name = animation.name;
+  animation.channels = read_channels(path, anim, clip_name, h);
+  const double duration = anim->mDuration / animation.ticks_per_second;
   if (!std::isfinite(duration) || duration < 0.0) fail(path, clip_name + ": its duration is not finite");
   // Key times are often float32 (glTF): 20 / 24 s stored as 0.83333331 is
   // frame 20 all the same.
@@ -491,67 +578,38 @@ Character read_character(const std::string& path, const CharacterReadOptions& op
   c.clip.fps = options.fps;
   c.clip.first_frame = options.first_frame;
   // The clip index is the glTF animation's: assimp 5.2 imports them in order.
-  const auto step =
-      scene->mNumAnimations > 0 ? gltf_step_channels(path, clip) : std::set<std::pair<std::string, int>>{};
-  std::map<const aiNode*, Matrix4> world;
-  // The skin's own space. Where every joint's skinning matrix in the
-  // scene's static (unanimated) pose is one and the same M (a bind pose
-  // placed by the mesh's node, as Collada exporters write it), the frames
-  // are M^-1 S(t): the bind pose is the identity and the surface stays in the
-  // coordinates the file, and every importer, gives its vertices.
-  Matrix4 to_skin = compose_trs({0, 0, 0}, {1, 0, 0, 0}, {1, 1, 1});
-  {
-    for (const aiNode* n : order) {
-      const Matrix4 local = to_matrix4(n->mTransformation);
-      world[n] = n->mParent ? multiply_matrix4(world.at(n->mParent), local) : local;
-    }
-    std::vector<Matrix4> bind;
-    for (const Joint& j : c.joints)
-      if (nodes.count(j.name)) bind.push_back(multiply_matrix4(world.at(nodes.at(j.name)), j.inverse_bind));
-    bool same = !bind.empty(), identity = true;
-    double scale = 1.0;
-    for (double v : bind.front()) scale = std::max(scale, std::abs(v));
-    for (const Matrix4& m : bind)
-      for (int k = 0; k < 16; ++k) {
-        if (std::abs(m[k] - bind.front()[k]) > 1e-5 * scale) same = false;
-        if (std::abs(m[k] - to_skin[k]) > 1e-9 * scale) identity = false;
-      }
-    if (same && !identity && std::abs(determinant3(bind.front())) > 1e-12 * scale * scale * scale)
-      to_skin = inverse_matrix4(bind.front());
+  animation.step = scene->mNumAnimations > 0 ? gltf_step_channels(path, clip) : std::set<std::pair<std::string, int>>{};
+  animation.to_skin = skin_space(h, c.joints);
+  sample_frames(path, options, last, h, animation, c);
+}
+
+}  // namespace
+
+Character read_character(const std::string& path, const CharacterReadOptions& options) {
+  if (is_fbx(path)) {
+    Character c = detail::read_fbx_character(path, options);
+    finish_character(c, options);
+    return c;
   }
-  for (int f = options.first_frame; f <= last; ++f) {
-    const double seconds = f / options.fps, ticks = seconds * ticks_per_second;
-    world.clear();
-    for (const aiNode* n : order) {
-      Matrix4 local = to_matrix4(n->mTransformation);
-      const auto it = channels.find(n->mName.C_Str());
-      if (it != channels.end()) {
-        const aiNodeAnim* ch = it->second;
-        std::array<double, 3> t, s;
-        std::array<double, 4> q;
-        decompose(n->mTransformation, t, q, s);  // a channel without keys of a kind keeps the node's own
-        const std::string name = n->mName.C_Str();
-        local = compose_trs(sample_vector(ch->mPositionKeys, ch->mNumPositionKeys, ticks, t, step.count({name, 0})),
-                            sample_rotation(ch->mRotationKeys, ch->mNumRotationKeys, ticks, q, step.count({name, 1})),
-                            sample_vector(ch->mScalingKeys, ch->mNumScalingKeys, ticks, s, step.count({name, 2})));
-      }
-      world[n] = n->mParent ? multiply_matrix4(world.at(n->mParent), local) : local;
-    }
-    std::vector<Matrix4> skinning;
-    for (const Joint& j : c.joints) {
-      const auto node = nodes.find(j.name);
-      if (node == nodes.end()) {  // not in the hierarchy: held at the bind pose
-        skinning.push_back(compose_trs({0, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}));
-        continue;
-      }
-      const Matrix4 m = multiply_matrix4(to_skin, multiply_matrix4(world.at(node->second), j.inverse_bind));
-      if (!finite(m))
-        fail(path, clip_name + ": joint '" + j.name + "' at frame " + std::to_string(f) + " is not finite");
-      skinning.push_back(m);
-    }
-    c.clip.times.push_back(seconds);
-    c.clip.skinning.push_back(std::move(skinning));
-  }
+  if (!(options.fps > 0.0) || !std::isfinite(options.fps)) fail(path, "fps must be > 0, got " + number(options.fps));
+  if (options.first_frame < 0) fail(path, "the first frame must be >= 0, got " + std::to_string(options.first_frame));
+  // What assimp 5.2 would only assert on (an abort): checked first.
+  if (has_extension(path, ".dae")) detail::check_collada_for_assimp(path);
+  check_gltf_for_assimp(path);
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+  if (!scene || !scene->mRootNode)
+    fail(path, std::string("cannot read the file (assimp: ") + importer.GetErrorString() + ")");
+
+  Character c;
+  c.file = path;
+  const Hierarchy h = read_hierarchy(scene);
+  const std::map<std::string, int> joint_of = read_joints(path, scene, h, c);
+  read_skin(path, scene, joint_of, c);
+  finish_character(c, options);
+  const int clip = select_clip(path, scene, options, c);
+  if (clip < 0) return c;
+  read_clip(path, scene, options, h, clip, c);
   return c;
 }
 

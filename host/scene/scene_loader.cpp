@@ -342,9 +342,8 @@ void resolve_scene_pieces(const Reader& r, const json& doc, SceneFile& file) {
   file.materials.element_material = std::move(element_material);
 }
 
-}  // namespace
-
-SceneFile load_scene(const std::string& path) {
+// The scene file's JSON.
+json parse_scene_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open the scene file");
   json doc;
@@ -354,13 +353,12 @@ SceneFile load_scene(const std::string& path) {
     // parse_error, and out_of_range for a number beyond double's range.
     throw Error(path + ": not valid JSON (" + e.what() + ")");
   }
-  const Reader r{path};
-  r.keys(doc, "scene");
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  SceneFile out;
+  return doc;
+}
+
+// The body: "character", "embed" or "mesh" (one of them).
+void read_body(const Reader& r, const json& doc, const std::filesystem::path& folder, SceneFile& out) {
   Scene& s = out.scene;
-  s.name = r.text(doc, "scene", "name", std::filesystem::path(path).stem().string());
-  s.description = r.text(doc, "scene", "description", "");
   if (doc.contains("character")) {
     for (const char* other : {"mesh", "embed", "rig"})
       if (doc.contains(other))
@@ -382,11 +380,10 @@ SceneFile load_scene(const std::string& path) {
   } else {
     s.mesh = read_scene_mesh(r, doc["mesh"], folder);
   }
+}
 
-  const json material = doc.value("material", json::object());
-  out.material = read_material(r, material, "material");
-  out.materials = read_regions(r, doc, s.mesh, out.material);
-
+// "constraints": [{"name", "select", "motion"}].
+void read_constraints(const Reader& r, const json& doc, Scene& s) {
   if (doc.contains("constraints")) {
     if (!doc["constraints"].is_array()) r.fail("constraints", "expected an array");
     for (size_t i = 0; i < doc["constraints"].size(); ++i) {
@@ -402,6 +399,12 @@ SceneFile load_scene(const std::string& path) {
       s.constraints.push_back(set);
     }
   }
+}
+
+// The rig: the character's, or "rig" (bones and their animation), with
+// the constraints its bones make.
+void read_rig(const Reader& r, const json& doc, const std::filesystem::path& folder, SceneFile& out) {
+  Scene& s = out.scene;
   if (out.character) {
     for (const ConstraintSet& set : out.character->rig.constraints) s.constraints.push_back(set);
     out.rig = SceneFile::Rig{out.character->rig.bones.bones, out.character->rig.bones.animation};
@@ -424,79 +427,86 @@ SceneFile load_scene(const std::string& path) {
         r.fail("rig.animation", "the animation moves bone '" + bone + "', which is not in rig.bones");
     out.rig = std::move(out_rig);
   }
-  if (out.embedded) resolve_scene_pieces(r, doc, out);
-  if (doc.contains("body_force"))
-    s.options.external_force = lump_body_force(s.mesh, r.vec3(doc, "scene", "body_force", {0, 0, 0}));
-  if (doc.contains("initial")) {
-    const json& init = doc["initial"];
-    r.keys(init, "initial");
-    const double factor = r.number(init, "initial", "scramble_volume_factor", 2.0);
-    std::mt19937_64 rng(static_cast<unsigned>(r.integer(init, "initial", "seed", 1)));
-    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (size_t v = 0; v < s.mesh.vertex_count(); ++v)
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], s.mesh.positions[3 * v + d]);
-        hi[d] = std::max(hi[d], s.mesh.positions[3 * v + d]);
-      }
-    const double scale = std::cbrt(factor);
-    s.options.initial_positions.resize(s.mesh.positions.size());
-    for (size_t i = 0; i < s.options.initial_positions.size(); ++i) {
-      const int d = static_cast<int>(i % 3);
-      const double mid = 0.5 * (lo[d] + hi[d]), half = 0.5 * scale * (hi[d] - lo[d]);
-      s.options.initial_positions[i] = std::uniform_real_distribution<double>(mid - half, mid + half)(rng);
+}
+
+// "initial": scrambled initial positions, uniform in the mesh's bounding
+// box grown to scramble_volume_factor times its volume.
+void read_initial(const Reader& r, const json& init, Scene& s) {
+  r.keys(init, "initial");
+  const double factor = r.number(init, "initial", "scramble_volume_factor", 2.0);
+  std::mt19937_64 rng(static_cast<unsigned>(r.integer(init, "initial", "seed", 1)));
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (size_t v = 0; v < s.mesh.vertex_count(); ++v)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], s.mesh.positions[3 * v + d]);
+      hi[d] = std::max(hi[d], s.mesh.positions[3 * v + d]);
     }
+  const double scale = std::cbrt(factor);
+  s.options.initial_positions.resize(s.mesh.positions.size());
+  for (size_t i = 0; i < s.options.initial_positions.size(); ++i) {
+    const int d = static_cast<int>(i % 3);
+    const double mid = 0.5 * (lo[d] + hi[d]), half = 0.5 * scale * (hi[d] - lo[d]);
+    s.options.initial_positions[i] = std::uniform_real_distribution<double>(mid - half, mid + half)(rng);
   }
-  if (doc.contains("dynamics")) {
-    const json& d = doc["dynamics"];
-    r.keys(d, "dynamics");
-    DynamicsOptions dynamics;
-    dynamics.time_step = r.required_number(d, "dynamics", "time_step");
-    dynamics.density = r.required_number(d, "dynamics", "density");
-    if (d.contains("damping")) {
-      r.keys(d["damping"], "dynamics.damping");
-      dynamics.damping.mass = r.number(d["damping"], "dynamics.damping", "mass", 0.0);
-      dynamics.damping.stiffness = r.number(d["damping"], "dynamics.damping", "stiffness", 0.0);
-    }
-    dynamics.substeps = r.integer(d, "dynamics", "substeps", 1);
-    if (!(dynamics.time_step > 0.0)) r.fail("dynamics.time_step", "must be > 0");
-    if (!(dynamics.density > 0.0)) r.fail("dynamics.density", "must be > 0");
-    if (!(dynamics.damping.mass >= 0.0)) r.fail("dynamics.damping.mass", "must be >= 0");
-    if (!(dynamics.damping.stiffness >= 0.0)) r.fail("dynamics.damping.stiffness", "must be >= 0");
-    if (dynamics.substeps < 1) r.fail("dynamics.substeps", "must be >= 1");
-    if (doc.contains("rig") || doc.contains("character"))
-      r.fail("dynamics", "not supported with \"rig\" or \"character\" yet (frames are quasistatic)");
-    s.options.dynamics = dynamics;
+}
+
+// "dynamics": time step, density, damping and substeps.
+void read_dynamics(const Reader& r, const json& doc, Scene& s) {
+  const json& d = doc["dynamics"];
+  r.keys(d, "dynamics");
+  DynamicsOptions dynamics;
+  dynamics.time_step = r.required_number(d, "dynamics", "time_step");
+  dynamics.density = r.required_number(d, "dynamics", "density");
+  if (d.contains("damping")) {
+    r.keys(d["damping"], "dynamics.damping");
+    dynamics.damping.mass = r.number(d["damping"], "dynamics.damping", "mass", 0.0);
+    dynamics.damping.stiffness = r.number(d["damping"], "dynamics.damping", "stiffness", 0.0);
   }
-  if (doc.contains("obstacles")) s.options.obstacles = read_obstacles(r, doc["obstacles"]);
-  if (doc.contains("contact")) {
-    const json& c = doc["contact"];
-    r.keys(c, "contact");
-    s.options.contact.friction = r.number(c, "contact", "friction", 0.0);
-    s.options.contact.friction_slip = r.number(c, "contact", "friction_slip", 0.0);
-    if (!(s.options.contact.friction >= 0.0)) r.fail("contact.friction", "must be >= 0");
-    if (!(s.options.contact.friction_slip >= 0.0)) r.fail("contact.friction_slip", "must be >= 0 (0: automatic)");
-    s.options.contact.stiffness = r.number(c, "contact", "stiffness", 0.0);
-    s.options.contact.thickness = r.number(c, "contact", "thickness", 0.0);
-    s.options.contact.self_stiffness = r.number(c, "contact", "self_stiffness", 0.0);
-    if (c.contains("self")) {
-      if (!c["self"].is_boolean()) r.fail("contact.self", "expected true or false");
-      s.options.contact.self = c["self"].get<bool>();
-    }
-    if (c.contains("self_method")) {
-      const json& m = c["self_method"];
-      if (!m.is_string() || (m != "barrier" && m != "penalty"))
-        r.fail("contact.self_method", "expected \"barrier\" or \"penalty\"");
-      s.options.contact.self_method = m == "penalty" ? SelfContactMethod::penalty : SelfContactMethod::barrier;
-    }
-    s.options.contact.self_distance = r.number(c, "contact", "self_distance", 0.0);
-    if (!(s.options.contact.self_distance >= 0.0)) r.fail("contact.self_distance", "must be >= 0 (0: automatic)");
-    if (!(s.options.contact.self_stiffness >= 0.0)) r.fail("contact.self_stiffness", "must be >= 0");
-    if (s.options.contact.self && s.options.contact.self_method == SelfContactMethod::penalty &&
-        !(s.options.contact.stiffness > 0.0) && !(s.options.contact.self_stiffness > 0.0))
-      r.fail("contact.stiffness", "missing (penalty self-contact needs stiffness or self_stiffness > 0)");
-    if (!(s.options.contact.thickness >= 0.0)) r.fail("contact.thickness", "must be >= 0");
-    if (s.options.contact.stiffness < 0.0) r.fail("contact.stiffness", "must be > 0");
+  dynamics.substeps = r.integer(d, "dynamics", "substeps", 1);
+  if (!(dynamics.time_step > 0.0)) r.fail("dynamics.time_step", "must be > 0");
+  if (!(dynamics.density > 0.0)) r.fail("dynamics.density", "must be > 0");
+  if (!(dynamics.damping.mass >= 0.0)) r.fail("dynamics.damping.mass", "must be >= 0");
+  if (!(dynamics.damping.stiffness >= 0.0)) r.fail("dynamics.damping.stiffness", "must be >= 0");
+  if (dynamics.substeps < 1) r.fail("dynamics.substeps", "must be >= 1");
+  if (doc.contains("rig") || doc.contains("character"))
+    r.fail("dynamics", "not supported with \"rig\" or \"character\" yet (frames are quasistatic)");
+  s.options.dynamics = dynamics;
+}
+
+// "contact": obstacle and self-contact.
+void read_contact(const Reader& r, const json& c, ContactOptions& contact) {
+  r.keys(c, "contact");
+  contact.friction = r.number(c, "contact", "friction", 0.0);
+  contact.friction_slip = r.number(c, "contact", "friction_slip", 0.0);
+  if (!(contact.friction >= 0.0)) r.fail("contact.friction", "must be >= 0");
+  if (!(contact.friction_slip >= 0.0)) r.fail("contact.friction_slip", "must be >= 0 (0: automatic)");
+  contact.stiffness = r.number(c, "contact", "stiffness", 0.0);
+  contact.thickness = r.number(c, "contact", "thickness", 0.0);
+  contact.self_stiffness = r.number(c, "contact", "self_stiffness", 0.0);
+  if (c.contains("self")) {
+    if (!c["self"].is_boolean()) r.fail("contact.self", "expected true or false");
+    contact.self = c["self"].get<bool>();
   }
+  if (c.contains("self_method")) {
+    const json& m = c["self_method"];
+    if (!m.is_string() || (m != "barrier" && m != "penalty"))
+      r.fail("contact.self_method", "expected \"barrier\" or \"penalty\"");
+    contact.self_method = m == "penalty" ? SelfContactMethod::penalty : SelfContactMethod::barrier;
+  }
+  contact.self_distance = r.number(c, "contact", "self_distance", 0.0);
+  if (!(contact.self_distance >= 0.0)) r.fail("contact.self_distance", "must be >= 0 (0: automatic)");
+  if (!(contact.self_stiffness >= 0.0)) r.fail("contact.self_stiffness", "must be >= 0");
+  if (contact.self && contact.self_method == SelfContactMethod::penalty && !(contact.stiffness > 0.0) &&
+      !(contact.self_stiffness > 0.0))
+    r.fail("contact.stiffness", "missing (penalty self-contact needs stiffness or self_stiffness > 0)");
+  if (!(contact.thickness >= 0.0)) r.fail("contact.thickness", "must be >= 0");
+  if (contact.stiffness < 0.0) r.fail("contact.stiffness", "must be > 0");
+}
+
+// Self-contact's defaults for characters and embedded surfaces, then the
+// obstacles checked against the contact options.
+void finish_contact(const Reader& r, const json& doc, SceneFile& out) {
+  Scene& s = out.scene;
   // A rigged or skinned character folds at its joints (an arm raised into
   // the head, a bent elbow): self-contact is on unless the file says
   // "contact": {"self": false}.
@@ -515,6 +525,12 @@ SceneFile load_scene(const std::string& path) {
   } catch (const Error& error) {
     r.fail("obstacles", error.what());
   }
+}
+
+// "solver": steps, precision, iterations, preconditioner, Hessian and the
+// stopping rule.
+void read_solver(const Reader& r, const json& doc, const std::string& path, SceneFile& out) {
+  Scene& s = out.scene;
   const json solver = doc.value("solver", json::object());
   r.keys(solver, "solver");
   s.options.load_steps = r.integer(solver, "solver", "steps", defaults::load_steps);
@@ -552,6 +568,10 @@ SceneFile load_scene(const std::string& path) {
   else
     s.options.strain_tolerance =
         r.number(solver, "solver", "strain_tolerance", defaults::strain_tolerance(s.options.precision));
+}
+
+// "output": the files to write.
+void read_output(const Reader& r, const json& doc, SceneFile& out) {
   const json output = doc.value("output", json::object());
   r.keys(output, "output");
   out.vtu_dir = r.text(output, "output", "vtu", "");
@@ -570,6 +590,37 @@ SceneFile load_scene(const std::string& path) {
   for (const char* key : {"pc2", "mdd", "lbs"})
     if (output.contains(key) && !out.character)
       r.fail(std::string("output.") + key, "needs \"character\" (a skinned surface to cache)");
+}
+
+}  // namespace
+
+SceneFile load_scene(const std::string& path) {
+  const json doc = parse_scene_file(path);
+  const Reader r{path};
+  r.keys(doc, "scene");
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  SceneFile out;
+  Scene& s = out.scene;
+  s.name = r.text(doc, "scene", "name", std::filesystem::path(path).stem().string());
+  s.description = r.text(doc, "scene", "description", "");
+  read_body(r, doc, folder, out);
+
+  const json material = doc.value("material", json::object());
+  out.material = read_material(r, material, "material");
+  out.materials = read_regions(r, doc, s.mesh, out.material);
+
+  read_constraints(r, doc, s);
+  read_rig(r, doc, folder, out);
+  if (out.embedded) resolve_scene_pieces(r, doc, out);
+  if (doc.contains("body_force"))
+    s.options.external_force = lump_body_force(s.mesh, r.vec3(doc, "scene", "body_force", {0, 0, 0}));
+  if (doc.contains("initial")) read_initial(r, doc["initial"], s);
+  if (doc.contains("dynamics")) read_dynamics(r, doc, s);
+  if (doc.contains("obstacles")) s.options.obstacles = read_obstacles(r, doc["obstacles"]);
+  if (doc.contains("contact")) read_contact(r, doc["contact"], s.options.contact);
+  finish_contact(r, doc, out);
+  read_solver(r, doc, path, out);
+  read_output(r, doc, out);
   return out;
 }
 
