@@ -499,7 +499,8 @@ Matrix4 skin_space(const Hierarchy& h, const std::vector<Joint>& joints) {
   std::vector<Matrix4> bind;
   for (const Joint& j : joints)
     if (h.nodes.count(j.name)) bind.push_back(multiply_matrix4(world.at(h.nodes.at(j.name)), j.inverse_bind));
-  bool same = !bind.empty(), identity = true;
+  if (bind.empty()) return to_skin;  // no joint in the hierarchy: the file's coordinates
+  bool same = true, identity = true;
   double scale = 1.0;
   for (double v : bind.front()) scale = std::max(scale, std::abs(v));
   for (const Matrix4& m : bind)
