@@ -136,7 +136,7 @@ enum class MultigridFineLevel {
   // obstacles or barrier self-contact, whose terms it does not carry.
   built,
   // The engine's product of each linearization, with the block-Jacobi
-  // blocks of the build and its Chebyshev bound re-estimated (4 power
+  // blocks of the build and its Chebyshev bound re-estimated (2 warm power
   // iterations) at each linearization.
   current,
 };

@@ -4,7 +4,7 @@ Stable Neo-Hookean flesh simulation on OpenCL devices.
 from __future__ import annotations
 import numpy
 import typing
-__all__: list[str] = ['Animation', 'Barrier', 'Bone', 'Capsule', 'CgStop', 'Character', 'CharacterBoneOptions', 'CharacterBones', 'CharacterCacheSeries', 'CharacterClip', 'CharacterFrame', 'CharacterFrameOptions', 'CharacterPrepareOptions', 'CharacterReadOptions', 'CharacterRig', 'ChebyshevKind', 'ConstraintSet', 'ContactOptions', 'DeformationStatistics', 'DeviceInfo', 'DynamicsOptions', 'ElementFields', 'ElementType', 'Embedding', 'Error', 'FrameOptions', 'FrameRecord', 'HessianMode', 'Joint', 'LameParameters', 'Material', 'MaterialMap', 'MaterialModel', 'MaterialOptions', 'MaterialRegion', 'Mesh', 'MeshArray', 'MeshGroup', 'NewtonIteration', 'Obstacle', 'ObstacleType', 'PointCache', 'Precision', 'Preconditioner', 'ProductVariant', 'Reaction', 'Recovery', 'RecoveryAction', 'RigidTransform', 'Scene', 'SceneFile', 'SceneParameters', 'SceneProgress', 'SceneRun', 'SceneStep', 'ShapeDeviation', 'Simulation', 'SimulationState', 'SkinDeviation', 'SkinWeights', 'SolveOptions', 'SolveProfile', 'SolveResult', 'StableNeoHookean', 'StepResult', 'StepStatus', 'TriangleSurface', 'Voxelization', 'VoxelizeOptions', 'WeightPolicy', 'bone_constraints', 'bone_contains', 'boundary_surface', 'character_bones', 'character_cell', 'compute_element_fields', 'deformation_statistics', 'elastic_forces', 'element_fields_for_vtu', 'elements_in_box', 'elements_in_group', 'elements_in_sphere', 'elements_with_value', 'elements_with_value_in', 'embed', 'embedded_positions', 'enclosed_volume', 'identity_matrix4', 'linear_blend_skinning', 'list_devices', 'load_scene', 'lump_body_force', 'lumped_mass', 'make_box_lattice', 'make_material_map', 'make_scene', 'make_tet_box', 'make_voxel_cylinder', 'max_poisson_ratio', 'parse_animation_csv', 'parse_animation_json', 'prepare_character', 'read_animation', 'read_character', 'read_checkpoint', 'read_mdd', 'read_mesh', 'read_pc2', 'read_surface', 'run_character_frames', 'run_frames', 'run_scene', 'scene_defaults', 'scene_file_keys', 'scene_names', 'shape_deviation', 'split_hexes_into_tets', 'surface_area', 'to_rigid_transform', 'uniform_material', 'validate_closed_surface', 'vertex_spacing', 'vertices_in_box', 'vertices_in_group', 'vertices_in_sphere', 'vertices_on_plane', 'vertices_with_value', 'vertices_with_value_in', 'voxelize', 'write_checkpoint', 'write_mdd', 'write_mesh', 'write_obj', 'write_obj_surface', 'write_pc2', 'write_ply_surface', 'write_point_cache', 'write_pvd', 'write_scene_json', 'write_surface_ply', 'write_surface_vtu', 'write_vtu']
+__all__: list[str] = ['Animation', 'Barrier', 'Bone', 'Capsule', 'CgStop', 'Character', 'CharacterBoneOptions', 'CharacterBones', 'CharacterCacheSeries', 'CharacterClip', 'CharacterFrame', 'CharacterFrameOptions', 'CharacterPrepareOptions', 'CharacterReadOptions', 'CharacterRig', 'ChebyshevKind', 'ConstraintSet', 'ContactOptions', 'DeformationStatistics', 'DeviceInfo', 'DynamicsOptions', 'ElementFields', 'ElementType', 'Embedding', 'Error', 'FrameOptions', 'FrameRecord', 'HessianMode', 'Joint', 'LameParameters', 'Material', 'MaterialMap', 'MaterialModel', 'MaterialOptions', 'MaterialRegion', 'Mesh', 'MeshArray', 'MeshGroup', 'NewtonIteration', 'Obstacle', 'ObstacleType', 'PointCache', 'Precision', 'Preconditioner', 'ProductVariant', 'Reaction', 'Recovery', 'RecoveryAction', 'ResolvedConfiguration', 'ResolvedSetting', 'RigidTransform', 'Scene', 'SceneFile', 'SceneParameters', 'SceneProgress', 'SceneRun', 'SceneStep', 'ShapeDeviation', 'Simulation', 'SimulationState', 'SkinDeviation', 'SkinWeights', 'SolveOptions', 'SolveProfile', 'SolveResult', 'StableNeoHookean', 'StepResult', 'StepStatus', 'TriangleSurface', 'Voxelization', 'VoxelizeOptions', 'WeightPolicy', 'bone_constraints', 'bone_contains', 'boundary_surface', 'character_bones', 'character_cell', 'compute_element_fields', 'deformation_statistics', 'elastic_forces', 'element_fields_for_vtu', 'elements_in_box', 'elements_in_group', 'elements_in_sphere', 'elements_with_value', 'elements_with_value_in', 'embed', 'embedded_positions', 'enclosed_volume', 'identity_matrix4', 'linear_blend_skinning', 'list_devices', 'load_scene', 'lump_body_force', 'lumped_mass', 'make_box_lattice', 'make_material_map', 'make_scene', 'make_tet_box', 'make_voxel_cylinder', 'max_poisson_ratio', 'parse_animation_csv', 'parse_animation_json', 'prepare_character', 'read_animation', 'read_character', 'read_checkpoint', 'read_mdd', 'read_mesh', 'read_pc2', 'read_surface', 'run_character_frames', 'run_frames', 'run_scene', 'scene_defaults', 'scene_file_keys', 'scene_names', 'shape_deviation', 'split_hexes_into_tets', 'surface_area', 'to_rigid_transform', 'uniform_material', 'validate_closed_surface', 'vertex_spacing', 'vertices_in_box', 'vertices_in_group', 'vertices_in_sphere', 'vertices_on_plane', 'vertices_with_value', 'vertices_with_value_in', 'voxelize', 'write_checkpoint', 'write_mdd', 'write_mesh', 'write_obj', 'write_obj_surface', 'write_pc2', 'write_ply_surface', 'write_point_cache', 'write_pvd', 'write_scene_json', 'write_surface_ply', 'write_surface_vtu', 'write_vtu']
 class Error(RuntimeError):
     pass
 class ElementType:
@@ -1975,6 +1975,64 @@ class SolveOptions:
     @strain_tolerance.setter
     def strain_tolerance(self, arg0: float | None) -> None:
         ...
+class ResolvedSetting:
+    """
+    One resolved setting: its name, value and reason.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        """
+        The option's name (as in scene files).
+        """
+    @property
+    def reason(self) -> str:
+        """
+        'given', 'default', or the rule that chose it.
+        """
+    @property
+    def value(self) -> str:
+        """
+        Its value as printed.
+        """
+class ResolvedConfiguration:
+    """
+    The options with every automatic choice made, each with its reason (read-only).
+    """
+    def as_dict(self) -> dict:
+        """
+        {name: (value, reason)} in order.
+        """
+    def setting(self, name: str) -> ResolvedSetting:
+        """
+        The setting named `name`; raises snh.Error when there is none.
+        """
+    @property
+    def absolute_tolerance(self) -> float:
+        """
+        The stopping test's absolute part.
+        """
+    @property
+    def barrier_stiffness(self) -> float:
+        """
+        Barrier self-contact's kappa (0 without the barrier).
+        """
+    @property
+    def options(self) -> SolveOptions:
+        """
+        The resolved SolveOptions.
+        """
+    @property
+    def relative_tolerance(self) -> float:
+        """
+        The stopping test's relative part.
+        """
+    @property
+    def settings(self) -> list[ResolvedSetting]:
+        """
+        Every setting, in a fixed order.
+        """
 class Simulation:
     """
     A simulation driven frame by frame: built once (kernels compiled, mesh uploaded), then solved from its current state after new targets and loads.
@@ -2041,6 +2099,11 @@ class Simulation:
     def applied_force(self) -> numpy.ndarray[numpy.float64]:
         """
         The lumped external force of the last solve's final step, (n, 3).
+        """
+    @property
+    def configuration(self) -> ResolvedConfiguration:
+        """
+        The ResolvedConfiguration: every automatic choice made, with its reason.
         """
     @property
     def constraints(self) -> list[ConstraintSet]:
@@ -2195,6 +2258,11 @@ class SceneRun:
     def options(self) -> SolveOptions:
         """
         The SolveOptions as run.
+        """
+    @property
+    def resolved(self) -> ResolvedConfiguration:
+        """
+        The ResolvedConfiguration it ran with.
         """
     @property
     def result(self) -> SolveResult:

@@ -61,6 +61,7 @@ void bind_material(py::module_& m);
 void bind_selection(py::module_& m);
 void bind_solver_enums(py::module_& m);
 void bind_results(py::module_& m);
+void bind_resolved_configuration(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_io(py::module_& m);
 void bind_rig(py::module_& m);

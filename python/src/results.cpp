@@ -24,36 +24,6 @@ void bind_device_info(py::module_& m) {
       .def("__repr__", [](const snh::DeviceInfo& d) { return "DeviceInfo('" + d.platform + " / " + d.name + "')"; });
 }
 
-void bind_resolved_configuration(py::module_& m) {
-  py::class_<snh::ResolvedSetting>(m, "ResolvedSetting", "One resolved setting: its name, value and reason.")
-      .def_readonly("name", &snh::ResolvedSetting::name, "The option's name (as in scene files).")
-      .def_readonly("value", &snh::ResolvedSetting::value, "Its value as printed.")
-      .def_readonly("reason", &snh::ResolvedSetting::reason, "'given', 'default', or the rule that chose it.")
-      .def("__repr__", [](const snh::ResolvedSetting& s) {
-        return "ResolvedSetting('" + s.name + "', '" + s.value + "', '" + s.reason + "')";
-      });
-  py::class_<snh::ResolvedConfiguration>(
-      m, "ResolvedConfiguration", "The options with every automatic choice made, each with its reason (read-only).")
-      .def_readonly("options", &snh::ResolvedConfiguration::options, "The resolved SolveOptions.")
-      .def_readonly("barrier_stiffness", &snh::ResolvedConfiguration::barrier_stiffness,
-                    "Barrier self-contact's kappa (0 without the barrier).")
-      .def_readonly("absolute_tolerance", &snh::ResolvedConfiguration::absolute_tolerance,
-                    "The stopping test's absolute part.")
-      .def_readonly("relative_tolerance", &snh::ResolvedConfiguration::relative_tolerance,
-                    "The stopping test's relative part.")
-      .def_readonly("settings", &snh::ResolvedConfiguration::settings, "Every setting, in a fixed order.")
-      .def("setting", &snh::ResolvedConfiguration::setting, py::arg("name"),
-           "The setting named `name`; raises snh.Error when there is none.")
-      .def(
-          "as_dict",
-          [](const snh::ResolvedConfiguration& c) {
-            py::dict d;
-            for (const snh::ResolvedSetting& s : c.settings) d[py::str(s.name)] = py::make_tuple(s.value, s.reason);
-            return d;
-          },
-          "{name: (value, reason)} in order.");
-}
-
 void bind_status_enums(py::module_& m) {
   auto step_status = py::enum_<snh::StepStatus>(m, "StepStatus", "How a load or time step's Newton solve ended.")
                          .value("none", snh::StepStatus::none)
@@ -267,9 +237,40 @@ void bind_frame_record(py::module_& m) {
 
 }  // namespace
 
+// Registered by bind_simulation, between SolveOptions (which it holds) and
+// Simulation (which returns it).
+void bind_resolved_configuration(py::module_& m) {
+  py::class_<snh::ResolvedSetting>(m, "ResolvedSetting", "One resolved setting: its name, value and reason.")
+      .def_readonly("name", &snh::ResolvedSetting::name, "The option's name (as in scene files).")
+      .def_readonly("value", &snh::ResolvedSetting::value, "Its value as printed.")
+      .def_readonly("reason", &snh::ResolvedSetting::reason, "'given', 'default', or the rule that chose it.")
+      .def("__repr__", [](const snh::ResolvedSetting& s) {
+        return "ResolvedSetting('" + s.name + "', '" + s.value + "', '" + s.reason + "')";
+      });
+  py::class_<snh::ResolvedConfiguration>(
+      m, "ResolvedConfiguration", "The options with every automatic choice made, each with its reason (read-only).")
+      .def_readonly("options", &snh::ResolvedConfiguration::options, "The resolved SolveOptions.")
+      .def_readonly("barrier_stiffness", &snh::ResolvedConfiguration::barrier_stiffness,
+                    "Barrier self-contact's kappa (0 without the barrier).")
+      .def_readonly("absolute_tolerance", &snh::ResolvedConfiguration::absolute_tolerance,
+                    "The stopping test's absolute part.")
+      .def_readonly("relative_tolerance", &snh::ResolvedConfiguration::relative_tolerance,
+                    "The stopping test's relative part.")
+      .def_readonly("settings", &snh::ResolvedConfiguration::settings, "Every setting, in a fixed order.")
+      .def("setting", &snh::ResolvedConfiguration::setting, py::arg("name"),
+           "The setting named `name`; raises snh.Error when there is none.")
+      .def(
+          "as_dict",
+          [](const snh::ResolvedConfiguration& c) {
+            py::dict d;
+            for (const snh::ResolvedSetting& s : c.settings) d[py::str(s.name)] = py::make_tuple(s.value, s.reason);
+            return d;
+          },
+          "{name: (value, reason)} in order.");
+}
+
 void bind_results(py::module_& m) {
   bind_device_info(m);
-  bind_resolved_configuration(m);
   bind_status_enums(m);
   bind_newton_records(m);
   bind_solve_profile(m);

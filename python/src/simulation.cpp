@@ -508,6 +508,7 @@ void bind_simulation(py::module_& m) {
   bind_obstacles(m);
   bind_contact_options(m);
   bind_solve_options(m);
+  bind_resolved_configuration(m);
   bind_simulation_class(m);
   bind_checkpoints(m);
   bind_field_functions(m);
