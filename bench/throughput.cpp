@@ -169,7 +169,7 @@ struct Counts {
   double sqrts = 0.0, divisions = 0.0;  // of the per-point SVD and eigensystem (recompute)
 };
 
-// The assembled variant's block stencil (ElasticModel::assembled_blocks):
+// The assembled variant's block stencil (ProductVariants::assembled_blocks):
 // blocks stored, blocks read per product, neighbour-table ints read.
 struct StencilShape {
   double stored = 0.0, reads = 0.0, indices = 0.0;
@@ -310,10 +310,10 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
       viennacl::copy(ph.begin(), ph.end(), p.begin());
       solver::ElasticModel<Real> model(cl, mesh, rest, uniform_material(mesh, material), ProductVariant::cached);
       if (o.material_lanes != 0) {
-        if (!model.point_lanes())
+        if (!model.lanes().point_lanes())
           throw Error("throughput: --material-lanes needs the lanes program (CPU devices); " + cl.info().name +
                       " runs the scalar kernels");
-        model.set_material_lanes(o.material_lanes);
+        model.lanes().set_material_lanes(o.material_lanes);
       }
       std::cerr << "  " << type << " " << n << "^3 (" << mesh.element_count() << " elements, " << pname << ")\n";
       const size_t ne = mesh.element_count();
@@ -329,19 +329,19 @@ void run_precision(const ThroughputOptions& o, Precision precision, json& report
         const bool float_products = vname == kCachedFloatProducts;
         if (float_products && precision != Precision::double_) continue;
         const ProductVariant v = float_products ? ProductVariant::cached : parse_product_variant(vname);
-        model.set_variant(v);
-        model.set_float_products(float_products);
+        model.products().set_variant(v);
+        model.products().set_float_products(float_products);
         const double setup = best_seconds([&] { model.linearize(x); }, o.min_seconds);
         const double product = best_seconds([&] { model.product(p, y); }, o.min_seconds);
-        const double nv = static_cast<double>(mesh.vertex_count()), width = model.assembled_width(),
-                     lower = model.assembled_lower();
-        const StencilShape stencil{static_cast<double>(model.assembled_blocks()), nv * (width + lower),
+        const double nv = static_cast<double>(mesh.vertex_count()), width = model.products().assembled_width(),
+                     lower = model.products().assembled_lower();
+        const StencilShape stencil{static_cast<double>(model.products().assembled_blocks()), nv * (width + lower),
                                    nv * (width + 2 * lower)};
         const Counts counts =
             product_counts(v, rest.nodes, rest.quadrature, rest.uniform, sizeof(Real), stencil, static_cast<double>(ne),
                            nv, float_products ? sizeof(float) : sizeof(Real));
-        rows.push_back({type, pname, vname, n, ne, xh.size(), product, setup, model.last_assembly_seconds(),
-                        model.variant_memory_bytes(), counts, model.material_lanes()});
+        rows.push_back({type, pname, vname, n, ne, xh.size(), product, setup, model.products().last_assembly_seconds(),
+                        model.products().variant_memory_bytes(), counts, model.lanes().material_lanes()});
       }
       if (o.host_baseline && precision == Precision::double_) {
         const HostProductTiming host = time_host_product(mesh, material, xh, 20);

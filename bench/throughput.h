@@ -21,7 +21,7 @@ struct ThroughputOptions {
   double min_seconds = 0.2;  // per timed operation
   bool host_baseline = true;
   // CPU devices: the width of the lanes program's linearization and
-  // recompute product, 8 or 16 (ElasticModel::set_material_lanes); 0 lets
+  // recompute product, 8 or 16 (PointLanes::set_material_lanes); 0 lets
   // the engine choose (default_material_lanes). Not on GPUs, which run the
   // scalar kernels.
   int material_lanes = 0;

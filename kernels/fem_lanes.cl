@@ -9,7 +9,7 @@
  * nothing. The SVD, the material and the eigen-projection run as 8- or
  * 16-wide SIMD. 16 lanes in double are two independent AVX-512 vectors, whose
  * chains of dependent square roots and divisions fill each other's latency
- * (ElasticModel::default_material_lanes: the linearization and recompute
+ * (PointLanes::default_material_lanes: the linearization and recompute
  * product; the kernels that read the cache measured no faster, or slower,
  * at 16 and are built at 8). pocl's
  * work-item vectorizer leaves the scalar kernels' per-point math scalar (its
@@ -23,7 +23,7 @@
  * (tests/test_point_lanes.cpp).
  *
  * Same names, arguments and outputs as fem.cl's kernels: the host picks the
- * program and the launch (ElasticModel::set_point_lanes). Built with the
+ * program and the launch (PointLanes::set_point_lanes). Built with the
  * same specialization defines as fem.cl (SNH_MODEL, SNH_BARRIER,
  * SNH_NONLINEAR, SNH_REGIONS, ...); tet4 lanes and 16 hex8 lanes hold
  * different elements, so they need one material for the mesh (no

@@ -13,7 +13,7 @@
 #endif
 
 /* SNH_MIXED = 1 (OpenCL only): a double solve's Hessian products in float
- * (ElasticModel::set_float_products). The math, the linearization cache and
+ * (ProductVariants::set_float_products). The math, the linearization cache and
  * the rest data are float (SNH_DOUBLE becomes 0); the solver's vectors that
  * the kernels read and write (vector_real below) stay double.
  * SNH_FLOAT = 1 (OpenCL only): a float build in a double context, vectors

@@ -35,7 +35,7 @@ __kernel void snh_stencil_assemble(__global const matrix_real* matrices, __globa
   }
   if (stencil)
     for (int i = 0; i < 9; ++i) stencil[at + SNH_STENCIL_TILE * i] = (matrix_real)block[i];
-  /* A double model's float products (ElasticModel::set_float_products): the
+  /* A double model's float products (ProductVariants::set_float_products): the
    * same values narrowed, as snh_narrow would from the stored blocks. */
   if (stencil_float)
     for (int i = 0; i < 9; ++i) stencil_float[at + SNH_STENCIL_TILE * i] = (float)(matrix_real)block[i];

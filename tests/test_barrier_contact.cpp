@@ -380,10 +380,10 @@ void expect_barrier_matches(const Fixture& f, solver::ElasticModel<double>& with
         for (int j = 0; j < 3; ++j) product[3 * v + i] += h.blocks[9 * k + 3 * i + j] * p[3 * h.columns[k] + j];
   expect_vertex_term_matches(with, without, xd, pd, energy, force, product);
   with.energy(xd);
-  EXPECT_EQ(with.self_barrier()->state().pairs, static_cast<int>(pairs.size()));
+  EXPECT_EQ(with.contact().self_barrier()->state().pairs, static_cast<int>(pairs.size()));
   double smallest = 0.0;
   host.energy(x, pairs, &smallest);
-  EXPECT_NEAR(with.self_barrier()->state().min_distance, smallest, 1e-15);
+  EXPECT_NEAR(with.contact().self_barrier()->state().min_distance, smallest, 1e-15);
   // Repeatable: the same x and p give the same bits (no atomics).
   auto twice = [&](auto run) {
     viennacl::vector<double> a(x.size()), b(x.size());
@@ -400,8 +400,8 @@ void expect_barrier_matches(const Fixture& f, solver::ElasticModel<double>& with
     with.product(pd, out);
   });
   // Block-Jacobi: the inverted diagonal blocks of (elastic + barrier).
-  with.set_variant(ProductVariant::cached);
-  without.set_variant(ProductVariant::cached);
+  with.products().set_variant(ProductVariant::cached);
+  without.products().set_variant(ProductVariant::cached);
   with.linearize(xd, true);
   without.linearize(xd, true);
   with.setup_preconditioner();
@@ -426,7 +426,7 @@ void expect_barrier_matches(const Fixture& f, solver::ElasticModel<double>& with
   for (double dz : {-0.57, -0.3, -0.05}) {
     const std::vector<double> down = f.b_down(dz);
     const double reference = host.step_bound(x, down);
-    EXPECT_NEAR(with.step_bound(xd, upload<double>(down)), reference, 1e-15) << dz;
+    EXPECT_NEAR(with.contact().step_bound(xd, upload<double>(down)), reference, 1e-15) << dz;
     if (dz == -0.57) {
       EXPECT_LT(reference, 1.0);
     }
@@ -445,19 +445,20 @@ TEST(BarrierContact, DeviceTermsMatchTheHostReference) {
   solver::ElasticModel<double> with(device_for(Precision::double_), f.mesh, rest, map, ProductVariant::cached,
                                     device::MaterialKernel::specialized, terms);
   solver::ElasticModel<double> without(device_for(Precision::double_), f.mesh, rest, map, ProductVariant::cached);
-  EXPECT_NE(with.specialization().find("-DSNH_SELF_BARRIER=1"), std::string::npos) << with.specialization();
-  EXPECT_EQ(without.specialization().find("SNH_SELF_BARRIER"), std::string::npos);
-  EXPECT_EQ(with.elastic_specialization(), without.specialization());
-  EXPECT_THROW(without.set_self_barrier(0.2, 1.0), Error);
-  EXPECT_THROW(with.set_self_barrier(0.0, 1.0), Error);
+  EXPECT_NE(with.data().config.defines().find("-DSNH_SELF_BARRIER=1"), std::string::npos)
+      << with.data().config.defines();
+  EXPECT_EQ(without.data().config.defines().find("SNH_SELF_BARRIER"), std::string::npos);
+  EXPECT_EQ(with.data().elastic_config.defines(), without.data().config.defines());
+  EXPECT_THROW(without.contact().set_self_barrier(0.2, 1.0), Error);
+  EXPECT_THROW(with.contact().set_self_barrier(0.0, 1.0), Error);
   // dhat below the rest gap of 0.07 (pairs closer at rest are left out),
   // B moved 0.04 closer.
   const double dhat = 0.05, kappa = 2.0;
-  with.set_self_barrier(dhat, kappa);
+  with.contact().set_self_barrier(dhat, kappa);
   solver::BarrierContact host(f.mesh);
   host.set_distance(dhat);
   expect_barrier_matches(f, with, without, host, kappa);
-  EXPECT_EQ(without.step_bound(upload<double>(f.x), upload<double>(f.b_down(-0.57))),
+  EXPECT_EQ(without.contact().step_bound(upload<double>(f.x), upload<double>(f.b_down(-0.57))),
             std::numeric_limits<double>::infinity());
 }
 
@@ -475,8 +476,8 @@ TEST(BarrierContact, DeviceTermsOnAnEmbeddedSurfaceMatchTheHostReference) {
   solver::ElasticModel<double> without(device_for(Precision::double_), f.mesh, rest, map, ProductVariant::cached);
   // The embedded surfaces are 0.27 apart at rest.
   const double dhat = 0.25, kappa = 2.0;
-  with.set_self_barrier(dhat, kappa);
-  with.set_self_barrier_surface(f.mesh, f.surface, f.embedding);
+  with.contact().set_self_barrier(dhat, kappa);
+  with.contact().set_self_barrier_surface(f.mesh, f.surface, f.embedding);
   solver::BarrierContact host(f.mesh, f.surface, f.embedding);
   host.set_distance(dhat);
   expect_barrier_matches(f, with, without, host, kappa);
@@ -499,8 +500,8 @@ TEST(BarrierContact, FloatDeviceTermsMatchTheHostReferenceWithinFloatRounding) {
                                    terms);
   solver::ElasticModel<float> without(cl, f.mesh, rest, map, ProductVariant::cached);
   const double dhat = 0.05, kappa = 2.0;  // below the rest gap of 0.07
-  with.set_self_barrier(dhat, kappa);
-  EXPECT_TRUE(with.self_barrier()->pairs_in_double());
+  with.contact().set_self_barrier(dhat, kappa);
+  EXPECT_TRUE(with.contact().self_barrier()->pairs_in_double());
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> jitter(-0.005, 0.005);
   std::vector<double> x = f.x, p(x.size());

@@ -172,14 +172,14 @@ void check_assembled_on_blob(double bound) {
   model.linearize(xd);
   viennacl::vector<Real> expected(model.dofs()), y(model.dofs()), again(model.dofs());
   model.product(pd, expected);
-  model.set_variant(ProductVariant::assembled);
+  model.products().set_variant(ProductVariant::assembled);
   model.linearize(xd);
-  EXPECT_GT(model.assembled_width(), 13);
+  EXPECT_GT(model.products().assembled_width(), 13);
   model.product(pd, y);
   const std::vector<double> ye = download(expected), ya = download(y);
   const double difference = relative_difference(ya, ye);
   std::printf("blob (%zu tets), width %d: |assembled - element matrices| / |element matrices| = %.3g\n",
-              mesh.element_count(), model.assembled_width(), difference);
+              mesh.element_count(), model.products().assembled_width(), difference);
   EXPECT_LE(difference, bound);
   for (size_t i = 0; i < mask.size(); ++i)
     if (mask[i] == Real(0)) {

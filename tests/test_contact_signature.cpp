@@ -1,4 +1,4 @@
-// The obstacle contact set's signature (ElasticModel::contact_set_signature,
+// The obstacle contact set's signature (ModelContact::contact_set_signature,
 // solver/model/vertex_terms.h), which decides whether multigrid rebuilds: reduced
 // on the device to the host's value in one read of two integers, 0 without
 // contact, and changed exactly when the set of vertices in a contact layer
@@ -36,8 +36,8 @@ class PlaneContact {
         model_(device_for(std::is_same_v<Real, double> ? Precision::double_ : Precision::single), mesh_, rest_,
                uniform_material(mesh_, StableNeoHookean::from_youngs_modulus(10.0, 0.3)), ProductVariant::cached,
                device::MaterialKernel::specialized, terms()) {
-    model_.set_obstacles(solver::obstacle_records({Obstacle::plane({0, 0, 0}, {0, 0, 1})}, 0.0), kStiffness,
-                         kThickness);
+    model_.contact().set_obstacles(solver::obstacle_records({Obstacle::plane({0, 0, 0}, {0, 0, 1})}, 0.0), kStiffness,
+                                   kThickness);
   }
   size_t vertices() const { return mesh_.vertex_count(); }
 
@@ -52,7 +52,7 @@ class PlaneContact {
       depth[v] = in.count(v) ? Real(1) : Real(0);
     }
     const viennacl::vector<Real> xd = upload<Real>(x);
-    EXPECT_EQ(model_.contact_state(xd).contacts, static_cast<int>(in.size()));
+    EXPECT_EQ(model_.contact().contact_state(xd).contacts, static_cast<int>(in.size()));
     return depth;
   }
 
@@ -60,7 +60,7 @@ class PlaneContact {
   // host's hash of the same set.
   uint64_t signature(const std::set<size_t>& in, std::mt19937& rng) {
     const std::vector<Real> depth = place(in, rng);
-    const uint64_t s = model_.contact_set_signature();
+    const uint64_t s = model_.contact().contact_set_signature();
     EXPECT_EQ(s, solver::contact_set_signature(depth));
     return s;
   }
@@ -135,7 +135,7 @@ TEST(ContactSignature, IsOneReadOfTwoIntegers) {
   std::mt19937 rng(3);
   contact.place({1, 2, 3}, rng);
   const device::TransferCounts before = cl.counts();
-  EXPECT_NE(contact.model().contact_set_signature(), 0u);
+  EXPECT_NE(contact.model().contact().contact_set_signature(), 0u);
   const device::TransferCounts after = cl.counts();
   EXPECT_EQ(after.blocking_readbacks - before.blocking_readbacks, 1);
   EXPECT_EQ(after.bytes_to_host - before.bytes_to_host, static_cast<int64_t>(2 * sizeof(uint64_t)));

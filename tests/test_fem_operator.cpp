@@ -288,7 +288,7 @@ void check_product() {
     const viennacl::vector<Real> pd = upload<Real>(p);
     for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute, ProductVariant::element_matrices,
                                    ProductVariant::assembled}) {
-      model.set_variant(variant);
+      model.products().set_variant(variant);
       model.linearize(upload<Real>(x));
       viennacl::vector<Real> y(model.dofs());
       model.product(pd, y);
@@ -296,12 +296,12 @@ void check_product() {
       if (variant == ProductVariant::element_matrices) {
         // Its two kernels, a work-item per element (CPUs) or per row (GPUs),
         // sum each row in one order: the same values.
-        const bool rows = model.matrix_product_rows();
+        const bool rows = model.products().matrix_product_rows();
         EXPECT_EQ(rows, device_for(precision_of<Real>).info().is_gpu);
-        model.set_matrix_product_rows(!rows);
+        model.products().set_matrix_product_rows(!rows);
         viennacl::vector<Real> other(model.dofs());
         model.product(pd, other);
-        model.set_matrix_product_rows(rows);
+        model.products().set_matrix_product_rows(rows);
         EXPECT_EQ(download(other), download(y)) << c.name << ": the element-matrices product per row and per element";
       }
     }
@@ -311,7 +311,7 @@ void check_product() {
 TEST(FemOperator, ProductMatchesAssembledStiffnessDouble) { check_product<double>(); }
 TEST(FemOperator, ProductMatchesAssembledStiffnessFloat) { check_product<float>(); }
 
-// Mixed precision (ElasticModel::set_float_products): a double model whose
+// Mixed precision (ProductVariants::set_float_products): a double model whose
 // products run in float on float copies of the double linearization (the
 // cached variant's cache, the assembled one's blocks), p and the result in
 // double. For both variants, against the reference at the unrounded inputs
@@ -339,9 +339,9 @@ void check_float_products(ProductVariant variant, uint64_t seed, const FloatProd
     model.linearize(xd);
     model.product(pd, y);
     const std::vector<double> in_double = download_raw(y);
-    EXPECT_FALSE(model.float_products());
-    model.set_float_products(true);  // narrows what the linearization above made
-    ASSERT_TRUE(model.float_products());
+    EXPECT_FALSE(model.products().float_products());
+    model.products().set_float_products(true);  // narrows what the linearization above made
+    ASSERT_TRUE(model.products().float_products());
     model.product(pd, y);
     const std::vector<double> narrowed = download_raw(y);
     tolerance.check(relative_difference(narrowed, expected), s, c.name);
@@ -352,7 +352,7 @@ void check_float_products(ProductVariant variant, uint64_t seed, const FloatProd
     model.product(pd, y);
     EXPECT_EQ(download_raw(y), narrowed) << "not deterministic";
     more(model, xd, pd, narrowed);
-    model.set_float_products(false);
+    model.products().set_float_products(false);
     model.linearize(xd);
     model.product(pd, y);
     EXPECT_EQ(download_raw(y), in_double);
@@ -367,15 +367,15 @@ TEST(FemOperator, FloatProductsMeetTheFloatBoundInDoubleModels) {
                        [](solver::ElasticModel<double>& model, const viennacl::vector<double>& xd,
                           const viennacl::vector<double>& pd, const std::vector<double>& narrowed) {
                          viennacl::vector<double> y(model.dofs());
-                         if (model.point_lanes_available()) {
-                           model.set_point_lanes(!model.point_lanes());
+                         if (model.lanes().point_lanes_available()) {
+                           model.lanes().set_point_lanes(!model.lanes().point_lanes());
                            model.linearize(xd);
                            model.product(pd, y);
                            EXPECT_EQ(download_raw(y), narrowed) << "lanes and scalar kernels differ";
                          }
-                         model.set_variant(ProductVariant::recompute);
-                         EXPECT_FALSE(model.float_products());
-                         model.set_variant(ProductVariant::cached);
+                         model.products().set_variant(ProductVariant::recompute);
+                         EXPECT_FALSE(model.products().float_products());
+                         model.products().set_variant(ProductVariant::cached);
                        });
 }
 
@@ -405,7 +405,7 @@ TEST(FemOperator, FloatMatricesFromTheFloatCopiesMeetTheFloatBound) {
     device::Buffer kd = cl.buffer(CL_MEM_READ_WRITE, ne * n * n * sizeof(float));
     device::Buffer bd = cl.buffer(CL_MEM_READ_WRITE, ne * 3 * n * sizeof(double));
     auto matrices = [&](std::vector<double>* blocks) {
-      model.element_matrices_into(kd.get(), bd.get(), true);
+      model.products().element_matrices_into(kd.get(), bd.get(), true);
       std::vector<float> k(ne * n * n);
       cl.read(kd.get(), k.size() * sizeof(float), k.data());
       if (blocks) {
@@ -416,7 +416,7 @@ TEST(FemOperator, FloatMatricesFromTheFloatCopiesMeetTheFloatBound) {
     };
     model.linearize(upload<double>(c.x));
     const std::vector<float> from_double = matrices(nullptr);
-    model.set_float_products(true);
+    model.products().set_float_products(true);
     model.linearize(upload<double>(c.x));
     std::vector<double> blocks;
     const std::vector<float> from_copies = matrices(&blocks);
@@ -450,23 +450,23 @@ TEST(FemOperator, FloatProductsHoldFloatCopiesOnlyWithTheirVariants) {
   const viennacl::vector<double> xd = upload<double>(s.mesh.positions);
   model.linearize(xd);
   const size_t matrices = model.memory_bytes();
-  model.set_float_products(true);
-  EXPECT_FALSE(model.float_products());
+  model.products().set_float_products(true);
+  EXPECT_FALSE(model.products().float_products());
   EXPECT_EQ(model.memory_bytes(), matrices);
-  model.set_float_products(false);
-  model.set_variant(ProductVariant::assembled);
+  model.products().set_float_products(false);
+  model.products().set_variant(ProductVariant::assembled);
   model.linearize(xd);
   const size_t assembled = model.memory_bytes();
-  model.set_float_products(true);
-  EXPECT_TRUE(model.float_products());
-  EXPECT_EQ(model.memory_bytes(), assembled + model.assembled_blocks() * 9 * sizeof(float));
-  model.set_float_products(false);
+  model.products().set_float_products(true);
+  EXPECT_TRUE(model.products().float_products());
+  EXPECT_EQ(model.memory_bytes(), assembled + model.products().assembled_blocks() * 9 * sizeof(float));
+  model.products().set_float_products(false);
   EXPECT_EQ(model.memory_bytes(), assembled);
-  model.set_variant(ProductVariant::cached);
+  model.products().set_variant(ProductVariant::cached);
   const size_t cached = model.memory_bytes();
-  model.set_float_products(true);
-  EXPECT_TRUE(model.float_products());
-  EXPECT_GE(model.memory_bytes(), cached + model.cache_values() * sizeof(float));
+  model.products().set_float_products(true);
+  EXPECT_TRUE(model.products().float_products());
+  EXPECT_GE(model.memory_bytes(), cached + model.data().cache_values() * sizeof(float));
 }
 
 // Assembled with float products, a double model writes and keeps only the
@@ -484,14 +484,14 @@ TEST(FemOperator, AssembledFloatProductsKeepOnlyTheFloatBlocks) {
   model.product(pd, y);
   const std::vector<double> in_double = download_raw(y);
   const size_t with_double = model.memory_bytes();
-  const size_t blocks = model.assembled_blocks() * 9;
-  model.set_float_products(true);
+  const size_t blocks = model.products().assembled_blocks() * 9;
+  model.products().set_float_products(true);
   model.linearize(xd);
   EXPECT_EQ(model.memory_bytes(), with_double - blocks * sizeof(double) + blocks * sizeof(float));
   model.product(pd, y);
   const std::vector<double> in_float = download_raw(y);
   EXPECT_NE(in_float, in_double);
-  model.set_float_products(false);
+  model.products().set_float_products(false);
   EXPECT_EQ(model.memory_bytes(), with_double);
   model.product(pd, y);
   EXPECT_EQ(download_raw(y), in_double);
@@ -502,8 +502,8 @@ TEST(FemOperator, FloatProductsAreTheWorkingPrecisionInFloatModels) {
   const Scene& s = scenes()[0];
   solver::ElasticModel<float> model(device_for(Precision::single), s.mesh, s.rest, uniform_material(s.mesh, s.material),
                                     ProductVariant::cached);
-  model.set_float_products(true);
-  EXPECT_FALSE(model.float_products());
+  model.products().set_float_products(true);
+  EXPECT_FALSE(model.products().float_products());
 }
 
 // --- constraints and external force ---------------------------------------
@@ -537,7 +537,7 @@ void check_mask() {
     model.linearize(xd);
     for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute, ProductVariant::element_matrices,
                                    ProductVariant::assembled}) {
-      model.set_variant(variant);
+      model.products().set_variant(variant);
       model.linearize(xd);
       const std::string name = c.name + "/" + to_string(variant);
       viennacl::vector<Real> y(model.dofs());
@@ -702,7 +702,7 @@ void check_determinism() {
     model.linearize(xd);
     for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute, ProductVariant::element_matrices,
                                    ProductVariant::assembled}) {
-      model.set_variant(variant);
+      model.products().set_variant(variant);
       model.linearize(xd);
       model.product(pd, a);
       model.product(pd, b);

@@ -171,10 +171,10 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
                                     device::MaterialKernel::specialized, with_friction);
   solver::ElasticModel<double> without(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached,
                                        device::MaterialKernel::specialized, terms);
-  EXPECT_NE(with.specialization().find("-DSNH_FRICTION=1"), std::string::npos) << with.specialization();
-  EXPECT_EQ(without.specialization().find("SNH_FRICTION"), std::string::npos);
-  with.set_obstacles(records, kStiffness, kThickness);
-  without.set_obstacles(records, kStiffness, kThickness);
+  EXPECT_NE(with.data().config.defines().find("-DSNH_FRICTION=1"), std::string::npos) << with.data().config.defines();
+  EXPECT_EQ(without.data().config.defines().find("SNH_FRICTION"), std::string::npos);
+  with.contact().set_obstacles(records, kStiffness, kThickness);
+  without.contact().set_obstacles(records, kStiffness, kThickness);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> jitter(-0.01, 0.01);
   std::vector<double> x0 = mesh.positions, x(x0.size()), p(x0.size());
@@ -186,7 +186,7 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
     for (int o = 0; o < 3; ++o)
       for (int d = 0; d < 3; ++d) anchors[3 * (3 * v + o) + d] = x0[3 * v + d] + 0.2 * jitter(rng);
-  with.set_friction(x0, anchors, start, friction, kSlip);
+  with.contact().set_friction(x0, anchors, start, friction, kSlip);
   viennacl::vector<double> xd(x.size()), pd(x.size());
   viennacl::copy(x.begin(), x.end(), xd.begin());
   viennacl::copy(p.begin(), p.end(), pd.begin());
@@ -208,7 +208,7 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
   ASSERT_GT(active, 5);
   expect_vertex_term_matches(with, without, xd, pd, energy, force, product);
   // The anchors for the next step, on the device and by the reference.
-  const std::vector<double> next = with.next_friction_anchors(xd);
+  const std::vector<double> next = with.contact().next_friction_anchors(xd);
   ASSERT_EQ(next.size(), anchors.size());
   int moved = 0, reset = 0;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)

@@ -91,7 +91,7 @@ TEST(HessianExport, MatrixTimesVectorIsTheEngineProductOnFreeDofs) {
 
   for (ProductVariant variant : {ProductVariant::cached, ProductVariant::recompute, ProductVariant::element_matrices,
                                  ProductVariant::assembled}) {
-    model.set_variant(variant);
+    model.products().set_variant(variant);
     model.linearize(xd, true);
     viennacl::vector<double> y(model.dofs());
     model.product(upload<double>(p_full), y);

@@ -461,11 +461,11 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
     for (size_t v = 0; v < coefficient.size(); ++v) coefficient[v] = 2.0 + 0.1 * static_cast<double>(v % 7);
     model.set_inertia(coefficient, c.x, 0.3);
     const std::vector<double> records = solver::obstacle_records({lid}, 0.0);
-    model.set_obstacles(records, 10.0, 0.1 * kH);
+    model.contact().set_obstacles(records, 10.0, 0.1 * kH);
     // The step started at the rest positions with its anchors there: the
     // pressed vertices have slid since, so their friction blocks are not zero.
-    model.set_friction(c.mesh.positions, c.mesh.positions, records,
-                       solver::friction_records({lid}, ContactOptions{}, 0.0, 0.0), 0.01 * kH);
+    model.contact().set_friction(c.mesh.positions, c.mesh.positions, records,
+                                 solver::friction_records({lid}, ContactOptions{}, 0.0, 0.0), 0.01 * kH);
     MultigridOptions options;
     options.coarsest_dofs = 1;
     options.fine_level = MultigridFineLevel::built;  // carries no per-vertex blocks: refused by name
@@ -480,7 +480,7 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
     EXPECT_FALSE(mg.fine_level_built());  // automatic: the model's operator, which has them
     ASSERT_GE(mg.levels(), 3);
     const viennacl::vector<double> x = upload<double>(c.x);
-    ASSERT_GT(model.contact_state(x).contacts, 4);
+    ASSERT_GT(model.contact().contact_state(x).contacts, 4);
     model.linearize(x, true);
     model.setup_preconditioner();
     mg.setup();
@@ -516,10 +516,10 @@ TEST(Multigrid, ContactSetChangeRebuildsTheHierarchy) {
     model.set_mask(std::vector<double>(c.mask.begin(), c.mask.end()));
     auto place = [&](double z) {
       const std::vector<double> records = solver::obstacle_records({lid_at(z)}, 0.0);
-      model.set_obstacles(records, 10.0, thickness);
+      model.contact().set_obstacles(records, 10.0, thickness);
       if (friction)
-        model.set_friction(c.x, c.x, records, solver::friction_records({lid_at(z)}, ContactOptions{}, 0.0, 0.0),
-                           0.01 * kH);
+        model.contact().set_friction(c.x, c.x, records,
+                                     solver::friction_records({lid_at(z)}, ContactOptions{}, 0.0, 0.0), 0.01 * kH);
     };
     MultigridOptions options;
     options.coarsest_dofs = 1;
@@ -530,12 +530,12 @@ TEST(Multigrid, ContactSetChangeRebuildsTheHierarchy) {
         std::make_unique<solver::MultigridPreconditioner<double>>(model, c.mesh, c.mask, options));
     const viennacl::vector<double> x = upload<double>(c.x);
     place(top + 2.0 * thickness);  // clear of the body
-    ASSERT_EQ(model.contact_state(x).contacts, 0);
+    ASSERT_EQ(model.contact().contact_state(x).contacts, 0);
     problem.linearize(x, true);
     problem.linearize(x, true);
     EXPECT_EQ(problem.preconditioner_builds(), 1);  // reused: nothing changed
     place(top - 0.5 * kH);                          // the top layer in contact
-    ASSERT_GT(model.contact_state(x).contacts, 4);
+    ASSERT_GT(model.contact().contact_state(x).contacts, 4);
     problem.linearize(x, true);
     EXPECT_EQ(problem.preconditioner_builds(), 2);  // the set changed
     problem.linearize(x, true);
@@ -743,7 +743,7 @@ TEST(Multigrid, FloatFineLevelHalvesItsMatricesAndStaysClose) {
   solver::MultigridPreconditioner<double> full(model, c.mesh, c.mask, built_fine_level(false));
   // Half of the cell matrices' and of the assembled blocks' bytes (the
   // upper layout's where blocks are per vertex, CPUs).
-  const size_t count = c.mesh.vertex_count(), tile = model.stencil_tile();
+  const size_t count = c.mesh.vertex_count(), tile = model.data().cache_tile;
   const size_t entries = solver::stencil_entries(
       solver::device_stencil_tables(c.mesh.elements, count, 8, fem::vertex_slots(c.mesh.elements, count), tile), count,
       tile);

@@ -68,7 +68,7 @@ struct SquashedSlab {
         device_for(Precision::double_), mesh, rest, uniform_material(mesh, material), ProductVariant::cached,
         device::MaterialKernel::specialized, barrier ? terms() : solver::ModelTerms{});
     m->set_mask(std::vector<double>(mask.begin(), mask.end()));
-    if (barrier) m->set_self_barrier(kDhat, kKappa);
+    if (barrier) m->contact().set_self_barrier(kDhat, kKappa);
     return m;
   }
 };
@@ -93,7 +93,7 @@ TEST(MultigridBarrier, FirstCoarseLevelCarriesTheBarriersDiagonalBlocks) {
   ASSERT_GE(mg.levels(), 2);
   const viennacl::vector<double> x = upload<double>(s.x);
   barrier_model->energy(x);
-  ASSERT_GT(barrier_model->self_barrier()->state().pairs, 8) << "the squash brings no pair within dhat";
+  ASSERT_GT(barrier_model->contact().self_barrier()->state().pairs, 8) << "the squash brings no pair within dhat";
   barrier_model->linearize(x, true);
   elastic_model->linearize(x, true);
   barrier_model->setup_preconditioner();
@@ -110,7 +110,7 @@ TEST(MultigridBarrier, FirstCoarseLevelCarriesTheBarriersDiagonalBlocks) {
     for (size_t i = 0; i < n; ++i) k(i, j) = column[i];
   }
   std::vector<double> diagonal(9 * s.mesh.vertex_count());
-  barrier_model->context().read(barrier_model->self_barrier()->diagonal(), diagonal.size() * sizeof(double),
+  barrier_model->context().read(barrier_model->contact().self_barrier()->diagonal(), diagonal.size() * sizeof(double),
                                 diagonal.data());
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, n);
   for (size_t v = 0; v < s.mesh.vertex_count(); ++v)
@@ -158,7 +158,7 @@ TEST(MultigridBarrier, VCycleIsSymmetricPositive) {
     options.coarse_solve_on_device = device_coarse;
     solver::MultigridPreconditioner<double> mg(*model, s.mesh, s.mask, options);
     model->energy(upload<double>(s.x));
-    ASSERT_GT(model->self_barrier()->state().pairs, 8);
+    ASSERT_GT(model->contact().self_barrier()->state().pairs, 8);
     model->linearize(upload<double>(s.x), true);
     model->setup_preconditioner();
     mg.setup();

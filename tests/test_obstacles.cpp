@@ -170,9 +170,9 @@ TEST(Obstacles, DeviceContactTermsMatchTheHostReference) {
   solver::ElasticModel<double> with(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached,
                                     device::MaterialKernel::specialized, terms);
   solver::ElasticModel<double> without(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached);
-  EXPECT_NE(with.specialization().find("-DSNH_OBSTACLES=3"), std::string::npos) << with.specialization();
-  EXPECT_EQ(without.specialization().find("SNH_OBSTACLES"), std::string::npos);
-  with.set_obstacles(records, kStiffness, kThickness);
+  EXPECT_NE(with.data().config.defines().find("-DSNH_OBSTACLES=3"), std::string::npos) << with.data().config.defines();
+  EXPECT_EQ(without.data().config.defines().find("SNH_OBSTACLES"), std::string::npos);
+  with.contact().set_obstacles(records, kStiffness, kThickness);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> jitter(-0.01, 0.01);
   std::vector<double> x = mesh.positions, p(x.size());
@@ -198,7 +198,7 @@ TEST(Obstacles, DeviceContactTermsMatchTheHostReference) {
   }
   ASSERT_GT(active, 5);
   expect_vertex_term_matches(with, without, xd, pd, energy, force, product);
-  const solver::ContactState state = with.contact_state(xd);
+  const solver::ContactState state = with.contact().contact_state(xd);
   EXPECT_EQ(state.contacts, active);
   EXPECT_NEAR(state.max_penetration, deepest, 1e-15);
 }

@@ -1,8 +1,8 @@
-// Per-point lanes (kernels/fem_lanes.cl, ElasticModel::set_point_lanes): the
+// Per-point lanes (kernels/fem_lanes.cl, PointLanes::set_point_lanes): the
 // linearization, the cached and recompute products, the element matrices and
 // the block-Jacobi blocks over 8-wide vectors, a lane per quadrature point of a hex8 element or per
 // tet4 element, against fem.cl's scalar kernels on the same device (the
-// cached product runs over lanes in float only: ElasticModel::set_point_lanes).
+// cached product runs over lanes in float only: PointLanes::set_point_lanes).
 // Every lane runs the scalar kernel's operations on the same values (no
 // contraction, correctly rounded division and square root), so the
 // linearization cache and the products must be equal value for value, not
@@ -95,37 +95,37 @@ Outputs<Real> run(solver::ElasticModel<Real>& model, int nodes, const std::vecto
   Outputs<Real> out;
   device::OpenClContext& cl = device_for(precision_of<Real>);
   const viennacl::vector<Real> xd = upload<Real>(x), pd = upload<Real>(p);
-  model.set_variant(ProductVariant::recompute);
+  model.products().set_variant(ProductVariant::recompute);
   for (int projected = 0; projected < 2; ++projected) {
     model.linearize(xd, projected == 0);
     std::vector<Real>& cache = out.cache[projected];
-    cache.resize(model.cache_values());
-    cl.read(model.cache_buffer(), cache.size() * sizeof(Real), cache.data());
+    cache.resize(model.data().cache_values());
+    cl.read(model.data().cache.get(), cache.size() * sizeof(Real), cache.data());
     viennacl::vector<Real> y(model.dofs());
     model.product(pd, y);
     out.product[projected] = download_raw(y);
-    model.set_variant(ProductVariant::cached);
+    model.products().set_variant(ProductVariant::cached);
     model.product(pd, y);
     out.cached[projected] = download_raw(y);
-    model.set_variant(ProductVariant::recompute);
+    model.products().set_variant(ProductVariant::recompute);
     model.setup_preconditioner();
     out.jacobi[projected] = model.preconditioner_blocks();
     const size_t n = 3 * static_cast<size_t>(nodes);
     std::vector<Real>& k = out.matrices[projected];
     std::vector<Real>& b = out.blocks[projected];
-    k.resize(model.element_count() * n * n);
-    b.resize(model.element_count() * 3 * n);
+    k.resize(model.data().element_count * n * n);
+    b.resize(model.data().element_count * 3 * n);
     device::Buffer kd = cl.buffer(CL_MEM_READ_WRITE, k.size() * sizeof(Real));
     device::Buffer bd = cl.buffer(CL_MEM_READ_WRITE, b.size() * sizeof(Real));
-    model.element_matrices_into(kd.get(), bd.get());
+    model.products().element_matrices_into(kd.get(), bd.get());
     cl.read(kd.get(), k.size() * sizeof(Real), k.data());
     cl.read(bd.get(), b.size() * sizeof(Real), b.data());
     if (assembled) {
-      model.set_variant(ProductVariant::assembled);
+      model.products().set_variant(ProductVariant::assembled);
       model.linearize(xd, projected == 0);
       model.product(pd, y);
       out.assembled[projected] = download_raw(y);
-      model.set_variant(ProductVariant::recompute);
+      model.products().set_variant(ProductVariant::recompute);
     }
   }
   return out;
@@ -190,8 +190,8 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
       solver::ElasticModel<Real> model(cl, mesh, rest, map, ProductVariant::recompute, build, terms);
       // The lanes program is the default on CPU devices (pocl), the scalar
       // kernels (a work-item per element) on GPUs.
-      EXPECT_EQ(model.point_lanes(), !cl.info().is_gpu) << cl.info().name;
-      model.set_point_lanes(true);
+      EXPECT_EQ(model.lanes().point_lanes(), !cl.info().is_gpu) << cl.info().name;
+      model.lanes().set_point_lanes(true);
       const bool regions = !map.uniform();
       const int nodes = nodes_per_element(mesh.type);
       // The material kernels' width: two of the device's native vectors
@@ -199,25 +199,25 @@ void check_cases(const std::vector<Mesh>& meshes, const Maps& maps, device::Mate
       // hex8 work-item with regions.
       const unsigned native =
           std::is_same_v<Real, double> ? cl.info().native_vector_width_double : cl.info().native_vector_width_float;
-      EXPECT_EQ(model.material_lanes(), native >= 8 && !(nodes == 8 && regions) ? 16 : 8);
+      EXPECT_EQ(model.lanes().material_lanes(), native >= 8 && !(nodes == 8 && regions) ? 16 : 8);
       const Outputs<Real> lanes = run(model, nodes, x, p);
       // The other width, where it exists: the linearization and the
       // recompute product (the kernels that read the cache keep 8 lanes).
       std::optional<Outputs<Real>> other;
       if (nodes == 8 && regions) {
-        EXPECT_THROW(model.set_material_lanes(16), Error);
+        EXPECT_THROW(model.lanes().set_material_lanes(16), Error);
       } else {
-        model.set_material_lanes(model.material_lanes() == 16 ? 8 : 16);
+        model.lanes().set_material_lanes(model.lanes().material_lanes() == 16 ? 8 : 16);
         other = run(model, nodes, x, p);
       }
-      model.set_point_lanes(false);
-      EXPECT_EQ(model.material_lanes(), 0);
+      model.lanes().set_point_lanes(false);
+      EXPECT_EQ(model.lanes().material_lanes(), 0);
       const Outputs<Real> scalar = run(model, nodes, x, p);
       const double relative = calls_exp(map) ? 1e-14 : 0.0;
       for (int k = 0; k < 2; ++k) {
         const std::string at = k == 0 ? "projected" : "true Hessian";
         if (other) {
-          const std::string width = std::to_string(model.default_material_lanes() == 16 ? 8 : 16) + " lanes, ";
+          const std::string width = std::to_string(model.lanes().default_material_lanes() == 16 ? 8 : 16) + " lanes, ";
           expect_equal_values(other->cache[k], scalar.cache[k], relative, width + "linearization, " + at);
           expect_equal_values(other->product[k], scalar.product[k], relative, width + "recompute product, " + at);
         }
@@ -344,16 +344,16 @@ void check_point_data_layouts() {
                                  point_major);
     solver::ElasticModel<Real> c(cl, mesh, rest, map, ProductVariant::recompute, device::MaterialKernel::specialized,
                                  tiled);
-    EXPECT_EQ(c.cache_tile(), 32u);
-    EXPECT_FALSE(c.point_lanes());
-    EXPECT_FALSE(c.point_lanes_available());
-    EXPECT_THROW(c.set_point_lanes(true), Error);
+    EXPECT_EQ(c.data().cache_tile, 32u);
+    EXPECT_FALSE(c.lanes().point_lanes());
+    EXPECT_FALSE(c.lanes().point_lanes_available());
+    EXPECT_THROW(c.lanes().set_point_lanes(true), Error);
     const size_t tiles = (mesh.element_count() + 31) / 32;
-    EXPECT_EQ(c.cache_values(), tiles * 32 * points * 30);
+    EXPECT_EQ(c.data().cache_values(), tiles * 32 * points * 30);
     for (bool lanes : {true, false}) {
       SCOPED_TRACE(lanes ? "lanes program" : "scalar kernels");
-      a.set_point_lanes(lanes);
-      b.set_point_lanes(lanes);
+      a.lanes().set_point_lanes(lanes);
+      b.lanes().set_point_lanes(lanes);
       const int nodes = static_cast<int>(n);
       const Outputs<Real> va = run(a, nodes, x, p, true), pm = run(b, nodes, x, p, true);
       std::optional<Outputs<Real>> tl;
@@ -386,7 +386,7 @@ void check_point_data_layouts() {
   }
 }
 
-// A double model's float products (ElasticModel::set_float_products) in
+// A double model's float products (ProductVariants::set_float_products) in
 // the scalar kernels: the float copy each linearize() writes (strided in the
 // tiled cache), the mixed cached product, and the float element matrices
 // computed from the copies (fem.cl's SNH_MIXED build, the multigrid fine
@@ -410,15 +410,15 @@ void check_float_copies_across_layouts() {
       terms.hex8_point_data = layout;
       solver::ElasticModel<double> model(cl, mesh, rest, map, ProductVariant::cached,
                                          device::MaterialKernel::specialized, terms);
-      model.set_point_lanes(false);
-      model.set_float_products(true);
+      model.lanes().set_point_lanes(false);
+      model.products().set_float_products(true);
       model.linearize(xd);
       viennacl::vector<double> y(model.dofs());
       model.product(pd, y);
       products[i] = download_raw(y);
       device::Buffer kd = cl.buffer(CL_MEM_READ_WRITE, ne * n * n * sizeof(float));
       device::Buffer bd = cl.buffer(CL_MEM_READ_WRITE, ne * 3 * n * sizeof(double));
-      model.element_matrices_into(kd.get(), bd.get(), true);
+      model.products().element_matrices_into(kd.get(), bd.get(), true);
       matrices[i].resize(ne * n * n);
       cl.read(kd.get(), matrices[i].size() * sizeof(float), matrices[i].data());
       ++i;
@@ -442,9 +442,9 @@ TEST(PointLanes, Tet4RegionsKeepTheScalarKernels) {
       device_for(Precision::double_), mesh, fem::compute_rest_state(mesh),
       two_regions(mesh, with(MaterialModel::stable_neo_hookean), with(MaterialModel::stable_neo_hookean, 1.0)),
       ProductVariant::recompute);
-  EXPECT_FALSE(model.point_lanes());
-  EXPECT_THROW(model.set_point_lanes(true), Error);
-  model.set_point_lanes(false);
+  EXPECT_FALSE(model.lanes().point_lanes());
+  EXPECT_THROW(model.lanes().set_point_lanes(true), Error);
+  model.lanes().set_point_lanes(false);
 }
 
 }  // namespace

@@ -290,9 +290,9 @@ TEST(Regions, KernelSwitchesAreOnlyWhatTheMapNeeds) {
   // before regions existed; a map's names the regions switch.
   auto& cl = device_for(Precision::double_);
   const fem::RestState rest = fem::compute_rest_state(mesh);
-  EXPECT_EQ(solver::ElasticModel<double>(cl, mesh, rest, uniform, ProductVariant::cached).specialization(),
+  EXPECT_EQ(solver::ElasticModel<double>(cl, mesh, rest, uniform, ProductVariant::cached).data().config.defines(),
             "-DSNH_HEX8=1 " + device::material_defines(soft) + " -DSNH_UNIFORM_REST=1");
-  EXPECT_EQ(solver::ElasticModel<double>(cl, mesh, rest, same, ProductVariant::cached).specialization(),
+  EXPECT_EQ(solver::ElasticModel<double>(cl, mesh, rest, same, ProductVariant::cached).data().config.defines(),
             "-DSNH_HEX8=1 -DSNH_MODEL=0 -DSNH_BARRIER=1 -DSNH_NONLINEAR=0 -DSNH_REGIONS=1 -DSNH_UNIFORM_REST=1");
 }
 
@@ -321,7 +321,7 @@ void check_device_against_reference() {
   for (const MapCase& c : map_cases()) {
     SCOPED_TRACE(c.name);
     solver::ElasticModel<Real> model(device_for(precision_of<Real>), c.mesh, c.rest, c.map, ProductVariant::cached);
-    const std::string spec = model.specialization();
+    const std::string spec = model.data().config.defines();
     EXPECT_NE(spec.find("-DSNH_REGIONS=1"), std::string::npos) << spec;
     EXPECT_EQ(spec.find("-DSNH_GENERAL_KERNEL=1") != std::string::npos, c.mixed) << spec;
     const std::vector<double> x = rounded<Real>(perturbed(c.mesh, 0.2 * kH, 12345)),
@@ -339,7 +339,7 @@ void check_device_against_reference() {
     const std::vector<double> expected =
         multiply(reference::assembled_projected_stiffness(c.mesh, c.rest, c.map, x), p);
     for (ProductVariant variant : kVariants) {
-      model.set_variant(variant);
+      model.products().set_variant(variant);
       model.linearize(xd);
       model.product(pd, y);
       tolerance.check(relative_difference(download(y), expected), c.map, c.name + "/" + to_string(variant));
@@ -394,9 +394,9 @@ void check_bitwise() {
     solver::ElasticModel<Real> specialized(cl, c.mesh, c.rest, c.map, ProductVariant::cached);
     solver::ElasticModel<Real> runtime(cl, c.mesh, c.rest, c.map, ProductVariant::cached,
                                        device::MaterialKernel::runtime);
-    EXPECT_EQ(uniform.specialization().find("SNH_REGIONS"), std::string::npos);
-    EXPECT_NE(table.specialization().find("-DSNH_REGIONS=1"), std::string::npos);
-    EXPECT_NE(runtime.specialization().find("-DSNH_GENERAL_KERNEL=1 -DSNH_REGIONS=1"), std::string::npos);
+    EXPECT_EQ(uniform.data().config.defines().find("SNH_REGIONS"), std::string::npos);
+    EXPECT_NE(table.data().config.defines().find("-DSNH_REGIONS=1"), std::string::npos);
+    EXPECT_NE(runtime.data().config.defines().find("-DSNH_GENERAL_KERNEL=1 -DSNH_REGIONS=1"), std::string::npos);
     const viennacl::vector<Real> xd = upload<Real>(perturbed(c.mesh, 0.2 * kH, 42)),
                                  pd = upload<Real>(random_vector(3 * c.mesh.vertex_count(), 1.0, 43));
     auto outputs = [&](solver::ElasticModel<Real>& m) {
@@ -406,7 +406,7 @@ void check_bitwise() {
       const std::vector<Real> r = download_raw(y);
       out.insert(out.end(), r.begin(), r.end());
       for (ProductVariant variant : kVariants) {
-        m.set_variant(variant);
+        m.products().set_variant(variant);
         m.linearize(xd);
         m.product(pd, y);
         const std::vector<Real> k = download_raw(y);

@@ -181,10 +181,11 @@ TEST(SelfContact, DeviceTermsMatchTheHostReference) {
   solver::ElasticModel<double> with(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached,
                                     device::MaterialKernel::specialized, terms);
   solver::ElasticModel<double> without(device_for(Precision::double_), mesh, rest, map, ProductVariant::cached);
-  EXPECT_NE(with.specialization().find("-DSNH_SELF_CONTACT=1"), std::string::npos) << with.specialization();
-  EXPECT_EQ(without.specialization().find("SNH_SELF_CONTACT"), std::string::npos);
+  EXPECT_NE(with.data().config.defines().find("-DSNH_SELF_CONTACT=1"), std::string::npos)
+      << with.data().config.defines();
+  EXPECT_EQ(without.data().config.defines().find("SNH_SELF_CONTACT"), std::string::npos);
   const double k = 7.0;
-  with.set_self_contact_stiffness(k);
+  with.contact().set_self_contact_stiffness(k);
   // Two corners pushed into far cells (two springs), the rest jittered.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> jitter(-0.02, 0.02);
@@ -197,9 +198,9 @@ TEST(SelfContact, DeviceTermsMatchTheHostReference) {
   viennacl::vector<double> xd(x.size()), pd(x.size());
   viennacl::copy(x.begin(), x.end(), xd.begin());
   viennacl::copy(p.begin(), p.end(), pd.begin());
-  EXPECT_TRUE(with.refresh_self_contact(xd));
-  EXPECT_FALSE(with.refresh_self_contact(xd));  // the same set
-  const std::vector<solver::SelfContactPair> contacts = with.self_contacts();
+  EXPECT_TRUE(with.contact().refresh_self_contact(xd));
+  EXPECT_FALSE(with.contact().refresh_self_contact(xd));  // the same set
+  const std::vector<solver::SelfContactPair> contacts = with.contact().self_contacts();
   ASSERT_EQ(contacts.size(), 2u);
   const double energy = solver::self_contact_energy(contacts, k, x);
   EXPECT_GT(energy, 0.0);
@@ -209,8 +210,8 @@ TEST(SelfContact, DeviceTermsMatchTheHostReference) {
   for (double& g : gradient) g = -g;                       // the force
   expect_vertex_term_matches(with, without, xd, pd, energy, gradient, product);
   // Block-Jacobi: the inverted diagonal blocks of (elastic + k a_i^2 I).
-  with.set_variant(ProductVariant::cached);
-  without.set_variant(ProductVariant::cached);
+  with.products().set_variant(ProductVariant::cached);
+  without.products().set_variant(ProductVariant::cached);
   with.linearize(xd, true);
   without.linearize(xd, true);
   with.setup_preconditioner();
@@ -227,7 +228,7 @@ TEST(SelfContact, DeviceTermsMatchTheHostReference) {
     const Eigen::Matrix3d expected = inv_without.inverse() + diagonal[v] * Eigen::Matrix3d::Identity();
     EXPECT_LT((inv_with.inverse() - expected).norm(), 1e-9 * expected.norm()) << v;
   }
-  const solver::ContactState state = with.contact_state(xd);
+  const solver::ContactState state = with.contact().contact_state(xd);
   EXPECT_EQ(state.self_contacts, 2);
   EXPECT_NEAR(state.max_self_penetration,
               std::max(solver::self_contact_length(contacts[0], x), solver::self_contact_length(contacts[1], x)),

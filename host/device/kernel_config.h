@@ -51,8 +51,8 @@ struct KernelConfig {
   std::optional<Precision> precision;
 
   // The switches, "-DSNH_HEX8=1 -DSNH_MODEL=0 ...", in the table's order
-  // (precision left out): the program-cache key's part and what
-  // ElasticModel::specialization() reports.
+  // (precision left out): the program-cache key's part and an elastic
+  // model's specialization (its ElementData's config).
   std::string defines() const;
   // defines() and -DSNH_DOUBLE: the kernel specialization a result reports
   // (SolveResult::kernel_specialization). Needs precision.

@@ -159,7 +159,7 @@ SNH_FN void element_product(const principal_hessian* h, const real* ps, const re
 
 #if SNH_IS_OPENCL && SNH_DOUBLE
 /* The float copy of n cache values `stride` apart, for a double solve's
- * products in float (SNH_MIXED; ElasticModel::set_float_products): an
+ * products in float (SNH_MIXED; ProductVariants::set_float_products): an
  * element's values (SNH_CACHE_ELEMENT_STRIDE apart), or a tet4 lanes
  * work-item's (consecutive). */
 SNH_FN void linearization_copy_float(__global const double* in, int n, int stride, __global float* out) {

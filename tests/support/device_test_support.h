@@ -91,8 +91,8 @@ inline void expect_vertex_term_matches(solver::ElasticModel<double>& with, solve
       difference([&](solver::ElasticModel<double>& m, viennacl::vector<double>& out) { m.residual(xd, out); });
   for (size_t i = 0; i < force.size(); ++i) EXPECT_NEAR(dr[i], force[i], 1e-12) << i;
   for (ProductVariant variant : {ProductVariant::cached, ProductVariant::assembled}) {
-    with.set_variant(variant);
-    without.set_variant(variant);
+    with.products().set_variant(variant);
+    without.products().set_variant(variant);
     const std::vector<double> dp = difference([&](solver::ElasticModel<double>& m, viennacl::vector<double>& out) {
       m.linearize(xd, true);
       const viennacl::vector<double> elsewhere = xd + pd;

@@ -1,6 +1,5 @@
 #include "solver/model/elastic_model.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include "device/material_args.h"
@@ -46,7 +45,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   // layout.
   PointDataLayout layout = terms.hex8_point_data;
   if (layout == PointDataLayout::automatic)
-    layout = lanes_by_default() ? PointDataLayout::value_major : PointDataLayout::tiled;
+    layout = PointLanes<Real>::lanes_by_default(cl) ? PointDataLayout::value_major : PointDataLayout::tiled;
   const bool value_major = layout == PointDataLayout::value_major;
   config.point_major = mesh.type == ElementType::hex8 && !value_major;
   if (layout == PointDataLayout::tiled) {
@@ -88,7 +87,7 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   external_ = cl.buffer(CL_MEM_READ_ONLY, dofs() * sizeof(Real));
   data_.element_scratch = cl.buffer(CL_MEM_READ_WRITE, element_count * data_.nodes * 3 * sizeof(Real));
   data_.element_blocks = cl.buffer(CL_MEM_READ_WRITE, element_count * data_.nodes * 9 * sizeof(Real));
-  data_.cache = cl.buffer(CL_MEM_READ_WRITE, cache_values() * sizeof(Real));
+  data_.cache = cl.buffer(CL_MEM_READ_WRITE, data_.cache_values() * sizeof(Real));
   energies_ = cl.buffer(CL_MEM_READ_WRITE, element_count * sizeof(Real));
   min_j_ = cl.buffer(CL_MEM_READ_WRITE, element_count * sizeof(Real));
   if (terms.inertia || terms.obstacles > 0)
@@ -99,7 +98,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   energy_k_ = cl.kernel("fem.cl", config, "snh_element_energy");
   forces_k_ = cl.kernel("fem.cl", config, "snh_element_forces");
   products_ = std::make_unique<ProductVariants<Real>>(data_, material_, variant, &profiler_);
-  set_point_lanes(point_lanes_available() && lanes_by_default());
+  lanes_ = std::make_unique<PointLanes<Real>>(data_, material_, *products_);
+  lanes_->set_point_lanes(lanes_->point_lanes_available() && PointLanes<Real>::lanes_by_default(cl));
   gather_k_ = cl.kernel("fem.cl", config, "snh_gather_vectors");
   block_jacobi_ = std::make_unique<BlockJacobi<Real>>(cl, vertex_count, config);
   mask_k_ = cl.kernel("fem.cl", config, "snh_apply_mask");
@@ -110,70 +110,15 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
                                          ? !cl.info().is_gpu
                                          : terms.self_broad_phase == SelfBroadPhase::host);
   }
+  contact_ = std::make_unique<ModelContact<Real>>(data_, terms_, &profiler_, vertex_terms_.get(), self_contact_.get(),
+                                                  barrier_.get());
   for (size_t e = 0; e < element_count; ++e) {
     const Material& m = materials.of_element(e);
     double volume = 0.0;
     for (int q = 0; q < data_.quadrature; ++q) volume += rest.weight(e, q);
     elastic_magnitude_ += (std::abs(m.mu) + std::abs(m.lambda)) * volume;
   }
-  set_variant(variant);
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_variant(ProductVariant v) {
-  products_->set_variant(v);
-}
-
-template <typename Real>
-bool ElasticModel<Real>::point_lanes_available() const {
-  // tet4 lanes hold 8 elements, so they share one material; the lanes read
-  // the value-major or point-major cache.
-  return data_.cache_tile == 1 && (data_.nodes == 8 || !material_.per_element());
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_point_lanes(bool on) {
-  if (on && data_.cache_tile > 1)
-    throw Error(
-        "solver: the per-point lanes program reads the value-major or point-major cache, not the tiled one "
-        "(PointDataLayout)");
-  if (on && !point_lanes_available())
-    throw Error("solver: per-point lanes of tet4 meshes need one material for the mesh (this map has regions)");
-  data_.point_lanes = on;
-  set_material_lanes(on ? default_material_lanes() : ElementData<Real>::kCacheLanes);
-  products_->set_point_lanes(material_lanes_);
-  diagonal_k_ = data_.point_kernel("snh_element_diagonal");
-}
-
-template <typename Real>
-int ElasticModel<Real>::default_material_lanes() const {
-  // Two of the device's native vectors per lane vector where it has 8-wide
-  // ones for Real (AVX-512 in double, AVX and up in float): the SVD's chains
-  // of dependent square roots and divisions bound one vector's throughput,
-  // and a second, independent one fills their latency (twice the elements
-  // per work-item). 8 where hex8 elements carry their own material (a
-  // work-item's material is one element's).
-  const DeviceInfo& info = data_.cl.info();
-  const unsigned native =
-      sizeof(Real) == sizeof(double) ? info.native_vector_width_double : info.native_vector_width_float;
-  return native >= 8 && !hex8_materials_per_element() ? 16 : ElementData<Real>::kCacheLanes;
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_material_lanes(int lanes) {
-  if (lanes != 8 && lanes != 16) throw Error("solver: material lanes are 8 or 16, not " + std::to_string(lanes));
-  if (lanes == 16 && hex8_materials_per_element())
-    throw Error(
-        "solver: 16 material lanes hold two hex8 elements, so they need one material for the mesh (this map has "
-        "regions)");
-  material_lanes_ = data_.point_lanes ? lanes : 0;
-  linearize_k_ = data_.point_kernel("snh_element_linearize", material_lanes_);
-  products_->set_material_lanes(material_lanes_);
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_float_products(bool on) {
-  products_->set_float_products(on);
+  products_->set_variant(variant);
 }
 
 template <typename Real>
@@ -247,133 +192,6 @@ void ElasticModel<Real>::elastic_forces(const VectorBase& x, VectorBase& out) {
 }
 
 template <typename Real>
-void ElasticModel<Real>::set_obstacles(const std::vector<double>& records, double stiffness, double thickness) {
-  if (terms_.obstacles == 0) throw Error("solver: set_obstacles on a model built without obstacles");
-  if (records.size() != static_cast<size_t>(8 * terms_.obstacles))
-    throw Error("solver: " + std::to_string(records.size()) + " obstacle record entries, expected " +
-                std::to_string(8 * terms_.obstacles));
-  vertex_terms_->set_obstacles(records, stiffness, thickness);
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_contact_surface(const ContactSurface& surface) {
-  if (terms_.obstacles == 0) throw Error("solver: set_contact_surface on a model built without obstacles");
-  vertex_terms_->set_contact_surface(surface);
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_friction(const std::vector<double>& start_positions, const std::vector<double>& anchors,
-                                      const std::vector<double>& start_records,
-                                      const std::vector<double>& friction_records, double slip) {
-  if (!terms_.friction) throw Error("solver: set_friction on a model built without friction");
-  if (start_positions.size() != dofs() || anchors.size() != terms_.obstacles * dofs() ||
-      start_records.size() != static_cast<size_t>(8 * terms_.obstacles) ||
-      friction_records.size() != static_cast<size_t>(16 * terms_.obstacles))
-    throw Error("solver: set_friction with arrays of the wrong size");
-  if (!(slip > 0.0) || !std::isfinite(slip)) throw Error("solver: friction slip must be finite and > 0");
-  vertex_terms_->set_friction(start_positions, anchors, start_records, friction_records, slip);
-}
-
-template <typename Real>
-std::vector<double> ElasticModel<Real>::next_friction_anchors(const VectorBase& x) {
-  if (!terms_.friction) throw Error("solver: next_friction_anchors on a model built without friction");
-  return vertex_terms_->next_friction_anchors(mem(x));
-}
-
-template <typename Real>
-void ElasticModel<Real>::contact(const VectorBase& x, bool linearization) const {
-  vertex_terms_->contact(mem(x), linearization);
-}
-
-template <typename Real>
-ContactState ElasticModel<Real>::contact_state(const VectorBase& x) {
-  ContactState state;
-  if (terms_.self_contact) {
-    // The springs the penalty has at x: the set refreshed there (samples
-    // already in contact keep theirs).
-    refresh_self_contact(x);
-    std::vector<Real> xh(dofs());
-    device::read_back(data_.cl, x, xh);
-    const std::vector<double> xd(xh.begin(), xh.end());
-    for (const SelfContactPair& c : self_contact_->pairs()) {
-      ++state.self_contacts;
-      state.max_self_penetration = std::max(state.max_self_penetration, self_contact_length(c, xd));
-    }
-  }
-  if (terms_.obstacles == 0) return state;
-  contact(x);
-  for (Real g : vertex_terms_->contact_depths())
-    if (g > Real(0)) {
-      ++state.contacts;
-      state.max_penetration = std::max(state.max_penetration, static_cast<double>(g));
-    }
-  return state;
-}
-
-template <typename Real>
-uint64_t ElasticModel<Real>::contact_set_signature() {
-  return terms_.obstacles == 0 ? 0 : vertex_terms_->contact_set_signature();
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_self_contact_stiffness(double stiffness) {
-  if (!terms_.self_contact) throw Error("solver: self-contact stiffness on a model built without self-contact");
-  if (!(stiffness > 0.0) || !std::isfinite(stiffness)) throw Error("solver: self-contact stiffness not finite and > 0");
-  self_contact_->set_stiffness(stiffness);
-}
-
-template <typename Real>
-bool ElasticModel<Real>::refresh_self_contact(const VectorBase& x, bool new_step) {
-  if (!terms_.self_contact) return false;
-  std::vector<Real> xh(dofs());
-  {
-    PhaseScope transfer(&profiler_, Phase::transfers);
-    device::read_back(data_.cl, x, xh);
-  }
-  return self_contact_->refresh(std::vector<double>(xh.begin(), xh.end()), new_step);
-}
-
-template <typename Real>
-const std::vector<SelfContactPair>& ElasticModel<Real>::self_contacts() const {
-  static const std::vector<SelfContactPair> none;
-  return self_contact_ ? self_contact_->pairs() : none;
-}
-
-template <typename Real>
-std::vector<double> ElasticModel<Real>::host_positions(const VectorBase& x) const {
-  std::vector<double> xd;
-  PhaseScope transfer(&profiler_, Phase::transfers);
-  device::read_back(data_.cl, x, xd);
-  return xd;
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_self_barrier(double dhat, double kappa) {
-  if (!barrier_) throw Error("solver: barrier self-contact parameters on a model built without it");
-  if (!(dhat > 0.0) || !std::isfinite(dhat)) throw Error("solver: self-contact distance not finite and > 0");
-  if (!(kappa > 0.0) || !std::isfinite(kappa)) throw Error("solver: barrier stiffness not finite and > 0");
-  barrier_->set_parameters(dhat, kappa);
-}
-
-template <typename Real>
-void ElasticModel<Real>::set_self_barrier_surface(const Mesh& mesh, const TriangleSurface& surface,
-                                                  const Embedding& embedding) {
-  if (!barrier_) throw Error("solver: a barrier self-contact surface on a model built without it");
-  barrier_->set_surface(BarrierContact(mesh, surface, embedding));
-}
-
-template <typename Real>
-double ElasticModel<Real>::step_bound(const VectorBase& x, const VectorBase& p) {
-  if (!barrier_) return std::numeric_limits<double>::infinity();
-  return barrier_->step_bound(mem(x), mem(p));
-}
-
-template <typename Real>
-void ElasticModel<Real>::self_differences(const VectorBase& u) const {
-  if (self_contact_) self_contact_->differences(mem(u));
-}
-
-template <typename Real>
 double ElasticModel<Real>::energy(const VectorBase& x) {
   PhaseScope timed(&profiler_, Phase::line_search_energies);
   const int count = static_cast<int>(data_.element_count);
@@ -392,7 +210,7 @@ double ElasticModel<Real>::energy(const VectorBase& x) {
   const int work_slot = work_on_device ? (slots += 2) - 2 : -1;
   const int inertia_slot = inertia_on_device ? slots++ : -1;
   if (contact_slot >= 0) {
-    contact(x);
+    vertex_terms_->contact(mem(x));
     reduction_.queue_sum(vertex_terms_->contact_energy(), data_.vertex_count, contact_slot);
   }
   if (work_slot >= 0) reduction_.queue_work(mem(x), external_work_.get(), dofs(), work_slot);
@@ -461,8 +279,8 @@ template <typename Real>
 void ElasticModel<Real>::residual(const VectorBase& x, VectorBase& r) {
   PhaseScope timed(&profiler_, Phase::line_search_energies);
   run_forces_kernel(x);
-  if (terms_.obstacles > 0) contact(x);
-  self_differences(x);
+  if (terms_.obstacles > 0) vertex_terms_->contact(mem(x));
+  if (self_contact_) self_contact_->differences(mem(x));
   gather(data_.element_scratch, r, true, &x, 1, elastic_scale_);
   if (barrier_) barrier_->add_force(mem(x), data_.mask.get(), mem(r));
 }
@@ -471,15 +289,15 @@ template <typename Real>
 void ElasticModel<Real>::linearize(const VectorBase& x, bool projected) {
   PhaseScope timed(&profiler_, Phase::linearization);
   data_.cl.copy(mem(x), mem(linearized_x_), dofs() * sizeof(Real));  // in queue order, no ViennaCL kernel
-  projected_ = projected ? 1 : 0;
+  const int projection = projected ? 1 : 0;
   const int count = static_cast<int>(data_.element_count);
-  KernelArgs args(linearize_k_.get());
+  KernelArgs args(lanes_->linearize_kernel());
   args.add(mem(x)).add(data_.elements.get()).add(data_.gradients.get()).add(count);
-  material_.add_to(args).add(projected_).add(data_.cache.get());
+  material_.add_to(args).add(projection).add(data_.cache.get());
   // Double: the cache's float copy for float products (null: none).
   if (sizeof(Real) > sizeof(float)) args.add(products_->float_cache_buffer());
-  data_.run_point_kernel(args.bind(), material_lanes_);
-  if (terms_.obstacles > 0) contact(x, true);  // the Gauss-Newton blocks at x
+  data_.run_point_kernel(args.bind(), lanes_->material_lanes());
+  if (terms_.obstacles > 0) vertex_terms_->contact(mem(x), true);  // the Gauss-Newton blocks at x
   if (barrier_) barrier_->linearize(mem(x));
   products_->linearized(projected);
 }
@@ -497,14 +315,14 @@ void ElasticModel<Real>::product(const VectorBase& p, VectorBase& y) const {
     KernelArgs terms(mask_k_.get());
     terms.add(data_.mask.get()).add(size).add(mem(y)).add(static_cast<Real>(elastic_scale_)).add(mem(p));
     if (vertex_terms_) vertex_terms_->add_block_args(terms);
-    self_differences(p);
+    if (self_contact_) self_contact_->differences(mem(p));
     if (terms_.self_contact) self_contact_->add_args(terms);
     data_.cl.run(terms.bind(), dofs());
     if (barrier_) barrier_->add_product(data_.mask.get(), mem(p), mem(y));
     return;
   }
-  products_->element_product(p, linearized_x_, projected_);
-  self_differences(p);
+  products_->element_product(p, linearized_x_);
+  if (self_contact_) self_contact_->differences(mem(p));
   gather(data_.element_scratch, y, false, &p, 2, elastic_scale_);
   if (barrier_) barrier_->add_product(data_.mask.get(), mem(p), mem(y));
 }
@@ -513,10 +331,10 @@ template <typename Real>
 void ElasticModel<Real>::setup_preconditioner() {
   PhaseScope timed(&profiler_, Phase::preconditioner_setup);
   const int count = static_cast<int>(data_.element_count);
-  if (!(projected_ && element_matrices_buffer())) {
+  if (!(products_->projected() && products_->element_matrices_buffer())) {
     // Else the projected element matrices' kernel wrote their diagonal
     // blocks already.
-    KernelArgs args(diagonal_k_.get());
+    KernelArgs args(lanes_->diagonal_kernel());
     args.add(data_.elements.get())
         .add(data_.gradients.get())
         .add(data_.weights.get())

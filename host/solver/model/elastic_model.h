@@ -2,9 +2,12 @@
 // (solver/model/element_data.h) and its materials (one, or one per region), with
 // energy, forces, residual, linearization and the dispatch of the Hessian
 // products (solver/model/product_variants.h) and the per-vertex terms
-// (solver/model/vertex_terms.h, solver/contact/self_contact_terms.h), operating on
-// ViennaCL vectors so that ViennaCL's CG can drive the matrix-free product.
-// Internal to the library.
+// (solver/model/vertex_terms.h, solver/contact/self_contact_terms.h,
+// solver/contact/barrier_terms.h), operating on ViennaCL vectors so that
+// ViennaCL's CG can drive the matrix-free product. Its users reach the
+// element data, the products, the lanes setting (solver/model/point_lanes.h)
+// and the contact (solver/model/model_contact.h) through their own faces:
+// data(), products(), lanes() and contact(). Internal to the library.
 #pragma once
 
 #include <cstdint>
@@ -28,6 +31,8 @@
 #include "solver/linear/device_reduction.h"
 #include "solver/model/block_stencil.h"
 #include "solver/model/element_data.h"
+#include "solver/model/model_contact.h"
+#include "solver/model/point_lanes.h"
 #include "solver/model/product_variants.h"
 #include "solver/model/vertex_terms.h"
 #include "viennacl/vector.hpp"
@@ -70,14 +75,6 @@ struct ModelTerms {
   PointDataLayout hex8_point_data = PointDataLayout::automatic;  // SNH_POINT_MAJOR, SNH_CACHE_TILE (tet4 too)
 };
 
-// Contact with the obstacles, and self-contact, at some x.
-struct ContactState {
-  int contacts = 0;                   // vertices with g = thickness - phi > 0
-  double max_penetration = 0.0;       // the largest g (0: none)
-  int self_contacts = 0;              // surface vertices in self-contact (detected at x)
-  double max_self_penetration = 0.0;  // their largest spring length (0: none)
-};
-
 template <typename Real>
 class ElasticModel {
  public:
@@ -104,55 +101,6 @@ class ElasticModel {
   void set_inertia(const std::vector<double>& coefficient, const std::vector<double>& target, double elastic_scale);
   // -dPsi/dx at x, masked, without external force, inertia or scale.
   void elastic_forces(const VectorBase& x, VectorBase& out);
-  // The obstacles placed for the coming solve (ModelTerms::obstacles records
-  // of solver/contact/obstacles.h) and the penalty's stiffness and thickness: the
-  // energy gains sum over vertices of their contact energy, the residual
-  // their contact force, the Hessian their Gauss-Newton blocks.
-  void set_obstacles(const std::vector<double>& records, double stiffness, double thickness);
-  // An embedded surface's points join the obstacle contact (VertexTerms).
-  void set_contact_surface(const ContactSurface& surface);
-  // Friction (ModelTerms::friction) for the coming solve: the step's start
-  // positions (xyz per vertex), the anchors (xyz per vertex and obstacle,
-  // vertex-major), the obstacles' records at the step's start, their
-  // friction records (solver/contact/obstacles.h) and the slip eps > 0. The energy,
-  // residual and Hessian blocks gain the lagged friction potential.
-  void set_friction(const std::vector<double>& start_positions, const std::vector<double>& anchors,
-                    const std::vector<double>& start_records, const std::vector<double>& friction_records, double slip);
-  // After the solve, at its end x: the anchors for the next step
-  // (kernels/contact/obstacle.h, obstacle_friction_anchor), same layout.
-  std::vector<double> next_friction_anchors(const VectorBase& x);
-  ContactState contact_state(const VectorBase& x);
-  // The vertices in an obstacle's contact layer at the last linearize(), as
-  // a hash of their indices (0: none, or no obstacles): where it changes, so
-  // do the per-vertex contact blocks of the Hessian (the multigrid's reuse
-  // rule, solver/newton/device_problem.h). One read of two integers where the
-  // device has fp64 (VertexTerms::contact_set_signature).
-  uint64_t contact_set_signature();
-  // Self-contact (ModelTerms::self_contact): the springs' stiffness, and the
-  // active set detected at x, frozen until the next refresh (energy,
-  // residual, products and preconditioner all use it). Within a step
-  // (new_step false) a sample still in contact keeps the spring it had.
-  // Returns whether the set changed. contact_state(x) refreshes it at x.
-  void set_self_contact_stiffness(double stiffness);
-  bool refresh_self_contact(const VectorBase& x, bool new_step = false);
-  const std::vector<SelfContactPair>& self_contacts() const;
-  const SelfContactDetector* self_contact_detector() const {
-    return self_contact_ ? &self_contact_->detector() : nullptr;
-  }
-  // Barrier self-contact (ModelTerms::self_barrier): its dhat and kappa
-  // (snh::Error without the term or for values not finite and > 0). The
-  // energy, residual, linearization, products and block-Jacobi then carry
-  // kappa sum b over the surface pairs within dhat, detected at each x.
-  void set_self_barrier(double dhat, double kappa);
-  // Barrier self-contact on a surface carried by the mesh's cells
-  // (ContactOptions::self_surface) instead of its boundary.
-  void set_self_barrier_surface(const Mesh& mesh, const TriangleSurface& surface, const Embedding& embedding);
-  // The largest alpha <= 1 that continuous collision detection clears along
-  // x + alpha p; infinity without barrier self-contact.
-  double step_bound(const VectorBase& x, const VectorBase& p);
-  // Null without barrier self-contact.
-  const BarrierTerms<Real>* self_barrier() const { return barrier_.get(); }
-
   // Total potential energy: elastic energy minus external work, summed on the
   // host in double and in element order. Non-finite when any element's is.
   double energy(const VectorBase& x);
@@ -179,130 +127,36 @@ class ElasticModel {
   // The preconditioner's inverted 3x3 blocks, column-major per vertex (tests).
   std::vector<Real> preconditioner_blocks() const;
 
-  std::string specialization() const { return data_.config.defines(); }
-  // The build (device/kernel_config.h) and the specialization a result
-  // reports: specialization() and the precision (-DSNH_DOUBLE).
-  const device::KernelConfig& kernel_config() const { return data_.config; }
-  std::string kernel_report() const {
-    device::KernelConfig c = data_.config;
-    c.precision = data_.cl.precision();
-    return c.report();
-  }
-  // The same switches without the per-vertex terms (inertia, obstacles,
-  // friction, self-contact): the builds of a multigrid's coarse levels,
-  // whose cell matrices carry those terms already.
-  std::string elastic_specialization() const { return data_.elastic_config.defines(); }
-  const device::KernelConfig& elastic_kernel_config() const { return data_.elastic_config; }
-  // What the multigrid preconditioner reads (solver/multigrid/multigrid.h): the
-  // context, the mesh's element and rest-state buffers, the linearization
-  // cache and the constraint mask (host copy and buffer).
+  // The mesh's device data and builds (solver/model/element_data.h), and
+  // their context: the model's specialization (data().config.defines()),
+  // what a result reports (data().kernel_report()), and what the multigrid
+  // preconditioner reads (solver/multigrid/multigrid.h): the context, the
+  // element and rest-state buffers, the linearization cache and its tiles,
+  // the builds with and without the per-vertex terms.
+  const ElementData<Real>& data() const { return data_; }
   device::OpenClContext& context() const { return data_.cl; }
-  cl_mem elements_buffer() const { return data_.elements.get(); }
-  cl_mem gradients_buffer() const { return data_.gradients.get(); }
-  cl_mem weights_buffer() const { return data_.weights.get(); }
-  cl_mem cache_buffer() const { return data_.cache.get(); }
-  // The cache's size in values: 30 per quadrature point (kernels/fem/element.h),
-  // with the elements rounded up to whole tiles in the tiled layout.
-  size_t cache_values() const { return data_.cache_values(); }
-  // Elements per tile of the cache: 1, or 32 in the tiled layout.
-  size_t cache_tile() const { return data_.cache_tile; }
-  // Vertices per tile of the block stencils (the multigrid's levels read
-  // this model's defines): the same.
-  size_t stencil_tile() const { return data_.cache_tile; }
-  // The per-element matrices of the last linearize() (element_matrices and
-  // assembled variants), else null.
-  cl_mem element_matrices_buffer() const { return products_->element_matrices_buffer(); }
-  size_t element_count() const { return data_.element_count; }
-  // The element matrices of the last linearize() (projected or true, as
-  // linearized) and their 3x3 diagonal blocks into caller-owned buffers
-  // (element_count() * (3N)^2 and * 9N reals; column-major, as
-  // snh_element_matrices writes them), whatever the product variant. With
-  // single_precision (double builds), the matrices in float, exactly
-  // symmetric (kernels/fem/element.h, SNH_MATRIX_FLOAT); the blocks stay in
-  // the working precision. With float products on (the cached variant)
-  // those float matrices are computed in float from the cache's float copy
-  // (SNH_MIXED; multigrid's built fine level).
-  void element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks, bool single_precision = false) const {
-    products_->element_matrices_into(matrices, diagonal_blocks, single_precision, projected_ != 0);
-  }
+  // The Hessian products and what they store (solver/model/product_variants.h):
+  // the variant, float products, the element matrices and the assembly.
+  ProductVariants<Real>& products() { return *products_; }
+  // Per-point lanes and the material lanes (solver/model/point_lanes.h).
+  PointLanes<Real>& lanes() { return *lanes_; }
+  // Obstacles, friction, the contact surface, penalty and barrier
+  // self-contact: their settings for the coming solve and what they find
+  // (solver/model/model_contact.h).
+  ModelContact<Real>& contact() { return *contact_; }
   // The per-vertex terms a multigrid's coarse levels take in (solver/multigrid/multigrid.h):
-  // the terms built in, the elastic energy's scale (implicit Euler's), the
-  // inertia coefficients c_v (null without inertia) and the obstacle
-  // contact (and friction) 3x3 blocks of the last linearize() (null without
-  // obstacles).
+  // the terms built in, the elastic energy's scale (implicit Euler's) and
+  // the inertia coefficients c_v (null without inertia); the obstacle
+  // contact blocks are contact()'s.
   const ModelTerms& terms() const { return terms_; }
   double elastic_scale() const { return elastic_scale_; }
   // The largest small-strain Poisson's ratio over the materials the mesh's
   // elements use (snh::max_poisson_ratio).
   double max_poisson_ratio() const { return max_poisson_ratio_; }
   cl_mem inertia_buffer() const { return vertex_terms_ ? vertex_terms_->inertia_buffer() : nullptr; }
-  cl_mem contact_blocks_buffer() const { return vertex_terms_ ? vertex_terms_->contact_blocks_buffer() : nullptr; }
-  ProductVariant variant() const { return products_->variant(); }
-  // Takes effect at the next linearize(). `automatic` is not accepted here.
-  void set_variant(ProductVariant v);
-  // Per-point lanes (kernels/fem_lanes.cl): the linearization, the
-  // recompute product, the element matrices, block-Jacobi's element blocks
-  // and (float) the cached product over 8-wide vectors, a lane per quadrature point of a
-  // hex8 element or per tet4 element, the scalar kernels' results bit for
-  // bit on pocl (but for exp's rounding; NVIDIA's compiler rounds the two
-  // programs' float differently, by a few ulps). On by default on CPU
-  // devices (where pocl leaves the scalar kernels' per-point math
-  // unvectorized), off on GPUs. Not available with the tiled cache
-  // (PointDataLayout, the GPUs' default) or for tet4 meshes with
-  // materials per region (throws snh::Error).
-  void set_point_lanes(bool on);
-  bool point_lanes() const { return data_.point_lanes; }
-  // With point lanes on: the width of the kernels that evaluate the
-  // material (the linearization and the recompute product), 8 or 16 lanes
-  // (a work-item per 2 hex8 elements or 16 tet4 ones); the kernels that
-  // read the cache keep 8. set_point_lanes picks default_material_lanes();
-  // 16 on hex8 meshes with materials per region throws snh::Error. 0 with
-  // lanes off.
-  void set_material_lanes(int lanes);
-  int material_lanes() const { return material_lanes_; }
-  int default_material_lanes() const;
-  // Mixed precision, double models with the cached or the assembled
-  // variant: CG's products in float. Cached (kernels/snh_portable.h,
-  // SNH_MIXED): each linearize() writes its cache's float copy too (the rest
-  // gradients and weights are narrowed once, here); the product reads p and
-  // writes its per-element values in double. Assembled: each linearize()
-  // narrows the assembled blocks to float, and the stencil product reads
-  // them with double p and y (SNH_MATRIX_FLOAT). The gather, the vertex
-  // terms, the energy, the residual, the linearization and the
-  // preconditioners keep double. A float model, or another variant, keeps
-  // its products in the working precision.
-  void set_float_products(bool on);
-  // Whether the products run in float now (set, a double model, the cached
-  // or assembled variant).
-  bool float_products() const { return products_->float_products(); }
-  bool point_lanes_available() const;
-  // The element-matrices product with a work-item per matrix row instead of
-  // per element (fem.cl, snh_element_matrix_product_rows): coalesced reads
-  // on GPUs, where it is the default; the same values.
-  void set_matrix_product_rows(bool on) { products_->set_matrix_product_rows(on); }
-  bool matrix_product_rows() const { return products_->matrix_product_rows(); }
-  // The lanes program and the value-major hex8 point data (PointDataLayout)
-  // are the defaults on CPU devices.
-  bool lanes_by_default() const { return !data_.cl.info().is_gpu; }
-  // Device memory the current variant holds beyond the mesh and vectors:
-  // the linearization cache, element matrices or assembled matrix.
-  size_t variant_memory_bytes() const { return products_->variant_memory_bytes(); }
-  // Seconds the last linearize() spent assembling the block stencil (its
-  // tables too, the first time); 0 for other variants.
-  double last_assembly_seconds() const { return products_->last_assembly_seconds(); }
-  // The assembled operator's 3x3 blocks stored per vertex (0 before the
-  // first assembly): the most vertices any vertex shares an element with,
-  // plus one (kernels/fem/block_stencil.h).
-  int assembled_width() const { return products_->assembled_width(); }
-  // The blocks each vertex reads as the transposes of its neighbours' (the
-  // upper layout, per-vertex blocks on CPUs: solver/model/block_stencil.h), else
-  // 0; and the blocks stored (padding and the upper layout's zero block
-  // included).
-  int assembled_lower() const { return products_->assembled_lower(); }
-  size_t assembled_blocks() const { return products_->assembled_blocks(); }
   // Device memory of every buffer the model holds: mesh, rest state,
-  // material, scratch, preconditioner and variant_memory_bytes(); not the
-  // solver's vectors.
+  // material, scratch, preconditioner and the products'
+  // (ProductVariants::memory_bytes); not the solver's vectors.
   size_t memory_bytes() const;
 
   // Where this model's solves spend their time (device/phase_profile.h); the
@@ -312,28 +166,20 @@ class ElasticModel {
   const DeviceReduction& reduction() const { return reduction_; }
 
  private:
-  // hex8 elements with their own materials: a lanes work-item holds one.
-  bool hex8_materials_per_element() const { return data_.nodes == 8 && material_.per_element(); }
   // Per-element elastic forces at x into the element scratch (before the gather).
   void run_forces_kernel(const VectorBase& x) const;
   // vertex_mode: 0 none, 1 residual terms of u = x, 2 product terms of u = p
   // (fem.cl, snh_gather_vectors); scale multiplies the element values.
   void gather(const device::Buffer& element_values, VectorBase& out, bool external, const VectorBase* u = nullptr,
               int vertex_mode = 0, double scale = 1.0) const;
-  // Runs snh_contact_vertices at x (energy, force, blocks, depth per vertex).
-  void contact(const VectorBase& x, bool linearization = false) const;
   bool vertex_terms() const { return terms_.inertia || terms_.obstacles > 0 || terms_.self_contact; }
-  // d_c = a_c^T u for the frozen set (before a gather that uses them).
-  void self_differences(const VectorBase& u) const;
 
   ElementData<Real> data_;
   mutable PhaseProfiler profiler_;
   DeviceReduction reduction_;
   device::MaterialArgs<Real> material_;
-  int material_lanes_ = 0;  // set_material_lanes
   device::Buffer external_, energies_, min_j_;
   bool has_external_ = false;
-  int projected_ = 1;
   double last_min_j_ = 0.0;
   std::vector<double> external_host_;
   device::Buffer external_work_;  // external_host_ on the device, for the energy's work term
@@ -342,9 +188,12 @@ class ElasticModel {
   double max_poisson_ratio_ = 0.0;
   double elastic_magnitude_ = 0.0, last_energy_magnitude_ = 0.0;
   Vector linearized_x_;
-  device::Kernel energy_k_, forces_k_, linearize_k_, diagonal_k_, gather_k_, mask_k_;
+  device::Kernel energy_k_, forces_k_, gather_k_, mask_k_;
   // The Hessian products and what they store.
   std::unique_ptr<ProductVariants<Real>> products_;
+  // The lanes setting, and the linearization's and element diagonal's
+  // kernels it picks.
+  std::unique_ptr<PointLanes<Real>> lanes_;
   // Inertia, obstacles and friction (null without inertia and obstacles).
   std::unique_ptr<VertexTerms<Real>> vertex_terms_;
   // Self-contact (ModelTerms::self_contact; null without): detector, frozen
@@ -352,7 +201,8 @@ class ElasticModel {
   std::unique_ptr<SelfContactTerms<Real>> self_contact_;
   // Barrier self-contact (ModelTerms::self_barrier; null without).
   std::unique_ptr<BarrierTerms<Real>> barrier_;
-  std::vector<double> host_positions(const VectorBase& x) const;
+  // The contact's face over vertex_terms_, self_contact_ and barrier_.
+  std::unique_ptr<ModelContact<Real>> contact_;
   // Block-Jacobi's inverted blocks and kernels (setup_preconditioner).
   std::unique_ptr<BlockJacobi<Real>> block_jacobi_;
 };

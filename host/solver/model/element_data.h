@@ -2,11 +2,15 @@
 // gradients and weights, the per-point linearization cache, the constraint
 // mask and the per-element scratch) and how those kernels are built and
 // launched: kernels/fem.cl, or over lanes kernels/fem_lanes.cl. Shared by
-// the elastic operator (solver/model/elastic_model.h) and its Hessian products
-// (solver/model/product_variants.h). Internal to the library.
+// the elastic operator (solver/model/elastic_model.h), its Hessian products
+// (solver/model/product_variants.h) and its lanes setting
+// (solver/model/point_lanes.h); read by the multigrid preconditioner
+// (solver/multigrid/multigrid.h) through ElasticModel::data(). Internal to
+// the library.
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "device/opencl_context.h"
@@ -20,15 +24,28 @@ struct ElementData {
   device::OpenClContext& cl;
   size_t vertex_count = 0, element_count = 0;
   int nodes = 0, quadrature = 0;
-  size_t cache_tile = 1;  // PointDataLayout::tiled: 32
-  // The model's build (its per-vertex terms included) and the same without
-  // those terms (the lanes program and the stencils need only the element's).
+  // Elements per tile of the cache, and vertices per tile of the block
+  // stencils (the multigrid's levels read this model's defines): 1, or 32
+  // in the tiled layout (PointDataLayout::tiled).
+  size_t cache_tile = 1;
+  // The model's build (its per-vertex terms included; its defines() are the
+  // model's specialization) and the same without those terms (the lanes
+  // program and the stencils need only the element's): the build of a
+  // multigrid's coarse levels too, whose cell matrices carry those terms
+  // already.
   device::KernelConfig config, elastic_config;
-  bool point_lanes = false;  // ElasticModel::set_point_lanes
+  bool point_lanes = false;  // PointLanes::set_point_lanes
   device::Buffer elements, gradients, weights, offsets, adjacency, mask, element_scratch, element_blocks, cache;
   std::vector<int> elements_host;
 
   size_t dofs() const { return 3 * vertex_count; }
+  // The build (device/kernel_config.h) and the specialization a result
+  // reports: config.defines() and the precision (-DSNH_DOUBLE).
+  std::string kernel_report() const {
+    device::KernelConfig c = config;
+    c.precision = cl.precision();
+    return c.report();
+  }
   // 30 values per quadrature point (kernels/fem/element.h), the elements
   // rounded up to whole tiles in the tiled layout.
   size_t cache_values() const {

@@ -141,17 +141,18 @@ void ProductVariants<Real>::narrow(cl_mem from, size_t values, Buffer& to) {
 
 template <typename Real>
 void ProductVariants<Real>::linearized(bool projected) {
+  projected_ = projected ? 1 : 0;
   last_assembly_seconds_ = 0.0;
   if (variant_ == ProductVariant::element_matrices || variant_ == ProductVariant::assembled)
-    element_matrices_into(element_matrices_.get(), data_.element_blocks.get(), false, projected);
+    element_matrices_into(element_matrices_.get(), data_.element_blocks.get(), false);
   if (variant_ == ProductVariant::assembled) assemble();
 }
 
 template <typename Real>
-void ProductVariants<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks, bool single_precision,
-                                                  bool projected) const {
+void ProductVariants<Real>::element_matrices_into(cl_mem matrices, cl_mem diagonal_blocks,
+                                                  bool single_precision) const {
   single_precision = single_precision && sizeof(Real) > sizeof(float);
-  if (!single_precision && matrices != element_matrices_.get() && element_matrices_buffer() && projected) {
+  if (!single_precision && matrices != element_matrices_.get() && element_matrices_buffer() && projected_) {
     // This linearization's matrices and their blocks exist already
     // (linearize(); setup_preconditioner() keeps those blocks when projected).
     const size_t nodes = static_cast<size_t>(data_.nodes);
@@ -258,7 +259,7 @@ bool ProductVariants<Real>::stencil_product(const VectorBase& p, VectorBase& y) 
 }
 
 template <typename Real>
-void ProductVariants<Real>::element_product(const VectorBase& p, const VectorBase& linearized_x, int projected) const {
+void ProductVariants<Real>::element_product(const VectorBase& p, const VectorBase& linearized_x) const {
   const int count = static_cast<int>(data_.element_count);
   if (variant_ == ProductVariant::element_matrices) {
     KernelArgs args(matrix_rows_ ? matrix_rows_k_.get() : matrix_product_k_.get());
@@ -284,7 +285,7 @@ void ProductVariants<Real>::element_product(const VectorBase& p, const VectorBas
         .add(data_.weights.get())
         .add(count)
         .add(mem(linearized_x));
-    material_.add_to(args).add(projected).add(data_.element_scratch.get());
+    material_.add_to(args).add(projected_).add(data_.element_scratch.get());
     data_.run_point_kernel(args.bind(), material_lanes_);
   }
 }

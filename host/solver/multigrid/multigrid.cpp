@@ -135,7 +135,7 @@ class Levels final : public MultigridPreconditioner<Real>::Cycle {
   std::unique_ptr<Level> make_level(size_t l);
   // The V-cycle's kernel switches: the coarse ones, in float for a float cycle.
   device::KernelConfig cycle_config() const {
-    const device::KernelConfig& coarse = model_.elastic_kernel_config();
+    const device::KernelConfig& coarse = model_.data().elastic_config;
     return kNarrow ? coarse.with_float_cycle() : coarse;
   }
 
@@ -321,8 +321,8 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
 // level's kind, and each vertex's share of the per-vertex terms.
 template <typename Real, typename C>
 void Levels<Real, C>::build_kernels(const Mesh& mesh, const MultigridOptions& options) {
-  const device::KernelConfig& defines = model_.kernel_config();
-  const device::KernelConfig& coarse = model_.elastic_kernel_config();
+  const device::KernelConfig& defines = model_.data().config;
+  const device::KernelConfig& coarse = model_.data().elastic_config;
   galerkin_cache_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_cache");
   galerkin_matrices_k_ = cl_.kernel("multigrid.cl", coarse, "snh_galerkin_from_matrices");
   // The V-cycle's builds: a float cycle's are the same switches compiled in
@@ -378,7 +378,7 @@ std::unique_ptr<typename Levels<Real, C>::Level> Levels<Real, C>::make_level(siz
   L.mask = upload_as<Real>(cl_, h.mask, L.bytes);
   if (kNarrow) L.cycle_mask = upload_as<C>(cl_, h.mask, L.bytes);
   if (l == 0) {
-    L.element_handle = model_.elements_buffer();
+    L.element_handle = model_.data().elements.get();
   } else {
     L.elements = upload_as<int>(cl_, h.elements, L.bytes);
     L.element_handle = L.elements.get();
@@ -388,13 +388,13 @@ std::unique_ptr<typename Levels<Real, C>::Level> Levels<Real, C>::make_level(siz
     const fem::VertexSlots slots = fem::vertex_slots(h.elements, L.vertices);
     L.offsets = upload_as<int>(cl_, slots.offsets, L.bytes);
     L.adjacency = upload_as<int>(cl_, slots.adjacency, L.bytes);
-    const size_t tile = model_.stencil_tile();
+    const size_t tile = model_.data().cache_tile;
     const StencilTables stencil = device_stencil_tables(h.elements, L.vertices, 8, slots, tile);
     L.width = stencil.width;
     // Float matrices at a float fine level: assembled from float
     // (SNH_MATRIX_FLOAT), and in a Real cycle read by mixed kernels.
     const bool float_matrices = l == 0 && fine_float_;
-    const device::KernelConfig& coarse = model_.elastic_kernel_config();
+    const device::KernelConfig& coarse = model_.data().elastic_config;
     const device::KernelConfig cycle = cycle_config();
     const device::KernelConfig assembly =
         stencil_build(float_matrices ? coarse.with_matrix_float() : coarse, L.width, tile, stencil.lower);
@@ -513,7 +513,7 @@ template <typename Real, typename C>
 void Levels<Real, C>::setup() {
   if (fine_built_) {
     Level& L = *levels_[0];
-    model_.element_matrices_into(L.matrices.get(), L.blocks.get(), fine_float_);
+    model_.products().element_matrices_into(L.matrices.get(), L.blocks.get(), fine_float_);
     assemble_stencil(0);
     block_jacobi(L);
   }
@@ -521,16 +521,17 @@ void Levels<Real, C>::setup() {
     Level& L = *levels_[l];
     const Level& F = *levels_[l - 1];
     const int cells = static_cast<int>(L.cells);
-    const cl_mem fine_matrices = l == 1 && !fine_built_ ? model_.element_matrices_buffer() : F.matrices.get();
+    const cl_mem fine_matrices =
+        l == 1 && !fine_built_ ? model_.products().element_matrices_buffer() : F.matrices.get();
     if (!fine_matrices) {
       cl_kernel k = galerkin_cache_k_.get();
       KernelArgs args(k);
       args.add(octant_weights_.get())
           .add(L.children.get())
           .add(F.element_handle)
-          .add(model_.gradients_buffer())
-          .add(model_.weights_buffer())
-          .add(model_.cache_buffer())
+          .add(model_.data().gradients.get())
+          .add(model_.data().weights.get())
+          .add(model_.data().cache.get())
           .add(F.mask.get())
           .add(cells)
           .add(L.matrices.get())
@@ -560,8 +561,8 @@ void Levels<Real, C>::setup() {
           .add(cells)
           .add(static_cast<Real>(model_.elastic_scale()));
       if (model_.inertia_buffer()) args.add(model_.inertia_buffer());
-      if (model_.contact_blocks_buffer()) args.add(model_.contact_blocks_buffer());
-      if (const auto* barrier = model_.self_barrier()) args.add(barrier->diagonal());
+      if (model_.contact().contact_blocks_buffer()) args.add(model_.contact().contact_blocks_buffer());
+      if (const auto* barrier = model_.contact().self_barrier()) args.add(barrier->diagonal());
       args.add(L.matrices.get()).add(L.blocks.get());
       cl_.run(args.bind(), L.cells);
     }
@@ -609,7 +610,7 @@ void Levels<Real, C>::update_fine_bound() {
   // of magnitude, so the fine smoother takes this linearization's blocks:
   // fewer Newton and CG iterations than with the build's (docs/performance.md,
   // "Fine smoother with barrier self-contact").
-  if (model_.self_barrier()) model_.setup_preconditioner();
+  if (model_.contact().self_barrier()) model_.setup_preconditioner();
   estimate_bounds(0, 1);
 }
 

@@ -87,13 +87,13 @@ class DeviceProblem {
     // Friction's normal forces are re-lagged at each step: its Hessian
     // blocks change with them.
     if (new_step && model_.terms().friction) rebuild_.invalidate();
-    return model_.refresh_self_contact(x, new_step);
+    return model_.contact().refresh_self_contact(x, new_step);
   }
   bool has_true_hessian() const { return true; }
   // Barrier self-contact: the largest step along p that continuous
   // collision detection clears (infinity without it).
-  double step_bound(const Vector& x, const Vector& p) { return model_.step_bound(x, p); }
-  bool has_barrier() const { return model_.self_barrier() != nullptr; }
+  double step_bound(const Vector& x, const Vector& p) { return model_.contact().step_bound(x, p); }
+  bool has_barrier() const { return model_.contact().self_barrier() != nullptr; }
 
   double norm(const Vector& v) const { return std::sqrt(model_.reduction().sum_of_squares(mem(v), v.size())); }
   double dot(const Vector& u, const Vector& v) const { return model_.reduction().dot(mem(u), mem(v), u.size()); }
@@ -109,7 +109,7 @@ class DeviceProblem {
     // obstacle contact").
     uint64_t contacts = 0;
     if (multigrid_ && model_.terms().obstacles > 0) {
-      contacts = model_.contact_set_signature();
+      contacts = model_.contact().contact_set_signature();
       if (contacts != built_contacts_) rebuild_.invalidate();
     }
     if (multigrid_ && !rebuild_.due(projected)) {  // the last hierarchy, its fine bound for this operator
@@ -218,11 +218,11 @@ class DeviceProblem {
     // With barrier self-contact the move is cut to what continuous collision
     // detection clears: a perturbation never passes the surface through itself.
     double alpha = 1.0;
-    if (model_.self_barrier()) {  // the device's CCD from x as it is there
+    if (model_.contact().self_barrier()) {  // the device's CCD from x as it is there
       const std::vector<Real> narrow(move.begin(), move.end());
       viennacl::vector<Real> step(narrow.size());
       viennacl::copy(narrow.begin(), narrow.end(), step.begin());
-      alpha = std::min(1.0, model_.step_bound(x, step));
+      alpha = std::min(1.0, model_.contact().step_bound(x, step));
     }
     for (size_t i = 0; i < host.size(); ++i) host[i] += static_cast<Real>(alpha * move[i]);
     viennacl::copy(host.begin(), host.end(), x.begin());

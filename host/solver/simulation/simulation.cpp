@@ -188,8 +188,8 @@ struct Simulation::Impl {
       warnings.push_back("contact: " + std::to_string(left_out) +
                          " self-contact surface pairs are closer than its distance at rest (seams, or the surface "
                          "touching or crossing itself); they are left out of self-contact");
-    const solver::BarrierTerms<double>* dual_barrier = dual ? dual->model->self_barrier() : nullptr;
-    const solver::BarrierTerms<float>* single_barrier = single ? single->model->self_barrier() : nullptr;
+    const solver::BarrierTerms<double>* dual_barrier = dual ? dual->model->contact().self_barrier() : nullptr;
+    const solver::BarrierTerms<float>* single_barrier = single ? single->model->contact().self_barrier() : nullptr;
     if (dual_barrier)
       crossing = std::make_unique<solver::PrescribedCrossingCheck>(dual_barrier->contact(), mesh.positions);
     if (single_barrier)
@@ -200,7 +200,7 @@ struct Simulation::Impl {
   // its reach there).
   template <typename Real>
   static size_t excluded_at_rest(Engine<Real>& engine) {
-    return engine.model->self_barrier() ? engine.model->self_barrier()->excluded_at_rest() : 0;
+    return engine.model->contact().self_barrier() ? engine.model->contact().self_barrier()->excluded_at_rest() : 0;
   }
 
   void check_rigid_modes() {
@@ -223,7 +223,7 @@ struct Simulation::Impl {
   std::unique_ptr<Engine<Real>> make_engine(std::unique_ptr<device::OpenClContext> context) {
     const solver::EngineSetup setup{mesh, rest, materials, config, prescribed};
     auto engine = solver::make_engine<Real>(setup, cl, viennacl_context_id, std::move(context));
-    if (!contact_surface.empty()) engine->model->set_contact_surface(contact_surface);
+    if (!contact_surface.empty()) engine->model->contact().set_contact_surface(contact_surface);
     return engine;
   }
 
@@ -294,11 +294,12 @@ struct Simulation::Impl {
       engine.model->set_external_force(force_applied);
     }
     if (!options.obstacles.empty())
-      engine.model->set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
+      engine.model->contact().set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
     if (friction)
-      engine.model->set_friction(friction_start, friction_anchor, friction_start_table, friction_table,
-                                 options.contact.friction_slip);
-    const double barrier_seconds = engine.model->self_barrier() ? engine.model->self_barrier()->state().seconds : 0.0;
+      engine.model->contact().set_friction(friction_start, friction_anchor, friction_start_table, friction_table,
+                                           options.contact.friction_slip);
+    const double barrier_seconds =
+        engine.model->contact().self_barrier() ? engine.model->contact().self_barrier()->state().seconds : 0.0;
     const std::vector<Real> xr(x.begin(), x.end());
     // Wrapping a zero-filled buffer: ViennaCL's own sized vector would clear
     // it with a kernel behind the device counts.
@@ -323,13 +324,13 @@ struct Simulation::Impl {
       };
     const solver::StoppingTest stop{config.absolute_tolerance, config.relative_tolerance};
     StepResult step = engine.newton->solve_step(s, xd, stop, history, start, observe);
-    if (friction) friction_anchor = engine.model->next_friction_anchors(xd);
-    const solver::ContactState contact = engine.model->contact_state(xd);
+    if (friction) friction_anchor = engine.model->contact().next_friction_anchors(xd);
+    const solver::ContactState contact = engine.model->contact().contact_state(xd);
     step.contacts = contact.contacts + contact.self_contacts;
     step.max_penetration = std::max(contact.max_penetration, contact.max_self_penetration);
     step.self_contacts = contact.self_contacts;
     step.max_self_penetration = contact.max_self_penetration;
-    if (auto* barrier = engine.model->self_barrier()) {
+    if (auto* barrier = engine.model->contact().self_barrier()) {
       engine.model->energy(xd);  // the barrier's pairs at the end x
       step.self_contact_pairs = barrier->state().pairs;
       step.min_self_distance = barrier->state().min_distance;
@@ -355,7 +356,8 @@ struct Simulation::Impl {
     result.device = cl.info();
     result.product = options.product;
     result.preconditioner = options.preconditioner;
-    result.product_precision = single || !dual->model->float_products() ? options.precision : Precision::single;
+    result.product_precision =
+        single || !dual->model->products().float_products() ? options.precision : Precision::single;
     if (const MultigridOptions* used =
             single ? single->problem->multigrid_options() : dual->problem->multigrid_options()) {
       result.multigrid_smoother_degree = used->smoother_degree;
@@ -364,7 +366,7 @@ struct Simulation::Impl {
           single ? single->problem->multigrid_float_cycle() : dual->problem->multigrid_float_cycle();
     }
     result.tolerance = config.absolute_tolerance;
-    result.kernel_specialization = single ? single->model->kernel_report() : dual->model->kernel_report();
+    result.kernel_specialization = single ? single->model->data().kernel_report() : dual->model->data().kernel_report();
     result.warnings = warnings;
     for (size_t k = 0; k < constraints.size(); ++k) solver::record_start(constraints[k], x, targets[k]);
     precision_fallback.begin(options.precision);
@@ -439,8 +441,8 @@ struct Simulation::Impl {
   // continuous collision detection clears (infinity without it): the
   // device's CCD, the one Newton's line search runs.
   double barrier_bound(const std::vector<double>& from, const std::vector<double>& move) {
-    if (dual && dual->model->self_barrier()) return device_barrier_bound(*dual, from, move);
-    if (single && single->model->self_barrier()) return device_barrier_bound(*single, from, move);
+    if (dual && dual->model->contact().self_barrier()) return device_barrier_bound(*dual, from, move);
+    if (single && single->model->contact().self_barrier()) return device_barrier_bound(*single, from, move);
     return std::numeric_limits<double>::infinity();
   }
   template <typename Real>
@@ -455,7 +457,7 @@ struct Simulation::Impl {
       device::write_to_device(context, from, from_device);
       device::write_to_device(context, move, move_device);
     }
-    return engine.model->step_bound(from_device, move_device);
+    return engine.model->contact().step_bound(from_device, move_device);
   }
 
   // One Newton solve from x at its step's targets and forces, with the
@@ -601,8 +603,8 @@ void Simulation::set_contact_surface(const Embedding& embedding) {
   Impl& m = *impl_;
   solver::ContactSurface surface = solver::contact_surface(m.mesh, embedding);
   if (m.options.obstacles.empty()) return;  // nothing to touch
-  if (m.single) m.single->model->set_contact_surface(surface);
-  if (m.dual) m.dual->model->set_contact_surface(surface);
+  if (m.single) m.single->model->contact().set_contact_surface(surface);
+  if (m.dual) m.dual->model->contact().set_contact_surface(surface);
   m.contact_surface = std::move(surface);
 }
 

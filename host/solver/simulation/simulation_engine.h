@@ -65,13 +65,14 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
   for (size_t i = 0; i < mask.size(); ++i) mask[i] = setup.prescribed[i] ? Real(0) : Real(1);
   engine->model->set_mask(mask);
   if (terms.self_barrier && !options.contact.self_surface.triangles.empty())
-    engine->model->set_self_barrier_surface(setup.mesh, options.contact.self_surface, options.contact.self_embedding);
+    engine->model->contact().set_self_barrier_surface(setup.mesh, options.contact.self_surface,
+                                                      options.contact.self_embedding);
   // Contact's constants, set once: the barrier's reach and stiffness, the
   // penalty's stiffness.
   if (terms.self_barrier)
-    engine->model->set_self_barrier(options.contact.self_distance, setup.config.barrier_stiffness);
-  if (terms.self_contact) engine->model->set_self_contact_stiffness(options.contact.self_stiffness);
-  engine->model->set_float_products(options.product_precision == Precision::single);
+    engine->model->contact().set_self_barrier(options.contact.self_distance, setup.config.barrier_stiffness);
+  if (terms.self_contact) engine->model->contact().set_self_contact_stiffness(options.contact.self_stiffness);
+  engine->model->products().set_float_products(options.product_precision == Precision::single);
   std::unique_ptr<MultigridPreconditioner<Real>> multigrid;
   if (options.preconditioner == Preconditioner::multigrid) {
     std::vector<char> free(setup.prescribed.size());
