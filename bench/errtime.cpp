@@ -24,6 +24,7 @@
 #include "commands.h"
 #include "enum_names.h"
 #include "host_baseline.h"
+#include "iteration_traffic.h"
 #include "record_writer.h"
 #include "scene/profile_json.h"
 #include "snh/error.h"
@@ -77,8 +78,9 @@ struct Series {
   std::vector<StepResult> steps;
   bool converged = false;
   double seconds = 0.0;
-  SolveProfile profile;  // where the solve's time went
-  std::string skipped;   // why the series did not run, if it did not
+  SolveProfile profile;   // where the solve's time went
+  std::string skipped;    // why the series did not run, if it did not
+  bool on_device = true;  // false: the host baseline, which has no device traffic
 };
 
 struct SceneRun {
@@ -275,6 +277,7 @@ Series run_host_series(const Scene& scene, const Reference& ref, const ErrtimeOp
   s.variant = "assembled";
   s.hessian = "projected";
   s.device = "host CPU (Eigen, assembled projected stiffness)";
+  s.on_device = false;
   SolveOptions options = series_options(scene, o);
   options.precision = Precision::double_;
   options.hessian = HessianMode::projected;
@@ -319,6 +322,13 @@ double best_residual(const Series& s, int last_step) {
   for (const Row& r : s.rows)
     if (r.step == last_step && r.residual < best) best = r.residual;
   return best;
+}
+
+// Launches and read-backs per CG and per Newton iteration (iteration_traffic.h);
+// all 0 for the host baseline, which asks nothing of the device.
+IterationTraffic series_traffic(const Series& s) {
+  if (!s.on_device) return IterationTraffic{};
+  return iteration_traffic(s.profile, total_cg(s), total_newton(s));
 }
 
 std::string fmt_seconds(const std::optional<double>& v) { return v ? significant(*v, 3) : "never"; }
@@ -372,6 +382,7 @@ json series_json(const Series& s, int last_step) {
   j["converged"] = s.converged;
   j["newton_iterations"] = total_newton(s);
   j["cg_iterations"] = total_cg(s);
+  for (const auto& [key, value] : iteration_traffic_parts(series_traffic(s))) j[key] = value;
   j["steps"] = json::array();
   for (const StepResult& st : s.steps)
     j["steps"].push_back({{"step", st.step},
@@ -504,17 +515,33 @@ std::vector<SceneRun> run_errtime_series(const ErrtimeOptions& o, std::string& d
 
 // errtime.csv, errtime.json and errtime.md from the runs.
 void write_errtime(const ErrtimeOptions& o, const std::string& device, const std::vector<SceneRun>& runs) {
-  // CSV: one row per step start and per Newton update.
+  // CSV: one row per step start and per Newton update; after `projected`,
+  // its series' launches and read-backs per iteration, the same on each of
+  // the series' rows.
   Table csv;
   csv.columns = {"scene",        "series",   "precision", "preconditioner", "step",  "newton_iteration",
                  "newton_total", "cg_total", "seconds",   "residual",       "error", "projected"};
+  for (const auto& part : iteration_traffic_parts(IterationTraffic{})) csv.columns.push_back(part.first);
   for (const SceneRun& run : runs)
-    for (const Series& s : run.series)
-      for (const Row& r : s.rows)
-        csv.add_row({run.scene.name, s.name, s.precision, s.preconditioner, std::to_string(r.step),
-                     std::to_string(r.newton_iteration), std::to_string(r.newton_total), std::to_string(r.cg_total),
-                     csv_number(r.seconds), csv_number(r.residual), csv_number(r.error),
-                     r.projected >= 0 ? std::to_string(r.projected) : std::string()});
+    for (const Series& s : run.series) {
+      const auto traffic = iteration_traffic_parts(series_traffic(s));
+      for (const Row& r : s.rows) {
+        std::vector<std::string> row{run.scene.name,
+                                     s.name,
+                                     s.precision,
+                                     s.preconditioner,
+                                     std::to_string(r.step),
+                                     std::to_string(r.newton_iteration),
+                                     std::to_string(r.newton_total),
+                                     std::to_string(r.cg_total),
+                                     csv_number(r.seconds),
+                                     csv_number(r.residual),
+                                     csv_number(r.error),
+                                     r.projected >= 0 ? std::to_string(r.projected) : std::string()};
+        for (const auto& part : traffic) row.push_back(csv_number(part.second));
+        csv.add_row(std::move(row));
+      }
+    }
   write_text(o.out_dir + "/errtime.csv", csv_text(csv));
 
   // JSON summary.
@@ -617,12 +644,29 @@ void write_errtime(const ErrtimeOptions& o, const std::string& device, const std
       phases.add_row(std::move(row));
     }
   }
+  Table traffic;
+  traffic.columns = {"scene", "series", "Newton", "CG"};
+  for (const std::string& heading : iteration_traffic_headings()) traffic.columns.push_back(heading);
+  for (const SceneRun& run : runs) {
+    if (!run.skipped.empty()) continue;
+    for (const Series& s : run.series) {
+      if (!s.skipped.empty() || !s.on_device) continue;
+      std::vector<std::string> row{run.scene.name, s.name, thousands(total_newton(s)), thousands(total_cg(s))};
+      for (const auto& part : iteration_traffic_parts(series_traffic(s))) row.push_back(significant(part.second));
+      traffic.add_row(std::move(row));
+    }
+  }
   md << markdown_text(references) << "\n## Series\n\n"
      << markdown_text(series) << "\n## Where the time went\n\n"
      << "Seconds per phase of each series' solve (SolveProfile; callbacks excluded, so `total` may exceed the wall "
         "seconds above by the final statistics). host-eigen: Eigen's CG solve is one call whose parts cannot be told "
         "apart; its time is in `other`.\n\n"
-     << markdown_text(phases);
+     << markdown_text(phases) << "\n## Kernel launches and blocking reads per iteration\n\n"
+     << "Counted device traffic of the device series (the same on every device): per CG iteration, the linear "
+        "solves' (products, preconditioner_apply and cg_vector_work) over the CG iterations; per Newton iteration, "
+        "the whole solve's over the Newton iterations. host-eigen asks nothing of the device and is left out (0 in "
+        "errtime.json and errtime.csv).\n\n"
+     << markdown_text(traffic);
   write_text(o.out_dir + "/errtime.md", md.str());
 }
 
@@ -638,8 +682,9 @@ int run_errtime(const ErrtimeOptions& o) {
   // Short table on stdout.
   std::cout << std::left << std::setw(10) << "scene" << std::setw(20) << "series" << std::setw(8) << "newton"
             << std::setw(8) << "cg" << std::setw(9) << "wall s" << std::setw(9) << "t 1e-2" << std::setw(9) << "t 1e-4"
-            << std::setw(9) << "t 1e-6" << std::setw(11) << "residual"
-            << "error\n";
+            << std::setw(9) << "t 1e-6" << std::setw(11) << "residual" << std::setw(9) << "error" << std::setw(11)
+            << "launch/cg" << std::setw(9) << "read/cg" << std::setw(15) << "launch/newton"
+            << "read/newton\n";
   bool any = false;
   for (const SceneRun& run : runs)
     for (const Series& s : run.series) {
@@ -650,8 +695,14 @@ int run_errtime(const ErrtimeOptions& o) {
                 << total_newton(s) << std::setw(8) << total_cg(s) << std::setw(9) << significant(s.seconds)
                 << std::setw(9) << fmt_seconds(time_to(s, last, 1e-2)) << std::setw(9)
                 << fmt_seconds(time_to(s, last, 1e-4)) << std::setw(9) << fmt_seconds(time_to(s, last, 1e-6))
-                << std::setw(11) << significant(s.rows.back().residual, 2) << significant(s.rows.back().error, 2)
-                << '\n';
+                << std::setw(11) << significant(s.rows.back().residual, 2) << std::setw(9)
+                << significant(s.rows.back().error, 2);
+      // host-eigen: "-" (no device traffic; 0 in the files).
+      const IterationTraffic t = series_traffic(s);
+      const auto cell = [&s](double v) { return s.on_device ? significant(v) : std::string("-"); };
+      std::cout << std::setw(11) << cell(t.launches_per_cg_iteration) << std::setw(9)
+                << cell(t.readbacks_per_cg_iteration) << std::setw(15) << cell(t.launches_per_newton_iteration)
+                << cell(t.readbacks_per_newton_iteration) << '\n';
     }
   if (o.plots) draw_plots("errtime", "plot_errtime.py", o.out_dir + "/errtime.csv", o.out_dir);
   std::cout << "wrote " << o.out_dir << "/errtime.csv, errtime.json, errtime.md (" << std::setprecision(3)
@@ -665,8 +716,8 @@ void add_errtime_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "errtime",
       "Force residual and error against a double reference (relative residual 1e-10) versus wall time, per Newton "
-      "iteration, for each scene, precision and preconditioner; writes errtime.csv, errtime.json, errtime.md and "
-      "errtime_<scene>.png");
+      "iteration, for each scene, precision and preconditioner, with the device series' kernel launches and blocking "
+      "reads per CG and per Newton iteration; writes errtime.csv, errtime.json, errtime.md and errtime_<scene>.png");
   cmd->add_option("--scenes", o->scenes, "comma-separated scenes")
       ->delimiter(',')
       ->check(CLI::IsMember(lattice_scene_names()))

@@ -1,7 +1,9 @@
 // `snh-gpu-bench errtime`: force residual and error against a reference
 // solution as functions of wall time, per Newton iteration, for each scene,
-// precision and preconditioner (and the host CPU baseline). Writes
-// errtime.csv, errtime.json, errtime.md and one errtime_<scene>.png per scene.
+// precision and preconditioner (and the host CPU baseline), with each device
+// series' kernel launches and blocking read-backs per CG and per Newton
+// iteration (iteration_traffic.h). Writes errtime.csv, errtime.json,
+// errtime.md and one errtime_<scene>.png per scene.
 #pragma once
 
 #include <string>

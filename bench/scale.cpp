@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "enum_names.h"
+#include "iteration_traffic.h"
 #include "product_precision_flag.h"
 #include "record_writer.h"
 #include "scene/profile_json.h"
@@ -109,6 +110,10 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
   return r;
 }
 
+IterationTraffic iteration_traffic(const ScaleRecord& r) {
+  return snh::bench::iteration_traffic(r.profile, r.cg_iterations, r.newton_iterations);
+}
+
 json record_json(const ScaleRecord& r) {
   json j;
   j["scene"] = r.scene;
@@ -125,6 +130,9 @@ json record_json(const ScaleRecord& r) {
   j["newton_iterations"] = r.newton_iterations;
   j["cg_iterations"] = r.cg_iterations;
   j["cg_per_newton"] = r.cg_per_newton;
+  // Kernel launches and blocking read-backs per CG iteration (the linear
+  // solves' phases) and per Newton iteration (the whole solve).
+  for (const auto& [key, value] : iteration_traffic_parts(iteration_traffic(r))) j[key] = value;
   j["seconds"] = r.seconds;
   j["seconds_per_step"] = r.seconds_per_step;
   j["device_memory_bytes"] = r.device_memory_bytes;
@@ -247,6 +255,9 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
                  "converged"};
   for (const auto& part : parts) csv.columns.push_back("profile_" + part.first);
   csv.columns.push_back("skipped");
+  // Added after `skipped`, so that the columns before keep their places.
+  const size_t skipped_column = csv.columns.size() - 1;
+  for (const auto& part : iteration_traffic_parts(IterationTraffic{})) csv.columns.push_back(part.first);
   for (const ScaleRecord& r : records) {
     std::vector<std::string> row{r.scene, std::to_string(r.resolution), std::to_string(r.elements),
                                  std::to_string(r.dofs), r.preconditioner};
@@ -257,9 +268,11 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
         row.push_back(cell);
       for (const auto& part : profile_parts(r.profile)) row.push_back(csv_number(part.second));
       row.push_back("");
+      for (const auto& part : iteration_traffic_parts(iteration_traffic(r))) row.push_back(csv_number(part.second));
     } else {
-      row.resize(csv.columns.size() - 1);
+      row.resize(skipped_column);
       row.push_back(csv_quoted(r.skipped));
+      row.resize(csv.columns.size());
     }
     csv.add_row(std::move(row));
   }
@@ -315,9 +328,24 @@ void write_scale(const ScaleOptions& o, const std::vector<ScaleRecord>& records)
     for (const auto& part : profile_parts(r.profile)) row.push_back(significant(part.second));
     phases.add_row(std::move(row));
   }
+  Table traffic;
+  traffic.columns = {"scene", "res", "DOF", "preconditioner", "Newton", "CG"};
+  for (const std::string& heading : iteration_traffic_headings()) traffic.columns.push_back(heading);
+  for (const ScaleRecord& r : records) {
+    if (!r.skipped.empty()) continue;
+    std::vector<std::string> row{
+        r.scene,          std::to_string(r.resolution),   thousands(static_cast<long long>(r.dofs)),
+        r.preconditioner, thousands(r.newton_iterations), thousands(r.cg_iterations)};
+    for (const auto& part : iteration_traffic_parts(iteration_traffic(r))) row.push_back(significant(part.second));
+    traffic.add_row(std::move(row));
+  }
   md << markdown_text(runs) << "\n## Fitted slopes (seconds per step ~ DOF^slope)\n\n"
      << markdown_text(fitted) << "\n## Where the time went (seconds, whole solve)\n\n"
-     << markdown_text(phases);
+     << markdown_text(phases) << "\n## Kernel launches and blocking reads per iteration\n\n"
+     << "Counted device traffic (the same on every device): per CG iteration, the linear solves' "
+        "(products, preconditioner_apply and cg_vector_work) over the CG iterations; per Newton iteration, the "
+        "whole solve's over the Newton iterations.\n\n"
+     << markdown_text(traffic);
   write_text(o.out_dir + "/scale.md", md.str());
   if (o.plots) draw_plots("scale", "plot_scale.py", o.out_dir + "/scale.json", o.out_dir);
 }
@@ -328,8 +356,9 @@ int run_scale_command(const ScaleOptions& o) {
   write_scale(o, records);
   std::cout << std::left << std::setw(9) << "scene" << std::setw(5) << "res" << std::setw(10) << "DOF" << std::setw(14)
             << "precond" << std::setw(8) << "newton" << std::setw(10) << "cg/newton" << std::setw(11) << "s/step"
-            << std::setw(11) << "MiB"
-            << "converged\n";
+            << std::setw(11) << "MiB" << std::setw(11) << "converged" << std::setw(11) << "launch/cg" << std::setw(9)
+            << "read/cg" << std::setw(15) << "launch/newton"
+            << "read/newton\n";
   bool any = false;
   for (const ScaleRecord& r : records) {
     std::cout << std::left << std::setw(9) << r.scene << std::setw(5) << r.resolution << std::setw(10) << r.dofs
@@ -340,8 +369,12 @@ int run_scale_command(const ScaleOptions& o) {
     }
     any = true;
     std::cout << std::setw(8) << r.newton_iterations << std::setw(10) << significant(r.cg_per_newton) << std::setw(11)
-              << significant(r.seconds_per_step) << std::setw(11) << mebibytes(r.device_memory_bytes)
-              << (r.converged ? "yes" : "no") << '\n';
+              << significant(r.seconds_per_step) << std::setw(11) << mebibytes(r.device_memory_bytes) << std::setw(11)
+              << (r.converged ? "yes" : "no");
+    const IterationTraffic t = iteration_traffic(r);
+    std::cout << std::setw(11) << significant(t.launches_per_cg_iteration) << std::setw(9)
+              << significant(t.readbacks_per_cg_iteration) << std::setw(15)
+              << significant(t.launches_per_newton_iteration) << significant(t.readbacks_per_newton_iteration) << '\n';
   }
   std::cout << "wrote " << o.out_dir << "/scale.csv, scale.json, scale.md" << (o.plots ? ", scale.png" : "") << " ("
             << std::setprecision(3) << std::chrono::duration<double>(Clock::now() - start).count() << " s)\n";
@@ -353,7 +386,8 @@ void add_scale_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "scale",
       "Twist and stretch at growing resolution with each preconditioner side by side: Newton, CG per Newton, seconds "
-      "per step, device memory and the per-phase profile against DOF; writes scale.{json,csv,md} and scale.png");
+      "per step, device memory, kernel launches and blocking reads per CG and per Newton iteration and the per-phase "
+      "profile against DOF; writes scale.{json,csv,md} and scale.png");
   cmd->add_option("--scenes", o->scenes, "comma-separated scenes")
       ->delimiter(',')
       ->check(CLI::IsMember(lattice_scene_names()))

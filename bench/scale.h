@@ -1,8 +1,9 @@
 // `snh-gpu-bench scale`: the paper's scenes at growing resolution with each
 // preconditioner side by side: Newton and CG iterations, seconds per load
-// step, device memory and the per-phase profile against DOF. run_scale
-// returns the records; write_scale turns them into scale.{json,csv,md} and
-// the log-log plot scale.png (bench/plot_scale.py).
+// step, device memory, kernel launches and blocking read-backs per CG and
+// per Newton iteration (iteration_traffic.h) and the per-phase profile
+// against DOF. run_scale returns the records; write_scale turns them into
+// scale.{json,csv,md} and the log-log plot scale.png (bench/plot_scale.py).
 #pragma once
 
 #include <string>

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -32,6 +33,43 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
+const std::vector<std::string> kPerIteration{"launches_per_cg_iteration", "readbacks_per_cg_iteration",
+                                             "launches_per_newton_iteration", "readbacks_per_newton_iteration"};
+
+// A series' launches and read-backs per CG and per Newton iteration. Device
+// series: finite, > 0 (CG ran), and times the iterations the series' own
+// counts: the linear solves' phases (products, preconditioner_apply,
+// cg_vector_work) per CG iteration, the whole solve per Newton iteration.
+// host-eigen, which asks nothing of the device: 0.
+void expect_per_iteration_traffic(const nlohmann::json& s) {
+  const std::string what = s["series"].get<std::string>();
+  for (const std::string& key : kPerIteration) {
+    ASSERT_TRUE(s.contains(key)) << what << ": " << key;
+    const double v = s[key].get<double>();
+    EXPECT_TRUE(std::isfinite(v)) << what << ": " << key;
+    if (what == "host-eigen")
+      EXPECT_EQ(v, 0.0) << what << ": " << key;
+    else
+      EXPECT_GT(v, 0.0) << what << ": " << key;
+  }
+  if (what == "host-eigen") return;
+  const auto& p = s["profile"];
+  double launches = 0.0, reads = 0.0;
+  for (const char* phase : {"products", "preconditioner_apply", "cg_vector_work"}) {
+    if (!p["traffic"].contains(phase)) continue;
+    launches += p["traffic"][phase]["kernel_launches"].get<double>();
+    reads += p["traffic"][phase]["blocking_readbacks"].get<double>();
+  }
+  const double cg = s["cg_iterations"].get<double>(), newton = s["newton_iterations"].get<double>();
+  const auto near = [&](const char* key, double iterations, double count) {
+    EXPECT_NEAR(s[key].get<double>() * iterations, count, 1e-9 * std::max(1.0, count)) << what << ": " << key;
+  };
+  near("launches_per_cg_iteration", cg, launches);
+  near("readbacks_per_cg_iteration", cg, reads);
+  near("launches_per_newton_iteration", newton, p["kernel_launches"].get<double>());
+  near("readbacks_per_newton_iteration", newton, p["blocking_readbacks"].get<double>());
+}
+
 TEST(ErrtimeCommand, WritesCsvJsonMarkdownAndPlots) {
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "snh_errtime_test";
   std::filesystem::remove_all(out);
@@ -39,18 +77,20 @@ TEST(ErrtimeCommand, WritesCsvJsonMarkdownAndPlots) {
                         " > /dev/null 2>&1"),
             0);
 
-  // CSV: the header, then one row per step start and Newton update.
+  // CSV: the header, then one row per step start and Newton update, each
+  // with its series' launches and read-backs per iteration.
   std::ifstream csv(out / "errtime.csv");
   ASSERT_TRUE(csv.good());
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line,
             "scene,series,precision,preconditioner,step,newton_iteration,newton_total,cg_total,seconds,residual,error,"
-            "projected");
+            "projected,launches_per_cg_iteration,readbacks_per_cg_iteration,launches_per_newton_iteration,"
+            "readbacks_per_newton_iteration");
   std::map<std::string, std::vector<std::vector<std::string>>> by_series;  // "scene series" -> rows
   while (std::getline(csv, line)) {
     const auto f = split(line);
-    ASSERT_EQ(f.size(), 12u) << line;
+    ASSERT_EQ(f.size(), 16u) << line;
     by_series[f[0] + " " + f[1]].push_back(f);
   }
   const std::set<std::string> series{"double/block-jacobi", "double/none", "float/block-jacobi", "float/none",
@@ -96,6 +136,16 @@ TEST(ErrtimeCommand, WritesCsvJsonMarkdownAndPlots) {
       EXPECT_LE(step["reached_relative_residual"].get<double>(), 1e-10);
     ASSERT_EQ(scene["series"].size(), 5u);
     for (const auto& s : scene["series"]) {
+      expect_per_iteration_traffic(s);
+      // The CSV's rows of the series carry the same figures (to its nine
+      // digits), on every row.
+      const auto rows = by_series.find(scene["scene"].get<std::string>() + " " + s["series"].get<std::string>());
+      ASSERT_NE(rows, by_series.end()) << s["series"];
+      for (const auto& row : rows->second)
+        for (size_t k = 0; k < kPerIteration.size(); ++k) {
+          const double expected = s[kPerIteration[k]].get<double>();
+          EXPECT_NEAR(std::stod(row[12 + k]), expected, 1e-8 * expected) << s["series"] << " " << kPerIteration[k];
+        }
       for (const char* key :
            {"series", "precision", "preconditioner", "converged", "newton_iterations", "cg_iterations", "wall_seconds",
             "seconds_to_residual", "final_residual", "final_error", "device", "kernel_specialization"})
@@ -137,6 +187,16 @@ TEST(ErrtimeCommand, WritesCsvJsonMarkdownAndPlots) {
   EXPECT_NE(md.str().find("| scene | series | Newton | CG |"), std::string::npos);
   EXPECT_NE(md.str().find("| twist | double/block-jacobi |"), std::string::npos);
   EXPECT_NE(md.str().find("3,278 + 4,956 CG"), std::string::npos);
+  // Launches and reads per iteration, for the device series only.
+  const auto traffic_at = md.str().find("## Kernel launches and blocking reads per iteration");
+  ASSERT_NE(traffic_at, std::string::npos);
+  const std::string traffic = md.str().substr(traffic_at);
+  EXPECT_NE(traffic.find("| scene | series | Newton | CG | launches per CG iteration | reads per CG iteration | "
+                         "launches per Newton iteration | reads per Newton iteration |"),
+            std::string::npos);
+  EXPECT_NE(traffic.find("| twist | double/block-jacobi |"), std::string::npos);
+  EXPECT_NE(traffic.find("| flex | float/none |"), std::string::npos);
+  EXPECT_EQ(traffic.find("| host-eigen |"), std::string::npos);
 
   // PNGs, where Debian's matplotlib is there to draw them.
   if (run_command("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0) {

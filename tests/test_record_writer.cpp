@@ -1,7 +1,9 @@
 // The benchmark's one writer: tables rendered as CSV and Markdown, the cell
 // formats, and scale's files byte for byte as they were before its tables
 // went through the writer (tests/data/records, written from the same
-// records by the earlier writer).
+// records by the earlier writer; since then extended only by the fields
+// added later: the profile's traffic by phase in the records, and the
+// launches and read-backs per CG and per Newton iteration).
 #include <gtest/gtest.h>
 
 #include <cmath>

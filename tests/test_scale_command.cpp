@@ -101,6 +101,40 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
+const std::vector<std::string> kPerIteration{"launches_per_cg_iteration", "readbacks_per_cg_iteration",
+                                             "launches_per_newton_iteration", "readbacks_per_newton_iteration"};
+
+// A record's launches and read-backs per CG and per Newton iteration: finite,
+// > 0 (CG ran), and times the iterations the record's own counts: the
+// linear solves' phases (products, preconditioner_apply, cg_vector_work)
+// per CG iteration, the whole solve per Newton iteration.
+void expect_per_iteration_traffic(const nlohmann::json& r, const std::string& what) {
+  for (const std::string& key : kPerIteration) {
+    ASSERT_TRUE(r.contains(key)) << what << ": " << key;
+    const double v = r[key].get<double>();
+    EXPECT_TRUE(std::isfinite(v)) << what << ": " << key;
+    EXPECT_GT(v, 0.0) << what << ": " << key;
+  }
+  const auto& p = r["profile"];
+  double launches = 0.0, reads = 0.0;
+  for (const char* phase : {"products", "preconditioner_apply", "cg_vector_work"}) {
+    if (!p["traffic"].contains(phase)) continue;
+    launches += p["traffic"][phase]["kernel_launches"].get<double>();
+    reads += p["traffic"][phase]["blocking_readbacks"].get<double>();
+  }
+  const double cg = r["cg_iterations"].get<double>(), newton = r["newton_iterations"].get<double>();
+  ASSERT_GT(cg, 0.0) << what;
+  const auto near = [&](const char* key, double iterations, double count) {
+    EXPECT_NEAR(r[key].get<double>() * iterations, count, 1e-9 * std::max(1.0, count)) << what << ": " << key;
+  };
+  near("launches_per_cg_iteration", cg, launches);
+  near("readbacks_per_cg_iteration", cg, reads);
+  near("launches_per_newton_iteration", newton, p["kernel_launches"].get<double>());
+  near("readbacks_per_newton_iteration", newton, p["blocking_readbacks"].get<double>());
+  // The whole solve's launches hold the linear solves'.
+  EXPECT_GE(p["kernel_launches"].get<double>(), launches) << what;
+}
+
 // The records of a scale run: every key, each converged.
 void expect_records(const nlohmann::json& records, std::set<std::string>& ran) {
   for (const auto& r : records) {
@@ -132,6 +166,7 @@ void expect_records(const nlohmann::json& records, std::set<std::string>& ran) {
     }
     expect_profile(r["profile"], what);
     EXPECT_GT(r["profile"]["products"].get<double>(), 0.0) << what;
+    expect_per_iteration_traffic(r, what);
   }
 }
 
@@ -189,9 +224,31 @@ TEST(ScaleCommand, WritesRecordsForEachSceneResolutionAndPreconditioner) {
        {"scene", "res", "elements", "dofs", "preconditioner", "newton_iterations", "cg_per_newton", "seconds_per_step",
         "device_memory_bytes", "converged", "profile_products", "profile_total", "skipped"})
     EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
+  // The launches and read-backs per iteration, after `skipped`: the JSON's
+  // figures to the CSV's nine digits, empty in a skipped row.
+  const auto skipped_at = std::find(header.begin(), header.end(), "skipped") - header.begin();
+  std::vector<size_t> per_iteration_at;
+  for (const std::string& column : kPerIteration) {
+    const auto at = std::find(header.begin(), header.end(), column);
+    ASSERT_NE(at, header.end()) << column;
+    EXPECT_GT(at - header.begin(), skipped_at) << column;
+    per_iteration_at.push_back(static_cast<size_t>(at - header.begin()));
+  }
   size_t rows = 0;
   while (std::getline(csv, line)) {
-    EXPECT_EQ(split(line).size(), header.size()) << line;
+    const auto cells = split(line);
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    ASSERT_LT(rows, records.size()) << line;
+    const auto& r = records[rows];
+    for (size_t k = 0; k < kPerIteration.size() && cells.size() == header.size(); ++k) {
+      const std::string& cell = cells[per_iteration_at[k]];
+      if (r.contains("skipped")) {
+        EXPECT_EQ(cell, "") << line;
+        continue;
+      }
+      const double expected = r[kPerIteration[k]].get<double>();
+      EXPECT_NEAR(std::stod(cell), expected, 1e-8 * expected) << kPerIteration[k] << ": " << line;
+    }
     ++rows;
   }
   EXPECT_EQ(rows, records.size());
@@ -201,7 +258,9 @@ TEST(ScaleCommand, WritesRecordsForEachSceneResolutionAndPreconditioner) {
   ASSERT_TRUE(md_file.good());
   std::stringstream md;
   md << md_file.rdbuf();
-  for (const char* text : {"25.6", "100.6", "156k", "965k", "| twist | 3 |", "| stretch | 2 |", "slope"})
+  for (const char* text : {"25.6", "100.6", "156k", "965k", "| twist | 3 |", "| stretch | 2 |", "slope",
+                           "## Kernel launches and blocking reads per iteration", "launches per CG iteration",
+                           "reads per Newton iteration"})
     EXPECT_NE(md.str().find(text), std::string::npos) << text;
   if (std::filesystem::exists("/usr/bin/python3") &&
       run_command("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0) {

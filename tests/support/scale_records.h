@@ -46,6 +46,19 @@ inline std::vector<bench::ScaleRecord> sample_scale_records() {
     r.profile.blocking_readbacks = 17 * res;
     r.profile.bytes_to_host = 4096LL * res;
     r.profile.bytes_to_device = 1LL << 33;
+    // By phase, adding up to the counts above; the linear solves' share
+    // (products, preconditioner_apply, cg_vector_work): 750 launches and 8
+    // read-backs per res.
+    auto phase = [&r, res](const char* name, long long launches, long long reads) {
+      DeviceTraffic& t = r.profile.traffic[name];
+      t.kernel_launches = launches * res;
+      t.blocking_readbacks = reads * res;
+    };
+    phase("linearization", 250, 0);
+    phase("products", 400, 0);
+    phase("preconditioner_apply", 150, 0);
+    phase("cg_vector_work", 200, 8);
+    phase("transfers", 0, 9);
     return r;
   };
   out.push_back(record("twist", 4, 64, 375, "block-jacobi", 0.123456789));
