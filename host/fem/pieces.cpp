@@ -272,6 +272,286 @@ Joined join_lines(const Voxelization& given, const std::vector<std::vector<Cell>
   return out;
 }
 
+// The pieces of the given lattice into out.pieces, each with its vertex
+// count and bounding box; returns the piece of each vertex (-1: in none).
+std::vector<int32_t> find_pieces(const Mesh& lattice, PiecedLattice& out) {
+  const std::vector<std::vector<int32_t>> elements_of = mesh_pieces(lattice);
+  std::vector<int32_t> piece_of_vertex(lattice.vertex_count(), -1);
+  for (size_t p = 0; p < elements_of.size(); ++p) {
+    LatticePiece piece;
+    piece.elements = elements_of[p];
+    piece.lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    piece.hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (int32_t e : piece.elements)
+      for (int n = 0; n < 8; ++n) {
+        const int32_t v = lattice.elements[8 * e + n];
+        if (piece_of_vertex[v] >= 0) continue;
+        piece_of_vertex[v] = static_cast<int32_t>(p);
+        ++piece.vertices;
+        for (int d = 0; d < 3; ++d) {
+          piece.lo[d] = std::min(piece.lo[d], lattice.positions[3 * v + d]);
+          piece.hi[d] = std::max(piece.hi[d], lattice.positions[3 * v + d]);
+        }
+      }
+    out.pieces.push_back(std::move(piece));
+  }
+  return piece_of_vertex;
+}
+
+// A piece with a vertex in a set that prescribes a component is held by the
+// first such set.
+void hold_by_constraints(const std::vector<ConstraintSet>& constraints, const std::vector<int32_t>& piece_of_vertex,
+                         PiecedLattice& out) {
+  for (const ConstraintSet& set : constraints) {
+    if (!set.components[0] && !set.components[1] && !set.components[2]) continue;
+    for (int32_t v : set.vertices) {
+      if (v < 0 || static_cast<size_t>(v) >= piece_of_vertex.size() || piece_of_vertex[v] < 0) continue;
+      LatticePiece& piece = out.pieces[piece_of_vertex[v]];
+      if (piece.hold != PieceHold::none) continue;
+      piece.hold = PieceHold::constraint;
+      piece.held_by = set.name;
+    }
+  }
+}
+
+// A piece nothing else holds, with a vertex in an obstacle's contact layer at
+// rest, is held by the first such obstacle.
+void hold_by_obstacles(const Mesh& lattice, const std::vector<int32_t>& piece_of_vertex, const PieceOptions& options,
+                       PiecedLattice& out) {
+  for (size_t v = 0; v < piece_of_vertex.size() && !options.obstacles.empty(); ++v) {
+    if (piece_of_vertex[v] < 0 || out.pieces[piece_of_vertex[v]].hold != PieceHold::none) continue;
+    for (size_t k = 0; k < options.obstacles.size(); ++k)
+      if (obstacle_distance(options.obstacles[k], lattice.vertex(v)) <= options.contact_thickness) {
+        out.pieces[piece_of_vertex[v]].hold = PieceHold::obstacle;
+        out.pieces[piece_of_vertex[v]].held_by = "obstacles[" + std::to_string(k) + "]";
+        break;
+      }
+  }
+}
+
+// When nothing holds any piece, the largest (the first of them) stands for
+// the body.
+void hold_largest_if_none_held(PiecedLattice& out) {
+  if (std::none_of(out.pieces.begin(), out.pieces.end(),
+                   [](const LatticePiece& p) { return p.hold != PieceHold::none; })) {
+    size_t largest = 0;
+    for (size_t p = 1; p < out.pieces.size(); ++p)
+      if (out.pieces[p].elements.size() > out.pieces[largest].elements.size()) largest = p;
+    out.pieces[largest].hold = PieceHold::largest;
+  }
+}
+
+// The pieces nothing holds, ascending.
+std::vector<size_t> find_free_pieces(const PiecedLattice& out) {
+  std::vector<size_t> free_pieces;
+  for (size_t p = 0; p < out.pieces.size(); ++p)
+    if (out.pieces[p].hold == PieceHold::none) free_pieces.push_back(p);
+  return free_pieces;
+}
+
+// Each free piece's nearest bone (the first of the nearest) and its distance.
+void find_nearest_bones(const Mesh& lattice, const std::vector<Bone>& bones, const std::vector<size_t>& free_pieces,
+                        PiecedLattice& out) {
+  for (size_t p : free_pieces) {
+    LatticePiece& piece = out.pieces[p];
+    double best = HUGE_VAL;
+    for (const Bone& bone : bones) {
+      double d = HUGE_VAL;
+      for (int32_t e : piece.elements)
+        for (int n = 0; n < 8 && d > 0.0; ++n)
+          d = std::min(d, bone_distance(bone, lattice.vertex(lattice.elements[8 * e + n])));
+      if (d < best) best = d, piece.nearest_bone = bone.name, piece.nearest_bone_distance = d;
+    }
+  }
+}
+
+std::string describe_piece(const PiecedLattice& out, size_t p) {
+  const LatticePiece& piece = out.pieces[p];
+  std::ostringstream s;
+  s << "piece " << p + 1 << ": " << piece.elements.size() << " cells, bounding box " << point_text(piece.lo) << " to "
+    << point_text(piece.hi);
+  if (!piece.nearest_bone.empty())
+    s << ", nearest bone '" << piece.nearest_bone << "' at " << piece.nearest_bone_distance;
+  return s.str();
+}
+
+// The error rule: in a dynamic scene the free pieces are held by their
+// inertia (a warning for each under a load); otherwise an snh::Error names
+// them and the remedies.
+void hold_by_inertia_or_refuse(const std::vector<size_t>& free_pieces, const PieceOptions& options,
+                               PiecedLattice& out) {
+  if (options.dynamic) {
+    for (size_t p : free_pieces) {
+      out.pieces[p].hold = PieceHold::inertia;
+      if (options.loaded)
+        out.warnings.push_back("embed: " + describe_piece(out, p) + " of " + std::to_string(out.pieces.size()) +
+                               " is held by nothing but its inertia: under the load it moves on its own (falls)");
+    }
+    return;
+  }
+  std::ostringstream s;
+  s << "the lattice falls into " << out.pieces.size() << " pieces, and nothing holds " << free_pieces.size()
+    << " of them (no vertex in a constraint set or a bone, none in an obstacle's contact layer): a quasistatic "
+       "solve leaves such a piece at rest while the body moves, stretching the surface embedded in it, and finds "
+       "no equilibrium under a load";
+  for (size_t p : free_pieces) s << "\n  " << describe_piece(out, p);
+  s << "\nremedies: a bone that reaches into each piece; " << options.rule_name
+    << " \"attach\" (join each to its nearest held piece through the cells its surface crosses) or \"drop\" (leave "
+       "it out; its "
+       "surface follows the nearest kept cell); or another cell size (a larger cell bridges the gap, a smaller "
+       "one resolves the thin part)";
+  throw Error(s.str());
+}
+
+// Grid cells of the held pieces (the targets) and of each free one.
+std::vector<Cell> held_cells_of(const Voxelization& voxels, const std::vector<size_t>& free_pieces,
+                                const PiecedLattice& out) {
+  std::vector<Cell> held_cells;
+  std::vector<char> free(out.pieces.size(), 0);
+  for (size_t p : free_pieces) free[p] = 1;
+  for (size_t p = 0; p < out.pieces.size(); ++p)
+    if (!free[p])
+      for (int32_t e : out.pieces[p].elements) held_cells.push_back(voxels.element_cell[e]);
+  return held_cells;
+}
+
+std::vector<Cell> cells_of(const Voxelization& voxels, const LatticePiece& piece) {
+  std::vector<Cell> cells;
+  for (int32_t e : piece.elements) cells.push_back(voxels.element_cell[e]);
+  return cells;
+}
+
+// The attach rule: each free piece joined to the held cells by a path of
+// cells, the lattice rebuilt with the paths and the surface embedded again.
+void attach_pieces(const Voxelization& voxels, const TriangleSurface& surface,
+                   const std::vector<ConstraintSet>& constraints, const std::vector<size_t>& free_pieces,
+                   const std::vector<Cell>& held_cells, PiecedLattice& out) {
+  const Mesh& lattice = voxels.lattice;
+  std::vector<std::vector<Cell>> lines;
+  std::unordered_map<int64_t, char> occupied;
+  for (const Cell& c : voxels.element_cell) occupied.emplace(grid_index(voxels.dims, c), 1);
+  // Passable: cells the surface crosses that no element occupies.
+  std::vector<char> passable = fem::surface_crossed_cells(surface, voxels.origin, voxels.cell, voxels.dims);
+  std::vector<char> target(passable.size(), 0);
+  for (const Cell& c : voxels.element_cell) passable[grid_index(voxels.dims, c)] = 0;
+  for (const Cell& c : held_cells) target[grid_index(voxels.dims, c)] = 1;
+  for (size_t p : free_pieces) {
+    std::vector<Cell> path = shortest_cell_path(cells_of(voxels, out.pieces[p]), passable, target, voxels.dims);
+    out.pieces[p].joined_through = "surface";
+    if (path.empty()) {
+      const auto [a, b] = nearest_cells(cells_of(voxels, out.pieces[p]), held_cells, voxels.dims);
+      path = cell_line(a, b);
+      out.pieces[p].joined_through = "straight line";
+    }
+    lines.push_back(std::move(path));
+    out.pieces[p].outcome = "attached";
+    for (const Cell& c : lines.back())
+      out.pieces[p].added_cells += occupied.emplace(grid_index(voxels.dims, c), 1).second;
+  }
+  std::vector<int32_t> set_of(lattice.vertex_count(), -1);
+  for (size_t k = 0; k < constraints.size(); ++k)
+    if (constraints[k].components[0] || constraints[k].components[1] || constraints[k].components[2])
+      for (int32_t v : constraints[k].vertices)
+        if (v >= 0 && static_cast<size_t>(v) < set_of.size() && set_of[v] < 0) set_of[v] = static_cast<int32_t>(k);
+  Joined joined = join_lines(voxels, lines, set_of);
+  out.voxels = std::move(joined.voxels);
+  out.vertex_map = std::move(joined.vertex_map);
+  out.element_source = std::move(joined.element_source);
+  // The surface as the caller embedded it: vertices beyond a cell of the
+  // lattice (a character's open sheets) are carried, not refused.
+  out.embedding = embed_carrying_all(out.voxels, surface).embedding;
+}
+
+// The drop rule: the free pieces' elements and the vertices only they use
+// left out, the rest renumbered in order.
+void drop_pieces(const Voxelization& voxels, const Embedding& embedding, const TriangleSurface& surface,
+                 const std::vector<size_t>& free_pieces, const std::vector<Cell>& held_cells, PiecedLattice& out) {
+  const Mesh& lattice = voxels.lattice;
+  std::vector<char> drop_element(lattice.element_count(), 0);
+  for (size_t p : free_pieces) {
+    out.pieces[p].outcome = "dropped";
+    for (int32_t e : out.pieces[p].elements) drop_element[e] = 1;
+  }
+  Voxelization& kept = out.voxels;
+  kept.lattice.elements.clear();
+  kept.lattice.positions.clear();
+  kept.element_cell.clear();
+  out.element_source.clear();
+  std::vector<int32_t> new_element(lattice.element_count(), -1);
+  std::vector<char> used(lattice.vertex_count(), 0);
+  for (size_t e = 0; e < lattice.element_count(); ++e)
+    if (!drop_element[e])
+      for (int n = 0; n < 8; ++n) used[lattice.elements[8 * e + n]] = 1;
+  int32_t next = 0;
+  for (size_t v = 0; v < used.size(); ++v) {
+    out.vertex_map[v] = used[v] ? next++ : -1;
+    if (used[v])
+      for (int d = 0; d < 3; ++d) kept.lattice.positions.push_back(lattice.positions[3 * v + d]);
+  }
+  for (size_t e = 0; e < lattice.element_count(); ++e) {
+    if (drop_element[e]) continue;
+    new_element[e] = static_cast<int32_t>(kept.element_cell.size());
+    kept.element_cell.push_back(voxels.element_cell[e]);
+    out.element_source.push_back(static_cast<int32_t>(e));
+    for (int n = 0; n < 8; ++n) kept.lattice.elements.push_back(out.vertex_map[lattice.elements[8 * e + n]]);
+  }
+  // Each dropped piece's surface follows the kept cell nearest to it.
+  std::unordered_map<int64_t, int32_t> kept_element;
+  for (size_t e = 0; e < kept.element_cell.size(); ++e)
+    kept_element.emplace(grid_index(voxels.dims, kept.element_cell[e]), static_cast<int32_t>(e));
+  std::vector<Cell> anchor(out.pieces.size());
+  for (size_t p : free_pieces)
+    anchor[p] = nearest_cells(cells_of(voxels, out.pieces[p]), held_cells, voxels.dims).second;
+  std::vector<int32_t> piece_of_element(lattice.element_count(), -1);
+  for (size_t p = 0; p < out.pieces.size(); ++p)
+    for (int32_t e : out.pieces[p].elements) piece_of_element[e] = static_cast<int32_t>(p);
+  for (size_t v = 0; v < out.embedding.element.size(); ++v) {
+    const int32_t e = embedding.element[v];
+    if (!drop_element[e]) {
+      out.embedding.element[v] = new_element[e];
+      continue;
+    }
+    const Cell& c = anchor[piece_of_element[e]];
+    double local[3];
+    for (int d = 0; d < 3; ++d) local[d] = (surface.positions[3 * v + d] - voxels.origin[d]) / voxels.cell - c[d];
+    out.embedding.element[v] = kept_element.at(grid_index(voxels.dims, c));
+    const auto w = trilinear_weights(local);
+    std::copy(w.begin(), w.end(), out.embedding.weights.begin() + 8 * v);
+  }
+}
+
+// The constraint sets renumbered to the new lattice (out.vertex_map), in
+// place.
+void renumber_constraints(std::vector<ConstraintSet>& constraints, const PieceOptions& options,
+                          const PiecedLattice& out) {
+  for (ConstraintSet& set : constraints) {
+    std::vector<int32_t> vertices;
+    for (int32_t v : set.vertices)
+      if (v >= 0 && static_cast<size_t>(v) < out.vertex_map.size() && out.vertex_map[v] >= 0)
+        vertices.push_back(out.vertex_map[v]);
+    // Two given vertices glued into one stay one entry (the first).
+    std::vector<int32_t> seen = vertices;
+    std::sort(seen.begin(), seen.end());
+    if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) {
+      std::vector<char> taken(out.voxels.lattice.vertex_count(), 0);
+      std::vector<int32_t> unique;
+      for (int32_t v : vertices)
+        if (!taken[v]) taken[v] = 1, unique.push_back(v);
+      vertices = std::move(unique);
+    }
+    // Only a set that prescribes nothing can lie wholly in dropped pieces
+    // (a prescribed vertex holds its piece); emptied, it would select no
+    // vertex: refused here, where the cause is known.
+    if (vertices.empty() && !set.vertices.empty())
+      throw Error("constraint set '" + set.name + "': all its " + std::to_string(set.vertices.size()) +
+                  " vertices are in dropped pieces (it prescribes no component, so it holds none of them); with " +
+                  options.rule_name +
+                  " \"drop\" it would select no vertex: give it a component, or select "
+                  "vertices of a kept piece");
+    set.vertices = std::move(vertices);
+  }
+}
+
 }  // namespace
 
 const char* to_string(PieceRule rule) {
@@ -349,230 +629,30 @@ PiecedLattice resolve_pieces(const Voxelization& voxels, const Embedding& embedd
   out.element_source.resize(lattice.element_count());
   for (size_t e = 0; e < out.element_source.size(); ++e) out.element_source[e] = static_cast<int32_t>(e);
 
-  const std::vector<std::vector<int32_t>> elements_of = mesh_pieces(lattice);
-  std::vector<int32_t> piece_of_vertex(lattice.vertex_count(), -1);
-  for (size_t p = 0; p < elements_of.size(); ++p) {
-    LatticePiece piece;
-    piece.elements = elements_of[p];
-    piece.lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
-    piece.hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (int32_t e : piece.elements)
-      for (int n = 0; n < 8; ++n) {
-        const int32_t v = lattice.elements[8 * e + n];
-        if (piece_of_vertex[v] >= 0) continue;
-        piece_of_vertex[v] = static_cast<int32_t>(p);
-        ++piece.vertices;
-        for (int d = 0; d < 3; ++d) {
-          piece.lo[d] = std::min(piece.lo[d], lattice.positions[3 * v + d]);
-          piece.hi[d] = std::max(piece.hi[d], lattice.positions[3 * v + d]);
-        }
-      }
-    out.pieces.push_back(std::move(piece));
-  }
-  for (const ConstraintSet& set : constraints) {
-    if (!set.components[0] && !set.components[1] && !set.components[2]) continue;
-    for (int32_t v : set.vertices) {
-      if (v < 0 || static_cast<size_t>(v) >= piece_of_vertex.size() || piece_of_vertex[v] < 0) continue;
-      LatticePiece& piece = out.pieces[piece_of_vertex[v]];
-      if (piece.hold != PieceHold::none) continue;
-      piece.hold = PieceHold::constraint;
-      piece.held_by = set.name;
-    }
-  }
-  for (size_t v = 0; v < piece_of_vertex.size() && !options.obstacles.empty(); ++v) {
-    if (piece_of_vertex[v] < 0 || out.pieces[piece_of_vertex[v]].hold != PieceHold::none) continue;
-    for (size_t k = 0; k < options.obstacles.size(); ++k)
-      if (obstacle_distance(options.obstacles[k], lattice.vertex(v)) <= options.contact_thickness) {
-        out.pieces[piece_of_vertex[v]].hold = PieceHold::obstacle;
-        out.pieces[piece_of_vertex[v]].held_by = "obstacles[" + std::to_string(k) + "]";
-        break;
-      }
-  }
+  const std::vector<int32_t> piece_of_vertex = find_pieces(lattice, out);
+  hold_by_constraints(constraints, piece_of_vertex, out);
+  hold_by_obstacles(lattice, piece_of_vertex, options, out);
   if (out.pieces.size() < 2) return out;  // the whole body: the solver's rigid-motion check
-  if (std::none_of(out.pieces.begin(), out.pieces.end(),
-                   [](const LatticePiece& p) { return p.hold != PieceHold::none; })) {
-    size_t largest = 0;
-    for (size_t p = 1; p < out.pieces.size(); ++p)
-      if (out.pieces[p].elements.size() > out.pieces[largest].elements.size()) largest = p;
-    out.pieces[largest].hold = PieceHold::largest;
-  }
-  std::vector<size_t> free_pieces;
-  for (size_t p = 0; p < out.pieces.size(); ++p)
-    if (out.pieces[p].hold == PieceHold::none) free_pieces.push_back(p);
+  hold_largest_if_none_held(out);
+  const std::vector<size_t> free_pieces = find_free_pieces(out);
   if (free_pieces.empty()) return out;
-  for (size_t p : free_pieces) {
-    LatticePiece& piece = out.pieces[p];
-    double best = HUGE_VAL;
-    for (const Bone& bone : bones) {
-      double d = HUGE_VAL;
-      for (int32_t e : piece.elements)
-        for (int n = 0; n < 8 && d > 0.0; ++n)
-          d = std::min(d, bone_distance(bone, lattice.vertex(lattice.elements[8 * e + n])));
-      if (d < best) best = d, piece.nearest_bone = bone.name, piece.nearest_bone_distance = d;
-    }
-  }
+  find_nearest_bones(lattice, bones, free_pieces, out);
 
-  const auto describe = [&](size_t p) {
-    const LatticePiece& piece = out.pieces[p];
-    std::ostringstream s;
-    s << "piece " << p + 1 << ": " << piece.elements.size() << " cells, bounding box " << point_text(piece.lo) << " to "
-      << point_text(piece.hi);
-    if (!piece.nearest_bone.empty())
-      s << ", nearest bone '" << piece.nearest_bone << "' at " << piece.nearest_bone_distance;
-    return s.str();
-  };
   if (options.rule == PieceRule::error) {
-    if (options.dynamic) {
-      for (size_t p : free_pieces) {
-        out.pieces[p].hold = PieceHold::inertia;
-        if (options.loaded)
-          out.warnings.push_back("embed: " + describe(p) + " of " + std::to_string(out.pieces.size()) +
-                                 " is held by nothing but its inertia: under the load it moves on its own (falls)");
-      }
-      return out;
-    }
-    std::ostringstream s;
-    s << "the lattice falls into " << out.pieces.size() << " pieces, and nothing holds " << free_pieces.size()
-      << " of them (no vertex in a constraint set or a bone, none in an obstacle's contact layer): a quasistatic "
-         "solve leaves such a piece at rest while the body moves, stretching the surface embedded in it, and finds "
-         "no equilibrium under a load";
-    for (size_t p : free_pieces) s << "\n  " << describe(p);
-    s << "\nremedies: a bone that reaches into each piece; " << options.rule_name
-      << " \"attach\" (join each to its nearest held piece through the cells its surface crosses) or \"drop\" (leave "
-         "it out; its "
-         "surface follows the nearest kept cell); or another cell size (a larger cell bridges the gap, a smaller "
-         "one resolves the thin part)";
-    throw Error(s.str());
+    hold_by_inertia_or_refuse(free_pieces, options, out);
+    return out;
   }
 
-  // Grid cells of the held pieces (the targets) and of each free one.
-  std::vector<Cell> held_cells;
-  std::vector<char> free(out.pieces.size(), 0);
-  for (size_t p : free_pieces) free[p] = 1;
-  for (size_t p = 0; p < out.pieces.size(); ++p)
-    if (!free[p])
-      for (int32_t e : out.pieces[p].elements) held_cells.push_back(voxels.element_cell[e]);
-  const auto cells_of = [&](size_t p) {
-    std::vector<Cell> cells;
-    for (int32_t e : out.pieces[p].elements) cells.push_back(voxels.element_cell[e]);
-    return cells;
-  };
+  const std::vector<Cell> held_cells = held_cells_of(voxels, free_pieces, out);
   out.changed = true;
 
-  if (options.rule == PieceRule::attach) {
-    std::vector<std::vector<Cell>> lines;
-    std::unordered_map<int64_t, char> occupied;
-    for (const Cell& c : voxels.element_cell) occupied.emplace(grid_index(voxels.dims, c), 1);
-    // Passable: cells the surface crosses that no element occupies.
-    std::vector<char> passable = fem::surface_crossed_cells(surface, voxels.origin, voxels.cell, voxels.dims);
-    std::vector<char> target(passable.size(), 0);
-    for (const Cell& c : voxels.element_cell) passable[grid_index(voxels.dims, c)] = 0;
-    for (const Cell& c : held_cells) target[grid_index(voxels.dims, c)] = 1;
-    for (size_t p : free_pieces) {
-      std::vector<Cell> path = shortest_cell_path(cells_of(p), passable, target, voxels.dims);
-      out.pieces[p].joined_through = "surface";
-      if (path.empty()) {
-        const auto [a, b] = nearest_cells(cells_of(p), held_cells, voxels.dims);
-        path = cell_line(a, b);
-        out.pieces[p].joined_through = "straight line";
-      }
-      lines.push_back(std::move(path));
-      out.pieces[p].outcome = "attached";
-      for (const Cell& c : lines.back())
-        out.pieces[p].added_cells += occupied.emplace(grid_index(voxels.dims, c), 1).second;
-    }
-    std::vector<int32_t> set_of(lattice.vertex_count(), -1);
-    for (size_t k = 0; k < constraints.size(); ++k)
-      if (constraints[k].components[0] || constraints[k].components[1] || constraints[k].components[2])
-        for (int32_t v : constraints[k].vertices)
-          if (v >= 0 && static_cast<size_t>(v) < set_of.size() && set_of[v] < 0) set_of[v] = static_cast<int32_t>(k);
-    Joined joined = join_lines(voxels, lines, set_of);
-    out.voxels = std::move(joined.voxels);
-    out.vertex_map = std::move(joined.vertex_map);
-    out.element_source = std::move(joined.element_source);
-    // The surface as the caller embedded it: vertices beyond a cell of the
-    // lattice (a character's open sheets) are carried, not refused.
-    out.embedding = embed_carrying_all(out.voxels, surface).embedding;
-  } else {
-    std::vector<char> drop_element(lattice.element_count(), 0);
-    for (size_t p : free_pieces) {
-      out.pieces[p].outcome = "dropped";
-      for (int32_t e : out.pieces[p].elements) drop_element[e] = 1;
-    }
-    Voxelization& kept = out.voxels;
-    kept.lattice.elements.clear();
-    kept.lattice.positions.clear();
-    kept.element_cell.clear();
-    out.element_source.clear();
-    std::vector<int32_t> new_element(lattice.element_count(), -1);
-    std::vector<char> used(lattice.vertex_count(), 0);
-    for (size_t e = 0; e < lattice.element_count(); ++e)
-      if (!drop_element[e])
-        for (int n = 0; n < 8; ++n) used[lattice.elements[8 * e + n]] = 1;
-    int32_t next = 0;
-    for (size_t v = 0; v < used.size(); ++v) {
-      out.vertex_map[v] = used[v] ? next++ : -1;
-      if (used[v])
-        for (int d = 0; d < 3; ++d) kept.lattice.positions.push_back(lattice.positions[3 * v + d]);
-    }
-    for (size_t e = 0; e < lattice.element_count(); ++e) {
-      if (drop_element[e]) continue;
-      new_element[e] = static_cast<int32_t>(kept.element_cell.size());
-      kept.element_cell.push_back(voxels.element_cell[e]);
-      out.element_source.push_back(static_cast<int32_t>(e));
-      for (int n = 0; n < 8; ++n) kept.lattice.elements.push_back(out.vertex_map[lattice.elements[8 * e + n]]);
-    }
-    // Each dropped piece's surface follows the kept cell nearest to it.
-    std::unordered_map<int64_t, int32_t> kept_element;
-    for (size_t e = 0; e < kept.element_cell.size(); ++e)
-      kept_element.emplace(grid_index(voxels.dims, kept.element_cell[e]), static_cast<int32_t>(e));
-    std::vector<Cell> anchor(out.pieces.size());
-    for (size_t p : free_pieces) anchor[p] = nearest_cells(cells_of(p), held_cells, voxels.dims).second;
-    std::vector<int32_t> piece_of_element(lattice.element_count(), -1);
-    for (size_t p = 0; p < out.pieces.size(); ++p)
-      for (int32_t e : out.pieces[p].elements) piece_of_element[e] = static_cast<int32_t>(p);
-    for (size_t v = 0; v < out.embedding.element.size(); ++v) {
-      const int32_t e = embedding.element[v];
-      if (!drop_element[e]) {
-        out.embedding.element[v] = new_element[e];
-        continue;
-      }
-      const Cell& c = anchor[piece_of_element[e]];
-      double local[3];
-      for (int d = 0; d < 3; ++d) local[d] = (surface.positions[3 * v + d] - voxels.origin[d]) / voxels.cell - c[d];
-      out.embedding.element[v] = kept_element.at(grid_index(voxels.dims, c));
-      const auto w = trilinear_weights(local);
-      std::copy(w.begin(), w.end(), out.embedding.weights.begin() + 8 * v);
-    }
-  }
+  if (options.rule == PieceRule::attach)
+    attach_pieces(voxels, surface, constraints, free_pieces, held_cells, out);
+  else
+    drop_pieces(voxels, embedding, surface, free_pieces, held_cells, out);
   out.voxels.components = static_cast<int>(mesh_pieces(out.voxels.lattice).size());
 
-  for (ConstraintSet& set : constraints) {
-    std::vector<int32_t> vertices;
-    for (int32_t v : set.vertices)
-      if (v >= 0 && static_cast<size_t>(v) < out.vertex_map.size() && out.vertex_map[v] >= 0)
-        vertices.push_back(out.vertex_map[v]);
-    // Two given vertices glued into one stay one entry (the first).
-    std::vector<int32_t> seen = vertices;
-    std::sort(seen.begin(), seen.end());
-    if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) {
-      std::vector<char> taken(out.voxels.lattice.vertex_count(), 0);
-      std::vector<int32_t> unique;
-      for (int32_t v : vertices)
-        if (!taken[v]) taken[v] = 1, unique.push_back(v);
-      vertices = std::move(unique);
-    }
-    // Only a set that prescribes nothing can lie wholly in dropped pieces
-    // (a prescribed vertex holds its piece); emptied, it would select no
-    // vertex: refused here, where the cause is known.
-    if (vertices.empty() && !set.vertices.empty())
-      throw Error("constraint set '" + set.name + "': all its " + std::to_string(set.vertices.size()) +
-                  " vertices are in dropped pieces (it prescribes no component, so it holds none of them); with " +
-                  options.rule_name +
-                  " \"drop\" it would select no vertex: give it a component, or select "
-                  "vertices of a kept piece");
-    set.vertices = std::move(vertices);
-  }
+  renumber_constraints(constraints, options, out);
   return out;
 }
 
