@@ -389,8 +389,8 @@ struct ContactOptions {
   double thickness = 0.0;  // >= 0
   bool self = false;
   SelfContactMethod self_method = SelfContactMethod::barrier;
-  double self_distance = 0.0;   // barrier's dhat, >= 0; 0: 1% of the cell size (lattices, embedded surfaces) or of the
-                                // mean rest surface edge (tet4); pairs closer at rest are left out
+  double self_distance = 0.0;   // barrier's dhat, >= 0; 0: 1% of the mean rest surface edge (embedded: of the cell
+                                // size); pairs closer at rest are left out
   double self_stiffness = 0.0;  // penalty's, >= 0; 0: stiffness
   // Barrier self-contact on a surface carried by a hex8 lattice's cells (an
   // embedded surface, snh/surface.h embed) instead of the mesh's boundary
