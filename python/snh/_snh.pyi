@@ -2033,6 +2033,25 @@ class ResolvedConfiguration:
         """
         Every setting, in a fixed order.
         """
+class SimulationState:
+    """
+    A simulation's full state (Simulation.checkpoint), to restore or to write with write_checkpoint.
+    """
+    @property
+    def positions(self) -> numpy.ndarray[numpy.float64]:
+        """
+        float64 (n, 3).
+        """
+    @property
+    def time(self) -> float:
+        """
+        Simulated time.
+        """
+    @property
+    def velocities(self) -> numpy.ndarray[numpy.float64]:
+        """
+        float64 (n, 3); empty without dynamics.
+        """
 class Simulation:
     """
     A simulation driven frame by frame: built once (kernels compiled, mesh uploaded), then solved from its current state after new targets and loads.
@@ -2047,7 +2066,7 @@ class Simulation:
         """
         Validates everything (snh.Error naming the input), builds the kernels and uploads the mesh.
         """
-    def checkpoint(self) -> ...:
+    def checkpoint(self) -> SimulationState:
         """
         The full state (SimulationState): positions, velocities, time, friction anchors, constraint targets and loads. The next solve rebuilds the preconditioner, as after restore, so that both continue identically.
         """
@@ -2063,7 +2082,7 @@ class Simulation:
         """
         Back to the initial state, callbacks and no force.
         """
-    def restore(self, state: ...) -> None:
+    def restore(self, state: SimulationState) -> None:
         """
         Replaces the state by a checkpoint of a simulation built from the same mesh, materials, constraint sets and options; the solves that follow give bitwise the results the original gave.
         """
@@ -2144,25 +2163,6 @@ class Simulation:
     def velocities(self) -> numpy.ndarray[numpy.float64]:
         """
         With dynamics: velocities, float64 (n, 3).
-        """
-class SimulationState:
-    """
-    A simulation's full state (Simulation.checkpoint), to restore or to write with write_checkpoint.
-    """
-    @property
-    def positions(self) -> numpy.ndarray[numpy.float64]:
-        """
-        float64 (n, 3).
-        """
-    @property
-    def time(self) -> float:
-        """
-        Simulated time.
-        """
-    @property
-    def velocities(self) -> numpy.ndarray[numpy.float64]:
-        """
-        float64 (n, 3); empty without dynamics.
         """
 class SceneProgress:
     """

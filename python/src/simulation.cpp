@@ -509,8 +509,8 @@ void bind_simulation(py::module_& m) {
   bind_contact_options(m);
   bind_solve_options(m);
   bind_resolved_configuration(m);
+  bind_checkpoints(m);  // before Simulation, whose checkpoint() returns a SimulationState
   bind_simulation_class(m);
-  bind_checkpoints(m);
   bind_field_functions(m);
 }
 
