@@ -25,6 +25,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "character/clip_selection.h"
 #include "character/collada_vertices.h"
 #include "character/fbx_reader.h"
 #include "character/skin_weights.h"
@@ -417,26 +418,7 @@ void read_skin(const std::string& path, const aiScene* scene, const std::map<std
 // for none (refused where options.require_clip).
 int select_clip(const std::string& path, const aiScene* scene, const CharacterReadOptions& options, Character& c) {
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) c.clip_names.push_back(scene->mAnimations[a]->mName.C_Str());
-  const auto listing = [&]() {
-    std::string s;
-    for (size_t a = 0; a < c.clip_names.size(); ++a)
-      s += (a ? ", " : "") + std::to_string(a) + " '" + c.clip_names[a] + "'";
-    return s.empty() ? std::string("none") : s;
-  };
-  int clip = -1;
-  if (!options.clip.empty()) {
-    for (size_t a = 0; a < c.clip_names.size() && clip < 0; ++a)
-      if (c.clip_names[a] == options.clip) clip = static_cast<int>(a);
-    if (clip < 0) fail(path, "no animation clip named '" + options.clip + "' (clips: " + listing() + ")");
-  } else if (options.clip_index >= 0) {
-    if (options.clip_index >= static_cast<int>(c.clip_names.size()))
-      fail(path, "no animation clip " + std::to_string(options.clip_index) + " (clips: " + listing() + ")");
-    clip = options.clip_index;
-  } else if (!c.clip_names.empty()) {
-    clip = 0;
-  }
-  if (clip < 0 && options.require_clip) fail(path, "no animation (an animation clip is needed)");
-  return clip;
+  return detail::select_clip(path, c.clip_names, options);
 }
 
 // What a clip's frames are sampled from.
@@ -564,20 +546,7 @@ void read_clip(const std::string& path, const aiScene* scene, const CharacterRea
   animation.channels = read_channels(path, anim, clip_name, h);
   const double duration = anim->mDuration / animation.ticks_per_second;
   if (!std::isfinite(duration) || duration < 0.0) fail(path, clip_name + ": its duration is not finite");
-  // Key times are often float32 (glTF): 20 / 24 s stored as 0.83333331 is
-  // frame 20 all the same.
-  const int clip_last = static_cast<int>(std::floor(duration * options.fps * (1 + 1e-6) + 1e-9));
-  const int last = options.last_frame < 0 ? clip_last : options.last_frame;
-  if (options.first_frame > last || last > clip_last)
-    fail(path, clip_name + ": frames " + std::to_string(options.first_frame) + ".." + std::to_string(last) +
-                   " are outside the clip's frames 0.." + std::to_string(clip_last) + " at " + number(options.fps) +
-                   " fps");
-
-  c.has_clip = true;
-  c.clip.name = c.clip_names[clip];
-  c.clip.index = clip;
-  c.clip.fps = options.fps;
-  c.clip.first_frame = options.first_frame;
+  const int last = detail::begin_clip(path, clip_name, duration, clip, options, c);
   // The clip index is the glTF animation's: assimp 5.2 imports them in order.
   animation.step = scene->mNumAnimations > 0 ? gltf_step_channels(path, clip) : std::set<std::pair<std::string, int>>{};
   animation.to_skin = skin_space(h, c.joints);

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "character/clip_selection.h"
 #include "snh/error.h"
 #include "third_party/ufbx/ufbx.h"
 
@@ -295,26 +296,7 @@ void read_skin(const std::string& path, const SkinnedMeshes& skinned, const FbxJ
 // select, or -1 for none (refused where options.require_clip).
 int select_clip(const std::string& path, const ufbx_scene& scene, const CharacterReadOptions& options, Character& c) {
   for (size_t a = 0; a < scene.anim_stacks.count; ++a) c.clip_names.push_back(text(scene.anim_stacks.data[a]->name));
-  const auto listing = [&]() {
-    std::string s;
-    for (size_t a = 0; a < c.clip_names.size(); ++a)
-      s += (a ? ", " : "") + std::to_string(a) + " '" + c.clip_names[a] + "'";
-    return s.empty() ? std::string("none") : s;
-  };
-  int clip = -1;
-  if (!options.clip.empty()) {
-    for (size_t a = 0; a < c.clip_names.size() && clip < 0; ++a)
-      if (c.clip_names[a] == options.clip) clip = static_cast<int>(a);
-    if (clip < 0) fail(path, "no animation clip named '" + options.clip + "' (clips: " + listing() + ")");
-  } else if (options.clip_index >= 0) {
-    if (options.clip_index >= static_cast<int>(c.clip_names.size()))
-      fail(path, "no animation clip " + std::to_string(options.clip_index) + " (clips: " + listing() + ")");
-    clip = options.clip_index;
-  } else if (!c.clip_names.empty()) {
-    clip = 0;
-  }
-  if (clip < 0 && options.require_clip) fail(path, "no animation (an animation clip is needed)");
-  return clip;
+  return detail::select_clip(path, c.clip_names, options);
 }
 
 // Anim stack `clip`: its frame range checked, then each frame's skinning
@@ -326,20 +308,7 @@ void read_clip(const std::string& path, const ufbx_scene& scene, const Character
   const double duration = anim_stack->time_end - anim_stack->time_begin;
   if (!std::isfinite(anim_stack->time_begin) || !std::isfinite(duration) || duration < 0.0)
     fail(path, clip_name + ": its duration is not finite");
-  // Key times are often float32 (glTF): 20 / 24 s stored as 0.83333331 is
-  // frame 20 all the same.
-  const int clip_last = static_cast<int>(std::floor(duration * options.fps * (1 + 1e-6) + 1e-9));
-  const int last = options.last_frame < 0 ? clip_last : options.last_frame;
-  if (options.first_frame > last || last > clip_last)
-    fail(path, clip_name + ": frames " + std::to_string(options.first_frame) + ".." + std::to_string(last) +
-                   " are outside the clip's frames 0.." + std::to_string(clip_last) + " at " + number(options.fps) +
-                   " fps");
-
-  c.has_clip = true;
-  c.clip.name = c.clip_names[clip];
-  c.clip.index = clip;
-  c.clip.fps = options.fps;
-  c.clip.first_frame = options.first_frame;
+  const int last = detail::begin_clip(path, clip_name, duration, clip, options, c);
   Matrix4 identity{};
   for (int k = 0; k < 4; ++k) identity[5 * k] = 1.0;
   ufbx_evaluate_opts evaluate{};
