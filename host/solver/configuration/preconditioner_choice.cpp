@@ -5,6 +5,7 @@
 #include "fem/name_table.h"
 #include "snh/error.h"
 #include "snh/simulation.h"
+#include "solver/configuration/measured_thresholds.h"
 #include "solver/multigrid/lattice_hierarchy.h"
 
 namespace snh {
@@ -57,11 +58,9 @@ ChebyshevKind parse_chebyshev_kind(const std::string& text) {
 // smoothing (degree and kind)"). One set: the other takes its fixed default
 // (degree 2, the first kind).
 MultigridOptions resolved_smoothing(MultigridOptions options, size_t dofs, double poisson_ratio) {
-  constexpr size_t kDegreeOneBelowDofs = 600000;
-  constexpr double kDegreeOneBelowPoisson = 0.495;
   const bool degree_set = options.smoother_degree != 0, kind_set = options.chebyshev_kind != ChebyshevKind::automatic;
   if (!degree_set && !kind_set) {
-    const bool light = dofs < kDegreeOneBelowDofs && poisson_ratio < kDegreeOneBelowPoisson;
+    const bool light = dofs < solver::kDegreeOneBelowDofs && poisson_ratio < solver::kDegreeOneBelowPoisson;
     options.smoother_degree = light ? 1 : 2;
     options.chebyshev_kind = light ? ChebyshevKind::optimized_fourth : ChebyshevKind::first;
   }
@@ -88,9 +87,9 @@ double max_poisson_ratio(const MaterialMap& materials) {
 // the mesh; from about that size multigrid measured faster (docs/performance.md,
 // "Default preconditioner: multigrid from 5,000 DOFs").
 Preconditioner default_preconditioner(const Mesh& mesh) {
-  constexpr size_t kMultigridFromDofs = 5000;
-  return 3 * mesh.vertex_count() >= kMultigridFromDofs && solver::is_hex8_lattice(mesh) ? Preconditioner::multigrid
-                                                                                        : Preconditioner::block_jacobi;
+  return 3 * mesh.vertex_count() >= solver::kMultigridFromDofs && solver::is_hex8_lattice(mesh)
+             ? Preconditioner::multigrid
+             : Preconditioner::block_jacobi;
 }
 
 }  // namespace snh

@@ -6,8 +6,8 @@
 
 #include "snh/configuration.h"
 #include "snh/error.h"
+#include "solver/configuration/measured_thresholds.h"
 #include "solver/contact/barrier_contact.h"
-#include "solver/contact/obstacles.h"
 #include "solver/multigrid/lattice_hierarchy.h"
 #include "solver/multigrid/multigrid.h"
 #include "solver/newton/stopping_test.h"
@@ -45,6 +45,9 @@ struct Resolution {
   const Mesh& mesh;
   const MaterialMap& materials;
   const DeviceInfo& device;
+  // The model's terms these options give (penalty or barrier self-contact,
+  // friction, per-vertex terms), as the engines build them.
+  solver::ModelTerms terms;
   ResolvedConfiguration out;
 
   void add(const std::string& name, const std::string& value, const std::string& reason) {
@@ -56,13 +59,11 @@ struct Resolution {
     add(name, text, value == fallback ? "default" : "given");
   }
   size_t dofs() const { return 3 * mesh.vertex_count(); }
-  bool barrier() const { return given.contact.self && given.contact.self_method == SelfContactMethod::barrier; }
-  bool penalty() const { return given.contact.self && given.contact.self_method == SelfContactMethod::penalty; }
 };
 
 void resolve_preconditioner(Resolution& r) {
   SolveOptions& o = r.out.options;
-  constexpr size_t kMultigridFromDofs = 5000;  // default_preconditioner (solver/configuration/)
+  using solver::kMultigridFromDofs;
   if (r.given.preconditioner != Preconditioner::automatic) {
     r.add("preconditioner", to_string(o.preconditioner), "given");
   } else if (r.given.contact.self) {
@@ -81,7 +82,7 @@ void resolve_preconditioner(Resolution& r) {
     r.add("preconditioner", to_string(o.preconditioner), why);
   }
   if (o.preconditioner == Preconditioner::multigrid) {
-    if (r.penalty())
+    if (r.terms.self_contact)
       throw Error(
           "preconditioner multigrid: its coarse levels do not carry the self-contact penalty's springs "
           "(contact.self_method penalty); use the barrier, or block-jacobi or automatic with it");
@@ -126,13 +127,15 @@ void resolve_multigrid(Resolution& r) {
         asked.smoother_degree != 0 ? "given"
         : smoothing_given          ? "the fixed default beside a given polynomial"
         : m.smoother_degree == 1
-            ? count(r.dofs()) + " DOFs below 600,000 and Poisson's ratio " + number(nu) + " below 0.495"
-            : count(r.dofs()) + " DOFs or Poisson's ratio " + number(nu) + ": at least 600,000 or 0.495");
+            ? count(r.dofs()) + " DOFs below " + count(solver::kDegreeOneBelowDofs) + " and Poisson's ratio " +
+                  number(nu) + " below " + number(solver::kDegreeOneBelowPoisson)
+            : count(r.dofs()) + " DOFs or Poisson's ratio " + number(nu) + ": at least " +
+                  count(solver::kDegreeOneBelowDofs) + " or " + number(solver::kDegreeOneBelowPoisson));
   r.add("multigrid.chebyshev", to_string(m.chebyshev_kind),
         asked.chebyshev_kind != ChebyshevKind::automatic ? "given"
         : smoothing_given                                ? "the fixed default beside a given degree"
                                                          : "with the degree above");
-  const bool vertex_terms = r.given.dynamics.has_value() || !r.given.obstacles.empty() || r.barrier();
+  const bool vertex_terms = solver::has_vertex_terms(r.terms);
   if (asked.fine_level == MultigridFineLevel::built && vertex_terms)
     throw Error(
         "multigrid: fine_level built does not carry the inertia, obstacle contact or self-contact barrier blocks "
@@ -174,7 +177,7 @@ void resolve_multigrid(Resolution& r) {
 void resolve_contact(Resolution& r) {
   SolveOptions& o = r.out.options;
   ContactOptions& c = o.contact;
-  if (r.barrier()) {
+  if (r.terms.self_barrier) {
     if (c.self_broad_phase == SelfBroadPhase::automatic) {
       c.self_broad_phase = r.device.is_gpu ? SelfBroadPhase::device : SelfBroadPhase::host;
       r.add("contact.self_broad_phase", broad_phase_name(c.self_broad_phase),
@@ -195,12 +198,12 @@ void resolve_contact(Resolution& r) {
     r.out.barrier_stiffness = solver::default_barrier_stiffness(r.materials, length, c.self_distance);
     r.add("contact.barrier_stiffness", number(r.out.barrier_stiffness), "E h^2 / dhat^3, E the stiffest material");
   }
-  if (r.penalty()) {
+  if (r.terms.self_contact) {
     if (!(c.self_stiffness > 0.0)) c.self_stiffness = c.stiffness;
     r.add("contact.self_stiffness", number(c.self_stiffness),
           r.given.contact.self_stiffness > 0.0 ? "given" : "the obstacles' contact stiffness");
   }
-  if (solver::has_friction(o.obstacles, c)) {
+  if (r.terms.friction) {
     if (!(c.friction_slip > 0.0)) c.friction_slip = 1e-2 * vertex_spacing(r.mesh);
     r.add("contact.friction_slip", number(c.friction_slip),
           r.given.contact.friction_slip > 0.0 ? "given" : "1% of the vertex spacing");
@@ -216,10 +219,7 @@ void resolve_stopping(Resolution& r) {
   // options resolve to the same test again.
   o.strain_tolerance = 0.0;
   o.absolute_tolerance = stop.absolute;
-  const bool explicit_other = r.given.absolute_tolerance > 0.0 || r.given.relative_tolerance > 0.0;
-  const double strain = r.given.strain_tolerance ? *r.given.strain_tolerance
-                        : explicit_other         ? 0.0
-                                                 : defaults::strain_tolerance(r.given.precision);
+  const double strain = stop.strain;
   std::string why =
       r.given.absolute_tolerance > 0.0 && r.given.absolute_tolerance >= stop.absolute ? "given"
       : strain > 0.0
@@ -264,7 +264,7 @@ const ResolvedSetting& ResolvedConfiguration::setting(const std::string& name) c
 
 ResolvedConfiguration resolve_configuration(const SolveOptions& options, const Mesh& mesh, const MaterialMap& materials,
                                             const DeviceInfo& device) {
-  Resolution r{options, mesh, materials, device, {}};
+  Resolution r{options, mesh, materials, device, solver::model_terms(options), {}};
   r.out.options = options;
   r.add("device", device.platform + " / " + device.name,
         options.device.match.empty() ? "SNH_DEVICE if set, else the first GPU, else the first device"

@@ -6,6 +6,7 @@
 #include "device/readback.h"
 #include "fem/vertex_slots.h"
 #include "snh/error.h"
+#include "solver/contact/obstacles.h"
 #include "viennacl/linalg/prod.hpp"
 
 namespace snh::solver {
@@ -362,6 +363,17 @@ template <typename Real>
 std::vector<Real> ElasticModel<Real>::preconditioner_blocks() const {
   PhaseScope transfer(&profiler_, Phase::transfers);
   return block_jacobi_->blocks();
+}
+
+ModelTerms model_terms(const SolveOptions& options) {
+  ModelTerms terms;
+  terms.inertia = options.dynamics.has_value();
+  terms.obstacles = static_cast<int>(options.obstacles.size());
+  terms.self_contact = options.contact.self && options.contact.self_method == SelfContactMethod::penalty;
+  terms.self_barrier = options.contact.self && options.contact.self_method == SelfContactMethod::barrier;
+  terms.self_broad_phase = options.contact.self_broad_phase;
+  terms.friction = has_friction(options.obstacles, options.contact);
+  return terms;
 }
 
 template class ElasticModel<float>;

@@ -75,6 +75,9 @@ struct ModelTerms {
   PointDataLayout hex8_point_data = PointDataLayout::automatic;  // SNH_POINT_MAJOR, SNH_CACHE_TILE (tet4 too)
 };
 
+// The terms a simulation with these options builds its model with.
+ModelTerms model_terms(const SolveOptions& options);
+
 template <typename Real>
 class ElasticModel {
  public:

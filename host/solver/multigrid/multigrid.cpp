@@ -35,11 +35,10 @@ constexpr int kPowerIterations = 10, kWarmPowerIterations = 2;
 constexpr int kCoarseDegree = 8;
 constexpr double kUpperBound = 1.1, kCoarseSpread = 60.0;
 
-// Inertia, obstacle contact or barrier self-contact: per-vertex terms in the
-// fine operator (the barrier's diagonal blocks; snh_galerkin_vertex_terms).
+// The model's per-vertex terms (has_vertex_terms; snh_galerkin_vertex_terms).
 template <typename Real>
 bool has_vertex_terms(const ElasticModel<Real>& model) {
-  return model.terms().inertia || model.terms().obstacles > 0 || model.terms().self_barrier;
+  return solver::has_vertex_terms(model.terms());
 }
 
 // Whether the options and the model's terms give a built fine level.

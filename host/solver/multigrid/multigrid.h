@@ -56,6 +56,13 @@
 
 namespace snh::solver {
 
+// Inertia, obstacle contact or barrier self-contact: per-vertex terms in the
+// fine operator (the barrier's diagonal blocks), which a built fine level
+// does not carry (MultigridFineLevel).
+inline bool has_vertex_terms(const ModelTerms& terms) {
+  return terms.inertia || terms.obstacles > 0 || terms.self_barrier;
+}
+
 // MultigridOptions::rebuild_every with 0 resolved: 2 when each load step
 // rebuilds (quasistatic), else 4 (dynamics, whose time steps carry the
 // hierarchy), each measured the faster there with the fine level built or

@@ -31,7 +31,7 @@ StoppingTest stopping_test(const Mesh& mesh, const MaterialMap& materials, const
     const double h = vertex_spacing(mesh);
     scale = strain * youngs * h * h * std::sqrt(n);
   }
-  return {std::max(scale, options.absolute_tolerance), options.relative_tolerance};
+  return {std::max(scale, options.absolute_tolerance), options.relative_tolerance, strain};
 }
 
 }  // namespace snh::solver

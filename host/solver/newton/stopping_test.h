@@ -17,6 +17,7 @@ namespace snh::solver {
 struct StoppingTest {
   double absolute = 0.0;
   double relative = 0.0;
+  double strain = 0.0;  // the strain criterion's strain behind `absolute` (0: off)
 
   // The residual norm a step that starts at |r_0| = initial stops at.
   double threshold(double initial) const { return std::max(absolute, relative * initial); }

@@ -12,7 +12,6 @@
 #include "fem/rest_state.h"
 #include "snh/configuration.h"
 #include "snh/simulation.h"
-#include "solver/contact/obstacles.h"
 #include "solver/model/elastic_model.h"
 #include "solver/multigrid/multigrid.h"
 #include "solver/newton/device_problem.h"
@@ -52,13 +51,7 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
   engine->own_context = std::move(own);
   device::use_viennacl(engine->viennacl_context_id);
   const SolveOptions& options = setup.config.options;
-  ModelTerms terms;
-  terms.inertia = options.dynamics.has_value();
-  terms.obstacles = static_cast<int>(options.obstacles.size());
-  terms.self_contact = options.contact.self && options.contact.self_method == SelfContactMethod::penalty;
-  terms.self_barrier = options.contact.self && options.contact.self_method == SelfContactMethod::barrier;
-  terms.self_broad_phase = options.contact.self_broad_phase;
-  terms.friction = has_friction(options.obstacles, options.contact);
+  const ModelTerms terms = model_terms(options);
   engine->model = std::make_unique<ElasticModel<Real>>(ctx, setup.mesh, setup.rest, setup.materials, options.product,
                                                        device::MaterialKernel::specialized, terms);
   std::vector<Real> mask(setup.prescribed.size());
