@@ -104,7 +104,7 @@ void apply_constraints(const Scene& scene, double t, std::vector<double>& x) {
 }
 
 std::vector<double> initial_positions(const Scene& scene) {
-  return scene.options.initial_positions.empty() ? scene.mesh.positions : scene.options.initial_positions;
+  return (scene.options.initial_positions.empty() ? scene.mesh.positions : scene.options.initial_positions).xyz();
 }
 
 // Collects the error after every Newton update (as on_iteration) and turns
@@ -205,10 +205,10 @@ Reference solve_reference(const Scene& scene, const ErrtimeOptions& o) {
   options.product = ProductVariant::cached;
   Reference ref;
   QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
-  ref.result = solver.solve({}, [&](int, const std::vector<double>& x) { ref.positions.push_back(x); });
-  const double initial = distance(initial_positions(scene), scene.mesh.positions);
+  ref.result = solver.solve({}, [&](int, const Points& x) { ref.positions.push_back(x.xyz()); });
+  const double initial = distance(initial_positions(scene), scene.mesh.positions.xyz());
   for (const auto& x : ref.positions) {
-    const double scale = std::max(distance(x, scene.mesh.positions), initial);
+    const double scale = std::max(distance(x, scene.mesh.positions.xyz()), initial);
     ref.scale.push_back(scale > 0.0 ? scale : 1.0);
   }
   for (const StepResult& s : ref.result.steps) {
@@ -252,7 +252,7 @@ Series run_device_series(const Scene& scene, const SceneParameters& parameters, 
       warm_up_kernels(tiny, warm);
     }
     Recorder recorder(scene, ref);
-    options.on_iteration = [&recorder](const NewtonIteration& rec, const std::vector<double>& x) { recorder(rec, x); };
+    options.on_iteration = [&recorder](const NewtonIteration& rec, const Points& x) { recorder(rec, x.xyz()); };
     QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
     const SolveResult r = solver.solve();
     s.rows = recorder.rows(r.history);

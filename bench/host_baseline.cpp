@@ -59,10 +59,11 @@ class HostProblem {
     const size_t n = mesh_.vertex_count();
     fixed_ = solver::prescribed_dofs(mesh_, constraints_);
     full_force_.assign(3 * n, 0.0);
-    for (size_t i = 0; i < options_.external_force.size(); ++i) full_force_[i] += options_.external_force[i];
+    const std::vector<double>& external = options_.external_force.xyz();
+    for (size_t i = 0; i < external.size(); ++i) full_force_[i] += external[i];
     const auto& b = options_.body_force;
     if (b[0] != 0.0 || b[1] != 0.0 || b[2] != 0.0) {
-      const std::vector<double> lumped = lump_body_force(mesh_, b);
+      const std::vector<double> lumped = lump_body_force(mesh_, b).release();
       for (size_t i = 0; i < lumped.size(); ++i) full_force_[i] += lumped[i];
     }
     force_ = full_force_;
@@ -228,20 +229,24 @@ HostBaselineResult solve_on_host(const Scene& scene, const SolveOptions& options
   const Clock::time_point start = Clock::now();
   HostProblem problem(scene, options);
   HostBaselineResult result;
-  const IterationCallback& callback = on_iteration ? on_iteration : options.on_iteration;
   solver::PhaseProfiler profiler;
   HostNewtonProblem newton_problem(problem, result, profiler);
   solver::NewtonDriver<HostNewtonProblem> newton(newton_problem, options);
   solver::NewtonDriver<HostNewtonProblem>::Observer observe;
-  if (callback)
-    observe = [&callback](const NewtonIteration& rec, const std::vector<double>& x) {
-      callback(rec, x);
+  if (on_iteration)
+    observe = [&on_iteration](const NewtonIteration& rec, const std::vector<double>& x) {
+      on_iteration(rec, x);
+      return true;
+    };
+  else if (options.on_iteration)
+    observe = [&options](const NewtonIteration& rec, const std::vector<double>& x) {
+      options.on_iteration(rec, Points::from_xyz(x));  // a copy, in the callback's (excluded) time
       return true;
     };
   const solver::StoppingTest stop =
       solver::stopping_test(scene.mesh, uniform_material(scene.mesh, scene.material), options);
 
-  std::vector<double> x = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
+  std::vector<double> x = (options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions).xyz();
   result.converged = true;
   for (int s = 1; s <= options.load_steps; ++s) {
     problem.apply_load(solver::load_fraction(s, options.load_steps), x);

@@ -88,9 +88,10 @@ int run(const SpecializationOptions& o, json& report, std::ostringstream& md,
     const fem::RestState rest_general = per_element(rest, mesh.element_count());
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(-0.1 / n, 0.1 / n), unit(-1.0, 1.0);
-    std::vector<Real> xh(mesh.positions.size()), ph(mesh.positions.size());
+    const std::vector<double>& rest_xyz = mesh.positions.xyz();
+    std::vector<Real> xh(rest_xyz.size()), ph(rest_xyz.size());
     for (size_t i = 0; i < xh.size(); ++i) {
-      xh[i] = Real((i % 3 == 2 ? 1.3 : 0.9) * mesh.positions[i] + u(rng));
+      xh[i] = Real((i % 3 == 2 ? 1.3 : 0.9) * rest_xyz[i] + u(rng));
       ph[i] = Real(unit(rng));
     }
     viennacl::vector<Real> x(xh.size()), p(xh.size()), r(xh.size()), y(xh.size());

@@ -37,7 +37,7 @@ void set_tolerance(Scene& s, Precision precision, double h) {
 std::vector<int32_t> on_plane(const Mesh& mesh, int axis, double value, double h) {
   std::vector<int32_t> out;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v + axis] - value) <= 1e-9 * h) out.push_back(static_cast<int32_t>(v));
+    if (std::abs(mesh.positions(v, axis) - value) <= 1e-9 * h) out.push_back(static_cast<int32_t>(v));
   return out;
 }
 
@@ -68,7 +68,7 @@ Scene crush(const std::string& shape, int res, Precision precision) {
   s.options.max_newton_iterations = 2000;
   for (size_t v = 0; v < s.mesh.vertex_count(); ++v) {
     if (pinned(s, v)) continue;
-    double* x = &s.options.initial_positions[3 * v];
+    double* x = s.options.initial_positions.data() + 3 * v;
     if (shape == "plane") x[2] = 0.0;
     if (shape == "line" || shape == "point") x[0] = x[1] = 0.5;
     if (shape == "point") x[2] = 0.5;
@@ -207,7 +207,7 @@ Scene make_case(const std::string& name, Precision precision, int resolution, do
     Scene s = make_scene("stretch", p);
     if (five) {
       double top = 0.0;
-      for (size_t v = 0; v < s.mesh.vertex_count(); ++v) top = std::max(top, s.mesh.positions[3 * v + 2]);
+      for (size_t v = 0; v < s.mesh.vertex_count(); ++v) top = std::max(top, s.mesh.positions(v, 2));
       for (ConstraintSet& c : s.constraints)
         if (c.name == "top_cap")
           c.motion = [top](double t) { return RigidTransform::translation_by({0.0, 0.0, t * 4.0 * top}); };
@@ -230,7 +230,7 @@ Scene make_case(const std::string& name, Precision precision, int resolution, do
     for (size_t v = 0; v < s.mesh.vertex_count(); ++v) {
       const auto x = s.mesh.vertex(v);
       const bool interior_xy = x[0] > 0.5 * h && x[0] < 1.0 - 0.5 * h && x[1] > 0.5 * h && x[1] < 1.0 - 0.5 * h;
-      if (interior_xy && std::abs(x[2] - h) < 0.5 * h) s.options.initial_positions[3 * v + 2] = 2.6 * h;
+      if (interior_xy && std::abs(x[2] - h) < 0.5 * h) s.options.initial_positions(v, 2) = 2.6 * h;
     }
     s.description = "interior layer pushed through its neighbours (inverted at start), top compressed 20%";
     return s;
@@ -267,10 +267,10 @@ Scene make_case(const std::string& name, Precision precision, int resolution, do
 
 // The first step's starting positions: the initial positions with the
 // constraints at t = 1 / steps.
-std::vector<double> first_step_start(const Scene& s) {
-  std::vector<double> x = s.options.initial_positions.empty() ? s.mesh.positions : s.options.initial_positions;
+Points first_step_start(const Scene& s) {
+  std::vector<double> x = (s.options.initial_positions.empty() ? s.mesh.positions : s.options.initial_positions).xyz();
   apply_constraints(s.mesh, s.constraints, 1.0 / s.options.load_steps, x);
-  return x;
+  return Points::from_xyz(std::move(x));
 }
 
 std::string fixed(double v, int digits) {
@@ -530,21 +530,21 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
   r.initially_inverted_elements = deformation_statistics(scene.mesh, first_step_start(scene)).inverted_elements;
   // The boundary surface: its exact self-intersection count at each step's end.
   const MeshBoundary boundary = boundary_surface(scene.mesh);
-  std::vector<double> surface(3 * boundary.vertices.size());
+  Points surface(boundary.vertices.size());
   SolveOptions options = scene.options;
   options.device.match = device;
   options.fallback_to_double = fallback_to_double;
   try {
     QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
     r.min_volume_ratio = std::numeric_limits<double>::infinity();
-    const SolveResult s = solver.solve({}, [&](int, const std::vector<double>& x) {
-      for (double v : x)
+    const SolveResult s = solver.solve({}, [&](int, const Points& x) {
+      for (double v : x.xyz())
         if (!std::isfinite(v)) {
           r.surface_intersections.push_back(-1);
           return;
         }
       for (size_t i = 0; i < boundary.vertices.size(); ++i)
-        for (int d = 0; d < 3; ++d) surface[3 * i + d] = x[3 * size_t(boundary.vertices[i]) + d];
+        for (int d = 0; d < 3; ++d) surface(i, d) = x(size_t(boundary.vertices[i]), d);
       const SelfIntersections count = count_self_intersections(surface, boundary.surface.triangles);
       r.surface_intersections.push_back(int64_t(count.intersecting_pairs));
       r.degenerate_surface_triangles = std::max(r.degenerate_surface_triangles, count.degenerate_triangles);
@@ -570,7 +570,7 @@ StabilityRun run_stability_case(const std::string& name, Precision precision, in
       if (!h.recovery.empty()) ++r.recoveries[to_string(h.recovery)];
       if (std::isnan(h.residual_norm) || std::isnan(h.energy)) ++r.nan_in_history;
     }
-    for (double v : s.positions) r.non_finite_positions += std::isfinite(v) ? 0 : 1;
+    for (double v : s.positions.xyz()) r.non_finite_positions += std::isfinite(v) ? 0 : 1;
     r.seconds = s.seconds;
     r.min_j = s.min_j;
     r.max_j = s.max_j;

@@ -256,7 +256,7 @@ Mesh make_mesh(const std::string& type, int n) {
 std::vector<double> deformed(const Mesh& mesh, int n) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-0.1 / n, 0.1 / n);
-  std::vector<double> x = mesh.positions;
+  std::vector<double> x = mesh.positions.xyz();
   for (size_t i = 0; i < x.size(); ++i) x[i] = (i % 3 == 2 ? 1.3 : 0.9) * x[i] + u(rng);
   return x;
 }

@@ -34,17 +34,17 @@ struct CompareOptions {
 };
 
 TriangleSurface opened(const TriangleSurface& s, double cell) {
-  double zlo = s.positions[2], zhi = zlo;
+  double zlo = s.positions(0, 2), zhi = zlo;
   size_t tip = 0;
   for (size_t v = 0; v < s.vertex_count(); ++v) {
-    zlo = std::min(zlo, s.positions[3 * v + 2]);
-    zhi = std::max(zhi, s.positions[3 * v + 2]);
-    if (s.positions[3 * v] > s.positions[3 * tip]) tip = v;
+    zlo = std::min(zlo, s.positions(v, 2));
+    zhi = std::max(zhi, s.positions(v, 2));
+    if (s.positions(v, 0) > s.positions(tip, 0)) tip = v;
   }
   const double middle = 0.5 * (zlo + zhi);
   const auto centroid = [&](size_t t, int d) {
     double x = 0.0;
-    for (int k = 0; k < 3; ++k) x += s.positions[3 * s.triangles[3 * t + k] + d] / 3.0;
+    for (int k = 0; k < 3; ++k) x += s.positions(size_t(s.triangles[3 * t + k]), d) / 3.0;
     return x;
   };
   std::vector<char> below(s.vertex_count(), 0);
@@ -56,14 +56,14 @@ TriangleSurface opened(const TriangleSurface& s, double cell) {
   std::vector<int32_t> copy(s.vertex_count(), -1);
   for (size_t t = 0; t < s.triangle_count(); ++t) {
     double d2 = 0.0;
-    for (int d = 0; d < 3; ++d) d2 += std::pow(centroid(t, d) - s.positions[3 * tip + d], 2);
+    for (int d = 0; d < 3; ++d) d2 += std::pow(centroid(t, d) - s.positions(tip, d), 2);
     if (d2 < 16.0 * cell * cell) continue;
     for (int k = 0; k < 3; ++k) {
       int32_t v = s.triangles[3 * t + k];
       if (centroid(t, 2) > middle && below[v]) {
         if (copy[v] < 0) {
           copy[v] = static_cast<int32_t>(out.vertex_count());
-          out.positions.insert(out.positions.end(), s.positions.begin() + 3 * v, s.positions.begin() + 3 * v + 3);
+          out.positions.push_back({s.positions(size_t(v), 0), s.positions(size_t(v), 1), s.positions(size_t(v), 2)});
         }
         v = copy[v];
       }
@@ -143,8 +143,8 @@ int run_compare(const CompareOptions& o) {
       const double p[3] = {c.origin[0] + (x[0] + 0.5) * o.cell, c.origin[1] + (x[1] + 0.5) * o.cell,
                            c.origin[2] + (x[2] + 0.5) * o.cell};
       for (size_t v = 0; v < s.vertex_count(); ++v)
-        nearest = std::min(nearest, std::hypot(s.positions[3 * v] - p[0], s.positions[3 * v + 1] - p[1],
-                                               s.positions[3 * v + 2] - p[2]));
+        nearest =
+            std::min(nearest, std::hypot(s.positions(v, 0) - p[0], s.positions(v, 1) - p[1], s.positions(v, 2) - p[2]));
       farthest = std::max(farthest, nearest / o.cell);
     }
     std::cout << "  opened (" << open.vertex_count() - s.vertex_count() << " seam vertices, "

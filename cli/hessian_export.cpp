@@ -70,15 +70,15 @@ ExportedSystem export_scene_system(const Scene& scene, const MaterialMap& materi
   // first (then the state is step 1's equilibrium).
   std::vector<double> x;
   int done = 0;
-  options.on_iteration = [&](const NewtonIteration& rec, const std::vector<double>& positions) {
+  options.on_iteration = [&](const NewtonIteration& rec, const Points& positions) {
     if (rec.step != 1) return;
-    x = positions;
+    x = positions.xyz();
     done = rec.iteration + 1;
   };
   Simulation sim(scene.mesh, materials, scene.constraints, options);
   sim.solve(0, [&](const NewtonIteration& rec) { return rec.step == 1 && done < newton_iterations; });
   if (x.empty()) throw Error("hessian: scene " + scene.name + " took no Newton update in step 1");
-  ExportedSystem s = linear_system_at(sim.mesh(), materials, scene.constraints, x, sim.applied_force());
+  ExportedSystem s = linear_system_at(sim.mesh(), materials, scene.constraints, x, sim.applied_force().xyz());
   s.newton_iterations = done;
   return s;
 }
@@ -121,7 +121,7 @@ void write_exported_system(const std::string& prefix, const Mesh& mesh, const Ex
     for (size_t i = 0; i < s.free_dofs.size(); ++i) {
       const size_t v = size_t(s.free_dofs[i] / 3);
       const int c = int(s.free_dofs[i] % 3);
-      const double* X = &mesh.positions[3 * v];
+      const double* X = mesh.positions.data() + 3 * v;
       const double* x = &s.positions[3 * v];
       std::fprintf(f.get(), "%zu,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", i, v, c, X[0], X[1], X[2], x[0], x[1],
                    x[2]);

@@ -256,8 +256,8 @@ int run_scene_file(const SceneFile& file, const SolveOptions& options, const Sce
   std::optional<CharacterCacheSeries> caches;
   if (file.character && !(file.pc2_path.empty() && file.mdd_path.empty() && file.lbs_path.empty())) {
     caches.emplace(file.character->character, file.pc2_path, file.mdd_path, file.lbs_path);
-    run_options.writers.push_back([&caches](int frame, double, const std::vector<double>&,
-                                            const std::vector<double>& surface) { caches->add(frame, surface); });
+    run_options.writers.push_back(
+        [&caches](int frame, double, const Points&, const Points& surface) { caches->add(frame, surface); });
   }
   const SceneRun run = run_scene(file, options, run_options);
   if (caches) caches->finish();

@@ -26,11 +26,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     snh::surface_report(surface, "fuzz");
     // A coarse voxelization (about 8 cells across): welding, the fast
     // winding number and the gap rule on whatever the reader accepted.
+    const std::vector<double>& xyz = surface.positions.xyz();
     double lo[3], hi[3];
-    for (int d = 0; d < 3; ++d) lo[d] = hi[d] = surface.positions[d];
-    for (size_t i = 0; i < surface.positions.size(); ++i) {
-      lo[i % 3] = std::min(lo[i % 3], surface.positions[i]);
-      hi[i % 3] = std::max(hi[i % 3], surface.positions[i]);
+    for (int d = 0; d < 3; ++d) lo[d] = hi[d] = xyz[d];
+    for (size_t i = 0; i < xyz.size(); ++i) {
+      lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+      hi[i % 3] = std::max(hi[i % 3], xyz[i]);
     }
     const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
     snh::VoxelizeOptions options;

@@ -32,7 +32,7 @@ int solve(const std::string& path, const std::string& precision, const std::stri
   const snh::SolveResult result = sim.solve();
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(sim.positions().data()),
-            static_cast<std::streamsize>(sim.positions().size() * sizeof(double)));
+            static_cast<std::streamsize>(sim.positions().xyz().size() * sizeof(double)));
   return out && result.converged ? 0 : 1;
 }
 

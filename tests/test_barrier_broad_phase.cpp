@@ -28,7 +28,7 @@ struct Stack {
   explicit Stack(int n = 4, double h = 0.5) : mesh(make_box_lattice(n, n, 1, h)) {
     const Mesh b = make_box_lattice(n, n, 1, h, {0.26 * h, 0.42 * h, 1.14 * h});
     first_b = static_cast<int>(mesh.vertex_count());
-    mesh.positions.insert(mesh.positions.end(), b.positions.begin(), b.positions.end());
+    for (size_t v = 0; v < b.vertex_count(); ++v) mesh.positions.push_back(b.vertex(v));
     for (int32_t v : b.elements) mesh.elements.push_back(v + first_b);
   }
   // The rest positions with B moved down by dz (and along x by dx) and every
@@ -36,7 +36,7 @@ struct Stack {
   std::vector<double> pressed(double dz, double jitter, unsigned seed, double dx = 0.0) const {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> shake(-jitter, jitter);
-    std::vector<double> x = mesh.positions;
+    std::vector<double> x = mesh.positions.xyz();
     for (size_t v = first_b; v < mesh.vertex_count(); ++v) {
       x[3 * v] += dx;
       x[3 * v + 2] += dz;
@@ -120,7 +120,7 @@ TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnAMeshBoundary) {
   EXPECT_EQ(terms.excluded_at_rest(), 0u);
   solver::BarrierContact host(s.mesh);
   host.set_distance(dhat);
-  EXPECT_EQ(host.exclude_pairs_near(s.mesh.positions), 0u);
+  EXPECT_EQ(host.exclude_pairs_near(s.mesh.positions.xyz()), 0u);
   // B 0.04 closer, jittered by up to 0.004: pairs within dhat of every kind;
   // a step of up to 0.3 sweeps boxes over several cells.
   const std::vector<double> x = s.pressed(-0.04, 0.004, 3);
@@ -130,7 +130,7 @@ TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnAMeshBoundary) {
   for (double& e : p) e = step(rng);
   expect_lists_match(terms, host, x, p, 20);
   // Nothing within dhat at rest.
-  const viennacl::vector<double> rest = upload<double>(s.mesh.positions);
+  const viennacl::vector<double> rest = upload<double>(s.mesh.positions.xyz());
   EXPECT_TRUE(terms.near_pairs(solver::mem(rest)).empty());
 }
 
@@ -145,7 +145,7 @@ TEST(BarrierBroadPhase, DeviceListsAreTheHostsOnALargerSurface) {
   terms.set_parameters(dhat, 2.0);
   solver::BarrierContact host(s.mesh);
   host.set_distance(dhat);
-  EXPECT_EQ(host.exclude_pairs_near(s.mesh.positions), 0u);
+  EXPECT_EQ(host.exclude_pairs_near(s.mesh.positions.xyz()), 0u);
   const std::vector<double> x = s.pressed(-0.08 * h, 0.008 * h, 9);
   std::vector<double> p(x.size());
   std::mt19937 rng(10);
@@ -183,10 +183,10 @@ TEST(BarrierBroadPhase, PairsLeftOutAtRestAreLeftOutOnTheDevice) {
   terms.set_parameters(dhat, 2.0);
   solver::BarrierContact host(s.mesh);
   host.set_distance(dhat);
-  const size_t left_out = host.exclude_pairs_near(s.mesh.positions);
+  const size_t left_out = host.exclude_pairs_near(s.mesh.positions.xyz());
   ASSERT_GT(left_out, 10u);
   EXPECT_EQ(terms.excluded_at_rest(), left_out);
-  const viennacl::vector<double> rest = upload<double>(s.mesh.positions);
+  const viennacl::vector<double> rest = upload<double>(s.mesh.positions.xyz());
   EXPECT_TRUE(terms.near_pairs(solver::mem(rest)).empty());
   EXPECT_EQ(terms.energy(solver::mem(rest)), 0.0);
   // Closer and moved along by a cell: some of the pairs in range are

@@ -87,9 +87,9 @@ struct Fixture {
   Fixture() {
     const Mesh b = make_box_lattice(2, 2, 1, 1.0, {0.3, 0.2, 1.07});
     first_b = static_cast<int>(mesh.vertex_count());
-    mesh.positions.insert(mesh.positions.end(), b.positions.begin(), b.positions.end());
+    for (size_t v = 0; v < b.vertex_count(); ++v) mesh.positions.push_back(b.vertex(v));
     for (int32_t v : b.elements) mesh.elements.push_back(v + first_b);
-    x = mesh.positions;
+    x = mesh.positions.xyz();
   }
   // B's vertices moved by dz.
   std::vector<double> b_down(double dz) const {
@@ -140,13 +140,13 @@ TEST(BarrierContact, NoPairAtRestAndNearPairsExcludeNeighbours) {
   solver::BarrierContact rest(lattice);
   EXPECT_EQ(rest.triangle_count(), 2u * (2 * 3 * 2 + 2 * 3 * 2 + 2 * 2 * 2));
   rest.set_distance(solver::kDefaultSelfDistance * rest.length_scale());
-  EXPECT_TRUE(rest.near_pairs(lattice.positions).empty());
+  EXPECT_TRUE(rest.near_pairs(lattice.positions.xyz()).empty());
   // Even at 0.55 h nothing of the rest surface is in range: the closest
   // non-adjacent rest features, the quad diagonals of two faces meeting at
   // an edge, are h / sqrt(3) apart.
   rest.set_distance(0.55);
-  EXPECT_TRUE(rest.near_pairs(lattice.positions).empty());
-  EXPECT_NEAR(rest.min_distance(lattice.positions, 2.0), std::sqrt(1.0 / 3.0), 1e-12);
+  EXPECT_TRUE(rest.near_pairs(lattice.positions.xyz()).empty());
+  EXPECT_NEAR(rest.min_distance(lattice.positions.xyz(), 2.0), std::sqrt(1.0 / 3.0), 1e-12);
 
   const Fixture f;
   solver::BarrierContact contact(f.mesh);
@@ -209,7 +209,7 @@ struct EmbeddedFixture : Fixture {
             for (int l = 0; l < 8; ++l) {
               double d2 = 0.0;
               for (int d = 0; d < 3; ++d) {
-                const double a = mesh.positions[3 * mesh.elements[8 * e + l] + d] - mesh.positions[3 * m + d];
+                const double a = mesh.positions(mesh.elements[8 * e + l], d) - mesh.positions(m, d);
                 d2 += a * a;
               }
               if (d2 > farthest) farthest = d2, far = l;
@@ -246,10 +246,12 @@ TEST(BarrierContact, EmbeddedSurfaceGradientHessianAndStepBoundAreCarriedByTheCe
   EXPECT_LT(alpha, 1.0);
   std::vector<double> y = f.x, full = f.x;
   for (size_t i = 0; i < y.size(); ++i) y[i] += alpha * p[i], full[i] += p[i];
-  EXPECT_EQ(
-      count_self_intersections(embedded_positions(f.embedding, f.mesh, y), f.surface.triangles).intersecting_pairs, 0u);
+  EXPECT_EQ(count_self_intersections(embedded_positions(f.embedding, f.mesh, Points::from_xyz(y)), f.surface.triangles)
+                .intersecting_pairs,
+            0u);
   EXPECT_GT(
-      count_self_intersections(embedded_positions(f.embedding, f.mesh, full), f.surface.triangles).intersecting_pairs,
+      count_self_intersections(embedded_positions(f.embedding, f.mesh, Points::from_xyz(full)), f.surface.triangles)
+          .intersecting_pairs,
       0u);
 }
 
@@ -703,7 +705,7 @@ TEST(BarrierContact, SquashToFivePercentHoldsWithoutIntersection) {
     options.contact.self = self;
     Simulation sim(scene.mesh, uniform_material(scene.mesh, scene.material), scene.constraints, options);
     Run r;
-    sim.solve(0, {}, [&](int, const std::vector<double>& x) {
+    sim.solve(0, {}, [&](int, const Points& x) {
       const StepResult& step = sim.last_step();
       r.most_pairs = std::max(r.most_pairs, count_self_intersections(x, triangles).intersecting_pairs);
       r.converged = r.converged && step.converged;

@@ -149,7 +149,7 @@ void check_assembled_on_blob(double bound) {
   const fem::RestState rest = fem::compute_rest_state(mesh);
   const MaterialMap materials = uniform_material(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.45));
   // A twisted, stretched state with some jitter.
-  std::vector<double> x = mesh.positions;
+  std::vector<double> x = mesh.positions.xyz();
   std::mt19937_64 rng(99);
   std::uniform_real_distribution<double> u(-0.02, 0.02);
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {

@@ -18,7 +18,7 @@ void expect_box_boundary(const Mesh& mesh, int nx, int ny, int nz, double h, con
   // Every lattice vertex but the interior ones.
   EXPECT_EQ(b.vertices.size(), mesh.vertex_count() - static_cast<size_t>((nx - 1) * (ny - 1) * (nz - 1))) << what;
   for (size_t i = 0; i < b.vertices.size(); ++i)
-    for (int d = 0; d < 3; ++d) EXPECT_EQ(b.surface.positions[3 * i + d], mesh.positions[3 * b.vertices[i] + d]);
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(b.surface.positions(i, d), mesh.positions(b.vertices[i], d));
   EXPECT_NO_THROW(validate_closed_surface(b.surface)) << what;
   const double volume = nx * ny * nz * h * h * h;
   EXPECT_NEAR(enclosed_volume(b.surface), volume, 1e-12 * volume) << what;
@@ -26,7 +26,7 @@ void expect_box_boundary(const Mesh& mesh, int nx, int ny, int nz, double h, con
   const double centre[3] = {nx * h / 2, ny * h / 2, nz * h / 2};
   for (size_t t = 0; t < b.surface.triangle_count(); ++t) {
     const double* p[3];
-    for (int c = 0; c < 3; ++c) p[c] = &b.surface.positions[3 * b.surface.triangles[3 * t + c]];
+    for (int c = 0; c < 3; ++c) p[c] = b.surface.positions.data() + 3 * b.surface.triangles[3 * t + c];
     const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
     const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
     const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
@@ -43,11 +43,11 @@ TEST(BoundarySurface, BoxLatticeIsClosedOutwardAndEnclosesItsVolume) {
 
 TEST(BoundarySurface, FollowsThePositionsGiven) {
   const Mesh mesh = make_box_lattice(2, 2, 2, 0.5);
-  std::vector<double> x = mesh.positions;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) x[3 * v + 2] *= 2.0;  // stretched along z
+  Points x = mesh.positions;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) x(v, 2) *= 2.0;  // stretched along z
   const MeshBoundary b = boundary_surface(mesh, x);
   EXPECT_NEAR(enclosed_volume(b.surface), 2.0, 1e-12);
-  EXPECT_THROW(boundary_surface(mesh, std::vector<double>(3, 0.0)), Error);
+  EXPECT_THROW(boundary_surface(mesh, Points(1)), Error);
 }
 
 }  // namespace

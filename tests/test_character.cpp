@@ -92,8 +92,8 @@ TEST(CharacterRead, SurfaceKeepsTheFileVertexOrderWeightsAndWeldsTheSeam) {
   EXPECT_NO_THROW(validate_closed_surface(c.welded));
   for (int ring = 0; ring < 21; ++ring) EXPECT_EQ(c.welded_index[ring * 17], c.welded_index[ring * 17 + 16]);
   // Vertex order: ring r, segment s is r * 17 + s at x = 0.02 r.
-  EXPECT_NEAR(c.surface.positions[3 * 170], 0.2, 1e-7);
-  EXPECT_NEAR(c.surface.positions[3 * 170 + 1], 0.05, 1e-7);
+  EXPECT_NEAR(c.surface.positions(170, 0), 0.2, 1e-7);
+  EXPECT_NEAR(c.surface.positions(170, 1), 0.05, 1e-7);
   ASSERT_EQ(c.joints.size(), 3u);
   EXPECT_EQ(c.joints[1].name, "elbow");
   EXPECT_NEAR(c.joints[1].rest_position[0], 0.2, 1e-7);
@@ -109,12 +109,13 @@ TEST(CharacterRead, SurfaceKeepsTheFileVertexOrderWeightsAndWeldsTheSeam) {
   // The clip: 1 s at 30 fps; at 1 s the elbow has turned 90 degrees about
   // +z, so the tip's centre (0.4, 0, 0) is skinned to (0.2, 0.2, 0).
   ASSERT_EQ(c.clip.frame_count(), 31u);
-  const std::vector<double> skinned = linear_blend_skinning(c.surface.positions, c.weights, c.clip.skinning[30]);
-  EXPECT_NEAR(skinned[3 * 358], 0.2, 1e-6);
-  EXPECT_NEAR(skinned[3 * 358 + 1], 0.2, 1e-6);
-  EXPECT_NEAR(skinned[3 * 358 + 2], 0.0, 1e-6);
-  const std::vector<double> rest = linear_blend_skinning(c.surface.positions, c.weights, c.clip.skinning[0]);
-  for (size_t i = 0; i < rest.size(); ++i) EXPECT_NEAR(rest[i], c.surface.positions[i], 1e-6);
+  const Points skinned = linear_blend_skinning(c.surface.positions, c.weights, c.clip.skinning[30]);
+  EXPECT_NEAR(skinned(358, 0), 0.2, 1e-6);
+  EXPECT_NEAR(skinned(358, 1), 0.2, 1e-6);
+  EXPECT_NEAR(skinned(358, 2), 0.0, 1e-6);
+  const Points rest = linear_blend_skinning(c.surface.positions, c.weights, c.clip.skinning[0]);
+  for (size_t i = 0; i < rest.size(); ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(rest(i, k), c.surface.positions(i, k), 1e-6);
 }
 
 TEST(CharacterRead, BadFilesNameTheFileAndTheItem) {
@@ -243,8 +244,9 @@ TEST(CharacterRig, LatticeEmbeddingAndWeightsCoverTheSurfaceInFileOrder) {
   const Character c = read_character(kArm);
   const CharacterRig rig = prepare_character(c, 0.025);
   ASSERT_EQ(rig.embedding.element.size(), c.surface.vertex_count());
-  const std::vector<double> x = embedded_positions(rig.embedding, rig.voxels.lattice, rig.voxels.lattice.positions);
-  for (size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(x[i], c.surface.positions[i], 1e-9);
+  const Points x = embedded_positions(rig.embedding, rig.voxels.lattice, rig.voxels.lattice.positions);
+  for (size_t i = 0; i < x.size(); ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(x(i, k), c.surface.positions(i, k), 1e-9);
   ASSERT_EQ(rig.constraints.size(), 3u);
   EXPECT_EQ(rig.constraints[0].name, "shoulder");
   EXPECT_EQ(rig.constraints[2].name, "wrist");
@@ -262,15 +264,16 @@ TEST(CharacterRig, LatticeEmbeddingAndWeightsCoverTheSurfaceInFileOrder) {
 TEST(CharacterSurface, PlyKeepsTheFileVertexOrder) {
   const Character c = read_character(kArm);
   const fs::path dir = fresh_dir("snh_character_ply");
-  std::vector<double> moved = c.surface.positions;
-  for (size_t i = 0; i < moved.size(); i += 3) moved[i] += 1.0;
+  Points moved = c.surface.positions;
+  for (size_t i = 0; i < moved.size(); ++i) moved(i, 0) += 1.0;
   write_surface_ply((dir / "arm.ply").string(), c.surface, moved);
   const TriangleSurface back = read_surface((dir / "arm.ply").string());
   ASSERT_EQ(back.vertex_count(), 359u);
   EXPECT_EQ(back.triangles, c.surface.triangles);
-  for (size_t i = 0; i < moved.size(); ++i) EXPECT_NEAR(back.positions[i], moved[i], 1e-6);
+  for (size_t i = 0; i < moved.size(); ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(back.positions(i, k), moved(i, k), 1e-6);
   EXPECT_NE(error_of([&] {
-              write_surface_ply((dir / "x.ply").string(), c.surface, {1, 2, 3});
+              write_surface_ply((dir / "x.ply").string(), c.surface, Points{Vec3{1, 2, 3}});
             }).find("x.ply"),
             std::string::npos);
   fs::remove_all(dir);
@@ -404,23 +407,23 @@ TEST(CharacterScene, SkinnedGuessReachesTheSameFrames) {
   const Character c = read_character(kArm, read);
   const CharacterRig rig = prepare_character(c, 0.025);
   const Material material = Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 2e4, 0.45);
-  std::vector<std::vector<double>> surfaces[2];
+  std::vector<Points> surfaces[2];
   for (int guess = 0; guess < 2; ++guess) {
     Simulation sim(rig.voxels.lattice, material, rig.constraints);
     CharacterFrameOptions options;
     options.skinned_guess = guess == 1;
-    const auto frames = run_character_frames(sim, c, rig, options,
-                                             [&](const CharacterFrame&, const std::vector<double>&,
-                                                 const std::vector<double>& surface, const std::vector<double>&) {
-                                               surfaces[guess].push_back(surface);
-                                               return true;
-                                             });
+    const auto frames = run_character_frames(
+        sim, c, rig, options, [&](const CharacterFrame&, const Points&, const Points& surface, const Points&) {
+          surfaces[guess].push_back(surface);
+          return true;
+        });
     ASSERT_EQ(frames.size(), 4u);
     for (const CharacterFrame& f : frames) EXPECT_TRUE(f.record.converged) << "frame " << f.record.frame;
     EXPECT_EQ(frames[3].record.frame, 3);
   }
   for (size_t f = 0; f < 4; ++f)
-    for (size_t i = 0; i < surfaces[0][f].size(); ++i) EXPECT_NEAR(surfaces[0][f][i], surfaces[1][f][i], 1e-4);
+    for (size_t i = 0; i < surfaces[0][f].size(); ++i)
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(surfaces[0][f](i, k), surfaces[1][f](i, k), 1e-4);
 }
 
 TEST(CharacterScene, SectionKeysAndConflictsAreChecked) {

@@ -74,7 +74,7 @@ TEST(CharacterCollada, VerticesAreTheFilesVerticesInOrder) {
   ASSERT_EQ(c.surface.triangle_count(), 528u);
   const std::vector<double> file = float_array(read_text(path), "body-mesh-positions-array");
   ASSERT_EQ(file.size(), 3u * 266u);
-  for (size_t k = 0; k < file.size(); ++k) ASSERT_EQ(c.surface.positions[k], file[k]) << "value " << k;
+  for (size_t k = 0; k < file.size(); ++k) ASSERT_EQ(c.surface.positions.xyz()[k], file[k]) << "value " << k;
   ASSERT_EQ(c.weights.vertex_count(), 266u);
   for (size_t v = 0; v < 266; ++v) EXPECT_NEAR(weight_sum(c.weights, v), 1.0, 1e-9) << "vertex " << v;
   // Closed: every edge is shared by exactly two triangles, once each way.
@@ -98,10 +98,10 @@ TEST(CharacterCollada, TrianglesAreTheGltfCreaturesUpToVertexOrder) {
   // each vertex at exactly one glTF vertex (to float rounding).
   std::vector<int32_t> to_gltf(dae.surface.vertex_count(), -1);
   for (size_t v = 0; v < dae.surface.vertex_count(); ++v) {
-    const double* p = &dae.surface.positions[3 * v];
+    const double* p = dae.surface.positions.data() + 3 * v;
     const std::array<double, 3> want{p[0], p[2], -p[1]};
     for (size_t u = 0; u < gltf.surface.vertex_count(); ++u) {
-      const double* q = &gltf.surface.positions[3 * u];
+      const double* q = gltf.surface.positions.data() + 3 * u;
       if (std::abs(q[0] - want[0]) > 1e-6 || std::abs(q[1] - want[1]) > 1e-6 || std::abs(q[2] - want[2]) > 1e-6)
         continue;
       ASSERT_EQ(to_gltf[v], -1) << "dae vertex " << v << " is at two glTF vertices";
@@ -119,7 +119,7 @@ TEST(CharacterCollada, TrianglesAreTheGltfCreaturesUpToVertexOrder) {
     for (size_t t = 0; t < s.triangle_count(); ++t) {
       std::array<std::array<double, 3>, 3> p;
       for (int k = 0; k < 3; ++k) {
-        const double* q = &s.positions[3 * s.triangles[3 * t + k]];
+        const double* q = s.positions.data() + 3 * s.triangles[3 * t + k];
         p[k] = turn ? std::array<double, 3>{q[0], q[2], -q[1]} : std::array<double, 3>{q[0], q[1], q[2]};
       }
       const std::array<double, 3> u{p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]},
@@ -183,9 +183,9 @@ TEST(CharacterCollada, LoosePointKeepsItsPositionAndTheControllersWeights) {
   EXPECT_TRUE(c.warnings.empty()) << joined(c.warnings);
   ASSERT_EQ(c.surface.vertex_count(), 267u);
   EXPECT_EQ(c.surface.triangle_count(), 528u);
-  EXPECT_EQ(c.surface.positions[3 * 266 + 0], 0.5);
-  EXPECT_EQ(c.surface.positions[3 * 266 + 1], -0.3);
-  EXPECT_EQ(c.surface.positions[3 * 266 + 2], 0.2);
+  EXPECT_EQ(c.surface.positions(266, 0), 0.5);
+  EXPECT_EQ(c.surface.positions(266, 1), -0.3);
+  EXPECT_EQ(c.surface.positions(266, 2), 0.2);
   ASSERT_EQ(c.weights.offset[267] - c.weights.offset[266], 1);
   EXPECT_EQ(c.joints[c.weights.joint[c.weights.offset[266]]].name, "rig_hips");
   EXPECT_EQ(c.weights.weight[c.weights.offset[266]], 1.0);
@@ -195,7 +195,7 @@ TEST(CharacterCollada, CornersThatDoNotMatchLeaveTheSurfaceAsItIs) {
   // Three corners of one triangle onto a file whose triangles are other
   // ones: the collapse refuses and changes nothing.
   TriangleSurface s;
-  s.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   s.triangles = {0, 1, 2};
   detail::WeightRows rows(3, {{0, 1.0}});
   const TriangleSurface before = s;

@@ -60,9 +60,9 @@ TEST(CharacterFbx, SurfaceIsTheControlPointsAsBlenderImportsThem) {
   for (size_t v = 0; v < c.surface.vertex_count(); ++v)
     for (int d = 0; d < 3; ++d) {
       const double expected = ref["positions"][v][d].get<double>();
-      EXPECT_NEAR(c.surface.positions[3 * v + d], expected, 1e-6 * (1.0 + std::abs(expected)))
+      EXPECT_NEAR(c.surface.positions(v, d), expected, 1e-6 * (1.0 + std::abs(expected)))
           << "vertex " << v << " axis " << d;
-      worst = std::max(worst, std::abs(c.surface.positions[3 * v + d] - expected));
+      worst = std::max(worst, std::abs(c.surface.positions(v, d) - expected));
     }
   EXPECT_LT(worst, 1e-6);
   // 19 x 16 quads and two 16-sided caps, triangulated; every index a
@@ -141,16 +141,16 @@ TEST(CharacterFbx, LinearBlendSkinningMatchesBlendersArmatureDeform) {
   EXPECT_NEAR(c.clip.times.back(), 10.0 / 24.0, 1e-12);
   for (const Matrix4& m : c.clip.skinning[0]) EXPECT_TRUE(is_identity(m, 1e-6));  // the bind pose
   double scale = 0.0;
-  for (double x : c.surface.positions) scale = std::max(scale, std::abs(x));
+  for (double x : c.surface.positions.xyz()) scale = std::max(scale, std::abs(x));
   for (const nlohmann::json& frame : ref["frames"]) {
     const int f = frame["frame"].get<int>();
     ASSERT_LT(static_cast<size_t>(f), c.clip.frame_count());
-    const std::vector<double> x = linear_blend_skinning(c.surface.positions, c.weights, c.clip.skinning[f]);
+    const Points x = linear_blend_skinning(c.surface.positions, c.weights, c.clip.skinning[f]);
     double worst = 0.0, moved = 0.0;
     for (size_t v = 0; v < c.surface.vertex_count(); ++v)
       for (int d = 0; d < 3; ++d) {
-        worst = std::max(worst, std::abs(x[3 * v + d] - frame["positions"][v][d].get<double>()));
-        moved = std::max(moved, std::abs(x[3 * v + d] - c.surface.positions[3 * v + d]));
+        worst = std::max(worst, std::abs(x(v, d) - frame["positions"][v][d].get<double>()));
+        moved = std::max(moved, std::abs(x(v, d) - c.surface.positions(v, d)));
       }
     EXPECT_LT(worst, 1e-4 * scale) << "frame " << f;
     if (f >= 3) {

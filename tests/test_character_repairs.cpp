@@ -70,7 +70,7 @@ TEST(CharacterRepairs, VerticesWithoutWeightsFollowTheirNearestWeightedVertex) {
     for (size_t u = 0; u < c.surface.vertex_count(); ++u) {
       if (u == 5 || u == 40) continue;
       double d = 0.0;
-      for (int k = 0; k < 3; ++k) d += std::pow(c.surface.positions[3 * u + k] - c.surface.positions[3 * v + k], 2);
+      for (int k = 0; k < 3; ++k) d += std::pow(c.surface.positions(u, k) - c.surface.positions(v, k), 2);
       if (d < best_d) best_d = d, best = u;
     }
     EXPECT_EQ(row(c.weights, v), row(arm.weights, best)) << "vertex " << v << " should follow vertex " << best;
@@ -98,8 +98,7 @@ TEST(CharacterRepairs, ShellInsideAnotherFacingInwardsStaysACavity) {
   // inner shell is no inside-out skin and is kept as it is.
   const auto box = [](TriangleSurface& s, double lo, double hi, bool inward) {
     const int32_t base = static_cast<int32_t>(s.vertex_count());
-    for (int k = 0; k < 8; ++k)
-      s.positions.insert(s.positions.end(), {k & 1 ? hi : lo, k & 2 ? hi : lo, k & 4 ? hi : lo});
+    for (int k = 0; k < 8; ++k) s.positions.push_back({k & 1 ? hi : lo, k & 2 ? hi : lo, k & 4 ? hi : lo});
     const int32_t faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
     for (const auto& f : faces) {
@@ -140,31 +139,31 @@ TEST(CharacterRepairs, FlapAndLoosePointsAreCarriedToFirstOrder) {
     for (int a = 0; a < 8; ++a) sum += rig.embedding.weights[8 * v + a];
     EXPECT_NEAR(sum, 1.0, 1e-12) << "vertex " << v;
   }
-  std::vector<double> x = rig.voxels.lattice.positions;
+  Points x = rig.voxels.lattice.positions;
   const double angle = 0.7, cs = std::cos(angle), sn = std::sin(angle);
-  for (size_t i = 0; i < x.size(); i += 3) {
-    const double px = x[i], py = x[i + 1], pz = x[i + 2];
-    x[i] = cs * px - sn * py + 0.1;
-    x[i + 1] = sn * px + cs * py - 0.2;
-    x[i + 2] = 1.5 * pz;
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double px = x(i, 0), py = x(i, 1), pz = x(i, 2);
+    x(i, 0) = cs * px - sn * py + 0.1;
+    x(i, 1) = sn * px + cs * py - 0.2;
+    x(i, 2) = 1.5 * pz;
   }
-  const std::vector<double> rest = embedded_positions(rig.embedding, rig.voxels.lattice, rig.voxels.lattice.positions);
-  const std::vector<double> moved = embedded_positions(rig.embedding, rig.voxels.lattice, x);
+  const Points rest = embedded_positions(rig.embedding, rig.voxels.lattice, rig.voxels.lattice.positions);
+  const Points moved = embedded_positions(rig.embedding, rig.voxels.lattice, x);
   for (size_t v = 0; v < 365; ++v) {
-    const double* p = &c.surface.positions[3 * v];
-    for (int d = 0; d < 3; ++d) EXPECT_NEAR(rest[3 * v + d], p[d], 1e-12) << "vertex " << v;
-    EXPECT_NEAR(moved[3 * v], cs * p[0] - sn * p[1] + 0.1, 1e-12) << "vertex " << v;
-    EXPECT_NEAR(moved[3 * v + 1], sn * p[0] + cs * p[1] - 0.2, 1e-12) << "vertex " << v;
-    EXPECT_NEAR(moved[3 * v + 2], 1.5 * p[2], 1e-12) << "vertex " << v;
+    const double* p = c.surface.positions.data() + 3 * v;
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(rest(v, d), p[d], 1e-12) << "vertex " << v;
+    EXPECT_NEAR(moved(v, 0), cs * p[0] - sn * p[1] + 0.1, 1e-12) << "vertex " << v;
+    EXPECT_NEAR(moved(v, 1), sn * p[0] + cs * p[1] - 0.2, 1e-12) << "vertex " << v;
+    EXPECT_NEAR(moved(v, 2), 1.5 * p[2], 1e-12) << "vertex " << v;
   }
 }
 
 TEST(CharacterRepairs, GeometryFarFromTheFleshIsAnErrorNamingTheVertex) {
   Character c = read_character(kArm);
   const size_t v = c.surface.vertex_count();
-  c.surface.positions.insert(c.surface.positions.end(), {1.5, 0.0, 0.0});
+  c.surface.positions.push_back({1.5, 0.0, 0.0});
   c.welded_index.push_back(static_cast<int32_t>(c.welded.vertex_count()));
-  c.welded.positions.insert(c.welded.positions.end(), {1.5, 0.0, 0.0});
+  c.welded.positions.push_back({1.5, 0.0, 0.0});
   c.weights.joint.push_back(0);
   c.weights.weight.push_back(1.0);
   c.weights.offset.push_back(static_cast<int32_t>(c.weights.joint.size()));

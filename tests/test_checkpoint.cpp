@@ -51,7 +51,7 @@ void expect_same_solve(const SolveResult& a, const SolveResult& b, const std::st
 
 struct Frames {
   std::vector<SolveResult> results;
-  std::vector<double> positions, velocities;
+  Points positions, velocities;
   double time = 0.0;
 };
 
@@ -110,8 +110,8 @@ TEST(Checkpoint, DynamicsWithObstaclesAndFrictionResumeBitForBit) {
       o.dynamics->density = 1000.0;
       o.dynamics->damping.stiffness = 1e-4;
       o.body_force = {0.0, 0.0, -9810.0};
-      o.initial_velocities.assign(3 * mesh.vertex_count(), 0.0);
-      for (size_t v = 0; v < mesh.vertex_count(); ++v) o.initial_velocities[3 * v] = 0.5;
+      o.initial_velocities = Points(mesh.vertex_count());
+      for (size_t v = 0; v < mesh.vertex_count(); ++v) o.initial_velocities(v, 0) = 0.5;
       o.obstacles = {Obstacle::plane({0, 0, -0.004}, {0, 0, 1}),
                      Obstacle::sphere({0.05, 0.05, 0.104}, 0.05).with_friction(0.1)};
       o.contact.stiffness = 1e3;
@@ -232,7 +232,7 @@ TEST_F(CheckpointFile, DamagedFilesAreRefusedNamingTheItem) {
 
 TEST_F(CheckpointFile, AnotherMeshOrOtherSetsAreRefusedOnRestore) {
   Mesh moved = mesh;
-  moved.positions[0] += 1e-3;
+  moved.positions(0, 0) += 1e-3;
   Simulation other(moved, StableNeoHookean::from_youngs_modulus(1e5, 0.3),
                    {ConstraintSet::fixed("wall", on_plane(moved, 0, 0.1))});
   try {

@@ -151,7 +151,7 @@ TEST(Configuration, SimulationRunsWithWhatItReports) {
   const Mesh mesh = make_box_lattice(12, 4, 4, 0.1);
   std::vector<int32_t> left;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (mesh.positions[3 * v] < 1e-9) left.push_back(static_cast<int32_t>(v));
+    if (mesh.positions(v, 0) < 1e-9) left.push_back(static_cast<int32_t>(v));
   SolveOptions options;
   options.body_force = {0, 0, -1e3};
   Simulation sim(mesh, kRubber, {ConstraintSet::fixed("left", left)}, options);

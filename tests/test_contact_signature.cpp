@@ -45,7 +45,7 @@ class PlaneContact {
   // count of contacts. Returns the depths' signs (1 in the layer, else 0).
   std::vector<Real> place(const std::set<size_t>& in, std::mt19937& rng) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
-    std::vector<double> x = mesh_.positions;
+    std::vector<double> x = mesh_.positions.xyz();
     std::vector<Real> depth(vertices(), Real(0));
     for (size_t v = 0; v < vertices(); ++v) {
       x[3 * v + 2] = in.count(v) ? 0.04 * unit(rng) : 0.06 + 0.1 * unit(rng);

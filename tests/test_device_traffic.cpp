@@ -263,11 +263,12 @@ void expect_same_equilibrium(const Scene& scene, Preconditioner preconditioner) 
   // Both stop at |r| <= tolerance; the positions differ by at most what
   // that residual moves at the material's smallest stiffness, far below
   // the mesh spacing.
-  ASSERT_EQ(a.result.positions.size(), old.result.positions.size());
+  const std::vector<double>&xa = a.result.positions.xyz(), &xo = old.result.positions.xyz();
+  ASSERT_EQ(xa.size(), xo.size());
   double diff = 0.0, extent = 0.0;
-  for (size_t i = 0; i < a.result.positions.size(); ++i) {
-    diff = std::max(diff, std::abs(a.result.positions[i] - old.result.positions[i]));
-    extent = std::max(extent, std::abs(old.result.positions[i]));
+  for (size_t i = 0; i < xa.size(); ++i) {
+    diff = std::max(diff, std::abs(xa[i] - xo[i]));
+    extent = std::max(extent, std::abs(xo[i]));
   }
   EXPECT_LT(diff, 1e-5 * extent);
   const double e_old = old.result.history.back().energy, e_new = a.result.history.back().energy;
@@ -367,7 +368,7 @@ NewtonReads newton_reads(int resolution, Preconditioner preconditioner, int k, c
   }
   // Less each step's result, read once at its end (double here).
   NewtonReads out;
-  out.dofs = static_cast<long long>(r.result.positions.size());
+  out.dofs = static_cast<long long>(r.result.positions.xyz().size());
   const long long steps = static_cast<long long>(r.result.steps.size());
   const long long reads = outside.blocking_readbacks - steps;
   const long long bytes = outside.bytes_to_host - steps * out.dofs * static_cast<long long>(sizeof(double));
@@ -476,7 +477,7 @@ DynamicsReads dynamics_reads(int resolution, Preconditioner preconditioner) {
   const int newton = newton_iterations(r.result);
   EXPECT_GT(newton, 0);
   DynamicsReads out;
-  out.dofs = static_cast<long long>(r.result.positions.size());
+  out.dofs = static_cast<long long>(r.result.positions.xyz().size());
   const long long solves = static_cast<long long>(r.result.steps.size()) * substeps;
   const long long bytes = outside.bytes_to_host - solves * out.dofs * static_cast<long long>(sizeof(double));
   out.reads_per_newton = static_cast<double>(outside.blocking_readbacks - solves) / newton;
@@ -538,7 +539,7 @@ ContactReads contact_reads(int resolution) {
   EXPECT_NE(r.result.kernel_specialization.find("-DSNH_OBSTACLES=1"), std::string::npos);
   const SolveProfile& p = r.result.profile;
   ContactReads out;
-  out.vertices = static_cast<long long>(r.result.positions.size() / 3);
+  out.vertices = static_cast<long long>(r.result.positions.size());
   out.contacts = r.result.steps.back().contacts;
   // Less each step's result: x, and the depths for its contact count and
   // deepest penetration.
@@ -588,11 +589,11 @@ BarrierReads barrier_reads(int resolution) {
   scene.mesh = make_box_lattice(resolution, resolution, 2, h);
   const Mesh b = make_box_lattice(resolution, resolution, 2, h, {0.0, 0.0, 2.1 * h});
   const int32_t first_b = static_cast<int32_t>(scene.mesh.vertex_count());
-  scene.mesh.positions.insert(scene.mesh.positions.end(), b.positions.begin(), b.positions.end());
+  for (size_t v = 0; v < b.vertex_count(); ++v) scene.mesh.positions.push_back(b.vertex(v));
   for (int32_t v : b.elements) scene.mesh.elements.push_back(v + first_b);
   ConstraintSet bottom{"bottom", {}, {}, {}}, top{"top", {}, {}, {}};
   for (size_t v = 0; v < scene.mesh.vertex_count(); ++v) {
-    const double z = scene.mesh.positions[3 * v + 2];
+    const double z = scene.mesh.positions(v, 2);
     if (std::abs(z) < 1e-9) bottom.vertices.push_back(static_cast<int32_t>(v));
     if (std::abs(z - 4.1 * h) < 1e-9) top.vertices.push_back(static_cast<int32_t>(v));
   }
@@ -624,7 +625,7 @@ BarrierReads barrier_reads(int resolution) {
   }
   EXPECT_GT(newton, 0);
   // Less each step's result, read once at its end (double here).
-  out.dofs = static_cast<long long>(r.result.positions.size());
+  out.dofs = static_cast<long long>(r.result.positions.xyz().size());
   const long long steps = static_cast<long long>(r.result.steps.size());
   const long long reads = outside.blocking_readbacks - steps;
   const long long bytes = outside.bytes_to_host - steps * out.dofs * static_cast<long long>(sizeof(double));

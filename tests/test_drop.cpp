@@ -50,11 +50,11 @@ TEST(Drop, ShippedBlobMeshesReadCleanly) {
 TEST(Drop, ShapeDeviationIgnoresRigidMotion) {
   const Mesh mesh = read_mesh(kData + "/meshes/blob_coarse.msh");
   const RigidTransform t = RigidTransform::rotation_about({0.6, 0.0, 0.8}, 2.0, {0.1, -0.2, 0.3});
-  std::vector<double> x(mesh.positions.size()), stretched = mesh.positions;
+  Points x(mesh.vertex_count()), stretched = mesh.positions;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     const auto p = t.apply(mesh.vertex(v));
-    for (int k = 0; k < 3; ++k) x[3 * v + k] = p[k] + 0.5;
-    stretched[3 * v + 2] *= 1.1;
+    for (int k = 0; k < 3; ++k) x(v, k) = p[k] + 0.5;
+    stretched(v, 2) *= 1.1;
   }
   EXPECT_LT(shape_deviation(mesh, x).rms_distance, 1e-12);
   EXPECT_GT(shape_deviation(mesh, x).radius_of_gyration, 0.02);  // the 10 x 10 x 8 cm ellipsoid
@@ -83,9 +83,10 @@ TEST(Drop, BuiltInSceneMatchesTheSceneFile) {
   EXPECT_EQ(a.dynamics->substeps, b.dynamics->substeps);
   EXPECT_EQ(a.load_steps, b.load_steps);
   // Gravity: the built-in's body force lumped as the file's "body_force" is.
-  const std::vector<double> lumped = lump_body_force(built.mesh, a.body_force);
-  ASSERT_EQ(lumped.size(), b.external_force.size());
-  for (size_t i = 0; i < lumped.size(); ++i) EXPECT_NEAR(lumped[i], b.external_force[i], 1e-15);
+  const Points lumped = lump_body_force(built.mesh, a.body_force);
+  ASSERT_EQ(lumped.size(), b.external_force.size());  // points
+  for (size_t i = 0; i < lumped.size(); ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(lumped(i, k), b.external_force(i, k), 1e-15);
   EXPECT_DOUBLE_EQ(a.body_force[2], -9.81 * a.dynamics->density);
   EXPECT_EQ(a.contact.stiffness, b.contact.stiffness);
   EXPECT_EQ(a.contact.thickness, b.contact.thickness);
@@ -147,11 +148,11 @@ TEST(Drop, ObstacleSurfaceFollowsTheMotion) {
       return r - o.radius;
     };
     std::array<double, 3> n;
-    for (size_t v = 0; v < s.vertex_count(); ++v) EXPECT_NEAR(phi(&s.positions[3 * v], n), 0.0, 1e-12);
+    for (size_t v = 0; v < s.vertex_count(); ++v) EXPECT_NEAR(phi(s.positions.data() + 3 * v, n), 0.0, 1e-12);
     for (size_t t = 0; t < s.triangle_count(); ++t) {
-      const double* a = &s.positions[3 * s.triangles[3 * t]];
-      const double* b = &s.positions[3 * s.triangles[3 * t + 1]];
-      const double* c = &s.positions[3 * s.triangles[3 * t + 2]];
+      const double* a = s.positions.data() + 3 * s.triangles[3 * t];
+      const double* b = s.positions.data() + 3 * s.triangles[3 * t + 1];
+      const double* c = s.positions.data() + 3 * s.triangles[3 * t + 2];
       const std::array<double, 3> e{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, f{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
       const std::array<double, 3> normal{e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2],
                                          e[0] * f[1] - e[1] * f[0]};

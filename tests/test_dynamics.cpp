@@ -14,22 +14,22 @@
 namespace snh::test {
 namespace {
 
-std::array<double, 3> momentum(const std::vector<double>& mass, const std::vector<double>& velocity) {
+std::array<double, 3> momentum(const std::vector<double>& mass, const Points& velocity) {
   std::array<double, 3> p{0, 0, 0};
   for (size_t v = 0; v < mass.size(); ++v)
-    for (int d = 0; d < 3; ++d) p[d] += mass[v] * velocity[3 * v + d];
+    for (int d = 0; d < 3; ++d) p[d] += mass[v] * velocity(v, d);
   return p;
 }
 
 TEST(Dynamics, LumpedMassIsTheBodyForceIntegral) {
   for (const Mesh& mesh : {make_box_lattice(3, 2, 2, 0.1), make_tet_box(3, 2, 2, 0.1)}) {
     const std::vector<double> m = lumped_mass(mesh, 1000.0);
-    const std::vector<double> f = lump_body_force(mesh, {0.0, 0.0, -9.81 * 1000.0});
+    const Points f = lump_body_force(mesh, {0.0, 0.0, -9.81 * 1000.0});
     double total = 0.0;
     for (size_t v = 0; v < m.size(); ++v) {
       total += m[v];
       EXPECT_GT(m[v], 0.0);
-      EXPECT_NEAR(f[3 * v + 2], -9.81 * m[v], 1e-12 * m[v]);
+      EXPECT_NEAR(f(v, 2), -9.81 * m[v], 1e-12 * m[v]);
     }
     EXPECT_NEAR(total, 1000.0 * 0.3 * 0.2 * 0.2, 1e-12);
   }
@@ -58,10 +58,10 @@ TEST(Dynamics, FreeFallMatchesTheAnalyticMotionToFirstOrder) {
       EXPECT_NE(r.kernel_specialization.find("-DSNH_INERTIA=1"), std::string::npos) << r.kernel_specialization;
       double worst = 0.0;
       for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-        const double analytic = mesh.positions[3 * v + 2] + 0.5 * g * duration * duration;
-        worst = std::max(worst, std::abs(r.positions[3 * v + 2] - analytic));
-        EXPECT_NEAR(r.positions[3 * v], mesh.positions[3 * v], 1e-9);
-        EXPECT_NEAR(sim.velocities()[3 * v + 2], g * duration, 1e-6);
+        const double analytic = mesh.positions(v, 2) + 0.5 * g * duration * duration;
+        worst = std::max(worst, std::abs(r.positions(v, 2) - analytic));
+        EXPECT_NEAR(r.positions(v, 0), mesh.positions(v, 0), 1e-9);
+        EXPECT_NEAR(sim.velocities()(v, 2), g * duration, 1e-6);
       }
       const double h = duration / steps;
       EXPECT_NEAR(worst, std::abs(g) * h * duration / 2.0, 1e-6) << steps;
@@ -78,7 +78,7 @@ TEST(Dynamics, SubstepsAreShorterTimeStepsInBothPrecisions) {
   const Mesh mesh = make_tet_box(2, 1, 1, 0.1);
   const ConstraintSet held{"held", on_plane(mesh, 0, 0.0), {}, {}};
   for (Precision precision : {Precision::double_, Precision::single}) {
-    std::vector<std::vector<double>> results;
+    std::vector<Points> results;
     for (int substeps : {1, 2}) {
       SolveOptions options;
       options.precision = precision;
@@ -95,10 +95,11 @@ TEST(Dynamics, SubstepsAreShorterTimeStepsInBothPrecisions) {
       results.push_back(r.positions);
     }
     double sag = 0.0, difference = 0.0;
-    for (size_t i = 0; i < results[0].size(); ++i) {
-      sag = std::max(sag, mesh.positions[i] - results[0][i]);
-      difference = std::max(difference, std::abs(results[1][i] - results[0][i]));
-    }
+    for (size_t i = 0; i < results[0].size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        sag = std::max(sag, mesh.positions(i, k) - results[0](i, k));
+        difference = std::max(difference, std::abs(results[1](i, k) - results[0](i, k)));
+      }
     EXPECT_GT(sag, 0.005) << to_string(precision);
     EXPECT_LT(difference, precision == Precision::double_ ? 1e-9 : 1e-5) << to_string(precision);
   }
@@ -110,12 +111,12 @@ TEST(Dynamics, SubstepsAreShorterTimeStepsInBothPrecisions) {
 TEST(Dynamics, LinearMomentumIsConservedWithoutExternalForce) {
   for (const Mesh& mesh : {make_tet_box(3, 2, 2, 0.1), make_box_lattice(3, 2, 2, 0.1)}) {
     const double density = 100.0;
-    std::vector<double> v0(3 * mesh.vertex_count());
+    Points v0(mesh.vertex_count());
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-      const double* p = &mesh.positions[3 * v];
-      v0[3 * v] = 0.3 + 2.0 * p[1] * p[2];
-      v0[3 * v + 1] = -1.5 * p[0] * p[0];
-      v0[3 * v + 2] = 0.7 * p[0] - 0.2;
+      const double* p = mesh.positions.data() + 3 * v;
+      v0(v, 0) = 0.3 + 2.0 * p[1] * p[2];
+      v0(v, 1) = -1.5 * p[0] * p[0];
+      v0(v, 2) = 0.7 * p[0] - 0.2;
     }
     SolveOptions options;
     options.dynamics = DynamicsOptions{};
@@ -140,7 +141,8 @@ TEST(Dynamics, LinearMomentumIsConservedWithoutExternalForce) {
     for (int d = 0; d < 3; ++d) EXPECT_NEAR(p1[d], p0[d], bound) << d;
     // The body did deform: the velocity field is not the initial one.
     double change = 0.0;
-    for (size_t i = 0; i < v0.size(); ++i) change = std::max(change, std::abs(sim.velocities()[i] - v0[i]));
+    for (size_t i = 0; i < v0.size(); ++i)
+      for (int k = 0; k < 3; ++k) change = std::max(change, std::abs(sim.velocities()(i, k) - v0(i, k)));
     EXPECT_GT(change, 0.05);
   }
 }
@@ -168,15 +170,15 @@ TEST(Dynamics, BarOscillatesAtTheLinearElasticPeriod) {
   options.dynamics = DynamicsOptions{};
   options.dynamics->time_step = dt;
   options.dynamics->density = 1.0;
-  options.initial_velocities.assign(3 * mesh.vertex_count(), 0.0);
+  options.initial_velocities = Points(mesh.vertex_count());
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    options.initial_velocities[3 * v] = 1e-3 * std::sin(pi * mesh.positions[3 * v] / 2.0);
+    options.initial_velocities(v, 0) = 1e-3 * std::sin(pi * mesh.positions(v, 0) / 2.0);
   options.strain_tolerance = 1e-9;
   Simulation sim(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.0), {held}, options);
   std::vector<double> times{0.0}, tip_u{0.0};
-  const SolveResult r = sim.solve(170, {}, [&](int, const std::vector<double>& x) {
+  const SolveResult r = sim.solve(170, {}, [&](int, const Points& x) {
     double u = 0.0;
-    for (int32_t v : tip) u += x[3 * v] - mesh.positions[3 * v];
+    for (int32_t v : tip) u += x(v, 0) - mesh.positions(v, 0);
     times.push_back(sim.time());
     tip_u.push_back(u / tip.size());
   });
@@ -231,8 +233,7 @@ TEST(Dynamics, ConstrainedVerticesFollowTargetsAndFreeBodiesAreAccepted) {
 
   Simulation sim(mesh, StableNeoHookean::from_youngs_modulus(1e5, 0.3), {moved}, options);
   std::vector<double> zs;
-  const SolveResult r =
-      sim.solve(4, {}, [&](int, const std::vector<double>& x) { zs.push_back(x[3 * moved.vertices[0] + 2]); });
+  const SolveResult r = sim.solve(4, {}, [&](int, const Points& x) { zs.push_back(x(moved.vertices[0], 2)); });
   ASSERT_TRUE(r.converged);
   ASSERT_EQ(zs.size(), 4u);
   for (int s = 0; s < 4; ++s) EXPECT_NEAR(zs[s], 0.05 * (s + 1) / 4.0, 1e-12) << s;
@@ -245,7 +246,7 @@ TEST(Dynamics, ConstrainedVerticesFollowTargetsAndFreeBodiesAreAccepted) {
 TEST(Dynamics, ProductVariantsAgreeWithInertia) {
   const Mesh mesh = make_tet_box(3, 2, 2, 0.1);
   const ConstraintSet held{"held", on_plane(mesh, 0, 0.0), {}, {}};
-  std::vector<std::vector<double>> results;
+  std::vector<Points> results;
   for (ProductVariant variant : {ProductVariant::cached, ProductVariant::element_matrices, ProductVariant::assembled}) {
     SolveOptions options;
     options.dynamics = DynamicsOptions{};
@@ -262,11 +263,11 @@ TEST(Dynamics, ProductVariantsAgreeWithInertia) {
     results.push_back(r.positions);
   }
   double sag = 0.0;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    sag = std::max(sag, mesh.positions[3 * v + 2] - results[0][3 * v + 2]);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) sag = std::max(sag, mesh.positions(v, 2) - results[0](v, 2));
   EXPECT_GT(sag, 1e-3);
   for (size_t k = 1; k < results.size(); ++k)
-    for (size_t i = 0; i < results[0].size(); ++i) ASSERT_NEAR(results[k][i], results[0][i], 1e-9) << k << " " << i;
+    for (size_t i = 0; i < results[0].xyz().size(); ++i)
+      ASSERT_NEAR(results[k].xyz()[i], results[0].xyz()[i], 1e-9) << k << " " << i;
 }
 
 TEST(Dynamics, OptionsAreChecked) {
@@ -295,7 +296,7 @@ TEST(Dynamics, OptionsAreChecked) {
   EXPECT_NE(message(with([](SolveOptions& o) { o.dynamics->damping.stiffness = NAN; })).find("damping.stiffness"),
             std::string::npos);
   EXPECT_NE(message(with([](SolveOptions& o) { o.dynamics->substeps = 0; })).find("substeps"), std::string::npos);
-  EXPECT_NE(message(with([](SolveOptions& o) { o.initial_velocities = {1.0}; })).find("initial_velocities"),
+  EXPECT_NE(message(with([](SolveOptions& o) { o.initial_velocities = Points(1); })).find("initial_velocities"),
             std::string::npos);
   // Multigrid carries the inertia and the self-contact barrier on its
   // coarse levels, not the self-contact penalty's springs.
@@ -314,10 +315,10 @@ TEST(Dynamics, OptionsAreChecked) {
             })).find("preconditioner multigrid: its coarse levels do not carry the self-contact penalty's springs"),
             std::string::npos);
   SolveOptions quasistatic;
-  quasistatic.initial_velocities.assign(24, 0.0);
+  quasistatic.initial_velocities = Points(8);
   EXPECT_NE(message(quasistatic).find("need dynamics"), std::string::npos);
   Simulation sim(mesh, material, {}, with([](SolveOptions&) {}));
-  EXPECT_THROW(sim.set_velocities({1.0, 2.0}), Error);
+  EXPECT_THROW(sim.set_velocities(Points{Vec3{1.0, 2.0, 0.0}}), Error);
   Simulation static_sim(mesh, material, {}, {});
   EXPECT_THROW(static_sim.set_velocities({}), Error);
 }

@@ -24,7 +24,7 @@ constexpr double kCell = 0.5;
 
 TriangleSurface points(const std::vector<std::array<double, 3>>& p) {
   TriangleSurface s;
-  for (const auto& x : p) s.positions.insert(s.positions.end(), x.begin(), x.end());
+  for (const auto& x : p) s.positions.push_back(x);
   return s;
 }
 
@@ -49,17 +49,18 @@ TriangleSurface sample_points() {
 }
 
 // x = A X + b on the lattice's rest positions.
-std::vector<double> affine(const std::vector<double>& rest, const double a[9], const double b[3]) {
-  std::vector<double> x(rest.size());
-  for (size_t v = 0; v < rest.size() / 3; ++v)
+Points affine(const Points& rest, const double a[9], const double b[3]) {
+  Points x(rest.size());
+  for (size_t v = 0; v < rest.size(); ++v)
     for (int r = 0; r < 3; ++r)
-      x[3 * v + r] = a[3 * r] * rest[3 * v] + a[3 * r + 1] * rest[3 * v + 1] + a[3 * r + 2] * rest[3 * v + 2] + b[r];
+      x(v, r) = a[3 * r] * rest(v, 0) + a[3 * r + 1] * rest(v, 1) + a[3 * r + 2] * rest(v, 2) + b[r];
   return x;
 }
 
-double max_abs_difference(const std::vector<double>& a, const std::vector<double>& b) {
+double max_abs_difference(const Points& a, const Points& b) {
   double m = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+  for (size_t i = 0; i < a.size(); ++i)
+    for (int k = 0; k < 3; ++k) m = std::max(m, std::abs(a(i, k) - b(i, k)));
   return m;
 }
 
@@ -83,15 +84,15 @@ TEST(Embedding, AffineDeformationsMoveTheSurfaceByTheSameMap) {
       box_voxelization(4, 3, 2, kCell, kOrigin, [](int i, int j, int k) { return !(i == 0 && j == 1 && k == 0); });
   TriangleSurface s = sample_points();
   const auto in_dropped = grid_point(0.4, 1.6, 0.3);
-  s.positions.insert(s.positions.end(), in_dropped.begin(), in_dropped.end());
+  s.positions.push_back(in_dropped);
   const Embedding e = embed(v, s);
   const double maps[3][9] = {{1.3, 0.2, -0.1, 0.05, 0.8, 0.3, -0.2, 0.1, 1.1},  // general, det > 0
                              {0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0},    // rotation
                              {2.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 1.0}};    // non-uniform scale
   const double b[3] = {0.7, -2.0, 0.25};
   for (const auto& a : maps) {
-    const std::vector<double> moved = embedded_positions(e, v.lattice, affine(v.lattice.positions, a, b));
-    const std::vector<double> expected = affine(s.positions, a, b);
+    const Points moved = embedded_positions(e, v.lattice, affine(v.lattice.positions, a, b));
+    const Points expected = affine(s.positions, a, b);
     EXPECT_LT(max_abs_difference(moved, expected), 1e-13);
   }
 }
@@ -103,7 +104,7 @@ TEST(Embedding, EachVertexLiesInItsElement) {
   for (size_t i = 0; i < 200; ++i) {  // the random points inside the box
     const auto& cell = v.element_cell[e.element[i]];
     for (int d = 0; d < 3; ++d) {
-      const double u = (s.positions[3 * i + d] - kOrigin[d]) / kCell;
+      const double u = (s.positions(i, d) - kOrigin[d]) / kCell;
       EXPECT_GE(u, cell[d] - 1e-12) << "vertex " << i;
       EXPECT_LE(u, cell[d] + 1 + 1e-12) << "vertex " << i;
     }
@@ -155,7 +156,7 @@ TEST(Embedding, ErrorsNameTheVertexAndTheInput) {
   }
   EXPECT_THROW(embed(v, points({grid_point(1.5, 0.5, 5.0)})), Error);  // far outside the grid
   const Embedding e = embed(v, points({grid_point(1.5, 0.5, 0.5)}));
-  EXPECT_THROW(embedded_positions(e, v.lattice, {1.0, 2.0}), Error);  // wrong size
+  EXPECT_THROW(embedded_positions(e, v.lattice, Points{Vec3{1.0, 2.0, 0.0}}), Error);  // wrong size
   Voxelization bad = v;
   bad.element_cell.clear();
   EXPECT_THROW(embed(bad, points({grid_point(1.5, 0.5, 0.5)})), Error);

@@ -63,11 +63,11 @@ TEST(FastWindingNumber, AgreesWithTheExactSumOnAnOpenSoup) {
     std::array<double, 9> x;
     double z = 0.0;
     for (int k = 0; k < 3; ++k)
-      for (int d = 0; d < 3; ++d) x[3 * k + d] = sphere.positions[3 * sphere.triangles[3 * t + k] + d];
+      for (int d = 0; d < 3; ++d) x[3 * k + d] = sphere.positions(sphere.triangles[3 * t + k], d);
     for (int k = 0; k < 3; ++k) z += x[3 * k + 2] / 3.0;
     if (z > 0.6) continue;
     const int32_t base = static_cast<int32_t>(soup.vertex_count());
-    soup.positions.insert(soup.positions.end(), x.begin(), x.end());
+    for (int k = 0; k < 3; ++k) soup.positions.push_back({x[3 * k], x[3 * k + 1], x[3 * k + 2]});
     if (rng() % 10 == 0)
       soup.triangles.insert(soup.triangles.end(), {base, base + 2, base + 1});
     else
@@ -102,7 +102,8 @@ TEST(FastWindingNumber, IsOneInsideAndZeroOutsideAClosedSurface) {
   // Nested shells add: 2 inside both of two concentric spheres.
   TriangleSurface two = sphere;
   const TriangleSurface small = test::icosphere(3, 0.5);
-  for (double x : small.positions) two.positions.push_back(x);
+  for (size_t v = 0; v < small.vertex_count(); ++v)
+    two.positions.push_back({small.positions(v, 0), small.positions(v, 1), small.positions(v, 2)});
   for (int32_t v : small.triangles) two.triangles.push_back(v + static_cast<int32_t>(sphere.vertex_count()));
   EXPECT_NEAR(fem::FastWindingNumber(two)({0.1, 0.0, 0.0}), 2.0, 0.1);
   EXPECT_NEAR(fem::FastWindingNumber(two)({0.0, 0.7, 0.0}), 1.0, 0.1);
@@ -114,8 +115,8 @@ void expect_same_rounding(const TriangleSurface& s, double h, const char* what) 
   std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (size_t v = 0; v < s.vertex_count(); ++v)
     for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min(lo[d], s.positions[3 * v + d]);
-      hi[d] = std::max(hi[d], s.positions[3 * v + d]);
+      lo[d] = std::min(lo[d], s.positions(v, d));
+      hi[d] = std::max(hi[d], s.positions(v, d));
     }
   std::array<int, 3> dims;
   for (int d = 0; d < 3; ++d) {
@@ -146,7 +147,7 @@ TEST(FastWindingNumber, CellCentresFilledOffTheSurfaceRoundAsEveryCentreDoes) {
   open.positions = sphere.positions;
   for (size_t t = 0; t < sphere.triangle_count(); ++t) {
     double z = 0.0;
-    for (int k = 0; k < 3; ++k) z += sphere.positions[3 * sphere.triangles[3 * t + k] + 2] / 3.0;
+    for (int k = 0; k < 3; ++k) z += sphere.positions(sphere.triangles[3 * t + k], 2) / 3.0;
     if (z > 0.6) continue;
     for (int k = 0; k < 3; ++k) open.triangles.push_back(sphere.triangles[3 * t + k]);
   }
@@ -156,8 +157,11 @@ TEST(FastWindingNumber, CellCentresFilledOffTheSurfaceRoundAsEveryCentreDoes) {
   TriangleSurface shells = sphere;
   const auto add = [&shells](const TriangleSurface& b, double dx) {
     const int32_t base = static_cast<int32_t>(shells.vertex_count());
-    for (size_t v = 0; v < b.vertex_count(); ++v)
-      for (int d = 0; d < 3; ++d) shells.positions.push_back(b.positions[3 * v + d] + (d == 0 ? dx : 0.0));
+    for (size_t v = 0; v < b.vertex_count(); ++v) {
+      Vec3 p;
+      for (int d = 0; d < 3; ++d) p[d] = b.positions(v, d) + (d == 0 ? dx : 0.0);
+      shells.positions.push_back(p);
+    }
     for (int32_t i : b.triangles) shells.triangles.push_back(base + i);
   };
   add(test::icosphere(3, 0.5), 0.0);
@@ -176,7 +180,7 @@ TEST(WeldVertices, MergesWithinTheRelativeToleranceOnly) {
   // A unit box's corner 0 duplicated three times: exactly, 1e-9 away (within
   // 1e-7 of the diagonal sqrt(3)) and 1e-5 away (not).
   TriangleSurface s = test::box_surface({0, 0, 0}, {1, 1, 1});
-  for (const double offset : {0.0, 1e-9, 1e-5}) s.positions.insert(s.positions.end(), {offset, 0.0, 0.0});
+  for (const double offset : {0.0, 1e-9, 1e-5}) s.positions.push_back({offset, 0.0, 0.0});
   s.triangles[0] = 8;  // the first triangle uses the exact copy
   const WeldedSurface w = weld_vertices(s);
   EXPECT_EQ(w.surface.vertex_count(), 9u);
@@ -185,7 +189,7 @@ TEST(WeldVertices, MergesWithinTheRelativeToleranceOnly) {
   EXPECT_EQ(w.vertex_of[9], 0);
   EXPECT_EQ(w.vertex_of[10], 8);
   EXPECT_EQ(w.surface.triangles[0], 0);
-  EXPECT_EQ(std::vector<double>(w.surface.positions.begin() + 24, w.surface.positions.end()),
+  EXPECT_EQ(std::vector<double>(w.surface.positions.xyz().begin() + 24, w.surface.positions.xyz().end()),
             (std::vector<double>{1e-5, 0, 0}));
   // Tolerance 0: exactly equal positions only.
   EXPECT_EQ(weld_vertices(s, 0.0).merged(), 1u);
@@ -205,13 +209,14 @@ TEST(SurfaceReport, ACleanSurfaceHasNoWarnings) {
 TEST(SurfaceReport, CountsEachDefectClassAndNamesTheFile) {
   TriangleSurface s = test::box_surface({0, 0, 0}, {1, 1, 1});
   // A seam: triangle 1 = {0, 3, 1} gets its own copies of vertices 3 and 1.
-  s.positions.insert(s.positions.end(), {1, 1, 0, 1, 0, 0});
+  s.positions.push_back({1, 1, 0});
+  s.positions.push_back({1, 0, 0});
   s.triangles[3 * 1 + 1] = 8;
   s.triangles[3 * 1 + 2] = 9;
   // Flip triangle 5, drop triangle 11 (a hole), add a degenerate sliver.
   std::swap(s.triangles[3 * 5 + 1], s.triangles[3 * 5 + 2]);
   s.triangles.resize(3 * 11);
-  s.positions.insert(s.positions.end(), {0.5, 0.5, 0.5});
+  s.positions.push_back({0.5, 0.5, 0.5});
   s.triangles.insert(s.triangles.end(), {10, 0, 7});  // corners 10, 0, 7 are collinear
   const SurfaceReport r = surface_report(s, "model.obj");
   EXPECT_EQ(r.vertices, 11u);
@@ -229,7 +234,8 @@ TEST(SurfaceReport, CountsEachDefectClassAndNamesTheFile) {
   // Two boxes sharing one edge: that edge has four triangles.
   TriangleSurface pair = test::box_surface({0, 0, 0}, {1, 1, 1});
   const TriangleSurface other = test::box_surface({1, 1, 0}, {2, 2, 1});
-  for (double x : other.positions) pair.positions.push_back(x);
+  for (size_t v = 0; v < other.vertex_count(); ++v)
+    pair.positions.push_back({other.positions(v, 0), other.positions(v, 1), other.positions(v, 2)});
   for (int32_t v : other.triangles) pair.triangles.push_back(v + 8);
   const SurfaceReport p = surface_report(pair, "pair.stl");
   EXPECT_EQ(p.welded_vertices, 2u);
@@ -239,7 +245,7 @@ TEST(SurfaceReport, CountsEachDefectClassAndNamesTheFile) {
 
   const std::string nan = error_of([&] {
     TriangleSurface bad = test::box_surface({0, 0, 0}, {1, 1, 1});
-    bad.positions[4] = std::nan("");
+    bad.positions(1, 1) = std::nan("");
     surface_report(bad, "bad.ply");
   });
   EXPECT_EQ(nan.rfind("bad.ply: vertex 1 has a non-finite coordinate (y", 0), 0u) << nan;

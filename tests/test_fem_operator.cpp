@@ -206,7 +206,7 @@ TEST(FemOperator, ReferenceIsConsistent) {
     SCOPED_TRACE(c.name);
     const Scene& s = *c.scene;
     if (c.name.find("inverted") != std::string::npos) {
-      EXPECT_GT(deformation_statistics(s.mesh, c.x).inverted_elements, 0);
+      EXPECT_GT(deformation_statistics(s.mesh, Points::from_xyz(c.x)).inverted_elements, 0);
     }
     // Projection is active: some point's Hessian is indefinite.
     EXPECT_LT(min_hessian_eigenvalue(s, c.x), 0.0);
@@ -447,7 +447,7 @@ TEST(FemOperator, FloatProductsHoldFloatCopiesOnlyWithTheirVariants) {
   const Scene& s = scenes()[1];
   solver::ElasticModel<double> model(device_for(Precision::double_), s.mesh, s.rest,
                                      uniform_material(s.mesh, s.material), ProductVariant::element_matrices);
-  const viennacl::vector<double> xd = upload<double>(s.mesh.positions);
+  const viennacl::vector<double> xd = upload<double>(s.mesh.positions.xyz());
   model.linearize(xd);
   const size_t matrices = model.memory_bytes();
   model.products().set_float_products(true);
@@ -727,9 +727,9 @@ TEST(FemOperator, HessianOperatorFlagsNegativeCurvatureOnly) {
       cl, mesh, rest, uniform_material(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.45, Barrier::off)),
       ProductVariant::cached);
   // Squashed to a fifth along z and sheared: the true Hessian is indefinite.
-  std::vector<double> x = mesh.positions;
+  std::vector<double> x = mesh.positions.xyz();
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    x[3 * v] += 0.6 * mesh.positions[3 * v + 2];
+    x[3 * v] += 0.6 * mesh.positions(v, 2);
     x[3 * v + 2] *= 0.2;
   }
   const viennacl::vector<double> xd = upload<double>(x);

@@ -67,23 +67,23 @@ std::vector<NamedMesh> test_meshes() {
 const Mat kA{1.3, 0.2, -0.1, 0.15, 0.8, 0.25, -0.2, 0.1, 1.1};
 const Vec kB{0.1, -0.2, 0.3};
 
-std::vector<double> affine(const Mesh& mesh, const Mat& a, const Vec& b) {
-  std::vector<double> x(mesh.positions.size());
+Points affine(const Mesh& mesh, const Mat& a, const Vec& b) {
+  Points x(mesh.vertex_count());
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     const auto p = mesh.vertex(v);
-    for (int i = 0; i < 3; ++i) x[3 * v + i] = a[i] * p[0] + a[3 + i] * p[1] + a[6 + i] * p[2] + b[i];
+    for (int i = 0; i < 3; ++i) x(v, i) = a[i] * p[0] + a[3 + i] * p[1] + a[6 + i] * p[2] + b[i];
   }
   return x;
 }
 
 // A smooth non-affine deformation (stretch, bend and twist), J > 0.
-std::vector<double> bent(const Mesh& mesh) {
-  std::vector<double> x(mesh.positions.size());
+Points bent(const Mesh& mesh) {
+  Points x(mesh.vertex_count());
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     const auto p = mesh.vertex(v);
-    x[3 * v] = 1.1 * p[0] + 0.08 * std::sin(2.0 * p[1]) + 0.05 * p[2] * p[2];
-    x[3 * v + 1] = p[1] + 0.1 * p[0] * p[2] - 0.04 * std::cos(1.5 * p[0]);
-    x[3 * v + 2] = 0.93 * p[2] + 0.06 * std::sin(1.7 * p[0] + p[1]);
+    x(v, 0) = 1.1 * p[0] + 0.08 * std::sin(2.0 * p[1]) + 0.05 * p[2] * p[2];
+    x(v, 1) = p[1] + 0.1 * p[0] * p[2] - 0.04 * std::cos(1.5 * p[0]);
+    x(v, 2) = 0.93 * p[2] + 0.06 * std::sin(1.7 * p[0] + p[1]);
   }
   return x;
 }
@@ -186,15 +186,16 @@ TEST(Fields, ElasticForcesMatchTheAssembledReference) {
   const StableNeoHookean snh = StableNeoHookean::from_youngs_modulus(1.0, 0.45);
   for (const NamedMesh& m : test_meshes()) {
     SCOPED_TRACE(m.name);
-    const std::vector<double> x = bent(m.mesh);
-    const std::vector<double> forces = elastic_forces(m.mesh, uniform_material(m.mesh, snh), x);
-    const std::vector<double> expected = reference::assembled_forces(m.mesh, fem::compute_rest_state(m.mesh), snh, x);
-    ASSERT_EQ(forces.size(), expected.size());
+    const Points x = bent(m.mesh);
+    const Points forces = elastic_forces(m.mesh, uniform_material(m.mesh, snh), x);
+    const std::vector<double> expected =
+        reference::assembled_forces(m.mesh, fem::compute_rest_state(m.mesh), snh, x.xyz());
+    ASSERT_EQ(forces.xyz().size(), expected.size());
     // The same terms summed in another order (per element first): rounding
     // of a sum of at most 64 terms, each at most the largest net force here.
     const double scale = max_abs(expected.data(), expected.size());
     EXPECT_GT(scale, 1e-3);
-    EXPECT_LT(max_diff(forces.data(), expected.data(), forces.size()), 1e-13 * scale);
+    EXPECT_LT(max_diff(forces.data(), expected.data(), forces.xyz().size()), 1e-13 * scale);
     // Deterministic: the same bits every time.
     EXPECT_EQ(elastic_forces(m.mesh, uniform_material(m.mesh, snh), x), forces);
   }
@@ -206,7 +207,7 @@ TEST(Fields, ElasticForcesAreMinusTheEnergyGradient) {
     const MaterialMap materials = two_materials(m.mesh);
     const fem::RestState rest = fem::compute_rest_state(m.mesh);
     // E = sum_e energy_density_e * rest volume_e: the energy the fields report.
-    auto energy = [&](const std::vector<double>& x) {
+    auto energy = [&](const Points& x) {
       const ElementFields f = compute_element_fields(m.mesh, materials, x);
       double total = 0.0;
       for (size_t e = 0; e < m.mesh.element_count(); ++e) {
@@ -216,22 +217,22 @@ TEST(Fields, ElasticForcesAreMinusTheEnergyGradient) {
       }
       return total;
     };
-    std::vector<double> x = bent(m.mesh);
-    const std::vector<double> forces = elastic_forces(m.mesh, materials, x);
-    const double scale = max_abs(forces.data(), forces.size());
+    Points x = bent(m.mesh);
+    const Points forces = elastic_forces(m.mesh, materials, x);
+    const double scale = max_abs(forces.data(), forces.xyz().size());
     ASSERT_GT(scale, 1e-3);
-    for (size_t dof = 0; dof < x.size(); dof += 5) {
+    for (size_t dof = 0; dof < x.xyz().size(); dof += 5) {
       // Central differences, best over steps 1e-3 .. 1e-8 (truncation h^2
       // against rounding eps E / h); relative to the largest force.
       double best = 1e300;
       for (double h = 1e-3; h >= 1e-8; h /= 10) {
-        const double x0 = x[dof];
-        x[dof] = x0 + h;
+        const double x0 = x.data()[dof];
+        x.data()[dof] = x0 + h;
         const double plus = energy(x);
-        x[dof] = x0 - h;
+        x.data()[dof] = x0 - h;
         const double minus = energy(x);
-        x[dof] = x0;
-        best = std::min(best, std::abs((plus - minus) / (2 * h) + forces[dof]) / scale);
+        x.data()[dof] = x0;
+        best = std::min(best, std::abs((plus - minus) / (2 * h) + forces.data()[dof]) / scale);
       }
       EXPECT_LT(best, 1e-7) << "dof " << dof;
     }
@@ -241,7 +242,7 @@ TEST(Fields, ElasticForcesAreMinusTheEnergyGradient) {
 TEST(Fields, InvertedElementsHaveFiniteEnergyAndStressButNoCauchy) {
   const Mesh mesh = make_tet_box(1, 1, 1, 1.0);
   // A reflection through z = 0: every element has J = -1.
-  const std::vector<double> x = affine(mesh, {1, 0, 0, 0, 1, 0, 0, 0, -1}, {0, 0, 0});
+  const Points x = affine(mesh, {1, 0, 0, 0, 1, 0, 0, 0, -1}, {0, 0, 0});
   const MaterialMap materials = uniform_material(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3, Barrier::on));
   const ElementFields f = compute_element_fields(mesh, materials, x);
   for (size_t e = 0; e < mesh.element_count(); ++e) {
@@ -255,7 +256,8 @@ TEST(Fields, InvertedElementsHaveFiniteEnergyAndStressButNoCauchy) {
     }
     EXPECT_TRUE(std::isnan(f.von_mises[e]));
   }
-  for (double v : elastic_forces(mesh, materials, x)) EXPECT_TRUE(std::isfinite(v));
+  const Points inverted_forces = elastic_forces(mesh, materials, x);
+  for (double v : inverted_forces.xyz()) EXPECT_TRUE(std::isfinite(v));
   // In the .vtu the undefined stresses are 0 (VTK's ASCII reader cannot
   // read "nan"), marked by min_J.
   for (const VtuCellField& field : element_fields_for_vtu(f, materials))
@@ -277,14 +279,14 @@ TEST(Fields, InvertedElementsHaveFiniteEnergyAndStressButNoCauchy) {
 TEST(Fields, BadInputsNameTheInput) {
   const Mesh mesh = make_box_lattice(2, 1, 1, 0.5);
   const MaterialMap materials = uniform_material(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3));
-  const std::vector<double> x = mesh.positions;
-  std::string message = error_of([&] { compute_element_fields(mesh, materials, std::vector<double>(5)); });
-  EXPECT_TRUE(contains(message, "positions have 5 values")) << message;
-  message = error_of([&] { elastic_forces(mesh, materials, std::vector<double>(x.size() + 3)); });
+  const Points x = mesh.positions;
+  std::string message = error_of([&] { compute_element_fields(mesh, materials, Points(2)); });
+  EXPECT_TRUE(contains(message, "positions have 6 values")) << message;
+  message = error_of([&] { elastic_forces(mesh, materials, Points(x.size() + 1)); });
   EXPECT_TRUE(contains(message, "elastic_forces")) << message;
   EXPECT_TRUE(contains(message, "positions")) << message;
-  std::vector<double> nan_x = x;
-  nan_x[7] = std::nan("");
+  Points nan_x = x;
+  nan_x(2, 1) = std::nan("");
   message = error_of([&] { compute_element_fields(mesh, materials, nan_x); });
   EXPECT_TRUE(contains(message, "not finite at vertex 2")) << message;
 
@@ -302,12 +304,12 @@ TEST(Fields, BadInputsNameTheInput) {
   message = error_of([&] { element_fields_for_vtu(fields, materials); });
   EXPECT_TRUE(contains(message, "field P")) << message;
 
-  const std::vector<double> forces = elastic_forces(mesh, materials, x);
-  message = error_of([&] { reaction("wall", {0, 1}, {true, true, true}, x, std::vector<double>(3), {}, {0, 0, 0}); });
+  const Points forces = elastic_forces(mesh, materials, x);
+  message = error_of([&] { reaction("wall", {0, 1}, {true, true, true}, x, Points(1), {}, {0, 0, 0}); });
   EXPECT_TRUE(contains(message, "'wall'")) << message;
   EXPECT_TRUE(contains(message, "elastic_force has 3 values")) << message;
-  message = error_of([&] { reaction("wall", {0}, {true, true, true}, x, forces, std::vector<double>(4), {0, 0, 0}); });
-  EXPECT_TRUE(contains(message, "external_force has 4 values")) << message;
+  message = error_of([&] { reaction("wall", {0}, {true, true, true}, x, forces, Points(2), {0, 0, 0}); });
+  EXPECT_TRUE(contains(message, "external_force has 6 values")) << message;
   message = error_of([&] { reaction("wall", {0, 99}, {true, true, true}, x, forces, {}, {0, 0, 0}); });
   EXPECT_TRUE(contains(message, "vertex 99")) << message;
   message = error_of([&] { constraint_reactions(mesh, materials, {{"hand", {}, {}, {}}}, x, {}); });
@@ -317,9 +319,9 @@ TEST(Fields, BadInputsNameTheInput) {
 TEST(Fields, ReactionCountsPrescribedComponentsAndEachVertexOnce) {
   // Hand-made forces: reaction = -(elastic + external) on the prescribed
   // components only; torque = sum (x - about) x reaction.
-  const std::vector<double> x = {0, 0, 0, 1, 0, 0, 0, 2, 0};
-  const std::vector<double> elastic = {1, 2, 3, 4, 5, 6, 7, 8, 9};
-  const std::vector<double> external = {0, 0, -1, 0, 0, -1, 0, 0, -1};
+  const Points x = {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}};
+  const Points elastic = {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
+  const Points external = {{0, 0, -1}, {0, 0, -1}, {0, 0, -1}};
   const Reaction r = reaction("s", {1, 2, 1}, {true, false, true}, x, elastic, external, {0, 0, 0});
   EXPECT_EQ(r.name, "s");
   EXPECT_EQ(r.force, (Vec{-11, 0, -13}));
@@ -332,7 +334,7 @@ TEST(Fields, ReactionCountsPrescribedComponentsAndEachVertexOnce) {
 std::vector<int32_t> plane(const Mesh& mesh, int axis, double value) {
   std::vector<int32_t> out;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v + axis] - value) < 1e-9) out.push_back(static_cast<int32_t>(v));
+    if (std::abs(mesh.positions(v, axis) - value) < 1e-9) out.push_back(static_cast<int32_t>(v));
   return out;
 }
 
@@ -384,10 +386,10 @@ TEST(Fields, ReactionsOfAPulledAndTwistedBarBalance) {
     const Vec tb = sum(b.torque, cross(difference(b.about, p), b.force));
     double arm = 0.0;  // the largest |x - p|
     for (size_t v = 0; v < mesh.vertex_count(); ++v)
-      arm = std::max(arm, norm(difference({r.positions[3 * v], r.positions[3 * v + 1], r.positions[3 * v + 2]}, p)));
+      arm = std::max(arm, norm(difference({r.positions(v, 0), r.positions(v, 1), r.positions(v, 2)}, p)));
     EXPECT_LT(norm(sum(ta, tb)), arm * bound);
     // The same with the torque taken about p directly.
-    const std::vector<double> forces = elastic_forces(mesh, uniform_material(mesh, material), r.positions);
+    const Points forces = elastic_forces(mesh, uniform_material(mesh, material), r.positions);
     const Reaction ap = reaction("fixed", fixed.vertices, {true, true, true}, r.positions, forces, {}, p);
     const Reaction bp = reaction("end", end.vertices, {true, true, true}, r.positions, forces, {}, p);
     EXPECT_LT(norm(sum(ap.torque, bp.torque)), arm * bound);
@@ -403,18 +405,17 @@ TEST(Fields, BaseReactionOfABlockUnderGravityIsMinusItsWeight) {
   // must also carry a moment): an eighth of each hex's weight per node.
   const Vec g{0.02, 0.0, -0.05};
   SolveOptions options;
-  options.external_force.assign(mesh.positions.size(), 0.0);
+  options.external_force = Points(mesh.vertex_count());
   for (size_t e = 0; e < mesh.element_count(); ++e)
     for (int a = 0; a < 8; ++a)
-      for (int d = 0; d < 3; ++d) options.external_force[3 * mesh.elements[8 * e + a] + d] += g[d] * h * h * h / 8;
+      for (int d = 0; d < 3; ++d) options.external_force(mesh.elements[8 * e + a], d) += g[d] * h * h * h / 8;
   options.absolute_tolerance = 1e-12;
   const StableNeoHookean material = StableNeoHookean::from_youngs_modulus(1.0, 0.3);
   QuasistaticSolver solver(mesh, material, {base}, options);
   const SolveResult r = solver.solve();
   ASSERT_TRUE(r.converged);
   double sag = 0.0;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    sag = std::min(sag, r.positions[3 * v + 2] - mesh.positions[3 * v + 2]);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) sag = std::min(sag, r.positions(v, 2) - mesh.positions(v, 2));
   EXPECT_LT(sag, -1e-3);
 
   const std::vector<Reaction> reactions =
@@ -428,9 +429,10 @@ TEST(Fields, BaseReactionOfABlockUnderGravityIsMinusItsWeight) {
   Vec moment{0, 0, 0};
   double arm = 0.0;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const Vec lever = difference({r.positions[3 * v], r.positions[3 * v + 1], r.positions[3 * v + 2]}, rb.about);
-    moment = sum(moment, cross(lever, {options.external_force[3 * v], options.external_force[3 * v + 1],
-                                       options.external_force[3 * v + 2]}));
+    const Vec lever = difference({r.positions(v, 0), r.positions(v, 1), r.positions(v, 2)}, rb.about);
+    moment =
+        sum(moment,
+            cross(lever, {options.external_force(v, 0), options.external_force(v, 1), options.external_force(v, 2)}));
     arm = std::max(arm, norm(lever));
   }
   EXPECT_GT(norm(moment), 1e3 * arm * bound);

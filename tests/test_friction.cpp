@@ -177,7 +177,7 @@ TEST(Friction, DeviceTermsMatchTheHostReference) {
   without.contact().set_obstacles(records, kStiffness, kThickness);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> jitter(-0.01, 0.01);
-  std::vector<double> x0 = mesh.positions, x(x0.size()), p(x0.size());
+  std::vector<double> x0 = mesh.positions.xyz(), x(x0.size()), p(x0.size());
   for (double& e : x0) e += jitter(rng);
   for (size_t i = 0; i < x.size(); ++i) x[i] = x0[i] + 0.5 * jitter(rng);
   for (double& e : p) e = jitter(rng);
@@ -290,14 +290,13 @@ Incline slide(double mu, double theta, int steps, double plane_speed = 0.0) {
   Incline out;
   out.converged = r.converged;
   out.specialization = r.kernel_specialization;
-  const std::vector<double>& v = sim.velocities();
+  const Points& v = sim.velocities();
   const size_t n = mesh.vertex_count();
   for (size_t i = 0; i < n; ++i) {
-    out.mean_velocity_along += v[3 * i] / n;
-    out.mean_velocity_normal += v[3 * i + 2] / n;
-    out.displacement_along += (r.positions[3 * i] - mesh.positions[3 * i]) / n;
-    if (mesh.positions[3 * i + 2] == 0.0)
-      out.bottom_displacement_along += (r.positions[3 * i] - mesh.positions[3 * i]) / 4;
+    out.mean_velocity_along += v(i, 0) / n;
+    out.mean_velocity_normal += v(i, 2) / n;
+    out.displacement_along += (r.positions(i, 0) - mesh.positions(i, 0)) / n;
+    if (mesh.positions(i, 2) == 0.0) out.bottom_displacement_along += (r.positions(i, 0) - mesh.positions(i, 0)) / 4;
   }
   return out;
 }

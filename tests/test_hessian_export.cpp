@@ -114,7 +114,7 @@ TEST(HessianExport, MatrixTimesVectorIsTheEngineProductOnFreeDofs) {
     ASSERT_EQ(std::sscanf(line.c_str(), "%zu,%zu,%d,%lf,%lf,%lf", &i, &v, &c, &X[0], &X[1], &X[2]), 6);
     ASSERT_EQ(i, rows);
     EXPECT_EQ(int64_t(3 * v + size_t(c)), s.free_dofs[i]);
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(X[k], scene.mesh.positions[3 * v + size_t(k)]);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(X[k], scene.mesh.positions(v, k));
     ++rows;
   }
   EXPECT_EQ(rows, s.free_dofs.size());

@@ -58,11 +58,11 @@ Simulation flipped_hex(bool fail_on_inverted) {
   Mesh mesh = make_box_lattice(1, 1, 1, 1.0);
   std::vector<int32_t> all(mesh.vertex_count());
   for (size_t v = 0; v < all.size(); ++v) all[v] = static_cast<int32_t>(v);
-  const std::vector<double> rest = mesh.positions;
-  ConstraintSet set = ConstraintSet::targets_of("all", all, [rest](double t, std::vector<double>& xyz) {
+  const Points rest = mesh.positions;
+  ConstraintSet set = ConstraintSet::targets_of("all", all, [rest](double t, Points& xyz) {
     xyz = rest;
-    for (size_t v = 0; v < xyz.size() / 3; ++v)
-      if (rest[3 * v + 2] > 0.5) xyz[3 * v + 2] = 1.0 - 3.0 * t;  // below the bottom from t = 1/3
+    for (size_t v = 0; v < xyz.size(); ++v)
+      if (rest(v, 2) > 0.5) xyz(v, 2) = 1.0 - 3.0 * t;  // below the bottom from t = 1/3
   });
   SolveOptions options;
   options.load_steps = 2;
@@ -245,7 +245,7 @@ TEST(HonestResults, ScrambleSeedOneTangledMinimumIsReported) {
 struct Pressed {
   double deepest = 0.0;  // max over surface points of -phi (inside the sphere: > 0)
   SolveResult result;
-  std::vector<double> positions;
+  Points positions;
 };
 
 constexpr double kBallRadius = 0.5, kCell = 0.3, kThickness = 0.01, kPress = 0.08;
@@ -257,8 +257,8 @@ Pressed press(bool surface_contact) {
   const Mesh& mesh = voxels.lattice;
   double low = 1e9, top = -1e9;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    low = std::min(low, mesh.positions[3 * v + 2]);
-    top = std::max(top, mesh.positions[3 * v + 2]);
+    low = std::min(low, mesh.positions(v, 2));
+    top = std::max(top, mesh.positions(v, 2));
   }
   EXPECT_LT(top, kBallRadius - 0.05);  // the lattice's top is well below the surface's
   const ConstraintSet held = ConstraintSet::fixed("held", on_plane(mesh, 2, low));
@@ -283,10 +283,10 @@ Pressed press(bool surface_contact) {
   Pressed out;
   out.result = sim.solve();
   out.positions = sim.positions();
-  const std::vector<double> skin = embedded_positions(embedding, mesh, out.positions);
+  const Points skin = embedded_positions(embedding, mesh, out.positions);
   const std::array<double, 3> c = {0.0, 0.0, kBallRadius + r + 2 * kThickness - kPress - 2 * kThickness};
-  for (size_t p = 0; p < skin.size() / 3; ++p) {
-    const double d = std::hypot(skin[3 * p] - c[0], skin[3 * p + 1] - c[1], skin[3 * p + 2] - c[2]);
+  for (size_t p = 0; p < skin.size(); ++p) {
+    const double d = std::hypot(skin(p, 0) - c[0], skin(p, 1) - c[1], skin(p, 2) - c[2]);
     out.deepest = std::max(out.deepest, r - d);
   }
   return out;
@@ -347,7 +347,7 @@ TEST(SurfaceContact, NoObstaclesNoChange) {
   const Embedding embedding = embed(voxels, ball);
   const Mesh& mesh = voxels.lattice;
   double low = 1e9;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) low = std::min(low, mesh.positions[3 * v + 2]);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) low = std::min(low, mesh.positions(v, 2));
   SolveOptions options;
   options.body_force = {0.0, 0.0, -50.0};
   const ConstraintSet held = ConstraintSet::fixed("held", on_plane(mesh, 2, low));

@@ -38,8 +38,7 @@ TriangleSurface overlapping_spheres() {
   const TriangleSurface t = icosphere(2, 1.0);
   const int32_t offset = int32_t(s.vertex_count());
   for (size_t v = 0; v < t.vertex_count(); ++v)
-    s.positions.insert(s.positions.end(),
-                       {t.positions[3 * v] + 1.01, t.positions[3 * v + 1] + 0.03, t.positions[3 * v + 2] - 0.02});
+    s.positions.push_back({t.positions(v, 0) + 1.01, t.positions(v, 1) + 0.03, t.positions(v, 2) - 0.02});
   for (int32_t i : t.triangles) s.triangles.push_back(i + offset);
   return s;
 }
@@ -59,7 +58,8 @@ TEST(IntersectionsCommand, CleanSurfacesAndMeshesExitZero) {
   TriangleSurface split;
   for (int32_t i : ball.triangles) {
     split.triangles.push_back(int32_t(split.vertex_count()));
-    for (int d = 0; d < 3; ++d) split.positions.push_back(ball.positions[3 * size_t(i) + d]);
+    split.positions.push_back(
+        {ball.positions(size_t(i), 0), ball.positions(size_t(i), 1), ball.positions(size_t(i), 2)});
   }
   write_obj((dir / "split.obj").string(), split);
   r = run_cli("intersections " + (dir / "split.obj").string());

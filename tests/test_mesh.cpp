@@ -45,10 +45,10 @@ double tet_volume(const Mesh& mesh, size_t e) {
          6.0;
 }
 
-std::vector<double> scaled(const std::vector<double>& x, double s) {
-  std::vector<double> out(x);
+Points scaled(const Points& x, double s) {
+  std::vector<double> out(x.xyz());
   for (double& v : out) v *= s;
-  return out;
+  return Points::from_xyz(std::move(out));
 }
 
 // A fresh directory under the system temp directory, removed on exit.
@@ -116,7 +116,7 @@ TEST(Mesh, LatticeRestStateIsUniformUntilAVertexMoves) {
   EXPECT_FALSE(fem::compute_rest_state(make_tet_box(2, 2, 2, 0.1)).uniform)
       << "the six Kuhn tets of a cube differ in shape";
   // An interior vertex, shared by eight cubes.
-  mesh.positions[3 * (1 + 4 * (1 + 4 * 1)) + 0] += 0.01;
+  mesh.positions(1 + 4 * (1 + 4 * 1), 0) += 0.01;
   const fem::RestState moved = fem::compute_rest_state(mesh);
   EXPECT_FALSE(moved.uniform);
   EXPECT_NEAR(moved.rest_volume, 27e-3, 1e-15);
@@ -214,20 +214,20 @@ TEST(Mesh, DeformedVolume) {
     EXPECT_NEAR(rest, 1.5, 1e-12);
     EXPECT_NEAR(mesh_volume(mesh, scaled(mesh.positions, 2.0)), 8.0 * rest, 1e-12 * rest);
     // A rotation about z by 90 degrees plus a translation keeps the volume.
-    std::vector<double> rotated(mesh.positions.size());
+    Points rotated(mesh.vertex_count());
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-      rotated[3 * v] = -mesh.positions[3 * v + 1] + 3.0;
-      rotated[3 * v + 1] = mesh.positions[3 * v];
-      rotated[3 * v + 2] = mesh.positions[3 * v + 2] - 1.0;
+      rotated(v, 0) = -mesh.positions(v, 1) + 3.0;
+      rotated(v, 1) = mesh.positions(v, 0);
+      rotated(v, 2) = mesh.positions(v, 2) - 1.0;
     }
     EXPECT_NEAR(mesh_volume(mesh, rotated), rest, 1e-12 * rest);
     // A mirror image is inside out.
-    std::vector<double> mirrored(mesh.positions);
-    for (size_t v = 0; v < mesh.vertex_count(); ++v) mirrored[3 * v] = -mirrored[3 * v];
+    Points mirrored(mesh.positions);
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) mirrored(v, 0) = -mirrored(v, 0);
     EXPECT_NEAR(mesh_volume(mesh, mirrored), -rest, 1e-12 * rest);
   }
   const Mesh box = make_box_lattice(1, 1, 1, 1.0);
-  EXPECT_THROW(mesh_volume(box, std::vector<double>(3)), Error);
+  EXPECT_THROW(mesh_volume(box, Points(1)), Error);
 }
 
 TEST(Mesh, GeneratorArgumentsAreChecked) {
@@ -266,11 +266,11 @@ TEST(MeshValidation, RepeatedVertex) {
 
 TEST(MeshValidation, NonFiniteCoordinate) {
   Mesh mesh = make_box_lattice(2, 1, 1, 1.0);
-  mesh.positions[3 * 7 + 1] = std::nan("");
+  mesh.positions(7, 1) = std::nan("");
   const std::string message = error_of([&] { validate_mesh(mesh); });
   EXPECT_TRUE(contains(message, "vertex 7 ")) << message;
   EXPECT_TRUE(contains(message, "non-finite")) << message;
-  mesh.positions[3 * 7 + 1] = std::numeric_limits<double>::infinity();
+  mesh.positions(7, 1) = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(contains(error_of([&] { validate_mesh(mesh); }), "vertex 7 "));
 }
 
@@ -289,7 +289,7 @@ TEST(MeshValidation, InvertedHex) {
 TEST(MeshValidation, DegenerateAndInvertedTets) {
   Mesh flat;
   flat.type = ElementType::tet4;
-  flat.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};  // coplanar
+  flat.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};  // coplanar
   flat.elements = {0, 1, 2, 3};
   std::string message = error_of([&] { validate_mesh(flat); });
   EXPECT_TRUE(contains(message, "element 0 ")) << message;
@@ -309,10 +309,12 @@ TEST(MeshValidation, MalformedArrays) {
   EXPECT_TRUE(contains(message, "9 indices")) << message;
   EXPECT_TRUE(contains(message, "multiple of 8")) << message;
 
+  // Positions not three per vertex cannot make a Mesh: Points rejects them.
   mesh = make_box_lattice(1, 1, 1, 1.0);
-  mesh.positions.push_back(0.0);
-  message = error_of([&] { validate_mesh(mesh); });
-  EXPECT_TRUE(contains(message, "multiple of 3")) << message;
+  std::vector<double> xyz = mesh.positions.xyz();
+  xyz.push_back(0.0);
+  message = error_of([&] { mesh.positions = Points::from_xyz(xyz); });
+  EXPECT_TRUE(contains(message, "not three per point")) << message;
 
   mesh = make_box_lattice(1, 1, 1, 1.0);
   mesh.elements.clear();
@@ -322,9 +324,11 @@ TEST(MeshValidation, MalformedArrays) {
 
 TEST(MeshValidation, UnusedVerticesAreOnlyReported) {
   Mesh mesh = make_box_lattice(1, 1, 1, 1.0);
-  mesh.positions.insert(mesh.positions.begin(), {5.0, 5.0, 5.0});
+  std::vector<double> xyz = mesh.positions.release();
+  xyz.insert(xyz.begin(), {5.0, 5.0, 5.0});
   for (int32_t& v : mesh.elements) ++v;
-  mesh.positions.insert(mesh.positions.end(), {6.0, 6.0, 6.0});
+  xyz.insert(xyz.end(), {6.0, 6.0, 6.0});
+  mesh.positions = Points::from_xyz(std::move(xyz));
   MeshWarnings warnings;
   ASSERT_NO_THROW(warnings = validate_mesh(mesh));
   EXPECT_EQ(warnings.unused_vertices, (std::vector<int32_t>{0, 9}));
@@ -334,10 +338,10 @@ TEST(MeshValidation, UnusedVerticesAreOnlyReported) {
 TEST(VtuWriter, WritesAndReadsBack) {
   TempDir dir("vtu");
   const Mesh mesh = make_box_lattice(2, 1, 1, 0.1);
-  std::vector<double> x = mesh.positions;
-  x[5] += 1.0 / 3.0;  // a value that needs all 17 digits
+  Points x = mesh.positions;
+  x(1, 2) += 1.0 / 3.0;  // a value that needs all 17 digits
   VtuPointField displacement{"displacement", 3, {}};
-  for (size_t i = 0; i < x.size(); ++i) displacement.values.push_back(x[i] - mesh.positions[i]);
+  for (size_t i = 0; i < x.xyz().size(); ++i) displacement.values.push_back(x.xyz()[i] - mesh.positions.xyz()[i]);
   VtuPointField marker{"marker", 1, std::vector<double>(mesh.vertex_count(), 2.5)};
   VtuCellField energy{"energy", {1e-300, -7.25}};
   const fs::path path = dir.path() / "box.vtu";
@@ -348,7 +352,7 @@ TEST(VtuWriter, WritesAndReadsBack) {
   EXPECT_TRUE(contains(vtu, "NumberOfPoints=\"12\" NumberOfCells=\"2\"")) << vtu;
   EXPECT_TRUE(contains(vtu, "Name=\"displacement\" NumberOfComponents=\"3\"")) << vtu;
   EXPECT_TRUE(contains(vtu, "</VTKFile>"));
-  EXPECT_EQ(read_array(vtu, "Points"), x);
+  EXPECT_EQ(read_array(vtu, "Points"), x.xyz());
   EXPECT_EQ(read_array(vtu, "displacement"), displacement.values);
   EXPECT_EQ(read_array(vtu, "marker"), marker.values);
   EXPECT_EQ(read_array(vtu, "energy"), energy.values);
@@ -379,7 +383,7 @@ TEST(VtuWriter, SizeErrorsNameTheField) {
   EXPECT_TRUE(contains(message, "\"energy\"")) << message;
   message = error_of([&] { write_vtu(path, mesh, mesh.positions, {{"tensor", 9, std::vector<double>(72)}}); });
   EXPECT_TRUE(contains(message, "\"tensor\"")) << message;
-  message = error_of([&] { write_vtu(path, mesh, std::vector<double>(21)); });
+  message = error_of([&] { write_vtu(path, mesh, Points(7)); });
   EXPECT_TRUE(contains(message, "positions")) << message;
   EXPECT_FALSE(fs::exists(path)) << "nothing is written when the input is rejected";
 
@@ -451,22 +455,22 @@ TEST(VtuWriter, WritesATriangleSurface) {
   const fs::path path = dir.path() / "surface.vtu";
   // A tetrahedron's boundary, moved by x.
   TriangleSurface s;
-  s.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   s.triangles = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
-  std::vector<double> x = s.positions;
-  x[9 + 2] = 2.0;
+  Points x = s.positions;
+  x(3, 2) = 2.0;
   write_surface_vtu(path.string(), s, x, {{"lift", 1, {0, 0, 0, 1}}});
   const std::string vtu = read_text(path);
   EXPECT_TRUE(contains(vtu, "NumberOfPoints=\"4\" NumberOfCells=\"4\""));
-  EXPECT_EQ(read_array(vtu, "Points"), x);
+  EXPECT_EQ(read_array(vtu, "Points"), x.xyz());
   EXPECT_EQ(read_array(vtu, "connectivity"), std::vector<double>(s.triangles.begin(), s.triangles.end()));
   EXPECT_EQ(read_array(vtu, "offsets"), (std::vector<double>{3, 6, 9, 12}));
   EXPECT_EQ(read_array(vtu, "types"), (std::vector<double>{5, 5, 5, 5}));  // VTK_TRIANGLE
   EXPECT_EQ(read_array(vtu, "lift"), (std::vector<double>{0, 0, 0, 1}));
   write_surface_vtu(path.string(), s);  // at its own positions
-  EXPECT_EQ(read_array(read_text(path), "Points"), s.positions);
+  EXPECT_EQ(read_array(read_text(path), "Points"), s.positions.xyz());
 
-  EXPECT_TRUE(contains(error_of([&] { write_surface_vtu(path.string(), s, {1.0}); }), "write_surface_vtu"));
+  EXPECT_TRUE(contains(error_of([&] { write_surface_vtu(path.string(), s, Points(1)); }), "write_surface_vtu"));
   TriangleSurface bad = s;
   bad.triangles[4] = 9;
   EXPECT_TRUE(contains(error_of([&] { write_surface_vtu(path.string(), bad); }), "triangle 1 refers to vertex 9"));

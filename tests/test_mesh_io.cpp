@@ -93,9 +93,9 @@ void write_msh22(const fs::path& path, const Mesh& m, bool binary) {
   for (size_t v = 0; v < m.vertex_count(); ++v) {
     if (binary) {
       put<int32_t>(f, static_cast<int32_t>(v + 1));
-      for (int d = 0; d < 3; ++d) put<double>(f, m.positions[3 * v + d]);
+      for (int d = 0; d < 3; ++d) put<double>(f, m.positions(v, d));
     } else {
-      f << v + 1 << " " << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
+      f << v + 1 << " " << m.positions(v, 0) << " " << m.positions(v, 1) << " " << m.positions(v, 2) << "\n";
     }
   }
   if (binary) f << "\n";
@@ -138,13 +138,13 @@ void write_msh41(const fs::path& path, const Mesh& m, bool binary) {
     put<int32_t>(f, 0);
     put<uint64_t>(f, nv);
     for (uint64_t v = 0; v < nv; ++v) put<uint64_t>(f, v + 1);
-    for (double x : m.positions) put<double>(f, x);
+    for (double x : m.positions.xyz()) put<double>(f, x);
     f << "\n";
   } else {
     f << "1 " << nv << " 1 " << nv << "\n3 1 0 " << nv << "\n";
     for (uint64_t v = 0; v < nv; ++v) f << v + 1 << "\n";
     for (uint64_t v = 0; v < nv; ++v)
-      f << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
+      f << m.positions(v, 0) << " " << m.positions(v, 1) << " " << m.positions(v, 2) << "\n";
   }
   f << "$EndNodes\n$Elements\n";
   if (binary) {
@@ -178,9 +178,9 @@ void write_vtk(const fs::path& path, const Mesh& m, bool binary, bool v5) {
     << (binary ? "BINARY" : "ASCII") << "\nDATASET UNSTRUCTURED_GRID\nPOINTS " << nv << " double\n";
   for (size_t i = 0; i < 3 * nv; ++i) {
     if (binary)
-      put<double>(f, m.positions[i], true);
+      put<double>(f, m.positions.xyz()[i], true);
     else
-      f << m.positions[i] << ((i % 3 == 2) ? "\n" : " ");
+      f << m.positions.xyz()[i] << ((i % 3 == 2) ? "\n" : " ");
   }
   if (binary) f << "\n";
   if (v5) {
@@ -217,7 +217,7 @@ void write_vtu_appended(const fs::path& path, const Mesh& m) {
     put<uint32_t>(data, static_cast<uint32_t>(size));
     data.write(static_cast<const char*>(bytes), static_cast<std::streamsize>(size));
   };
-  block(m.positions.data(), m.positions.size() * sizeof(double));
+  block(m.positions.data(), m.positions.xyz().size() * sizeof(double));
   std::vector<int64_t> connectivity(m.elements.begin(), m.elements.end()), ends;
   for (size_t e = 1; e <= ne; ++e) ends.push_back(int64_t(n * e));
   std::vector<uint8_t> types(ne, static_cast<uint8_t>(vtk_type(m)));
@@ -241,7 +241,7 @@ void write_medit(const fs::path& path, const Mesh& m) {
   const int n = nodes_per_element(m.type);
   f << "MeshVersionFormatted 2\nDimension 3\n# written by test_mesh_io\nVertices\n" << m.vertex_count() << "\n";
   for (size_t v = 0; v < m.vertex_count(); ++v)
-    f << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << " 0\n";
+    f << m.positions(v, 0) << " " << m.positions(v, 1) << " " << m.positions(v, 2) << " 0\n";
   f << (m.type == ElementType::tet4 ? "Tetrahedra\n" : "Hexahedra\n") << m.element_count() << "\n";
   for (size_t e = 0; e < m.element_count(); ++e) {
     for (int a = 0; a < n; ++a) f << m.elements[n * e + a] + 1 << " ";
@@ -255,7 +255,7 @@ void write_tetgen(const fs::path& node_path, const Mesh& m) {
   auto f = open(node_path);
   f << "# test_mesh_io\n" << m.vertex_count() << " 3 0 0\n";
   for (size_t v = 0; v < m.vertex_count(); ++v)
-    f << v + 1 << " " << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
+    f << v + 1 << " " << m.positions(v, 0) << " " << m.positions(v, 1) << " " << m.positions(v, 2) << "\n";
   fs::path ele_path = node_path;
   ele_path.replace_extension(".ele");
   auto g = open(ele_path);
@@ -345,8 +345,9 @@ TEST(MeshIoData, FormatsOfTheSameMeshAgree) {
     SCOPED_TRACE(other);
     const Mesh b = read_mesh((kData / other).string());
     // gmsh's ASCII output rounds to 16 digits; its binary output does not.
-    ASSERT_EQ(a.positions.size(), b.positions.size());
-    for (size_t i = 0; i < a.positions.size(); ++i) EXPECT_NEAR(a.positions[i], b.positions[i], 1e-15) << i;
+    ASSERT_EQ(a.positions.xyz().size(), b.positions.xyz().size());
+    for (size_t i = 0; i < a.positions.xyz().size(); ++i)
+      EXPECT_NEAR(a.positions.xyz()[i], b.positions.xyz()[i], 1e-15) << i;
     EXPECT_EQ(a.elements, b.elements);
   }
 }
@@ -590,7 +591,7 @@ TEST_F(MeshIoBadInput, NonFiniteCoordinates) {
   EXPECT_NE(m.find("inf.mesh:6: vertex 2 has a non-finite coordinate (x = -inf)"), std::string::npos) << m;
   // Binary: the byte offset of the node.
   Mesh mesh = make_tet_box(1, 1, 1, 1.0);
-  mesh.positions[3 * 2 + 1] = std::numeric_limits<double>::quiet_NaN();
+  mesh.positions(2, 1) = std::numeric_limits<double>::quiet_NaN();
   write_msh22(dir_ / "nan_binary.msh", mesh, true);
   const std::string b = read_error(dir_ / "nan_binary.msh");
   EXPECT_NE(b.find("nan_binary.msh (byte "), std::string::npos) << b;
@@ -622,7 +623,7 @@ TEST_F(MeshIoBadInput, DegenerateAndTangledElements) {
   EXPECT_NE(t.find("tangled.mesh:16: element 1 (hexahedron) is degenerate or tangled"), std::string::npos) << t;
   // A hex squashed flat.
   Mesh flat = make_box_lattice(1, 1, 1, 1.0);
-  for (size_t v = 0; v < flat.vertex_count(); ++v) flat.positions[3 * v + 2] *= 1e-20;
+  for (size_t v = 0; v < flat.vertex_count(); ++v) flat.positions(v, 2) *= 1e-20;
   write_vtk(dir_ / "flat.vtk", flat, true, false);
   const std::string f = read_error(dir_ / "flat.vtk");
   EXPECT_NE(f.find("flat.vtk (byte "), std::string::npos) << f;
@@ -776,9 +777,9 @@ TEST(MeshIoSurface, BoxLatticeIsClosedAndOutward) {
 TEST(MeshIoSurface, DeformedPositionsAndReadMeshes) {
   const fs::path dir = scratch("surface_deformed");
   const Mesh mesh = read_mesh((kData / "box_tet.msh41.msh").string());
-  std::vector<double> x = mesh.positions;
+  std::vector<double> x = mesh.positions.xyz();
   for (double& v : x) v *= 2.0;
-  write_obj_surface((dir / "box.obj").string(), mesh, x);
+  write_obj_surface((dir / "box.obj").string(), mesh, Points::from_xyz(std::move(x)));
   const Surface s = read_obj(dir / "box.obj");
   expect_closed_and_outward(s, {1.0, 0.5, 0.25});
   for (const auto& v : s.vertices)
@@ -793,9 +794,9 @@ TEST(MeshIoSurface, DeformedPositionsAndReadMeshes) {
 TEST(MeshIoSurface, BadArguments) {
   const fs::path dir = scratch("surface_bad");
   const Mesh mesh = make_box_lattice(1, 1, 1, 1.0);
-  const std::string e = error_of([&] { write_obj_surface((dir / "a.obj").string(), mesh, {1.0, 2.0}); });
+  const std::string e = error_of([&] { write_obj_surface((dir / "a.obj").string(), mesh, Points(2)); });
   EXPECT_NE(e.find("write_obj_surface"), std::string::npos) << e;
-  EXPECT_NE(e.find("the positions have 2 values, but the mesh has 8 vertices"), std::string::npos) << e;
+  EXPECT_NE(e.find("the positions have 6 values, but the mesh has 8 vertices"), std::string::npos) << e;
   const std::string d = error_of([&] { write_ply_surface((dir / "no" / "such" / "a.ply").string(), mesh); });
   EXPECT_NE(d.find("cannot be opened"), std::string::npos) << d;
 }
@@ -806,7 +807,7 @@ std::array<double, 3> centroid(const Mesh& m, size_t e) {
   const int n = nodes_per_element(m.type);
   std::array<double, 3> c{0, 0, 0};
   for (int a = 0; a < n; ++a)
-    for (int d = 0; d < 3; ++d) c[d] += m.positions[3 * m.elements[n * e + a] + d] / n;
+    for (int d = 0; d < 3; ++d) c[d] += m.positions(m.elements[n * e + a], d) / n;
   return c;
 }
 
@@ -879,8 +880,8 @@ TEST(MeshIoArrays, VtkAndVtuArraysMatchTheirDefinitions) {
     EXPECT_EQ(u.components, 3);
     for (size_t v = 0; v < m.vertex_count(); ++v) {
       // meshio writes ASCII data with 12 significant digits.
-      EXPECT_NEAR(t.values[v], m.positions[3 * v] + 2 * m.positions[3 * v + 1], 1e-11) << v;
-      for (int d = 0; d < 3; ++d) EXPECT_NEAR(u.values[3 * v + d], 0.1 * m.positions[3 * v + d], 1e-11) << v;
+      EXPECT_NEAR(t.values[v], m.positions(v, 0) + 2 * m.positions(v, 1), 1e-11) << v;
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(u.values[3 * v + d], 0.1 * m.positions(v, d), 1e-11) << v;
     }
     const MeshArray &material = m.cell_arrays[0], &stiffness = m.cell_arrays[1];
     EXPECT_EQ(material.name, "material");

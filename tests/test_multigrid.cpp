@@ -56,7 +56,7 @@ Mesh lattice_subset(int nx, int ny, int nz, Keep keep) {
       int& v = renumber[box.elements[8 * e + a]];
       if (v < 0) {
         v = static_cast<int>(out.vertex_count());
-        for (int d = 0; d < 3; ++d) out.positions.push_back(box.positions[3 * box.elements[8 * e + a] + d]);
+        out.positions.push_back(box.vertex(box.elements[8 * e + a]));
       }
       out.elements.push_back(v);
     }
@@ -242,7 +242,7 @@ Mesh slit_lattice(std::vector<int>* duplicate_out = nullptr) {
       if (std::lround(x[1] / kH) != 1 || x[0] < 2 * kH - 1e-9) continue;  // on the slit plane, x >= 2h
       if (duplicate[v] < 0) {
         duplicate[v] = static_cast<int>(mesh.vertex_count());
-        for (int d = 0; d < 3; ++d) mesh.positions.push_back(x[d]);
+        mesh.positions.push_back(x);
       }
       mesh.elements[8 * e + a] = duplicate[v];
     }
@@ -281,7 +281,7 @@ TEST(LatticeHierarchy, CoarseMasksKeepDofsThatReachFreeOnes) {
   std::vector<char> mask(3 * mesh.vertex_count(), 1);
   for (size_t v = 0; v < mesh.vertex_count(); ++v) mask[3 * v] = 0;  // every x component fixed
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (mesh.positions[3 * v + 2] < 1e-9) mask[3 * v + 1] = mask[3 * v + 2] = 0;  // bottom face fixed
+    if (mesh.positions(v, 2) < 1e-9) mask[3 * v + 1] = mask[3 * v + 2] = 0;  // bottom face fixed
   const solver::LatticeHierarchy h = solver::build_lattice_hierarchy(mesh, mask, 1, 10);
   for (size_t l = 1; l < h.levels.size(); ++l)
     for (size_t v = 0; v < h.levels[l].vertex_count; ++v) {
@@ -294,7 +294,7 @@ TEST(LatticeHierarchy, RefusesMeshesThatAreNotLattices) {
   const Mesh tets = make_tet_box(2, 2, 2, kH);
   EXPECT_THROW(solver::build_lattice_hierarchy(tets, all_free(tets), 1, 10), Error);
   Mesh jittered = make_box_lattice(2, 2, 2, kH);
-  jittered.positions[3 * 13] += 0.05 * kH;
+  jittered.positions(13, 0) += 0.05 * kH;
   EXPECT_FALSE(solver::is_hex8_lattice(jittered));
   try {
     solver::build_lattice_hierarchy(jittered, all_free(jittered), 1, 10);
@@ -316,17 +316,17 @@ struct DeviceCase {
   DeviceCase() {
     std::mt19937_64 rng(99);
     std::uniform_real_distribution<double> u(-0.15 * kH, 0.15 * kH);
-    x = mesh.positions;
+    x = mesh.positions.xyz();
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-      const double px = mesh.positions[3 * v], pz = mesh.positions[3 * v + 2];
+      const double px = mesh.positions(v, 0), pz = mesh.positions(v, 2);
       x[3 * v] = px + 0.3 * pz * px + u(rng);  // a bend plus noise
       x[3 * v + 1] += u(rng);
       x[3 * v + 2] = pz * 1.1 + u(rng);
     }
     mask.assign(3 * mesh.vertex_count(), 1);
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-      if (mesh.positions[3 * v + 2] < 1e-9) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = 0;
-      if (mesh.positions[3 * v] < 1e-9) mask[3 * v] = 0;  // a sliding face
+      if (mesh.positions(v, 2) < 1e-9) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = 0;
+      if (mesh.positions(v, 0) < 1e-9) mask[3 * v] = 0;  // a sliding face
     }
   }
 };
@@ -464,7 +464,7 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
     model.contact().set_obstacles(records, 10.0, 0.1 * kH);
     // The step started at the rest positions with its anchors there: the
     // pressed vertices have slid since, so their friction blocks are not zero.
-    model.contact().set_friction(c.mesh.positions, c.mesh.positions, records,
+    model.contact().set_friction(c.mesh.positions.xyz(), c.mesh.positions.xyz(), records,
                                  solver::friction_records({lid}, ContactOptions{}, 0.0, 0.0), 0.01 * kH);
     MultigridOptions options;
     options.coarsest_dofs = 1;
@@ -627,7 +627,7 @@ TEST(Multigrid, BuiltFineLevelIsTheBuildsOperatorUntilTheNextBuild) {
 
   // A different deformation, linearized without a build (a reused hierarchy).
   std::vector<double> moved = c.x;
-  for (size_t v = 0; v < c.mesh.vertex_count(); ++v) moved[3 * v + 2] += 0.2 * c.mesh.positions[3 * v + 2];
+  for (size_t v = 0; v < c.mesh.vertex_count(); ++v) moved[3 * v + 2] += 0.2 * c.mesh.positions(v, 2);
   model.linearize(upload<double>(moved), true);
   built.update_fine_bound();
   current.update_fine_bound();
@@ -655,9 +655,9 @@ TEST(Multigrid, AssembledLevelOperatorsAreTheirCellMatrices) {
     const fem::RestState rest = fem::compute_rest_state(*mesh);
     std::vector<char> mask(3 * mesh->vertex_count(), 1);
     for (size_t v = 0; v < mesh->vertex_count(); ++v)
-      if (mesh->positions[3 * v + 2] < 1e-9) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = 0;
-    std::vector<double> x = mesh->positions;
-    for (size_t v = 0; v < mesh->vertex_count(); ++v) x[3 * v] += 0.2 * mesh->positions[3 * v + 2] * x[3 * v + 1];
+      if (mesh->positions(v, 2) < 1e-9) mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = 0;
+    std::vector<double> x = mesh->positions.xyz();
+    for (size_t v = 0; v < mesh->vertex_count(); ++v) x[3 * v] += 0.2 * mesh->positions(v, 2) * x[3 * v + 1];
     solver::ElasticModel<double> model(device_for(Precision::double_), *mesh, rest, uniform_material(*mesh, c.material),
                                        ProductVariant::cached);
     model.set_mask(std::vector<double>(mask.begin(), mask.end()));
@@ -811,12 +811,12 @@ TEST(Multigrid, PatchTestSolvesToTheAffineField) {
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
     if (uses[v] < 8) boundary.push_back(static_cast<int32_t>(v));  // interior lattice vertices have 8 cells
   ConstraintSet set{"boundary", boundary, {}, {}};
-  set.targets = [&](double, std::vector<double>& xyz) {
+  set.targets = [&](double, Points& xyz) {
     for (size_t i = 0; i < boundary.size(); ++i) {
-      const Eigen::Vector3d rest(mesh.positions[3 * boundary[i]], mesh.positions[3 * boundary[i] + 1],
-                                 mesh.positions[3 * boundary[i] + 2]);
+      const Eigen::Vector3d rest(mesh.positions(boundary[i], 0), mesh.positions(boundary[i], 1),
+                                 mesh.positions(boundary[i], 2));
       const Eigen::Vector3d x = f * rest + t;
-      for (int d = 0; d < 3; ++d) xyz[3 * i + d] = x[d];
+      for (int d = 0; d < 3; ++d) xyz(i, d) = x[d];
     }
   };
   SolveOptions options;
@@ -829,9 +829,9 @@ TEST(Multigrid, PatchTestSolvesToTheAffineField) {
   EXPECT_EQ(r.preconditioner, Preconditioner::multigrid);
   double worst = 0.0;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const Eigen::Vector3d rest(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+    const Eigen::Vector3d rest(mesh.positions(v, 0), mesh.positions(v, 1), mesh.positions(v, 2));
     const Eigen::Vector3d x = f * rest + t;
-    for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(r.positions[3 * v + d] - x[d]));
+    for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(r.positions(v, d) - x[d]));
   }
   EXPECT_LT(worst, 1e-6 * kH);
   std::printf("patch test: max deviation from the affine field %.2e (h = %g), %d Newton, %d CG\n", worst, kH,
@@ -843,7 +843,7 @@ TEST(Multigrid, PatchTestSolvesToTheAffineField) {
 void expect_refused(const Mesh& mesh, const SolveOptions& options, const std::string& word) {
   std::vector<int32_t> bottom;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (mesh.positions[3 * v + 2] < 1e-9) bottom.push_back(static_cast<int32_t>(v));
+    if (mesh.positions(v, 2) < 1e-9) bottom.push_back(static_cast<int32_t>(v));
   try {
     QuasistaticSolver solver(mesh, Material::from_youngs_modulus(MaterialModel::stable_neo_hookean, 1.0, 0.3),
                              {{"bottom", bottom, {}, {}}}, options);
@@ -861,8 +861,8 @@ SolveResult twist(Preconditioner preconditioner, int res, double nu,
   const Mesh mesh = make_box_lattice(res, res, res, 1.0 / res);
   std::vector<int32_t> bottom, top;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    if (mesh.positions[3 * v + 2] < 1e-9) bottom.push_back(static_cast<int32_t>(v));
-    if (mesh.positions[3 * v + 2] > 1.0 - 1e-9) top.push_back(static_cast<int32_t>(v));
+    if (mesh.positions(v, 2) < 1e-9) bottom.push_back(static_cast<int32_t>(v));
+    if (mesh.positions(v, 2) > 1.0 - 1e-9) top.push_back(static_cast<int32_t>(v));
   }
   ConstraintSet fixed{"bottom", bottom, {}, {}};
   ConstraintSet turned{"top",
@@ -892,8 +892,8 @@ TEST(Multigrid, SameAnswerAsBlockJacobiInFewerCgIterationsAndRepeatable) {
   ASSERT_TRUE(jacobi.converged);
   ASSERT_TRUE(mg.converged);
   double worst = 0.0;
-  for (size_t i = 0; i < mg.positions.size(); ++i)
-    worst = std::max(worst, std::abs(mg.positions[i] - jacobi.positions[i]));
+  for (size_t i = 0; i < mg.positions.xyz().size(); ++i)
+    worst = std::max(worst, std::abs(mg.positions.xyz()[i] - jacobi.positions.xyz()[i]));
   EXPECT_LT(worst, 1e-6);
   EXPECT_LT(mg.steps[0].cg_iterations, jacobi.steps[0].cg_iterations);
   EXPECT_EQ(mg.positions, again.positions) << "not bitwise repeatable";
@@ -923,8 +923,8 @@ TEST(Multigrid, FloatProductsGiveTheDoubleAnswer) {
       EXPECT_EQ(mixed.product_precision, Precision::single);
       EXPECT_LE(mixed.final_residual_norm, mixed.tolerance);
       double worst = 0.0;
-      for (size_t i = 0; i < exact.positions.size(); ++i)
-        worst = std::max(worst, std::abs(exact.positions[i] - mixed.positions[i]));
+      for (size_t i = 0; i < exact.positions.xyz().size(); ++i)
+        worst = std::max(worst, std::abs(exact.positions.xyz()[i] - mixed.positions.xyz()[i]));
       EXPECT_LT(worst, 1e-6);
       EXPECT_NE(exact.positions, mixed.positions) << "the float products did not run";
       int newton[2] = {0, 0}, cg[2] = {0, 0};
@@ -950,8 +950,8 @@ TEST(Multigrid, ReusedHierarchyGivesTheSameAnswerWithFewerBuilds) {
   ASSERT_TRUE(every.converged);
   ASSERT_TRUE(reused.converged);
   double worst = 0.0;
-  for (size_t i = 0; i < every.positions.size(); ++i)
-    worst = std::max(worst, std::abs(every.positions[i] - reused.positions[i]));
+  for (size_t i = 0; i < every.positions.xyz().size(); ++i)
+    worst = std::max(worst, std::abs(every.positions.xyz()[i] - reused.positions.xyz()[i]));
   EXPECT_LT(worst, 1e-6);
   int every_builds = 0, reused_builds = 0, reused_newton = 0;
   for (const StepResult& s : every.steps) {
@@ -987,9 +987,9 @@ TEST(Multigrid, BuiltAndCurrentFineLevelsGiveTheSameAnswer) {
   ASSERT_TRUE(current.converged);
   ASSERT_TRUE(built_double.converged);
   double worst = 0.0, worst_double = 0.0;
-  for (size_t i = 0; i < built.positions.size(); ++i) {
-    worst = std::max(worst, std::abs(built.positions[i] - current.positions[i]));
-    worst_double = std::max(worst_double, std::abs(built.positions[i] - built_double.positions[i]));
+  for (size_t i = 0; i < built.positions.xyz().size(); ++i) {
+    worst = std::max(worst, std::abs(built.positions.xyz()[i] - current.positions.xyz()[i]));
+    worst_double = std::max(worst_double, std::abs(built.positions.xyz()[i] - built_double.positions.xyz()[i]));
   }
   EXPECT_LT(worst, 1e-6);
   EXPECT_LT(worst_double, 1e-6) << "float against double fine-level matrices";
@@ -1094,7 +1094,7 @@ TEST(Multigrid, PerStepRebuildFollowsDynamicsUnlessSet) {
     o.multigrid.rebuild_each_load_step = each;
     ConstraintSet bottom{"bottom", {}, {}, {}};
     for (size_t v = 0; v < mesh.vertex_count(); ++v)
-      if (mesh.positions[3 * v + 2] == 0.0) bottom.vertices.push_back(static_cast<int32_t>(v));
+      if (mesh.positions(v, 2) == 0.0) bottom.vertices.push_back(static_cast<int32_t>(v));
     const SolveResult r = Simulation(mesh, material, {bottom}, o).solve();
     EXPECT_TRUE(r.converged);
     std::vector<int> per_step;
@@ -1206,7 +1206,7 @@ TEST(Multigrid, AutomaticChoosesMultigridOnLargeLattices) {
   EXPECT_EQ(default_preconditioner(make_box_lattice(10, 10, 10, 0.1)), Preconditioner::block_jacobi);  // 3,993
   EXPECT_EQ(default_preconditioner(make_tet_box(15, 15, 15, 0.1)), Preconditioner::block_jacobi);
   Mesh jittered = make_box_lattice(15, 15, 15, 0.1);
-  jittered.positions[3 * 100] += 0.01;
+  jittered.positions(100, 0) += 0.01;
   EXPECT_EQ(default_preconditioner(jittered), Preconditioner::block_jacobi);
   // The same with dynamics (one time step of a free fall), but block-Jacobi
   // with self-contact, which the coarse levels do not carry.
@@ -1256,8 +1256,8 @@ TEST(Multigrid, DynamicsWithContactMatchesBlockJacobi) {
     EXPECT_GT(runs.back().steps.back().contacts, 0) << to_string(p);
   }
   double difference = 0.0;
-  for (size_t i = 0; i < runs[0].positions.size(); ++i)
-    difference = std::max(difference, std::abs(runs[0].positions[i] - runs[1].positions[i]));
+  for (size_t i = 0; i < runs[0].positions.xyz().size(); ++i)
+    difference = std::max(difference, std::abs(runs[0].positions.xyz()[i] - runs[1].positions.xyz()[i]));
   int cg[2] = {0, 0};
   for (int k = 0; k < 2; ++k)
     for (const StepResult& s : runs[k].steps) cg[k] += s.cg_iterations;

@@ -45,16 +45,16 @@ struct SquashedSlab {
   SquashedSlab() {
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> u(-0.02 * kH, 0.02 * kH);
-    x = mesh.positions;
+    x = mesh.positions.xyz();
     mask.assign(3 * mesh.vertex_count(), 1);
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
       x[3 * v] += u(rng);
       x[3 * v + 1] += u(rng);
       x[3 * v + 2] *= kSquash;
-      if (mesh.positions[3 * v + 2] < 1e-9) {
+      if (mesh.positions(v, 2) < 1e-9) {
         mask[3 * v] = mask[3 * v + 1] = mask[3 * v + 2] = 0;
-        x[3 * v] = mesh.positions[3 * v];
-        x[3 * v + 1] = mesh.positions[3 * v + 1];
+        x[3 * v] = mesh.positions(v, 0);
+        x[3 * v + 1] = mesh.positions(v, 1);
       }
     }
   }
@@ -221,14 +221,14 @@ TEST(MultigridBarrier, SquashSolvesToTheBlockJacobiAnswerWithoutIntersection) {
     options.preconditioner = preconditioner;
     Simulation sim(scene.mesh, uniform_material(scene.mesh, scene.material), scene.constraints, options);
     Run r;
-    sim.solve(0, {}, [&](int, const std::vector<double>& x) {
+    sim.solve(0, {}, [&](int, const Points& x) {
       const StepResult& step = sim.last_step();
       r.most_pairs = std::max(r.most_pairs, count_self_intersections(x, triangles).intersecting_pairs);
       r.converged += step.converged ? 1 : 0;
       r.newton += step.newton_iterations;
       r.cg += step.cg_iterations;
       r.most_self_pairs = std::max(r.most_self_pairs, step.self_contact_pairs);
-      r.positions = x;
+      r.positions = x.xyz();
       ++r.steps;
     });
     return r;

@@ -175,7 +175,7 @@ TEST(Obstacles, DeviceContactTermsMatchTheHostReference) {
   with.contact().set_obstacles(records, kStiffness, kThickness);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> jitter(-0.01, 0.01);
-  std::vector<double> x = mesh.positions, p(x.size());
+  std::vector<double> x = mesh.positions.xyz(), p(x.size());
   for (double& e : x) e += jitter(rng);
   for (double& e : p) e = jitter(rng);
   viennacl::vector<double> xd(x.size()), pd(x.size());
@@ -228,7 +228,7 @@ TEST(Obstacles, BlockRestingOnAPlanePenetratesWeightOverStiffness) {
   EXPECT_EQ(r.steps.back().contacts, 9);
   EXPECT_NEAR(r.steps.back().max_penetration, expected, 0.01 * expected);
   double mean = 0.0;
-  for (int32_t v : on_plane(mesh, 2, 0.0)) mean += thickness - (r.positions[3 * v + 2] - plane_z);
+  for (int32_t v : on_plane(mesh, 2, 0.0)) mean += thickness - (r.positions(v, 2) - plane_z);
   EXPECT_NEAR(mean / 9, expected, 1e-9);
   EXPECT_LT(r.steps.back().max_penetration, thickness);  // no vertex inside the plane itself
 }
@@ -254,13 +254,13 @@ TEST(Obstacles, MovingSpherePushesIntoABlock) {
   EXPECT_GE(r.steps[3].contacts, r.steps[2].contacts);
   int top_center = -1;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v] - 0.2) < 1e-9 && std::abs(mesh.positions[3 * v + 1] - 0.2) < 1e-9 &&
-        std::abs(mesh.positions[3 * v + 2] - 0.2) < 1e-9)
+    if (std::abs(mesh.positions(v, 0) - 0.2) < 1e-9 && std::abs(mesh.positions(v, 1) - 0.2) < 1e-9 &&
+        std::abs(mesh.positions(v, 2) - 0.2) < 1e-9)
       top_center = static_cast<int>(v);
   ASSERT_GE(top_center, 0);
   // The sphere's bottom ends at z = 0.15, 0.05 into the rest top: the top
   // centre follows to within the layer and the penalty's give.
-  const double z = r.positions[3 * top_center + 2];
+  const double z = r.positions(top_center, 2);
   EXPECT_LT(z, 0.15 + 0.005 + 0.005);
   EXPECT_GT(z, 0.15 - 0.005);
   EXPECT_LT(r.steps[3].max_penetration, 0.005);  // no vertex inside the sphere itself
@@ -297,7 +297,7 @@ TEST(Obstacles, BlockDroppedOnAPlaneComesToRest) {
   const double expected = density * g * 1e-3 / (4 * k);
   EXPECT_NEAR(r.steps.back().max_penetration, expected, 0.01 * expected);
   double speed = 0.0;
-  for (double v : sim.velocities()) speed = std::max(speed, std::abs(v));
+  for (double v : sim.velocities().xyz()) speed = std::max(speed, std::abs(v));
   EXPECT_LT(speed, 1e-3);
 }
 

@@ -37,7 +37,8 @@ TriangleSurface box_surface(int nx, int ny, int nz, double h, const std::array<d
 // voxelizer counts their winding numbers together).
 void append(TriangleSurface& a, const TriangleSurface& b) {
   const int32_t base = static_cast<int32_t>(a.vertex_count());
-  a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
+  for (size_t i = 0; i < b.vertex_count(); ++i)
+    a.positions.push_back({b.positions(i, 0), b.positions(i, 1), b.positions(i, 2)});
   for (int32_t i : b.triangles) a.triangles.push_back(base + i);
 }
 
@@ -76,7 +77,7 @@ struct Stretch {
 };
 
 // The largest length ratio of the surface's edges at positions x.
-Stretch edge_stretch(const TriangleSurface& s, const std::vector<double>& x) {
+Stretch edge_stretch(const TriangleSurface& s, const Points& x) {
   std::set<std::pair<int32_t, int32_t>> edges;
   for (size_t t = 0; t < s.triangle_count(); ++t)
     for (int k = 0; k < 3; ++k) {
@@ -87,11 +88,11 @@ Stretch edge_stretch(const TriangleSurface& s, const std::vector<double>& x) {
   for (const auto& [a, b] : edges) {
     double rest = 0.0, now = 0.0;
     for (int d = 0; d < 3; ++d) {
-      rest += std::pow(s.positions[3 * a + d] - s.positions[3 * b + d], 2);
-      now += std::pow(x[3 * a + d] - x[3 * b + d], 2);
+      rest += std::pow(s.positions(a, d) - s.positions(b, d), 2);
+      now += std::pow(x(a, d) - x(b, d), 2);
     }
     const double ratio = std::sqrt(now / rest);
-    const bool beyond = s.positions[3 * a] > 2.0 + 1e-9 || s.positions[3 * b] > 2.0 + 1e-9;
+    const bool beyond = s.positions(a, 0) > 2.0 + 1e-9 || s.positions(b, 0) > 2.0 + 1e-9;
     (beyond ? out.piece : out.rest) = std::max(beyond ? out.piece : out.rest, ratio);
   }
   return out;
@@ -101,12 +102,11 @@ Stretch edge_stretch(const TriangleSurface& s, const std::vector<double>& x) {
 Stretch run_arm(const Voxelization& v, const Embedding& e, const std::vector<ConstraintSet>& sets,
                 const TriangleSurface& surface) {
   Simulation sim(v.lattice, StableNeoHookean::from_youngs_modulus(1.0, 0.45), sets);
-  std::vector<double> last;
-  const auto records = run_frames(sim, arm_motion(), &e, {},
-                                  [&](const FrameRecord&, const std::vector<double>&, const std::vector<double>& s) {
-                                    last = s;
-                                    return true;
-                                  });
+  Points last;
+  const auto records = run_frames(sim, arm_motion(), &e, {}, [&](const FrameRecord&, const Points&, const Points& s) {
+    last = s;
+    return true;
+  });
   for (const FrameRecord& r : records) EXPECT_TRUE(r.converged) << "frame " << r.frame << ": " << r.status;
   return edge_stretch(surface, last);
 }
@@ -203,7 +203,7 @@ TEST(Pieces, AttachedOrDroppedFingertipStretchesNoMoreThanTheArm) {
   }
   // At rest the surface is where it was (extrapolation reproduces it).
   const auto rest = embedded_positions(dropped.embedding, dropped.voxels.lattice, dropped.voxels.lattice.positions);
-  for (size_t i = 0; i < rest.size(); ++i) ASSERT_NEAR(rest[i], s.positions[i], 1e-12) << i;
+  for (size_t i = 0; i < rest.xyz().size(); ++i) ASSERT_NEAR(rest.xyz()[i], s.positions.xyz()[i], 1e-12) << i;
   const Stretch d = run_arm(dropped.voxels, dropped.embedding, dropped_sets, s);
   EXPECT_LE(d.piece, d.rest + 0.01) << d.piece << " vs " << d.rest;
 }
@@ -220,9 +220,9 @@ TriangleSurface bridged_tip() {
   append(s, box_surface(4, 4, 4, 0.125, {2.25, 0.25, 0.25}));
   TriangleSurface under = boundary_surface(make_box_lattice(1, 1, 1, 1.0, {0, 0, 0})).surface;
   for (size_t v = 0; v < under.vertex_count(); ++v) {  // [1.9, 2.4] x [0.45, 0.55] x [0.15, 0.24]
-    under.positions[3 * v] = 1.9 + 0.5 * under.positions[3 * v];
-    under.positions[3 * v + 1] = 0.45 + 0.1 * under.positions[3 * v + 1];
-    under.positions[3 * v + 2] = 0.15 + 0.09 * under.positions[3 * v + 2];
+    under.positions(v, 0) = 1.9 + 0.5 * under.positions(v, 0);
+    under.positions(v, 1) = 0.45 + 0.1 * under.positions(v, 1);
+    under.positions(v, 2) = 0.15 + 0.09 * under.positions(v, 2);
   }
   append(s, under);
   append(s, box_surface(2, 2, 3, 0.05, {2.3, 0.45, 0.15}));  // up into the tip, to z = 0.3
@@ -329,7 +329,8 @@ TEST(Pieces, CapsuleBoneMeshIsClosedAndWrittenWithItsBone) {
   size_t capsule_vertices = 0;
   while (capsule_vertices < rest.vertex_bone.size() && rest.vertex_bone[capsule_vertices] == 0) ++capsule_vertices;
   EXPECT_EQ(capsule_vertices, 2u + 8u * 16u);
-  capsule.positions.assign(rest.surface.positions.begin(), rest.surface.positions.begin() + 3 * capsule_vertices);
+  capsule.positions = Points::from_xyz(std::vector<double>(
+      rest.surface.positions.xyz().begin(), rest.surface.positions.xyz().begin() + 3 * capsule_vertices));
   for (size_t t = 0; t < rest.triangle_bone.size(); ++t)
     if (rest.triangle_bone[t] == 0)
       capsule.triangles.insert(capsule.triangles.end(), rest.surface.triangles.begin() + 3 * t,
@@ -339,17 +340,17 @@ TEST(Pieces, CapsuleBoneMeshIsClosedAndWrittenWithItsBone) {
   EXPECT_NEAR(enclosed_volume(capsule), exact, 0.05 * exact);
   EXPECT_LT(enclosed_volume(capsule), exact);  // inscribed
   for (size_t k = 0; k < capsule_vertices; ++k)
-    EXPECT_NEAR(bone_distance(Bone{"upper", c},
-                              {capsule.positions[3 * k], capsule.positions[3 * k + 1], capsule.positions[3 * k + 2]}),
-                0.0, 1e-12);
+    EXPECT_NEAR(
+        bone_distance(Bone{"upper", c}, {capsule.positions(k, 0), capsule.positions(k, 1), capsule.positions(k, 2)}),
+        0.0, 1e-12);
   // A surface bone comes as it is.
   EXPECT_EQ(rest.surface.vertex_count() - capsule_vertices, finger().vertex_count());
   // Placed by a transform.
   Matrix4 up = identity_matrix4();
   up[11] = 2.0;
   const BoneMesh moved = bone_mesh({Bone{"upper", c}, Bone{"box", finger()}}, {up, identity_matrix4()});
-  EXPECT_DOUBLE_EQ(moved.surface.positions[2], rest.surface.positions[2] + 2.0);
-  EXPECT_DOUBLE_EQ(moved.surface.positions.back(), rest.surface.positions.back());
+  EXPECT_DOUBLE_EQ(moved.surface.positions(0, 2), rest.surface.positions(0, 2) + 2.0);
+  EXPECT_DOUBLE_EQ(moved.surface.positions.xyz().back(), rest.surface.positions.xyz().back());
   const auto path = std::filesystem::temp_directory_path() / "snh_pieces_bones.vtu";
   write_bone_mesh_vtu(path.string(), moved);
   const std::string text = test::read_text(path);

@@ -51,12 +51,12 @@ constexpr double kH = 0.5;
 // 0.2 h, element 0 inverted (a node pushed through its centroid) and the
 // last element flattened (a node moved onto another: J near 0).
 std::vector<double> hard_positions(const Mesh& mesh) {
-  std::vector<double> x(mesh.positions.size());
+  std::vector<double> x(3 * mesh.vertex_count());
   const double c = std::cos(2.5), s = std::sin(2.5);
   std::mt19937_64 rng(99);
   std::uniform_real_distribution<double> u(-0.2 * kH, 0.2 * kH);
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const double px = 1.8 * mesh.positions[3 * v], py = 0.6 * mesh.positions[3 * v + 1], pz = mesh.positions[3 * v + 2];
+    const double px = 1.8 * mesh.positions(v, 0), py = 0.6 * mesh.positions(v, 1), pz = mesh.positions(v, 2);
     x[3 * v] = c * px - s * pz + u(rng);
     x[3 * v + 1] = py + u(rng);
     x[3 * v + 2] = s * px + c * pz + u(rng);

@@ -21,7 +21,7 @@ Mesh two_cubes() {
   Mesh a = make_box_lattice(2, 2, 2, 0.5);
   const Mesh b = make_box_lattice(2, 2, 2, 0.5, {2.0, 0.0, 0.0});
   const int32_t offset = static_cast<int32_t>(a.vertex_count());
-  a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
+  for (size_t v = 0; v < b.vertex_count(); ++v) a.positions.push_back(b.vertex(v));
   for (int32_t v : b.elements) a.elements.push_back(v + offset);
   return a;
 }
@@ -34,7 +34,7 @@ SolveResult carry_first_cube(const std::array<double, 3>& offset) {
   std::vector<int32_t> first, floor;
   for (int32_t v = 0; v < half; ++v) first.push_back(v);
   for (int32_t v = half; v < 2 * half; ++v)
-    if (mesh.positions[3 * static_cast<size_t>(v) + 2] == 0.0) floor.push_back(v);
+    if (mesh.positions(static_cast<size_t>(v), 2) == 0.0) floor.push_back(v);
   std::vector<ConstraintSet> sets{
       ConstraintSet::moving("carried", first,
                             [offset](double t) {

@@ -68,13 +68,13 @@ std::array<double, 3> centroid(const Mesh& mesh, size_t e) {
   const int n = nodes_per_element(mesh.type);
   std::array<double, 3> c{0, 0, 0};
   for (int a = 0; a < n; ++a)
-    for (int d = 0; d < 3; ++d) c[d] += mesh.positions[3 * mesh.elements[n * e + a] + d] / n;
+    for (int d = 0; d < 3; ++d) c[d] += mesh.positions(mesh.elements[n * e + a], d) / n;
   return c;
 }
 
 double extent_x(const Mesh& mesh) {
   double hi = 0.0;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) hi = std::max(hi, mesh.positions[3 * v]);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) hi = std::max(hi, mesh.positions(v, 0));
   return hi;
 }
 
@@ -444,7 +444,7 @@ double series_strain_ratio(const Mesh& mesh, double e1, double e2, std::string* 
   ConstraintSet left_end{"left", {}, {}, {}}, right_end{"right", {}, {}, {}};
   std::vector<int32_t> middle;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const double x = mesh.positions[3 * v];
+    const double x = mesh.positions(v, 0);
     if (std::abs(x) < 1e-9) left_end.vertices.push_back(static_cast<int32_t>(v));
     if (std::abs(x - length) < 1e-9) right_end.vertices.push_back(static_cast<int32_t>(v));
     if (std::abs(x - 0.5 * length) < 1e-9) middle.push_back(static_cast<int32_t>(v));
@@ -457,7 +457,7 @@ double series_strain_ratio(const Mesh& mesh, double e1, double e2, std::string* 
   EXPECT_TRUE(r.converged);
   *specialization = r.kernel_specialization;
   double u = 0.0;
-  for (int32_t v : middle) u += (r.positions[3 * v] - mesh.positions[3 * v]) / static_cast<double>(middle.size());
+  for (int32_t v : middle) u += (r.positions(v, 0) - mesh.positions(v, 0)) / static_cast<double>(middle.size());
   const double eps1 = u / (0.5 * length), eps2 = (strain * length - u) / (0.5 * length);
   return eps1 / eps2;
 }
@@ -486,7 +486,7 @@ TEST(Regions, UndefinedMaterialNamesItsRegion) {
   const Material log_nh = model(MaterialModel::neohookean, 1.0, 0.3, no_inversion);
   SolveOptions options;
   options.initial_positions = mesh.positions;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.initial_positions[3 * v] *= -1.0;  // J = -1 everywhere
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.initial_positions(v, 0) *= -1.0;  // J = -1 everywhere
   QuasistaticSolver solver(mesh, make_material_map(mesh, snh(1.0, 0.3), {{"gel", {1}, log_nh}}), {}, options);
   try {
     solver.solve();
@@ -573,7 +573,7 @@ TEST(RegionsSceneFile, ShippedSoftStiffBarStretchesTheSoftHalfMore) {
   double u_middle = 0.0, u_end = 0.0;
   int middle = 0, end = 0;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const double x = mesh.positions[3 * v], u = r.positions[3 * v] - x;
+    const double x = mesh.positions(v, 0), u = r.positions(v, 0) - x;
     if (std::abs(x - 0.5 * length) < 1e-9) {
       u_middle += u;
       ++middle;

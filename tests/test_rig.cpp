@@ -33,8 +33,7 @@ TriangleSurface box_surface(const std::array<double, 3>& lo, const std::array<do
   TriangleSurface s;
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i)
-        s.positions.insert(s.positions.end(), {i ? hi[0] : lo[0], j ? hi[1] : lo[1], k ? hi[2] : lo[2]});
+      for (int i = 0; i < 2; ++i) s.positions.push_back({i ? hi[0] : lo[0], j ? hi[1] : lo[1], k ? hi[2] : lo[2]});
   // Corner index i + 2j + 4k; each face as two counter-clockwise triangles seen from outside.
   s.triangles = {0, 2, 3, 0, 3, 1,   // z-
                  4, 5, 7, 4, 7, 6,   // z+
@@ -284,13 +283,12 @@ TEST(RigFrames, ScalingAndIntersectingBonesSolveAndHoldTheirTargets) {
   }
   int called = 0;
   const auto records =
-      run_frames(sim, a, nullptr, {2, false},
-                 [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>& s) {
-                   EXPECT_EQ(r.frame, called++);
-                   EXPECT_EQ(x.size(), lattice.positions.size());
-                   EXPECT_TRUE(s.empty());
-                   return true;
-                 });
+      run_frames(sim, a, nullptr, {2, false}, [&](const FrameRecord& r, const Points& x, const Points& s) {
+        EXPECT_EQ(r.frame, called++);
+        EXPECT_EQ(x.size(), lattice.vertex_count());
+        EXPECT_TRUE(s.empty());
+        return true;
+      });
   ASSERT_EQ(records.size(), 4u);
   for (const FrameRecord& r : records) {
     EXPECT_TRUE(r.converged) << "frame " << r.frame << ": " << r.status;
@@ -305,8 +303,8 @@ TEST(RigFrames, ScalingAndIntersectingBonesSolveAndHoldTheirTargets) {
       const Matrix4& m = a.transforms.back()[b];
       const auto p = lattice.vertex(v);
       for (int r = 0; r < 3; ++r)
-        EXPECT_NEAR(sim.positions()[3 * v + r],
-                    m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3], 1e-12);
+        EXPECT_NEAR(sim.positions()(v, r), m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3],
+                    1e-12);
     }
   // An animated bone the simulation lacks is named before any solve.
   Animation stray = a;
@@ -324,7 +322,7 @@ TEST(RigFrames, EmbeddedSurfaceFollowsABentBone) {
   Simulation sim(v.lattice, StableNeoHookean::from_youngs_modulus(1.0, 0.45),
                  bone_constraints(v.lattice, {upper, forearm}));
   TriangleSurface tip;
-  tip.positions = {1.9, 0.1, 0.4, 0.3, 0.2, 0.1};
+  tip.positions = {{1.9, 0.1, 0.4}, {0.3, 0.2, 0.1}};
   const Embedding e = embed(v, tip);
   Animation a;
   a.bones = {"forearm"};
@@ -332,16 +330,16 @@ TEST(RigFrames, EmbeddedSurfaceFollowsABentBone) {
     a.times.push_back(f);
     a.transforms.push_back({rotation_y(-M_PI / 12 * f, joint)});
   }
-  std::vector<double> last;
-  run_frames(sim, a, &e, {}, [&](const FrameRecord& r, const std::vector<double>&, const std::vector<double>& s) {
+  Points last;
+  run_frames(sim, a, &e, {}, [&](const FrameRecord& r, const Points&, const Points& s) {
     EXPECT_TRUE(r.converged) << r.frame;
     last = s;
     return true;
   });
   const Matrix4 m = a.transforms.back()[0];
   for (int r = 0; r < 3; ++r) {
-    EXPECT_NEAR(last[r], m[4 * r] * 1.9 + m[4 * r + 1] * 0.1 + m[4 * r + 2] * 0.4 + m[4 * r + 3], 1e-12);
-    EXPECT_NEAR(last[3 + r], tip.positions[3 + r], 1e-12);  // in the fixed bone
+    EXPECT_NEAR(last(0, r), m[4 * r] * 1.9 + m[4 * r + 1] * 0.1 + m[4 * r + 2] * 0.4 + m[4 * r + 3], 1e-12);
+    EXPECT_NEAR(last(1, r), tip.positions(1, r), 1e-12);  // in the fixed bone
   }
 }
 

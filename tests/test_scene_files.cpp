@@ -33,9 +33,9 @@ TEST(SceneFiles, ShippedBuiltInScenesMatchMakeScene) {
     const Scene built = make_scene(name, {});
     EXPECT_GT(f.scene.mesh.element_count(), 100u);
     EXPECT_EQ(f.scene.mesh.elements, built.mesh.elements);
-    ASSERT_EQ(f.scene.mesh.positions.size(), built.mesh.positions.size());
-    for (size_t i = 0; i < built.mesh.positions.size(); ++i)
-      EXPECT_NEAR(f.scene.mesh.positions[i], built.mesh.positions[i], 1e-12);
+    ASSERT_EQ(f.scene.mesh.positions.xyz().size(), built.mesh.positions.xyz().size());
+    for (size_t i = 0; i < built.mesh.positions.xyz().size(); ++i)
+      EXPECT_NEAR(f.scene.mesh.positions.xyz()[i], built.mesh.positions.xyz()[i], 1e-12);
     ASSERT_EQ(f.scene.constraints.size(), built.constraints.size());
     for (size_t c = 0; c < built.constraints.size(); ++c) {
       EXPECT_EQ(f.scene.constraints[c].vertices, built.constraints[c].vertices) << built.constraints[c].name;
@@ -55,7 +55,7 @@ TEST(SceneFiles, GmshMeshWithPinnedWallAndGravitySags) {
   EXPECT_EQ(f.scene.mesh.type, ElementType::tet4);
   ASSERT_FALSE(f.scene.options.external_force.empty());
   double total = 0.0;
-  for (size_t v = 0; v < f.scene.mesh.vertex_count(); ++v) total += f.scene.options.external_force[3 * v + 2];
+  for (size_t v = 0; v < f.scene.mesh.vertex_count(); ++v) total += f.scene.options.external_force(v, 2);
   EXPECT_NEAR(total, -9810.0 * 0.125, 1e-6);  // weight of a 1 x 0.5 x 0.25 box
   QuasistaticSolver solver(f.scene.mesh, f.material, f.scene.constraints, f.scene.options);
   const SolveResult r = solver.solve();
@@ -69,8 +69,8 @@ TEST(SceneFiles, GmshMeshWithPinnedWallAndGravitySags) {
               1e-12 * r.tolerance);
   double tip = 0.0;
   for (size_t v = 0; v < f.scene.mesh.vertex_count(); ++v)
-    if (f.scene.mesh.positions[3 * v] > 1.0 - 1e-9)
-      tip = std::min(tip, r.positions[3 * v + 2] - f.scene.mesh.positions[3 * v + 2]);
+    if (f.scene.mesh.positions(v, 0) > 1.0 - 1e-9)
+      tip = std::min(tip, r.positions(v, 2) - f.scene.mesh.positions(v, 2));
   EXPECT_LT(tip, -1e-3);
 }
 
@@ -203,27 +203,27 @@ TEST(SceneFiles, ArmExampleFlexesTheEmbeddedSurface) {
   SolveOptions solve = f.scene.options;
   solve.contact.self = false;
   Simulation sim(f.scene.mesh, uniform_material(f.scene.mesh, f.material), f.scene.constraints, solve);
-  std::vector<double> surface;
+  Points surface;
   FrameOptions options;
   options.load_steps = 3;
-  const auto records = run_frames(sim, some, &f.embedded->embedding, options,
-                                  [&](const FrameRecord&, const std::vector<double>&, const std::vector<double>& s) {
-                                    surface = s;
-                                    return true;
-                                  });
+  const auto records =
+      run_frames(sim, some, &f.embedded->embedding, options, [&](const FrameRecord&, const Points&, const Points& s) {
+        surface = s;
+        return true;
+      });
   ASSERT_EQ(records.size(), 4u);
   for (const FrameRecord& r : records) EXPECT_TRUE(r.converged) << "frame " << r.frame << ": " << r.status;
   EXPECT_EQ(records.back().inverted_elements, 0);
   // make_arm.py: vertex 0 is the shoulder's tip (0, 0, 0), the last the hand's (4, 0, 0).
   const TriangleSurface& rest = f.embedded->surface;
   const size_t hand = rest.vertex_count() - 1;
-  ASSERT_EQ(rest.positions[0], 0.0);
-  ASSERT_EQ(rest.positions[3 * hand], 4.0);
+  ASSERT_EQ(rest.positions(0, 0), 0.0);
+  ASSERT_EQ(rest.positions(hand, 0), 4.0);
   const double angle = 100.0 * M_PI / 180.0;  // 2 from the elbow (2, 0, 0), rotated about y up towards +z
   const double expected[3] = {2.0 + 2.0 * std::cos(angle), 0.0, 2.0 * std::sin(angle)};
   for (int d = 0; d < 3; ++d) {
-    EXPECT_NEAR(surface[d], 0.0, 0.02) << d;
-    EXPECT_NEAR(surface[3 * hand + d], expected[d], 0.05) << d;
+    EXPECT_NEAR(surface(0, d), 0.0, 0.02) << d;
+    EXPECT_NEAR(surface(hand, d), expected[d], 0.05) << d;
   }
 }
 
@@ -324,19 +324,18 @@ TEST(SceneFiles, SurfaceFileBonesHoldTheVerticesInsideAndFollowTheirFrames) {
   options.load_steps = 1;
   const Matrix4 expected[3] = {identity_matrix4(), turn, stretch};
   int frame = 0;
-  std::vector<double> lifted;
-  const auto records = run_frames(
-      sim, f.rig->animation, nullptr, options,
-      [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>&) {
+  Points lifted;
+  const auto records =
+      run_frames(sim, f.rig->animation, nullptr, options, [&](const FrameRecord& r, const Points& x, const Points&) {
         EXPECT_TRUE(r.converged) << "frame " << r.frame << ": " << r.status;
         EXPECT_EQ(r.inverted_elements, 0);
         for (int32_t v : root.vertices)
-          for (int d = 0; d < 3; ++d) EXPECT_NEAR(x[3 * v + d], mesh.positions[3 * v + d], 1e-12);
+          for (int d = 0; d < 3; ++d) EXPECT_NEAR(x(v, d), mesh.positions(v, d), 1e-12);
         const Matrix4& m = expected[frame];
         for (int32_t v : tip.vertices) {
           const auto p = mesh.vertex(v);
           for (int d = 0; d < 3; ++d)
-            EXPECT_NEAR(x[3 * v + d], m[4 * d] * p[0] + m[4 * d + 1] * p[1] + m[4 * d + 2] * p[2] + m[4 * d + 3], 1e-12)
+            EXPECT_NEAR(x(v, d), m[4 * d] * p[0] + m[4 * d + 1] * p[1] + m[4 * d + 2] * p[2] + m[4 * d + 3], 1e-12)
                 << "frame " << frame << " vertex " << v;
         }
         if (frame == 1) lifted = x;
@@ -350,13 +349,13 @@ TEST(SceneFiles, SurfaceFileBonesHoldTheVerticesInsideAndFollowTheirFrames) {
   // bone, 0 at the root).
   int32_t near_tip = -1;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v] - 2.0) < 1e-9 && std::abs(mesh.positions[3 * v + 1] - axis_y) < 1e-9 &&
-        std::abs(mesh.positions[3 * v + 2] - axis_z) < 1e-9)
+    if (std::abs(mesh.positions(v, 0) - 2.0) < 1e-9 && std::abs(mesh.positions(v, 1) - axis_y) < 1e-9 &&
+        std::abs(mesh.positions(v, 2) - axis_z) < 1e-9)
       near_tip = static_cast<int32_t>(v);
   ASSERT_GE(near_tip, 0);
-  ASSERT_EQ(lifted.size(), mesh.positions.size());
-  EXPECT_GT(lifted[3 * near_tip + 2] - axis_z, 0.05);
-  EXPECT_LT(lifted[3 * near_tip + 2] - axis_z, 0.1);
+  ASSERT_EQ(lifted.size(), mesh.vertex_count());
+  EXPECT_GT(lifted(near_tip, 2) - axis_z, 0.05);
+  EXPECT_LT(lifted(near_tip, 2) - axis_z, 0.1);
   fs::remove_all(dir);
 }
 
@@ -398,12 +397,13 @@ TEST(SceneFiles, RiggedSceneCommandWritesTheSurfacePerFrameAndAPvd) {
     const TriangleSurface s = read_surface(surface_obj_path((dir / "obj/").string(), "arm", f));
     EXPECT_EQ(s.triangles, rest.triangles);
     if (f == 0) {
-      for (size_t i = 0; i < s.positions.size(); ++i) EXPECT_NEAR(s.positions[i], rest.positions[i], 1e-9);
+      for (size_t i = 0; i < s.positions.xyz().size(); ++i)
+        EXPECT_NEAR(s.positions.xyz()[i], rest.positions.xyz()[i], 1e-9);
     }
     if (f == 2) {  // the hand (4, 0, 0) turned 100 degrees about the elbow (2, 0, 0), as in the in-process test
       const size_t hand = rest.vertex_count() - 1;
-      EXPECT_NEAR(s.positions[3 * hand], 2.0 + 2.0 * std::cos(100.0 * M_PI / 180.0), 0.05);
-      EXPECT_NEAR(s.positions[3 * hand + 2], 2.0 * std::sin(100.0 * M_PI / 180.0), 0.05);
+      EXPECT_NEAR(s.positions(hand, 0), 2.0 + 2.0 * std::cos(100.0 * M_PI / 180.0), 0.05);
+      EXPECT_NEAR(s.positions(hand, 2), 2.0 * std::sin(100.0 * M_PI / 180.0), 0.05);
     }
   }
   std::ostringstream pvd;

@@ -44,9 +44,8 @@ TEST(SceneRun, LoadsAndRunsAFileWithRecordsProgressAndOutputs) {
   SceneVtuSeries vtu((dir / "vtu").string(), file, file.scene.options);
   SceneRunOptions run_options;
   run_options.progress = [&](const SceneProgress& p) { progress.push_back(p); };
-  run_options.writers = {vtu.writer(),
-                         [&](int index, double, const std::vector<double>& x, const std::vector<double>& surface) {
-                           EXPECT_EQ(x.size(), file.scene.mesh.positions.size());
+  run_options.writers = {vtu.writer(), [&](int index, double, const Points& x, const Points& surface) {
+                           EXPECT_EQ(x.size(), file.scene.mesh.vertex_count());
                            EXPECT_TRUE(surface.empty());  // no "embed"
                            written.push_back(index);
                          }};

@@ -54,8 +54,8 @@ Mesh lattice_with_groups() {
   for (int a = 0; a < 8; ++a) unnamed.vertices.push_back(m.elements[8 * 63 + a]);
   std::sort(unnamed.vertices.begin(), unnamed.vertices.end());
   m.groups = {bottom, first, unnamed};
-  MeshArray x{"x", 1, {}}, all{"position", 3, m.positions};
-  for (size_t v = 0; v < m.vertex_count(); ++v) x.values.push_back(m.positions[3 * v]);
+  MeshArray x{"x", 1, {}}, all{"position", 3, m.positions.xyz()};
+  for (size_t v = 0; v < m.vertex_count(); ++v) x.values.push_back(m.positions(v, 0));
   MeshArray layer{"layer", 1, {}};
   for (size_t e = 0; e < m.element_count(); ++e) layer.values.push_back(double(e / 16));
   m.point_arrays = {x, all};
@@ -71,13 +71,13 @@ TEST(Selection, VerticesOnPlanesOfALattice) {
   const auto bottom = vertices_on_plane(m, {0, 0, 0}, {0, 0, 1});
   EXPECT_EQ(bottom.size(), 25u);
   EXPECT_TRUE(sorted_unique(bottom));
-  for (int32_t v : bottom) EXPECT_EQ(m.positions[3 * v + 2], 0.0);
+  for (int32_t v : bottom) EXPECT_EQ(m.positions(v, 2), 0.0);
   // The normal's length does not matter; the top face.
   EXPECT_EQ(vertices_on_plane(m, {0.3, 0.1, 1.0}, {0, 0, -7}).size(), 25u);
   // x + y = 0.5: grid points with i + j = 2, in each of 5 layers.
   const auto diagonal = vertices_on_plane(m, {0.5, 0, 0}, {1, 1, 0});
   EXPECT_EQ(diagonal.size(), 15u);
-  for (int32_t v : diagonal) EXPECT_NEAR(m.positions[3 * v] + m.positions[3 * v + 1], 0.5, 1e-12);
+  for (int32_t v : diagonal) EXPECT_NEAR(m.positions(v, 0) + m.positions(v, 1), 0.5, 1e-12);
   // Between grid planes: nothing, unless the tolerance reaches them.
   EXPECT_TRUE(vertices_on_plane(m, {0, 0, 0.1}, {0, 0, 1}).empty());
   EXPECT_EQ(vertices_on_plane(m, {0, 0, 0.1}, {0, 0, 1}, 0.16).size(), 50u);
@@ -200,7 +200,7 @@ TEST(Selection, SplitHexesCarriesGroupsAndArrays) {
   // The split tets of the first layer are the tets with centroids in it.
   EXPECT_EQ(elements_in_group(tets, "first_layer"), elements_in_box(tets, {0, 0, 0}, {1, 1, 0.25}));
   EXPECT_EQ(elements_in_group(tets, 9), (std::vector<int32_t>{378, 379, 380, 381, 382, 383}));
-  EXPECT_EQ(tets.point_arrays[1].values, hexes.positions);
+  EXPECT_EQ(tets.point_arrays[1].values, hexes.positions.xyz());
   EXPECT_EQ(elements_with_value(tets, "layer", 3.0), elements_in_box(tets, {0, 0, 0.75}, {1, 1, 1}));
 }
 
@@ -217,14 +217,14 @@ void volume_and_moment(const Mesh& m, double& volume, std::array<double, 3>& mom
     if (m.type == ElementType::tet4) {
       double d[3][3];
       for (int r = 0; r < 3; ++r)
-        for (int k = 0; k < 3; ++k) d[r][k] = m.positions[3 * v[r + 1] + k] - m.positions[3 * v[0] + k];
+        for (int k = 0; k < 3; ++k) d[r][k] = m.positions(v[r + 1], k) - m.positions(v[0], k);
       const double vol =
           (d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0]) +
            d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0])) /
           6.0;
       volume += vol;
       for (int k = 0; k < 3; ++k)
-        for (int a = 0; a < 4; ++a) moment[k] += vol / 4 * m.positions[3 * v[a] + k];
+        for (int a = 0; a < 4; ++a) moment[k] += vol / 4 * m.positions(v[a], k);
       continue;
     }
     static const double kSigns[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
@@ -242,8 +242,8 @@ void volume_and_moment(const Mesh& m, double& volume, std::array<double, 3>& mom
             const double dn[3] = {0.125 * s[0] * f[1] * f[2], 0.125 * f[0] * s[1] * f[2], 0.125 * f[0] * f[1] * s[2]};
             const double shape = 0.125 * f[0] * f[1] * f[2];
             for (int d = 0; d < 3; ++d) {
-              x[d] += shape * m.positions[3 * v[a] + d];
-              for (int r = 0; r < 3; ++r) jac[r][d] += dn[r] * m.positions[3 * v[a] + d];
+              x[d] += shape * m.positions(v[a], d);
+              for (int r = 0; r < 3; ++r) jac[r][d] += dn[r] * m.positions(v[a], d);
             }
           }
           const double det = jac[0][0] * (jac[1][1] * jac[2][2] - jac[1][2] * jac[2][1]) -
@@ -267,8 +267,8 @@ TEST(Selection, BodyForceSumsToForceTimesVolumeWithTheRightMoment) {
   for (size_t i = 0; i < meshes.size(); ++i) {
     SCOPED_TRACE(i);
     const Mesh& m = meshes[i];
-    const std::vector<double> f = lump_body_force(m, b);
-    ASSERT_EQ(f.size(), m.positions.size());
+    const Points f = lump_body_force(m, b);
+    ASSERT_EQ(f.size(), m.vertex_count());
     double volume = 0.0;
     std::array<double, 3> moment;
     volume_and_moment(m, volume, moment);
@@ -278,11 +278,11 @@ TEST(Selection, BodyForceSumsToForceTimesVolumeWithTheRightMoment) {
     // second on non-affine hexes.
     for (int d = 0; d < 3; ++d) {
       double sum = 0.0;
-      for (size_t v = 0; v < m.vertex_count(); ++v) sum += f[3 * v + d];
+      for (size_t v = 0; v < m.vertex_count(); ++v) sum += f(v, d);
       EXPECT_NEAR(sum, b[d] * volume, 1e-13 * std::abs(b[d]) + 1e-15);
       for (int k = 0; k < 3; ++k) {
         double first = 0.0;
-        for (size_t v = 0; v < m.vertex_count(); ++v) first += f[3 * v + d] * m.positions[3 * v + k];
+        for (size_t v = 0; v < m.vertex_count(); ++v) first += f(v, d) * m.positions(v, k);
         EXPECT_NEAR(first, b[d] * moment[k], 1e-13 * std::abs(b[d]) + 1e-15) << d << " " << k;
       }
     }
@@ -292,17 +292,17 @@ TEST(Selection, BodyForceSumsToForceTimesVolumeWithTheRightMoment) {
 TEST(Selection, BodyForceOfALatticeInteriorVertexIsBH3) {
   const double h = 0.25;
   const Mesh m = make_box_lattice(4, 4, 4, h);
-  const std::vector<double> f = lump_body_force(m, {0, 0, -8.0});
+  const Points f = lump_body_force(m, {0, 0, -8.0});
   const int32_t centre = lattice_vertex(4, 2, 2, 2), corner = lattice_vertex(4, 0, 0, 0),
                 edge = lattice_vertex(4, 2, 0, 0), face = lattice_vertex(4, 2, 2, 0);
-  EXPECT_NEAR(f[3 * centre + 2], -8.0 * h * h * h, 1e-15);
-  EXPECT_NEAR(f[3 * face + 2], -8.0 * h * h * h / 2, 1e-15);
-  EXPECT_NEAR(f[3 * edge + 2], -8.0 * h * h * h / 4, 1e-15);
-  EXPECT_NEAR(f[3 * corner + 2], -8.0 * h * h * h / 8, 1e-15);
-  EXPECT_EQ(f[3 * centre], 0.0);
+  EXPECT_NEAR(f(centre, 2), -8.0 * h * h * h, 1e-15);
+  EXPECT_NEAR(f(face, 2), -8.0 * h * h * h / 2, 1e-15);
+  EXPECT_NEAR(f(edge, 2), -8.0 * h * h * h / 4, 1e-15);
+  EXPECT_NEAR(f(corner, 2), -8.0 * h * h * h / 8, 1e-15);
+  EXPECT_EQ(f(centre, 0), 0.0);
   // Tets of a Kuhn-split lattice carry V / 4 per node: the same interior load.
-  const std::vector<double> t = lump_body_force(make_tet_box(4, 4, 4, h), {0, 0, -8.0});
-  EXPECT_NEAR(t[3 * centre + 2], -8.0 * h * h * h, 1e-15);
+  const Points t = lump_body_force(make_tet_box(4, 4, 4, h), {0, 0, -8.0});
+  EXPECT_NEAR(t(centre, 2), -8.0 * h * h * h, 1e-15);
 }
 
 // ---- Scene files ----

@@ -25,8 +25,8 @@ namespace {
 
 int vertex_at(const Mesh& mesh, double x, double y, double z) {
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v] - x) < 1e-9 && std::abs(mesh.positions[3 * v + 1] - y) < 1e-9 &&
-        std::abs(mesh.positions[3 * v + 2] - z) < 1e-9)
+    if (std::abs(mesh.positions(v, 0) - x) < 1e-9 && std::abs(mesh.positions(v, 1) - y) < 1e-9 &&
+        std::abs(mesh.positions(v, 2) - z) < 1e-9)
       return static_cast<int>(v);
   return -1;
 }
@@ -38,10 +38,10 @@ int vertex_at(const Mesh& mesh, double x, double y, double z) {
 void check_pushed_sample(const Mesh& mesh, int cell_first, int cell_count) {
   const bool hex = mesh.type == ElementType::hex8;
   const solver::SelfContactDetector detector(mesh);
-  EXPECT_TRUE(detector.detect(mesh.positions).empty()) << "contacts at rest";
+  EXPECT_TRUE(detector.detect(mesh.positions.xyz()).empty()) << "contacts at rest";
   const int s = vertex_at(mesh, 0, 0, 2);
   ASSERT_GE(s, 0);
-  std::vector<double> x = mesh.positions;
+  std::vector<double> x = mesh.positions.xyz();
   x[3 * s] = 4.5;
   x[3 * s + 1] = 0.3;
   x[3 * s + 2] = 1.5;
@@ -55,8 +55,8 @@ void check_pushed_sample(const Mesh& mesh, int cell_first, int cell_count) {
   for (int j = 0; j < 3; ++j) {
     EXPECT_GE(c.weight[j], 0.0);
     wsum += c.weight[j];
-    EXPECT_NEAR(mesh.positions[3 * c.vertex[j] + 1], 0.0, 1e-12) << "triangle off the face y = 0";
-    for (int d = 0; d < 3; ++d) y[d] += c.weight[j] * mesh.positions[3 * c.vertex[j] + d];
+    EXPECT_NEAR(mesh.positions(c.vertex[j], 1), 0.0, 1e-12) << "triangle off the face y = 0";
+    for (int d = 0; d < 3; ++d) y[d] += c.weight[j] * mesh.positions(c.vertex[j], d);
   }
   EXPECT_NEAR(wsum, 1.0, 1e-12);
   EXPECT_NEAR(y[0], 4.5, 1e-12);
@@ -71,14 +71,14 @@ void check_pushed_sample(const Mesh& mesh, int cell_first, int cell_count) {
   const int t = vertex_at(mesh, 2, 0, 2);
   ASSERT_GE(t, 0);
   for (double to : hex ? std::vector<double>{2.5, 3.5} : std::vector<double>{2.5}) {
-    std::vector<double> z = mesh.positions;
+    std::vector<double> z = mesh.positions.xyz();
     z[3 * t] = to;
     z[3 * t + 1] = 0.5;
     z[3 * t + 2] = 1.5;
     EXPECT_TRUE(detector.detect(z).empty()) << "sample moved to x = " << to;
   }
   // Two cells away it is a contact again.
-  std::vector<double> z = mesh.positions;
+  std::vector<double> z = mesh.positions.xyz();
   z[3 * t] = 4.5;
   z[3 * t + 1] = 0.3;
   z[3 * t + 2] = 1.5;
@@ -189,7 +189,7 @@ TEST(SelfContact, DeviceTermsMatchTheHostReference) {
   // Two corners pushed into far cells (two springs), the rest jittered.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> jitter(-0.02, 0.02);
-  std::vector<double> x = mesh.positions, p(x.size());
+  std::vector<double> x = mesh.positions.xyz(), p(x.size());
   for (double& e : x) e += jitter(rng);
   for (double& e : p) e = jitter(rng);
   const int s0 = vertex_at(mesh, 0, 0, 2), s1 = vertex_at(mesh, 6, 2, 0);
@@ -275,8 +275,9 @@ TEST(SelfContact, CombinesWithDynamicsAndObstacles) {
     EXPECT_NE(with.kernel_specialization.find(term), std::string::npos) << term;
   EXPECT_GT(with.steps.back().contacts, 0);  // resting on the plane
   for (const StepResult& s : with.steps) EXPECT_EQ(s.self_contacts, 0);
-  ASSERT_EQ(plain.positions.size(), with.positions.size());
-  for (size_t i = 0; i < plain.positions.size(); ++i) EXPECT_EQ(plain.positions[i], with.positions[i]) << i;
+  ASSERT_EQ(plain.positions.xyz().size(), with.positions.xyz().size());
+  for (size_t i = 0; i < plain.positions.xyz().size(); ++i)
+    EXPECT_EQ(plain.positions.xyz()[i], with.positions.xyz()[i]) << i;
 }
 
 // The elbow at a small size (18 x 3 x 3 hexes, flexed 140 degrees in its 28
@@ -298,9 +299,9 @@ TEST(SelfContact, ElbowFoldsWithoutPassingThrough) {
   free.options.load_steps = 7;
   const SolveResult passed = QuasistaticSolver(free.mesh, free.material, free.constraints, free.options).solve();
   ASSERT_TRUE(passed.converged);
-  const auto crossing = detector.detect(passed.positions);
+  const auto crossing = detector.detect(passed.positions.xyz());
   double deepest = 0.0;
-  for (const auto& c : crossing) deepest = std::max(deepest, solver::self_contact_length(c, passed.positions));
+  for (const auto& c : crossing) deepest = std::max(deepest, solver::self_contact_length(c, passed.positions.xyz()));
   EXPECT_GE(crossing.size(), 4u);
   EXPECT_GT(deepest, 3.0 * thickness) << "the inner side should pass through itself without self-contact";
 
@@ -315,14 +316,15 @@ TEST(SelfContact, ElbowFoldsWithoutPassingThrough) {
   }
   EXPECT_GT(held.steps.back().self_contacts, 0);
   double held_deepest = 0.0;
-  for (const auto& c : detector.detect(held.positions))
-    held_deepest = std::max(held_deepest, solver::self_contact_length(c, held.positions));
+  for (const auto& c : detector.detect(held.positions.xyz()))
+    held_deepest = std::max(held_deepest, solver::self_contact_length(c, held.positions.xyz()));
   EXPECT_LE(held_deepest, thickness);
   EXPECT_GT(held.min_j, 0.0);
 
   const SolveResult again = solver.solve();
-  ASSERT_EQ(again.positions.size(), held.positions.size());
-  for (size_t i = 0; i < held.positions.size(); ++i) ASSERT_EQ(again.positions[i], held.positions[i]) << i;
+  ASSERT_EQ(again.positions.xyz().size(), held.positions.xyz().size());
+  for (size_t i = 0; i < held.positions.xyz().size(); ++i)
+    ASSERT_EQ(again.positions.xyz()[i], held.positions.xyz()[i]) << i;
 }
 
 // The elbow's tet4 version at its full size (2,304 tets). Its inner side

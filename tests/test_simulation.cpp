@@ -19,9 +19,9 @@
 namespace snh::test {
 namespace {
 
-double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+double max_difference(const Points& a, const Points& b) {
   double worst = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+  for (size_t i = 0; i < a.xyz().size(); ++i) worst = std::max(worst, std::abs(a.xyz()[i] - b.xyz()[i]));
   return worst;
 }
 
@@ -68,8 +68,8 @@ TEST(Simulation, ConstraintSetFactoriesFillTheirParts) {
   ASSERT_TRUE(moved.motion);
   EXPECT_EQ(moved.motion(0.25).translation[2], 0.25);
   EXPECT_EQ(moved.components, (std::array<bool, 3>{true, true, true}));
-  const ConstraintSet placed = ConstraintSet::targets_of("placed", {4}, [](double t, std::vector<double>& xyz) {
-    xyz = {t, t, t};
+  const ConstraintSet placed = ConstraintSet::targets_of("placed", {4}, [](double t, Points& xyz) {
+    xyz = {{t, t, t}};
   });
   ASSERT_TRUE(placed.targets);
   EXPECT_FALSE(placed.motion);
@@ -80,7 +80,7 @@ TEST(Simulation, DefaultStopIsScaleFreeSameShapeForAnyYoungsModulus) {
   // every solve must reach the same shape. (An absolute force tolerance
   // stops E = 1e-2 at its first iterate.)
   StretchedBar bar;
-  std::vector<std::vector<double>> shapes;
+  std::vector<Points> shapes;
   double scaled_tolerance = 0.0;
   for (double youngs : {1e-2, 1.0, 1e4, 1e6}) {
     SolveOptions options;
@@ -100,8 +100,8 @@ TEST(Simulation, DefaultStopIsScaleFreeSameShapeForAnyYoungsModulus) {
   // And the bar really stretched: the middle of its axis moved.
   double mid_shift = 0.0;
   for (size_t v = 0; v < bar.mesh.vertex_count(); ++v)
-    if (std::abs(bar.mesh.positions[3 * v] - 1.0) < 1e-9)
-      mid_shift = std::max(mid_shift, shapes[0][3 * v] - bar.mesh.positions[3 * v]);
+    if (std::abs(bar.mesh.positions(v, 0) - 1.0) < 1e-9)
+      mid_shift = std::max(mid_shift, shapes[0](v, 0) - bar.mesh.positions(v, 0));
   EXPECT_GT(mid_shift, 0.3);
 }
 
@@ -143,7 +143,7 @@ TEST(Simulation, FramesWithAbsoluteTransformsReachTheOneShotSolution) {
     const RigidTransform t = twist(frame * M_PI / 4);
     for (int32_t v : top.vertices) {
       const auto target = t.apply(mesh.vertex(v));
-      for (int d = 0; d < 3; ++d) EXPECT_NEAR(sim.positions()[3 * v + d], target[d], 1e-14);
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(sim.positions()(v, d), target[d], 1e-14);
     }
   }
   top.motion = [&](double s) { return twist(s * M_PI / 2); };
@@ -164,11 +164,11 @@ TEST(Simulation, SetPositionsMovesASetLinearlyAndSolveContinuesFromTheState) {
       mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3),
       {ConstraintSet{"wall", on_plane(mesh, 0, 0.0), {}, {}}, ConstraintSet{"end", on_plane(mesh, 0, 1.0), {}, {}}});
   const std::vector<int32_t>& end = sim.constraints()[1].vertices;
-  std::vector<double> xyz;
-  for (int32_t v : end) xyz.insert(xyz.end(), {1.2, mesh.positions[3 * v + 1], mesh.positions[3 * v + 2] + 0.1});
+  Points xyz;
+  for (int32_t v : end) xyz.push_back({1.2, mesh.positions(v, 1), mesh.positions(v, 2) + 0.1});
   sim.set_positions("end", xyz);
   std::vector<double> seen;
-  const SolveResult r = sim.solve(2, {}, [&](int, const std::vector<double>& x) { seen.push_back(x[3 * end[0]]); });
+  const SolveResult r = sim.solve(2, {}, [&](int, const Points& x) { seen.push_back(x(end[0], 0)); });
   ASSERT_TRUE(r.converged);
   ASSERT_EQ(seen.size(), 2u);
   EXPECT_NEAR(seen[0], 1.1, 1e-14);  // halfway at load step 1 of 2
@@ -177,7 +177,7 @@ TEST(Simulation, SetPositionsMovesASetLinearlyAndSolveContinuesFromTheState) {
   const SolveResult again = sim.solve(1);
   EXPECT_TRUE(again.converged);
   EXPECT_EQ(again.steps[0].newton_iterations, 0);
-  EXPECT_THROW(sim.set_positions("end", {1.0}), Error);
+  EXPECT_THROW(sim.set_positions("end", Points(1)), Error);
   try {
     sim.set_transform("lid", RigidTransform::identity());
     ADD_FAILURE();
@@ -201,7 +201,7 @@ TEST(Simulation, ProgressCallbackCancelsAndTheNextSolveFinishes) {
   const SolveResult rest = sim.solve(2);
   EXPECT_TRUE(rest.converged);
   EXPECT_FALSE(rest.cancelled);
-  for (int32_t v : bar.pulled.vertices) EXPECT_NEAR(sim.positions()[3 * v], bar.mesh.positions[3 * v] + 1.0, 1e-14);
+  for (int32_t v : bar.pulled.vertices) EXPECT_NEAR(sim.positions()(v, 0), bar.mesh.positions(v, 0) + 1.0, 1e-14);
 }
 
 // Iteration records give wall time since their own solve began, less the
@@ -250,12 +250,12 @@ TEST(Simulation, PerComponentConstraintsGiveHomogeneousUniaxialStress) {
   ASSERT_TRUE(r.converged);
   // Every vertex at (a X, a Y, 0.8 Z) with one lateral stretch a > 1, to the
   // Newton tolerance (a strain of 1e-10).
-  const double a = r.positions[3 * (mesh.vertex_count() - 1)];  // the corner (1, 1, 1)
+  const double a = r.positions(mesh.vertex_count() - 1, 0);  // the corner (1, 1, 1)
   EXPECT_GT(a, 1.0);
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    EXPECT_NEAR(r.positions[3 * v], a * mesh.positions[3 * v], 1e-9);
-    EXPECT_NEAR(r.positions[3 * v + 1], a * mesh.positions[3 * v + 1], 1e-9);
-    EXPECT_NEAR(r.positions[3 * v + 2], 0.8 * mesh.positions[3 * v + 2], 1e-9);  // free interior vertices too
+    EXPECT_NEAR(r.positions(v, 0), a * mesh.positions(v, 0), 1e-9);
+    EXPECT_NEAR(r.positions(v, 1), a * mesh.positions(v, 1), 1e-9);
+    EXPECT_NEAR(r.positions(v, 2), 0.8 * mesh.positions(v, 2), 1e-9);  // free interior vertices too
   }
   // Uniaxial stress: the lateral stress vanishes at F = diag(a, a, 0.8).
   const reference::Mat3<double> f{a, 0, 0, 0, a, 0, 0, 0, 0.8};
@@ -284,18 +284,18 @@ TEST(Simulation, BodyForceEqualsItsLumpedExternalForceAndRampsWithTheLoad) {
   as_external.body_force = {0, 0, 0};
   as_external.external_force = lump_body_force(mesh, gravity);
   Simulation a(mesh, material, {wall}, as_body), b(mesh, material, {wall}, as_external);
-  std::vector<double> first_step_force;
-  const SolveResult ra = a.solve(0, {}, [&](int step, const std::vector<double>&) {
+  Points first_step_force;
+  const SolveResult ra = a.solve(0, {}, [&](int step, const Points&) {
     if (step == 1) first_step_force = a.applied_force();
   });
   const SolveResult rb = b.solve();
   ASSERT_TRUE(ra.converged && rb.converged);
   EXPECT_EQ(ra.positions, rb.positions);
   // Ramped: half the force at load step 1 of 2, all of it at the end.
-  ASSERT_EQ(first_step_force.size(), as_external.external_force.size());
-  for (size_t i = 0; i < first_step_force.size(); ++i) {
-    EXPECT_DOUBLE_EQ(first_step_force[i], 0.5 * as_external.external_force[i]);
-    EXPECT_DOUBLE_EQ(a.applied_force()[i], as_external.external_force[i]);
+  ASSERT_EQ(first_step_force.xyz().size(), as_external.external_force.xyz().size());
+  for (size_t i = 0; i < first_step_force.xyz().size(); ++i) {
+    EXPECT_DOUBLE_EQ(first_step_force.xyz()[i], 0.5 * as_external.external_force.xyz()[i]);
+    EXPECT_DOUBLE_EQ(a.applied_force().xyz()[i], as_external.external_force.xyz()[i]);
   }
   // Not ramped: the same equilibrium (within the tolerance), a different path.
   SolveOptions unramped = as_body;
@@ -307,11 +307,11 @@ TEST(Simulation, BodyForceEqualsItsLumpedExternalForceAndRampsWithTheLoad) {
   EXPECT_NE(rc.history.size(), ra.history.size());
   // Doubling gravity between frames moves the tip further down.
   double tip = 0.0;
-  for (int32_t v : on_plane(mesh, 0, 1.0)) tip = std::min(tip, ra.positions[3 * v + 2] - mesh.positions[3 * v + 2]);
+  for (int32_t v : on_plane(mesh, 0, 1.0)) tip = std::min(tip, ra.positions(v, 2) - mesh.positions(v, 2));
   a.set_body_force({0, 0, -0.1});
   ASSERT_TRUE(a.solve().converged);
   double tip2 = 0.0;
-  for (int32_t v : on_plane(mesh, 0, 1.0)) tip2 = std::min(tip2, a.positions()[3 * v + 2] - mesh.positions[3 * v + 2]);
+  for (int32_t v : on_plane(mesh, 0, 1.0)) tip2 = std::min(tip2, a.positions()(v, 2) - mesh.positions(v, 2));
   EXPECT_LT(tip2, 1.5 * tip);
 }
 
@@ -341,7 +341,7 @@ TEST(Simulation, ConstructionNamesConflictsAndBadInputs) {
   EXPECT_NE(message({ConstraintSet{"none", bottom, {}, {}, {false, false, false}}}, {}).find("prescribes no component"),
             std::string::npos);
   SolveOptions short_force;
-  short_force.external_force = {0.0, 0.0, 1.0};
+  short_force.external_force = {{0.0, 0.0, 1.0}};
   EXPECT_NE(
       message({ConstraintSet{"a", bottom, {}, {}}}, short_force).find("external_force has 3 entries, expected 81"),
       std::string::npos);

@@ -114,7 +114,7 @@ TEST(SolveProfile, CallbackTimeIsLeftOutAndResultsStayTheSame) {
   const Scene scene = small_twist();
   const SolveResult plain = solve(scene, Preconditioner::block_jacobi);
   SolveOptions slow;
-  slow.on_iteration = [](const NewtonIteration&, const std::vector<double>&) {
+  slow.on_iteration = [](const NewtonIteration&, const Points&) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   };
   const SolveResult r = solve(scene, Preconditioner::block_jacobi, slow);

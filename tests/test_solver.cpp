@@ -36,10 +36,10 @@ void patch_test(Mesh mesh, Precision precision, double tolerance) {
     return y;
   };
   ConstraintSet boundary{"boundary", boundary_vertices(mesh, 1.0), {}, {}};
-  boundary.targets = [&](double, std::vector<double>& xyz) {
+  boundary.targets = [&](double, Points& xyz) {
     for (size_t k = 0; k < boundary.vertices.size(); ++k) {
       const auto y = affine(mesh.vertex(boundary.vertices[k]));
-      for (int d = 0; d < 3; ++d) xyz[3 * k + d] = y[d];
+      for (int d = 0; d < 3; ++d) xyz(k, d) = y[d];
     }
   };
   SolveOptions options;
@@ -52,7 +52,7 @@ void patch_test(Mesh mesh, Precision precision, double tolerance) {
   double worst = 0.0;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     const auto y = affine(mesh.vertex(v));
-    for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(r.positions[3 * v + d] - y[d]));
+    for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(r.positions(v, d) - y[d]));
   }
   EXPECT_LT(worst, tolerance);
 }
@@ -95,16 +95,16 @@ TEST(Solver, RejectsBadConstraintsAndOptions) {
     EXPECT_NE(std::string(e.what()).find("'far' refers to vertex 999"), std::string::npos) << e.what();
   }
   SolveOptions bad;
-  bad.initial_positions = {1.0, 2.0};
+  bad.initial_positions = {{1.0, 2.0, 0.0}};
   EXPECT_THROW(QuasistaticSolver(mesh, material, {}, bad), Error);
   SolveOptions nan_force;
-  nan_force.external_force.assign(3 * mesh.vertex_count(), std::nan(""));
+  nan_force.external_force = Points(mesh.vertex_count(), {std::nan(""), std::nan(""), std::nan("")});
   EXPECT_THROW(QuasistaticSolver(mesh, material, {ConstraintSet{"pin", {0}, {}, {}}}, nan_force), Error);
 }
 
 TEST(Solver, UnusedVertexIsAWarningNotAnError) {
   Mesh mesh = make_box_lattice(2, 2, 2, 0.5);
-  mesh.positions.insert(mesh.positions.end(), {5.0, 5.0, 5.0});
+  mesh.positions.push_back({5.0, 5.0, 5.0});
   QuasistaticSolver solver(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3), {ConstraintSet{"pin", {0}, {}, {}}});
   const SolveResult r = solver.solve();
   EXPECT_TRUE(r.converged);
@@ -112,15 +112,15 @@ TEST(Solver, UnusedVertexIsAWarningNotAnError) {
   for (const std::string& w : r.warnings)
     named = named || w.find("1 vertices belong to no element (first: 27)") != std::string::npos;
   EXPECT_TRUE(named);
-  EXPECT_EQ(r.positions[3 * 27], 5.0);
+  EXPECT_EQ(r.positions(27, 0), 5.0);
 }
 
 TEST(Solver, FreeBodyUnderGravityIsAnErrorNamingTheFreeMotion) {
   // No constraint and a net force: no static equilibrium exists.
   const Mesh mesh = make_box_lattice(2, 2, 2, 0.5);
   SolveOptions options;
-  options.external_force.assign(3 * mesh.vertex_count(), 0.0);
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.external_force[3 * v + 2] = -1e-2;
+  options.external_force = Points(mesh.vertex_count());
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.external_force(v, 2) = -1e-2;
   try {
     QuasistaticSolver(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3), {}, options);
     ADD_FAILURE() << "no error";
@@ -136,10 +136,10 @@ TEST(Solver, FreeBodyWithoutLoadRecoversItsShapeWithAWarning) {
   const Mesh mesh = make_box_lattice(2, 2, 2, 0.5);
   SolveOptions options;
   options.initial_positions = mesh.positions;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.initial_positions[3 * v] *= 1.3;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.initial_positions(v, 0) *= 1.3;
   QuasistaticSolver solver(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3), {}, options);
   const SolveResult r = solver.solve();
-  for (double x : r.positions) EXPECT_TRUE(std::isfinite(x));
+  for (double x : r.positions.xyz()) EXPECT_TRUE(std::isfinite(x));
   EXPECT_TRUE(r.converged) << r.steps[0].status;
   EXPECT_NEAR(r.volume_ratio, 1.0, 1e-5);
   EXPECT_NEAR(r.min_j, 1.0, 1e-4);
@@ -163,17 +163,17 @@ TEST(Solver, FailedLineSearchRetriesAlongSteepestDescentAndReportsIt) {
     retried = retried || contains(h.recovery, RecoveryAction::line_search_steepest_descent) ||
               contains(h.recovery, RecoveryAction::line_search_steepest_descent_failed);
   EXPECT_TRUE(retried);
-  for (double x : r.positions) EXPECT_TRUE(std::isfinite(x));
+  for (double x : r.positions.xyz()) EXPECT_TRUE(std::isfinite(x));
 }
 
 TEST(Solver, GravityOnPinnedBlockSagsAndBalances) {
   const Mesh mesh = make_box_lattice(4, 2, 2, 0.25);
   ConstraintSet wall{"wall", {}, {}, {}};
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (mesh.positions[3 * v] < 1e-9) wall.vertices.push_back(static_cast<int32_t>(v));
+    if (mesh.positions(v, 0) < 1e-9) wall.vertices.push_back(static_cast<int32_t>(v));
   SolveOptions options;
-  options.external_force.assign(3 * mesh.vertex_count(), 0.0);
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.external_force[3 * v + 2] = -1e-3;
+  options.external_force = Points(mesh.vertex_count());
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) options.external_force(v, 2) = -1e-3;
   options.absolute_tolerance = 1e-12;
   QuasistaticSolver solver(mesh, StableNeoHookean::from_youngs_modulus(1.0, 0.3), {wall}, options);
   const SolveResult r = solver.solve();
@@ -181,10 +181,10 @@ TEST(Solver, GravityOnPinnedBlockSagsAndBalances) {
   // The free end sags; the pinned wall does not move.
   double tip = 0.0;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (mesh.positions[3 * v] > 1.0 - 1e-9) tip = std::min(tip, r.positions[3 * v + 2] - mesh.positions[3 * v + 2]);
+    if (mesh.positions(v, 0) > 1.0 - 1e-9) tip = std::min(tip, r.positions(v, 2) - mesh.positions(v, 2));
   EXPECT_LT(tip, -1e-3);
   for (int32_t v : wall.vertices)
-    for (int d = 0; d < 3; ++d) EXPECT_EQ(r.positions[3 * v + d], mesh.positions[3 * v + d]);
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(r.positions(v, d), mesh.positions(v, d));
 }
 
 SolveResult run_scene(const std::string& name, int resolution, Precision precision, unsigned seed = 1) {

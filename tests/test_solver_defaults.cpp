@@ -66,7 +66,7 @@ TEST(LoadStepping, TransformTargetsFollowTheSlerp) {
   target.from = RigidTransform::identity();
   target.from_known = true;
   target.to = RigidTransform::rotation_about({0.0, 0.0, 1.0}, M_PI / 2, {0.5, 0.5, 0.0});
-  std::vector<double> x = mesh.positions;
+  std::vector<double> x = mesh.positions.xyz();
   solver::record_start(set, x, target);
   solver::place_target(mesh, set, target, 0.5, x);
   const RigidTransform eighth = RigidTransform::rotation_about({0.0, 0.0, 1.0}, M_PI / 4, {0.5, 0.5, 0.0});

@@ -14,8 +14,8 @@
 namespace snh::test {
 namespace {
 
-bool all_finite(const std::vector<double>& x) {
-  for (double v : x)
+bool all_finite(const Points& x) {
+  for (double v : x.xyz())
     if (!std::isfinite(v)) return false;
   return true;
 }
@@ -130,7 +130,7 @@ TEST(Stability, FarVertexNeverProducesNan) {
     Scene s = bench::make_stability_case("crush_plane", p, 2);
     s.options.initial_positions = s.mesh.positions;
     const size_t v = s.mesh.vertex_count() - 1;  // the top corner, free
-    s.options.initial_positions[3 * v] = 1e6;
+    s.options.initial_positions(v, 0) = 1e6;
     s.options.max_newton_iterations = 60;
     QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
     const SolveResult r = solver.solve();
@@ -159,14 +159,14 @@ TEST(Stability, NonFiniteEnergyIsNeverAccepted) {
   Scene s = bench::make_stability_case("crush_plane", Precision::single, 2);
   s.options.initial_positions = s.mesh.positions;
   const size_t v = s.mesh.vertex_count() - 1;
-  s.options.initial_positions[3 * v] = 1e30;
+  s.options.initial_positions(v, 0) = 1e30;
   QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
   const SolveResult r = solver.solve();
   ASSERT_EQ(r.steps.size(), 1u);
   EXPECT_EQ(r.steps[0].status, StepStatus::non_finite_state);
   EXPECT_FALSE(r.converged);
   EXPECT_TRUE(all_finite(r.positions));
-  EXPECT_EQ(r.positions[3 * v], 1e30f);
+  EXPECT_EQ(r.positions(v, 0), 1e30f);
 }
 
 // One CG iteration per Newton step on a hard start: poor directions, finite
@@ -179,7 +179,7 @@ TEST(Stability, PoorDirectionsKeepPositionsFinite) {
     Scene s = bench::make_stability_case("flip_top", p, 2);
     s.options.max_cg_iterations = 1;
     s.options.max_newton_iterations = 40;
-    s.options.on_iteration = [&](const NewtonIteration&, const std::vector<double>& x) { EXPECT_TRUE(all_finite(x)); };
+    s.options.on_iteration = [&](const NewtonIteration&, const Points& x) { EXPECT_TRUE(all_finite(x)); };
     QuasistaticSolver solver(s.mesh, s.material, s.constraints, s.options);
     const SolveResult r = solver.solve();
     expect_no_nan(r, to_string(p));

@@ -28,8 +28,8 @@ int sign(double x) { return (x > 0) - (x < 0); }
 
 TriangleSurface two_triangles(std::array<std::array<double, 3>, 3> s, std::array<std::array<double, 3>, 3> t) {
   TriangleSurface out;
-  for (const auto& p : s) out.positions.insert(out.positions.end(), p.begin(), p.end());
-  for (const auto& p : t) out.positions.insert(out.positions.end(), p.begin(), p.end());
+  for (const auto& p : s) out.positions.push_back(p);
+  for (const auto& p : t) out.positions.push_back(p);
   out.triangles = {0, 1, 2, 3, 4, 5};
   return out;
 }
@@ -152,7 +152,7 @@ TEST(SurfaceIntersections, CoplanarOverlapsCount) {
 // Two triangles sharing the edge 0-1 (vertex indices, not only positions).
 TriangleSurface hinge(std::array<double, 3> a, std::array<double, 3> b) {
   TriangleSurface s;
-  s.positions = {0, 0, 0, 1, 0, 0, a[0], a[1], a[2], b[0], b[1], b[2]};
+  s.positions = {{0, 0, 0}, {1, 0, 0}, a, b};
   s.triangles = {0, 1, 2, 1, 0, 3};
   return s;
 }
@@ -166,7 +166,8 @@ TEST(SurfaceIntersections, SharedEdgeCountsOnlyAFold) {
   EXPECT_EQ(pairs_of(hinge({0.5, 1, 0}, {3.0, 0.1, 0})), 1u);     // folded, reaching beyond it
   // The same positions without the shared indices: the edge is a touch.
   TriangleSurface apart = hinge({0.5, 1, 0}, {0.5, 0, 1});
-  apart.positions.insert(apart.positions.end(), {0, 0, 0, 1, 0, 0});
+  apart.positions.push_back({0, 0, 0});
+  apart.positions.push_back({1, 0, 0});
   apart.triangles = {0, 1, 2, 5, 4, 3};
   EXPECT_EQ(pairs_of(apart), 1u);
   // The same triangle twice.
@@ -179,7 +180,7 @@ TEST(SurfaceIntersections, SharedEdgeCountsOnlyAFold) {
 TriangleSurface fan(std::array<double, 3> a, std::array<double, 3> b, std::array<double, 3> c,
                     std::array<double, 3> d) {
   TriangleSurface s;
-  s.positions = {0, 0, 0, a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], d[0], d[1], d[2]};
+  s.positions = {{0, 0, 0}, a, b, c, d};
   s.triangles = {0, 1, 2, 0, 3, 4};
   return s;
 }
@@ -230,7 +231,7 @@ size_t brute_force(const TriangleSurface& s) {
     geometry::IndexedTriangle out;
     for (int c = 0; c < 3; ++c) {
       out.vertex[c] = s.triangles[3 * t + c];
-      out.corner[c] = &s.positions[3 * size_t(out.vertex[c])];
+      out.corner[c] = s.positions.data() + 3 * size_t(out.vertex[c]);
     }
     return out;
   };
@@ -250,12 +251,14 @@ TriangleSurface two_spheres() {
   const int32_t offset = int32_t(s.vertex_count());
   const double c = std::cos(0.3), n = std::sin(0.3);
   for (size_t v = 0; v < t.vertex_count(); ++v) {
-    const double x = t.positions[3 * v], y = t.positions[3 * v + 1], z = t.positions[3 * v + 2];
-    s.positions.insert(s.positions.end(), {c * x - n * y + 0.9, n * x + c * y + 0.05, z - 0.03});
+    const double x = t.positions(v, 0), y = t.positions(v, 1), z = t.positions(v, 2);
+    s.positions.push_back({c * x - n * y + 0.9, n * x + c * y + 0.05, z - 0.03});
   }
   for (int32_t i : t.triangles) s.triangles.push_back(i + offset);
   const int32_t big = int32_t(s.vertex_count());
-  s.positions.insert(s.positions.end(), {-3, -3, 0.11, 4, -2.5, 0.13, 0.5, 4, 0.12});
+  s.positions.push_back({-3, -3, 0.11});
+  s.positions.push_back({4, -2.5, 0.13});
+  s.positions.push_back({0.5, 4, 0.12});
   s.triangles.insert(s.triangles.end(), {big, big + 1, big + 2});
   return s;
 }
@@ -298,7 +301,7 @@ TEST(SurfaceIntersections, BadInputNamesTheItem) {
   std::string m = test::error_of([&] { count_self_intersections(bad, o); });
   EXPECT_TRUE(test::contains(m, "limb.obj: triangle 1 names vertex 6 of 6")) << m;
   bad = s;
-  bad.positions[7] = std::nan("");
+  bad.positions(2, 1) = std::nan("");
   m = test::error_of([&] { count_self_intersections(bad, o); });
   EXPECT_TRUE(test::contains(m, "limb.obj: vertex 2 has a non-finite coordinate")) << m;
   bad = s;

@@ -71,7 +71,7 @@ TEST(SurfaceReaders, ObjCornerFormsNegativeIndicesAndPolygons) {
                                                     "f 4 1 5\r\n")
                                              .string());
   EXPECT_EQ(s.vertex_count(), 5u);
-  EXPECT_EQ(s.positions[3 * 4 + 2], 1.0);
+  EXPECT_EQ(s.positions(4, 2), 1.0);
   // The quad fanned from its first corner, then the four sides; -1 is the last vertex.
   const std::vector<int32_t> expected = {0, 3, 2, 0, 2, 1, 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4};
   EXPECT_EQ(s.triangles, expected);
@@ -95,7 +95,7 @@ TEST(SurfaceReaders, PlyAsciiAndBinaryBothEndians) {
              std::to_string(kTetTriangles[3 * f + 2]) + "\n";
   ascii += "0 1\n";
   const TriangleSurface a = read_surface(write_text(dir / "ascii.ply", ascii).string());
-  EXPECT_EQ(a.positions, kTetPositions);
+  EXPECT_EQ(a.positions.xyz(), kTetPositions);
   EXPECT_EQ(a.triangles, kTetTriangles);
 
   for (const bool big : {false, true}) {
@@ -133,7 +133,7 @@ TEST(SurfaceReaders, PlyAsciiAndBinaryBothEndians) {
       put<float>(body, 0.5f, big);
     }
     const TriangleSurface b = read_surface(write_text(dir / (big ? "be.ply" : "le.ply"), header + body).string());
-    EXPECT_EQ(b.positions, kTetPositions) << (big ? "big" : "little");
+    EXPECT_EQ(b.positions.xyz(), kTetPositions) << (big ? "big" : "little");
     EXPECT_EQ(b.triangles, kTetTriangles) << (big ? "big" : "little");
 
     // Cut short inside the faces: the byte offset is named.
@@ -216,12 +216,12 @@ TEST(SurfaceReaders, WriteObjRoundTripsExactly) {
   EXPECT_EQ(back.positions, s.positions);
   EXPECT_EQ(back.triangles, s.triangles);
 
-  std::vector<double> moved = s.positions;
+  std::vector<double> moved = s.positions.xyz();
   for (double& x : moved) x = 2.0 * x + 0.1;
-  write_obj((dir / "moved.obj").string(), s, moved);
-  EXPECT_EQ(read_surface((dir / "moved.obj").string()).positions, moved);
+  write_obj((dir / "moved.obj").string(), s, Points::from_xyz(moved));
+  EXPECT_EQ(read_surface((dir / "moved.obj").string()).positions.xyz(), moved);
 
-  const std::string e = error_of([&] { write_obj((dir / "bad.obj").string(), s, {1.0, 2.0}); });
+  const std::string e = error_of([&] { write_obj((dir / "bad.obj").string(), s, Points(2)); });
   EXPECT_NE(e.find("bad.obj"), std::string::npos) << e;
 }
 
@@ -320,10 +320,11 @@ TEST(SurfaceClosed, FlippedTriangleIsAnOrientationError) {
 TEST(SurfaceClosed, EdgeOfFourTrianglesIsNonManifold) {
   // Two tetrahedra sharing the edge 0-1 only.
   TriangleSurface s;
-  s.positions = kTetPositions;
+  s.positions = Points::from_xyz(kTetPositions);
   s.triangles = kTetTriangles;
   // Vertices 4, 5: the first tetrahedron turned half a turn about x (2 -> 4, 3 -> 5).
-  s.positions.insert(s.positions.end(), {0, -1, 0, 0, 0, -1});
+  s.positions.push_back({0, -1, 0});
+  s.positions.push_back({0, 0, -1});
   const std::vector<int32_t> second = {0, 4, 1, 0, 1, 5, 1, 4, 5, 0, 5, 4};
   s.triangles.insert(s.triangles.end(), second.begin(), second.end());
   const std::string e = error_of([&] { validate_closed_surface(s); });

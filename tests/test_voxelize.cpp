@@ -52,7 +52,7 @@ void expect_consistent(const Voxelization& v) {
   for (size_t e = 0; e < m.element_count(); ++e)
     for (int n = 0; n < 8; ++n)
       for (int d = 0; d < 3; ++d)
-        ASSERT_DOUBLE_EQ(m.positions[3 * m.elements[8 * e + n] + d],
+        ASSERT_DOUBLE_EQ(m.positions(m.elements[8 * e + n], d),
                          v.origin[d] + v.cell * (v.element_cell[e][d] + ((corner[n] >> d) & 1)))
             << "element " << e << " node " << n;
   EXPECT_NEAR(mesh_volume(m, m.positions), m.element_count() * std::pow(v.cell, 3), 1e-9 * m.element_count());
@@ -142,9 +142,9 @@ TEST(Voxelize, ElementCentresAreInsideAndDeepPointsAreCovered) {
   // Face planes of the convex polyhedron: inside is n . p < d for all faces.
   std::vector<std::array<double, 4>> planes;
   for (size_t t = 0; t < sphere.triangle_count(); ++t) {
-    const double* a = &sphere.positions[3 * sphere.triangles[3 * t]];
-    const double* b = &sphere.positions[3 * sphere.triangles[3 * t + 1]];
-    const double* c = &sphere.positions[3 * sphere.triangles[3 * t + 2]];
+    const double* a = sphere.positions.data() + 3 * sphere.triangles[3 * t];
+    const double* b = sphere.positions.data() + 3 * sphere.triangles[3 * t + 1];
+    const double* c = sphere.positions.data() + 3 * sphere.triangles[3 * t + 2];
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -220,7 +220,7 @@ void expect_slit_cut(const TriangleSurface& slit, const TriangleSurface& solid, 
   for (size_t p = 0; p < side.size(); ++p)
     if (side[p] == 3) {
       ++shared;
-      EXPECT_LE(v.lattice.positions[3 * p + 2], 0.5 + 1e-9) << "vertex " << p << " glues the slot's sides";
+      EXPECT_LE(v.lattice.positions(p, 2), 0.5 + 1e-9) << "vertex " << p << " glues the slot's sides";
     }
   EXPECT_GT(shared, 0);
   EXPECT_EQ(v.components, 1);
@@ -244,9 +244,9 @@ TEST(Voxelize, CoverSurfaceAddsTheCellsTheSurfaceCrosses) {
   const TriangleSurface sphere = test::icosphere(3, 1.0);
   std::vector<std::array<double, 4>> planes;  // the convex polyhedron's faces: inside is n . p < d
   for (size_t t = 0; t < sphere.triangle_count(); ++t) {
-    const double* a = &sphere.positions[3 * sphere.triangles[3 * t]];
-    const double* b = &sphere.positions[3 * sphere.triangles[3 * t + 1]];
-    const double* c = &sphere.positions[3 * sphere.triangles[3 * t + 2]];
+    const double* a = sphere.positions.data() + 3 * sphere.triangles[3 * t];
+    const double* b = sphere.positions.data() + 3 * sphere.triangles[3 * t + 1];
+    const double* c = sphere.positions.data() + 3 * sphere.triangles[3 * t + 2];
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -294,7 +294,7 @@ TEST(Voxelize, CoverSurfaceAddsTheCellsTheSurfaceCrosses) {
     for (size_t i = 0; i < sphere.vertex_count(); ++i) {
       const auto& g = v.element_cell[e.element[i]];
       for (int d = 0; d < 3; ++d) {
-        const double u = (sphere.positions[3 * i + d] - v.origin[d]) / h - g[d];
+        const double u = (sphere.positions(i, d) - v.origin[d]) / h - g[d];
         EXPECT_GE(u, -1e-9) << "vertex " << i;
         EXPECT_LE(u, 1 + 1e-9) << "vertex " << i;
       }

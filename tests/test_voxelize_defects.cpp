@@ -40,8 +40,8 @@ TriangleSurface torus(double R, double r, int n, int m) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < m; ++j) {
       const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
-      s.positions.insert(s.positions.end(),
-                         {(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+      s.positions.push_back(
+          {(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
     }
   const auto at = [&](int i, int j) { return ((i % n) * m + j % m); };
   for (int i = 0; i < n; ++i)
@@ -54,7 +54,8 @@ TriangleSurface torus(double R, double r, int n, int m) {
 
 TriangleSurface joined(const TriangleSurface& a, const TriangleSurface& b) {
   TriangleSurface s = a;
-  s.positions.insert(s.positions.end(), b.positions.begin(), b.positions.end());
+  for (size_t v = 0; v < b.vertex_count(); ++v)
+    s.positions.push_back({b.positions(v, 0), b.positions(v, 1), b.positions(v, 2)});
   for (int32_t v : b.triangles) s.triangles.push_back(v + static_cast<int32_t>(a.vertex_count()));
   return s;
 }
@@ -105,7 +106,7 @@ TEST(VoxelizeDefects, OpenedSphereKeepsItsCellsUpToTheSurfaceLayer) {
   std::vector<char> below(closed.vertex_count(), 0);
   const auto centroid = [&](size_t t, int d) {
     double x = 0.0;
-    for (int k = 0; k < 3; ++k) x += closed.positions[3 * closed.triangles[3 * t + k] + d] / 3.0;
+    for (int k = 0; k < 3; ++k) x += closed.positions(closed.triangles[3 * t + k], d) / 3.0;
     return x;
   };
   for (size_t t = 0; t < closed.triangle_count(); ++t)
@@ -124,8 +125,7 @@ TEST(VoxelizeDefects, OpenedSphereKeepsItsCellsUpToTheSurfaceLayer) {
       if (centroid(t, 2) > 0.3 && below[v]) {
         if (copy[v] < 0) {
           copy[v] = static_cast<int32_t>(opened.vertex_count());
-          opened.positions.insert(opened.positions.end(), closed.positions.begin() + 3 * v,
-                                  closed.positions.begin() + 3 * v + 3);
+          opened.positions.push_back({closed.positions(v, 0), closed.positions(v, 1), closed.positions(v, 2)});
         }
         v = copy[v];
       }
@@ -170,8 +170,8 @@ TEST(VoxelizeDefects, OpenedSphereKeepsItsCellsUpToTheSurfaceLayer) {
   // The embedding maps the file's vertices, seam copies included.
   const Embedding e = embed(b, opened);
   EXPECT_EQ(e.element.size(), opened.vertex_count());
-  const std::vector<double> x = embedded_positions(e, b.lattice, b.lattice.positions);
-  for (size_t i = 0; i < x.size(); ++i) ASSERT_NEAR(x[i], opened.positions[i], 1e-12);
+  const Points x = embedded_positions(e, b.lattice, b.lattice.positions);
+  for (size_t i = 0; i < x.xyz().size(); ++i) ASSERT_NEAR(x.xyz()[i], opened.positions.xyz()[i], 1e-12);
 }
 
 TEST(VoxelizeDefects, SeparateShellsAreSeparateComponents) {
@@ -248,14 +248,14 @@ TEST(VoxelizeDefects, WhatCannotBeVoxelizedIsAnErrorNamingTheFile) {
   const std::string none = error_of([&] { voxelize(TriangleSurface{}, 0.1, named); });
   EXPECT_EQ(none, "bad.obj: the surface has no triangles");
   TriangleSurface box = test::box_surface({0, 0, 0}, {1, 1, 1});
-  box.positions[7] = HUGE_VAL;
+  box.positions(2, 1) = HUGE_VAL;
   const std::string inf = error_of([&] { voxelize(box, 0.1, named); });
   EXPECT_EQ(inf.rfind("bad.obj: vertex 2 has a non-finite coordinate (y = inf)", 0), 0u) << inf;
   // A lone triangle encloses nothing. A box facing inwards is an inside-out
   // skin: voxelized as its outward twin, with a warning naming the shell;
   // strict keeps refusing it.
   TriangleSurface sheet;
-  sheet.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  sheet.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   sheet.triangles = {0, 1, 2};
   const std::string empty = error_of([&] { voxelize(sheet, 0.1, named); });
   EXPECT_EQ(empty.rfind("bad.obj: voxelize: no cell centre lies inside the surface", 0), 0u) << empty;

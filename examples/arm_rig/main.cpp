@@ -51,14 +51,14 @@ int main(int argc, char** argv) {
     // Simulation interpolates rotations about); the upper arm stays at rest.
     std::array<double, 3> centroid{0, 0, 0};
     for (int32_t v : sets[1].vertices)
-      for (int d = 0; d < 3; ++d) centroid[d] += voxels.lattice.positions[3 * v + d] / sets[1].vertices.size();
+      for (int d = 0; d < 3; ++d) centroid[d] += voxels.lattice.positions(size_t(v), d) / sets[1].vertices.size();
     const snh::Animation flexion = snh::read_animation(data + "/arm_flexion.json");
     const auto named = std::find(flexion.bones.begin(), flexion.bones.end(), "forearm");
     if (named == flexion.bones.end()) throw snh::Error("arm_flexion.json does not animate the forearm");
     const size_t forearm = static_cast<size_t>(named - flexion.bones.begin());
 
     const size_t hand = arm.vertex_count() - 1;  // make_arm.py: the hand's tip (4, 0, 0) comes last
-    std::vector<double> surface;
+    snh::Points surface;
     snh::Matrix4 m = snh::identity_matrix4();
     bool converged = true;
     for (int f = 0; f < frames && f < static_cast<int>(flexion.frame_count()); ++f) {
@@ -69,14 +69,14 @@ int main(int argc, char** argv) {
       surface = snh::embedded_positions(embedding, voxels.lattice, sim.positions());
       std::printf("frame %d: %s, %zu Newton, min J %.3f; hand at (%.3f, %.3f, %.3f)\n", f,
                   r.converged ? "converged" : to_string(r.steps.back().status), r.history.size(), r.min_j,
-                  surface[3 * hand], surface[3 * hand + 1], surface[3 * hand + 2]);
+                  surface(hand, 0), surface(hand, 1), surface(hand, 2));
     }
     // The hand follows the forearm bone's transform closely.
-    const double* p = &arm.positions[3 * hand];
+    const double* p = arm.positions.data() + 3 * hand;
     double miss = 0.0;
     for (int r = 0; r < 3; ++r) {
       const double target = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
-      miss = std::max(miss, std::abs(surface[3 * hand + r] - target));
+      miss = std::max(miss, std::abs(surface(hand, r) - target));
     }
     std::filesystem::create_directories(out);
     snh::write_obj(out + "/arm_last_frame.obj", arm, surface);

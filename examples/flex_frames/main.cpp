@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
       // The bones carry the limb's weight: their reactions balance gravity.
       double carried = 0.0, weight = 0.0;
       for (const snh::Reaction& b : reactions) carried += b.force[2];
-      for (size_t v = 0; v < limb.vertex_count(); ++v) weight -= sim.applied_force()[3 * v + 2];
+      for (size_t v = 0; v < limb.vertex_count(); ++v) weight -= sim.applied_force()(v, 2);
       balanced = balanced && std::abs(carried - weight) <= 1e-3 * weight;
       std::printf("frame %d: %.0f deg, %zu Newton, %s, min J %.3f; bones carry %.3f N of %.3f N weight\n", frame,
                   angle * 180 / M_PI, r.history.size(), r.converged ? "converged" : to_string(r.steps.back().status),

@@ -11,8 +11,8 @@ int main() {
     snh::Mesh bar = snh::make_box_lattice(6, 2, 2, 0.5);  // 3 x 1 x 1
     std::vector<int32_t> left_end, right_end;
     for (size_t v = 0; v < bar.vertex_count(); ++v) {
-      if (bar.positions[3 * v] < 1e-9) left_end.push_back(static_cast<int32_t>(v));
-      if (bar.positions[3 * v] > 3.0 - 1e-9) right_end.push_back(static_cast<int32_t>(v));
+      if (bar.positions(v, 0) < 1e-9) left_end.push_back(static_cast<int32_t>(v));
+      if (bar.positions(v, 0) > 3.0 - 1e-9) right_end.push_back(static_cast<int32_t>(v));
     }
     const auto held = snh::ConstraintSet::fixed("held", left_end);
     const auto pulled = snh::ConstraintSet::moving("pulled", right_end, [](double t) {

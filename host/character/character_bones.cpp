@@ -78,8 +78,8 @@ bool segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const V
 double segment_surface_distance(const Vec3& a, const Vec3& b, const TriangleSurface& s) {
   for (size_t k = 0; k < s.triangle_count(); ++k) {
     const auto v = [&](int c) {
-      const size_t i3 = 3 * static_cast<size_t>(s.triangles[3 * k + c]);
-      return Vec3{s.positions[i3], s.positions[i3 + 1], s.positions[i3 + 2]};
+      const size_t i = static_cast<size_t>(s.triangles[3 * k + c]);
+      return Vec3{s.positions(i, 0), s.positions(i, 1), s.positions(i, 2)};
     };
     if (segment_meets_triangle(a, b, v(0), v(1), v(2))) return 0.0;
   }
@@ -90,8 +90,8 @@ double segment_surface_distance(const Vec3& a, const Vec3& b, const TriangleSurf
     const Vec3 p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
     for (size_t k = 0; k < s.triangle_count(); ++k) {
       const auto v = [&](int c) {
-        const size_t i3 = 3 * static_cast<size_t>(s.triangles[3 * k + c]);
-        return Vec3{s.positions[i3], s.positions[i3 + 1], s.positions[i3 + 2]};
+        const size_t vertex = static_cast<size_t>(s.triangles[3 * k + c]);
+        return Vec3{s.positions(vertex, 0), s.positions(vertex, 1), s.positions(vertex, 2)};
       };
       best = std::min(best, point_triangle_distance2(p, v(0), v(1), v(2)));
     }
@@ -206,8 +206,8 @@ CharacterBones character_bones(const Character& character, const CharacterBoneOp
     const Vec3 dir = sub(a, character.joints[p].rest_position);
     const double length = norm(dir);
     if (!(length > 0.0)) continue;
-    const Vec3 x{character.surface.positions[3 * v], character.surface.positions[3 * v + 1],
-                 character.surface.positions[3 * v + 2]};
+    const Vec3 x{character.surface.positions(v, 0), character.surface.positions(v, 1),
+                 character.surface.positions(v, 2)};
     reach[j] = std::max(reach[j], dot(sub(x, a), dir) / length);
   }
   const auto end_of = [&](size_t j, Vec3& end) {
@@ -349,7 +349,7 @@ void keep_bones_that_hold(const Character& character, CharacterRig& rig) {
 
 double character_cell(const Character& character, int resolution) {
   if (resolution < 1) throw Error(character.file + ": resolution must be >= 1 cell, got " + std::to_string(resolution));
-  const std::vector<double>& x = character.surface.positions;
+  const std::vector<double>& x = character.surface.positions.xyz();
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (size_t i = 0; i + 2 < x.size(); i += 3)
     for (int d = 0; d < 3; ++d) {
@@ -433,7 +433,7 @@ CharacterRig prepare_character(const Character& character, double cell, const Ch
   double diagonal = 0.0;
   {
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    const std::vector<double>& x = character.surface.positions;
+    const std::vector<double>& x = character.surface.positions.xyz();
     for (size_t i = 0; i + 2 < x.size(); i += 3)
       for (int d = 0; d < 3; ++d) {
         lo[d] = std::min(lo[d], x[i + d]);
@@ -453,8 +453,8 @@ CharacterRig prepare_character(const Character& character, double cell, const Ch
     const double d = welded.distance[w];
     if (d > farthest) {
       std::ostringstream m;
-      m << character.file << ": surface vertex " << v << " at (" << character.surface.positions[3 * v] << ", "
-        << character.surface.positions[3 * v + 1] << ", " << character.surface.positions[3 * v + 2] << ") is " << d
+      m << character.file << ": surface vertex " << v << " at (" << character.surface.positions(v, 0) << ", "
+        << character.surface.positions(v, 1) << ", " << character.surface.positions(v, 2) << ") is " << d
         << " from the nearest lattice element, farther than " << farthest
         << " (4 cells, or a quarter of the skin's diagonal): geometry far from everything else cannot follow the "
            "flesh (a smaller cell fills thin parts)";
@@ -489,8 +489,8 @@ CharacterRig prepare_character(const Character& character, double cell, const Ch
     }
     welded_weights.offset.push_back(static_cast<int32_t>(welded_weights.joint.size()));
   }
-  rig.lattice_weights = carried_weights(rig.voxels.lattice.positions, character.welded.positions, welded_weights,
-                                        character.joints.size(), 4);
+  rig.lattice_weights = carried_weights(rig.voxels.lattice.positions.xyz(), character.welded.positions.xyz(),
+                                        welded_weights, character.joints.size(), 4);
   return rig;
 }
 

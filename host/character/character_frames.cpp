@@ -23,7 +23,7 @@ std::vector<CharacterFrame> run_character_frames(Simulation& simulation, const C
   std::vector<CharacterFrame> frames;
   // The lattice's skinned positions of the frame before (the rest shape
   // before the first frame, where the state starts).
-  std::vector<double> skinned_before = simulation.mesh().positions;
+  Points skinned_before = simulation.mesh().positions;
   for (size_t f = 0; f < all.frame_count(); ++f) {
     const std::vector<Matrix4>& skinning = character.clip.skinning[f];
     if (options.skinned_guess) {
@@ -31,10 +31,11 @@ std::vector<CharacterFrame> run_character_frames(Simulation& simulation, const C
       // it keeps what the solve added to skinning (volume at the inside of
       // a bend, which skinning alone loses and a start from it would have
       // to restore through inverted elements).
-      const std::vector<double> skinned =
-          linear_blend_skinning(simulation.mesh().positions, rig.lattice_weights, skinning);
-      std::vector<double> guess = simulation.positions();
-      for (size_t i = 0; i < guess.size(); ++i) guess[i] += skinned[i] - skinned_before[i];
+      const Points skinned = linear_blend_skinning(simulation.mesh().positions, rig.lattice_weights, skinning);
+      Points guess = simulation.positions();
+      double* g = guess.data();
+      const double *now = skinned.data(), *before = skinned_before.data();
+      for (size_t i = 0; i < guess.xyz().size(); ++i) g[i] += now[i] - before[i];
       simulation.set_state(guess);
       skinned_before = skinned;
     }
@@ -43,9 +44,9 @@ std::vector<CharacterFrame> run_character_frames(Simulation& simulation, const C
     one.times = {all.times[f]};
     one.transforms = {all.transforms[f]};
     CharacterFrame frame;
-    std::vector<double> lattice, surface;
+    Points lattice, surface;
     run_frames(simulation, one, &rig.embedding, options.frames,
-               [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>& s) {
+               [&](const FrameRecord& r, const Points& x, const Points& s) {
                  frame.record = r;
                  lattice = x;
                  surface = s;
@@ -53,14 +54,13 @@ std::vector<CharacterFrame> run_character_frames(Simulation& simulation, const C
                });
     frame.record.frame = character.clip.first_frame + static_cast<int>(f);
     frame.record.time = all.times[f];
-    const std::vector<double> skinned = linear_blend_skinning(character.surface.positions, character.weights, skinning);
-    const size_t n = skinned.size() / 3;
+    const Points skinned = linear_blend_skinning(character.surface.positions, character.weights, skinning);
+    const size_t n = skinned.size();
     double sum = 0.0;
     bool finite = true;
     for (size_t v = 0; v < n; ++v) {
       double d2 = 0.0;
-      for (int d = 0; d < 3; ++d)
-        d2 += (surface[3 * v + d] - skinned[3 * v + d]) * (surface[3 * v + d] - skinned[3 * v + d]);
+      for (int d = 0; d < 3; ++d) d2 += (surface(v, d) - skinned(v, d)) * (surface(v, d) - skinned(v, d));
       const double d = std::sqrt(d2);
       finite = finite && std::isfinite(d);
       frame.lbs.max_distance = std::max(frame.lbs.max_distance, d);

@@ -204,7 +204,7 @@ void weld(Character& c, double distance) {
   c.welded_index.assign(n, -1);
   c.welded = TriangleSurface{};
   for (size_t v = 0; v < n; ++v) {
-    const double* p = &c.surface.positions[3 * v];
+    const double* p = c.surface.positions.data() + 3 * v;
     const long long ci = cell(p[0]), cj = cell(p[1]), ck = cell(p[2]);
     int32_t found = -1;
     for (long long i = ci - 1; i <= ci + 1 && found < 0; ++i)
@@ -213,7 +213,7 @@ void weld(Character& c, double distance) {
           const auto it = grid.find(key(i, j, k));
           if (it == grid.end()) continue;
           for (int32_t w : it->second) {
-            const double* q = &c.welded.positions[3 * static_cast<size_t>(w)];
+            const double* q = c.welded.positions.data() + 3 * static_cast<size_t>(w);
             const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
             if (dx * dx + dy * dy + dz * dz <= h * h) {
               found = w;
@@ -223,7 +223,7 @@ void weld(Character& c, double distance) {
         }
     if (found < 0) {
       found = static_cast<int32_t>(c.welded.vertex_count());
-      c.welded.positions.insert(c.welded.positions.end(), p, p + 3);
+      c.welded.positions.push_back({p[0], p[1], p[2]});
       grid[key(ci, cj, ck)].push_back(found);
     }
     c.welded_index[v] = found;
@@ -249,8 +249,8 @@ void finish_character(Character& c, const CharacterReadOptions& options) {
     std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (size_t v = 0; v < c.surface.vertex_count(); ++v)
       for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], c.surface.positions[3 * v + d]);
-        hi[d] = std::max(hi[d], c.surface.positions[3 * v + d]);
+        lo[d] = std::min(lo[d], c.surface.positions(v, d));
+        hi[d] = std::max(hi[d], c.surface.positions(v, d));
       }
     for (int d = 0; d < 3; ++d) diagonal += (hi[d] - lo[d]) * (hi[d] - lo[d]);
     diagonal = std::sqrt(diagonal);
@@ -367,7 +367,7 @@ void read_skin(const std::string& path, const aiScene* scene, const std::map<std
       const aiVector3D& p = mesh->mVertices[v];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         fail(path, mesh_name + ": vertex " + std::to_string(v) + " has a non-finite position");
-      c.surface.positions.insert(c.surface.positions.end(), {p.x, p.y, p.z});
+      c.surface.positions.push_back({p.x, p.y, p.z});
     }
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];

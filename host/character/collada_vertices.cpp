@@ -680,7 +680,7 @@ std::string collapse_collada_corners(const std::string& path, const std::vector<
         bool same = true;
         for (size_t c = 0; c < g.corners[p].size() && same; ++c)
           for (int d = 0; d < 3 && same; ++d)
-            same = near(surface.positions[3 * (m.first + c) + d], g.positions[3 * g.corners[p][c] + d]);
+            same = near(surface.positions(m.first + c, d), g.positions[3 * g.corners[p][c] + d]);
         if (same) chosen = static_cast<int>(p);
       }
       if (chosen < 0)
@@ -709,7 +709,8 @@ std::string collapse_collada_corners(const std::string& path, const std::vector<
     const XmlElement* scenes = root.child("library_visual_scenes");
     for (const std::string& id : order) {
       const Geometry& g = geometries[id];
-      out.positions.insert(out.positions.end(), g.positions.begin(), g.positions.end());
+      for (size_t k = 0; k + 2 < g.positions.size(); k += 3)
+        out.positions.push_back({g.positions[k], g.positions[k + 1], g.positions[k + 2]});
       std::vector<std::vector<std::pair<std::string, double>>> skin_rows;
       bool skin_read = false;
       std::map<std::string, int32_t> joint_of;

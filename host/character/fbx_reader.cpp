@@ -248,7 +248,7 @@ void read_skin(const std::string& path, const SkinnedMeshes& skinned, const FbxJ
       const ufbx_vec3& p = mesh->vertices.data[v];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         fail(path, mesh_names[m] + ": vertex " + std::to_string(v) + " has a non-finite position");
-      c.surface.positions.insert(c.surface.positions.end(), {p.x, p.y, p.z});
+      c.surface.positions.push_back({p.x, p.y, p.z});
     }
     corners.resize(3 * std::max<size_t>(mesh->max_face_triangles, 1));
     for (size_t f = 0; f < mesh->faces.count; ++f) {

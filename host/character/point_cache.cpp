@@ -161,21 +161,21 @@ CharacterCacheSeries::CharacterCacheSeries(const Character& character, std::stri
   }
 }
 
-void CharacterCacheSeries::add(int clip_frame, const std::vector<double>& surface) {
+void CharacterCacheSeries::add(int clip_frame, const Points& surface) {
   const Character& c = *character_;
   const int frame = clip_frame - c.clip.first_frame;
   if (frame < 0 || static_cast<size_t>(frame) >= c.clip.frame_count())
     throw Error(c.file + ": point cache: frame " + std::to_string(clip_frame) + " is not among the sampled frames " +
                 std::to_string(c.clip.first_frame) + ".." +
                 std::to_string(c.clip.first_frame + static_cast<int>(c.clip.frame_count()) - 1));
-  if (surface.size() != 3 * c.surface.vertex_count())
-    throw Error(c.file + ": point cache: " + std::to_string(surface.size() / 3) + " positions for " +
+  if (surface.size() != c.surface.vertex_count())
+    throw Error(c.file + ": point cache: " + std::to_string(surface.size()) + " positions for " +
                 std::to_string(c.surface.vertex_count()) + " vertices");
-  simulated_.samples.emplace_back(surface.begin(), surface.end());
+  simulated_.samples.emplace_back(surface.xyz().begin(), surface.xyz().end());
   simulated_.times.push_back(c.clip.times[frame]);
   if (!lbs_.empty()) {
-    const std::vector<double> s = linear_blend_skinning(c.surface.positions, c.weights, c.clip.skinning[frame]);
-    skinned_.samples.emplace_back(s.begin(), s.end());
+    const Points s = linear_blend_skinning(c.surface.positions, c.weights, c.clip.skinning[frame]);
+    skinned_.samples.emplace_back(s.xyz().begin(), s.xyz().end());
     skinned_.times.push_back(c.clip.times[frame]);
   }
 }

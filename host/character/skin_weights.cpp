@@ -122,7 +122,7 @@ void resolve_skin_weights(Character& c, const CharacterReadOptions& options) {
   }
   if (having.empty()) throw Error(c.file + ": no skin vertex has a weight for any joint");
   if (!wanting.empty()) {
-    const std::vector<size_t> source = nearest_of(c.surface.positions, having, wanting);
+    const std::vector<size_t> source = nearest_of(c.surface.positions.xyz(), having, wanting);
     for (size_t k = 0; k < wanting.size(); ++k) rows[wanting[k]] = rows[source[k]];
     c.warnings.push_back("skin weights: " + std::to_string(wanting.size()) + " of " + std::to_string(n) +
                          " vertices have no weight; each follows its nearest weighted vertex (first: vertex " +

@@ -60,15 +60,14 @@ Matrix4 inverse_matrix4(const Matrix4& m) {
   return out;
 }
 
-std::vector<double> linear_blend_skinning(const std::vector<double>& rest, const SkinWeights& weights,
-                                          const std::vector<Matrix4>& matrices) {
-  const size_t n = rest.size() / 3;
-  if (rest.size() != 3 * n || weights.vertex_count() != n)
+Points linear_blend_skinning(const Points& rest, const SkinWeights& weights, const std::vector<Matrix4>& matrices) {
+  const size_t n = rest.size();
+  if (weights.vertex_count() != n)
     throw Error("linear_blend_skinning: " + std::to_string(weights.vertex_count()) + " weight rows for " +
                 std::to_string(n) + " vertices");
-  std::vector<double> out(3 * n, 0.0);
+  Points out(n);
   for (size_t v = 0; v < n; ++v) {
-    const double* x = &rest[3 * v];
+    const double* x = rest.data() + 3 * v;
     for (int32_t k = weights.offset[v]; k < weights.offset[v + 1]; ++k) {
       const int32_t j = weights.joint[k];
       if (j < 0 || static_cast<size_t>(j) >= matrices.size())
@@ -77,7 +76,7 @@ std::vector<double> linear_blend_skinning(const std::vector<double>& rest, const
       const Matrix4& m = matrices[j];
       const double w = weights.weight[k];
       for (int d = 0; d < 3; ++d)
-        out[3 * v + d] += w * (m[4 * d] * x[0] + m[4 * d + 1] * x[1] + m[4 * d + 2] * x[2] + m[4 * d + 3]);
+        out(v, d) += w * (m[4 * d] * x[0] + m[4 * d + 1] * x[1] + m[4 * d + 2] * x[2] + m[4 * d + 3]);
     }
   }
   return out;

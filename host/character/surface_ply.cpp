@@ -7,10 +7,10 @@
 
 namespace snh {
 
-void write_surface_ply(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x) {
-  const std::vector<double>& p = x.empty() ? surface.positions : x;
-  if (p.size() != surface.positions.size())
-    throw Error(path + ": " + std::to_string(p.size() / 3) + " positions for a surface of " +
+void write_surface_ply(const std::string& path, const TriangleSurface& surface, const Points& x) {
+  const Points& p = x.empty() ? surface.positions : x;
+  if (p.size() != surface.vertex_count())
+    throw Error(path + ": " + std::to_string(p.size()) + " positions for a surface of " +
                 std::to_string(surface.vertex_count()) + " vertices");
   std::string b = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(surface.vertex_count()) +
                   "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
@@ -22,7 +22,7 @@ void write_surface_ply(const std::string& path, const TriangleSurface& surface, 
     const bool little = *reinterpret_cast<const unsigned char*>(&one) == 1;
     for (size_t i = 0; i < n; ++i) b.push_back(static_cast<char>(c[little ? i : n - 1 - i]));
   };
-  for (double v : p) {
+  for (double v : p.xyz()) {
     const float f = static_cast<float>(v);
     put(&f, 4);
   }

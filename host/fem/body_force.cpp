@@ -7,7 +7,7 @@
 
 namespace snh {
 
-std::vector<double> lump_body_force(const Mesh& mesh, const std::array<double, 3>& force_per_rest_volume) {
+Points lump_body_force(const Mesh& mesh, const std::array<double, 3>& force_per_rest_volume) {
   // The rest-state code trusts the indices, so the mesh is checked first.
   validate_mesh(mesh);
   const fem::RestState rest = fem::compute_rest_state(mesh);
@@ -26,13 +26,13 @@ std::vector<double> lump_body_force(const Mesh& mesh, const std::array<double, 3
       }
     }
   }
-  std::vector<double> f(mesh.positions.size(), 0.0);
+  Points f(mesh.vertex_count());
   for (size_t e = 0; e < mesh.element_count(); ++e)
     for (int q = 0; q < rest.quadrature; ++q) {
       const double w = rest.weight(e, q);
       for (int a = 0; a < n; ++a) {
         const int32_t v = mesh.elements[n * e + a];
-        for (int d = 0; d < 3; ++d) f[3 * v + d] += w * shape[n * q + a] * force_per_rest_volume[d];
+        for (int d = 0; d < 3; ++d) f(v, d) += w * shape[n * q + a] * force_per_rest_volume[d];
       }
     }
   return f;
@@ -41,9 +41,9 @@ std::vector<double> lump_body_force(const Mesh& mesh, const std::array<double, 3
 std::vector<double> lumped_mass(const Mesh& mesh, double density) {
   if (!(density > 0.0) || !std::isfinite(density))
     throw Error("lumped_mass: density must be finite and > 0 (got " + std::to_string(density) + ")");
-  const std::vector<double> f = lump_body_force(mesh, {density, 0.0, 0.0});
+  const Points f = lump_body_force(mesh, {density, 0.0, 0.0});
   std::vector<double> m(mesh.vertex_count());
-  for (size_t v = 0; v < m.size(); ++v) m[v] = f[3 * v];
+  for (size_t v = 0; v < m.size(); ++v) m[v] = f(v, 0);
   return m;
 }
 

@@ -14,10 +14,10 @@ namespace snh::fem {
 
 BoundaryFaces boundary_faces(const Mesh& mesh, const std::string& context) {
   const int n = nodes_per_element(mesh.type);
-  if (mesh.positions.size() % 3 != 0 || mesh.elements.size() % n != 0) {
+  if (mesh.positions.xyz().size() % 3 != 0 || mesh.elements.size() % n != 0) {
     std::ostringstream s;
-    s << context << ": the mesh is malformed (" << mesh.positions.size() << " position values, " << mesh.elements.size()
-      << " element indices for " << to_string(mesh.type) << ")";
+    s << context << ": the mesh is malformed (" << mesh.positions.xyz().size() << " position values, "
+      << mesh.elements.size() << " element indices for " << to_string(mesh.type) << ")";
     throw Error(s.str());
   }
   for (size_t i = 0; i < mesh.elements.size(); ++i)
@@ -86,17 +86,19 @@ BoundaryFaces boundary_faces(const Mesh& mesh, const std::string& context) {
 
 namespace snh {
 
-MeshBoundary boundary_surface(const Mesh& mesh, const std::vector<double>& x) {
+MeshBoundary boundary_surface(const Mesh& mesh, const Points& x) {
   const fem::BoundaryFaces faces = fem::boundary_faces(mesh, "boundary_surface");
-  const std::vector<double>& p = x.empty() ? mesh.positions : x;
-  if (p.size() != mesh.positions.size())
-    throw Error("boundary_surface: the positions have " + std::to_string(p.size()) + " values, but the mesh has " +
-                std::to_string(mesh.vertex_count()) + " vertices");
+  const Points& p = x.empty() ? mesh.positions : x;
+  if (p.size() != mesh.vertex_count())
+    throw Error("boundary_surface: the positions have " + std::to_string(p.xyz().size()) +
+                " values, but the mesh has " + std::to_string(mesh.vertex_count()) + " vertices");
   MeshBoundary b;
   b.vertices = faces.vertices;
-  b.surface.positions.reserve(3 * faces.vertices.size());
-  for (int32_t v : faces.vertices)
-    for (int d = 0; d < 3; ++d) b.surface.positions.push_back(p[3 * static_cast<size_t>(v) + d]);
+  b.surface.positions.reserve(faces.vertices.size());
+  for (int32_t v : faces.vertices) {
+    const size_t i = static_cast<size_t>(v);
+    b.surface.positions.push_back({p(i, 0), p(i, 1), p(i, 2)});
+  }
   const size_t count = faces.faces.size() / faces.corners;
   b.surface.triangles.reserve(3 * count * (faces.corners - 2));
   for (size_t f = 0; f < count; ++f) {

@@ -17,9 +17,10 @@ namespace {
 constexpr size_t kNamed = 5;  // edges named per kind in an error message
 
 void check_arrays(const TriangleSurface& s, const std::string& name = "surface") {
-  if (s.positions.size() % 3 != 0) {
+  if (s.positions.xyz().size() % 3 != 0) {
     std::ostringstream m;
-    m << name << ": the position array has " << s.positions.size() << " values, not a multiple of 3 (xyz per vertex)";
+    m << name << ": the position array has " << s.positions.xyz().size()
+      << " values, not a multiple of 3 (xyz per vertex)";
     throw Error(m.str());
   }
   if (s.triangles.size() % 3 != 0) {
@@ -28,11 +29,12 @@ void check_arrays(const TriangleSurface& s, const std::string& name = "surface")
     throw Error(m.str());
   }
   if (s.triangle_count() == 0) throw Error(name + ": it has no triangles");
-  for (size_t i = 0; i < s.positions.size(); ++i)
-    if (!std::isfinite(s.positions[i])) {
+  const std::vector<double>& xyz = s.positions.xyz();
+  for (size_t i = 0; i < xyz.size(); ++i)
+    if (!std::isfinite(xyz[i])) {
       std::ostringstream m;
       m << name << ": vertex " << i / 3 << " has a non-finite coordinate ("
-        << "xyz"[i % 3] << " = " << s.positions[i] << ")";
+        << "xyz"[i % 3] << " = " << xyz[i] << ")";
       throw Error(m.str());
     }
   for (size_t t = 0; t < s.triangle_count(); ++t) {
@@ -54,7 +56,7 @@ void check_arrays(const TriangleSurface& s, const std::string& name = "surface")
 
 std::string vertex_text(const TriangleSurface& s, int32_t v) {
   std::ostringstream m;
-  m << v << " (" << s.positions[3 * v] << ", " << s.positions[3 * v + 1] << ", " << s.positions[3 * v + 2] << ")";
+  m << v << " (" << s.positions(v, 0) << ", " << s.positions(v, 1) << ", " << s.positions(v, 2) << ")";
   return m.str();
 }
 

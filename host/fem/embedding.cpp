@@ -111,7 +111,7 @@ void check_voxelization(const Voxelization& voxels) {
 
 Embedding embed_impl(const Voxelization& voxels, const TriangleSurface& surface, std::vector<double>* far) {
   check_voxelization(voxels);
-  if (surface.positions.size() % 3 != 0) throw Error("embed: the surface's positions are not xyz triples");
+  if (surface.positions.xyz().size() % 3 != 0) throw Error("embed: the surface's positions are not xyz triples");
   std::unordered_map<int64_t, int32_t> element_of_cell;
   element_of_cell.reserve(voxels.element_cell.size());
   for (size_t e = 0; e < voxels.element_cell.size(); ++e) {
@@ -130,7 +130,7 @@ Embedding embed_impl(const Voxelization& voxels, const TriangleSurface& surface,
   out.weights.resize(8 * n);
   for (size_t v = 0; v < n; ++v) {
     double u[3];
-    for (int d = 0; d < 3; ++d) u[d] = (surface.positions[3 * v + d] - voxels.origin[d]) / voxels.cell;
+    for (int d = 0; d < 3; ++d) u[d] = (surface.positions(v, d) - voxels.origin[d]) / voxels.cell;
     if (!std::isfinite(u[0]) || !std::isfinite(u[1]) || !std::isfinite(u[2])) {
       std::ostringstream s;
       s << "embed: surface vertex " << v << " has a non-finite position";
@@ -215,8 +215,8 @@ Embedding embed_impl(const Voxelization& voxels, const TriangleSurface& surface,
     }
     if (best_element < 0 || best_distance > kMaxDistance) {
       std::ostringstream s;
-      s << "embed: surface vertex " << v << " at (" << surface.positions[3 * v] << ", " << surface.positions[3 * v + 1]
-        << ", " << surface.positions[3 * v + 2] << ") lies in no element and more than one cell (" << voxels.cell
+      s << "embed: surface vertex " << v << " at (" << surface.positions(v, 0) << ", " << surface.positions(v, 1)
+        << ", " << surface.positions(v, 2) << ") lies in no element and more than one cell (" << voxels.cell
         << ") from every element: is this the surface the lattice was voxelized from?";
       throw Error(s.str());
     }
@@ -241,12 +241,12 @@ CarriedEmbedding embed_carrying_all(const Voxelization& voxels, const TriangleSu
   return out;
 }
 
-std::vector<double> embedded_positions(const Embedding& embedding, const Mesh& lattice, const std::vector<double>& x) {
+Points embedded_positions(const Embedding& embedding, const Mesh& lattice, const Points& x) {
   if (lattice.type != ElementType::hex8) throw Error("embedded_positions: the lattice is not hex8");
-  if (x.size() != lattice.positions.size()) {
+  if (x.size() != lattice.vertex_count()) {
     std::ostringstream s;
-    s << "embedded_positions: the positions have " << x.size() << " values, but the lattice has "
-      << lattice.vertex_count() << " vertices (" << lattice.positions.size() << " values expected)";
+    s << "embedded_positions: the positions have " << x.xyz().size() << " values, but the lattice has "
+      << lattice.vertex_count() << " vertices (" << lattice.positions.xyz().size() << " values expected)";
     throw Error(s.str());
   }
   const size_t n = embedding.element.size();
@@ -257,7 +257,9 @@ std::vector<double> embedded_positions(const Embedding& embedding, const Mesh& l
     throw Error(s.str());
   }
   const size_t elements = lattice.element_count();
-  std::vector<double> out(3 * n, 0.0);
+  Points out(n);
+  const double* px = x.data();
+  double* po = out.data();
   for (size_t v = 0; v < n; ++v) {
     const int32_t e = embedding.element[v];
     if (e < 0 || static_cast<size_t>(e) >= elements) {
@@ -269,7 +271,7 @@ std::vector<double> embedded_positions(const Embedding& embedding, const Mesh& l
     for (int a = 0; a < 8; ++a) {
       const size_t node = static_cast<size_t>(lattice.elements[8 * static_cast<size_t>(e) + a]);
       const double w = embedding.weights[8 * v + a];
-      for (int d = 0; d < 3; ++d) out[3 * v + d] += w * x[3 * node + d];
+      for (int d = 0; d < 3; ++d) po[3 * v + d] += w * px[3 * node + d];
     }
   }
   return out;

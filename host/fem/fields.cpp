@@ -126,8 +126,9 @@ void check_vector(const std::string& set, const char* what, const std::vector<do
 
 }  // namespace
 
-ElementFields compute_element_fields(const Mesh& mesh, const MaterialMap& materials, const std::vector<double>& x) {
+ElementFields compute_element_fields(const Mesh& mesh, const MaterialMap& materials, const Points& points) {
   const char* who = "compute_element_fields";
+  const std::vector<double>& x = points.xyz();
   const std::vector<MaterialSpec> specs = checked_specs(who, mesh, materials, x);
   const fem::RestState rest = fem::compute_rest_state(mesh);
   const size_t elements = mesh.element_count();
@@ -219,12 +220,13 @@ std::vector<VtuCellField> element_fields_for_vtu(const ElementFields& fields, co
   return out;
 }
 
-std::vector<double> elastic_forces(const Mesh& mesh, const MaterialMap& materials, const std::vector<double>& x) {
+Points elastic_forces(const Mesh& mesh, const MaterialMap& materials, const Points& points) {
   const char* who = "elastic_forces";
+  const std::vector<double>& x = points.xyz();
   const std::vector<MaterialSpec> specs = checked_specs(who, mesh, materials, x);
   const fem::RestState rest = fem::compute_rest_state(mesh);
   const int n = rest.nodes;
-  std::vector<double> forces(x.size(), 0.0);
+  Points forces(points.size());
   std::vector<double> element_force(3 * static_cast<size_t>(n));
   // Each element's forces are summed over its points first, then added to
   // its vertices in element order: one fixed order, whatever the mesh.
@@ -245,20 +247,20 @@ std::vector<double> elastic_forces(const Mesh& mesh, const MaterialMap& material
     }
     const int32_t* nodes = mesh.elements.data() + static_cast<size_t>(n) * e;
     for (int a = 0; a < n; ++a)
-      for (int i = 0; i < 3; ++i) forces[3 * static_cast<size_t>(nodes[a]) + i] += element_force[3 * a + i];
+      for (int i = 0; i < 3; ++i) forces(static_cast<size_t>(nodes[a]), i) += element_force[3 * a + i];
   }
   return forces;
 }
 
 Reaction reaction(const std::string& name, const std::vector<int32_t>& vertices, const std::array<bool, 3>& components,
-                  const std::vector<double>& x, const std::vector<double>& elastic_force,
-                  const std::vector<double>& external_force, const std::array<double, 3>& about) {
-  if (x.size() % 3 != 0)
-    throw Error("reaction of constraint set '" + name + "': x has " + std::to_string(x.size()) +
+                  const Points& x, const Points& elastic_force, const Points& external_force,
+                  const std::array<double, 3>& about) {
+  if (x.xyz().size() % 3 != 0)
+    throw Error("reaction of constraint set '" + name + "': x has " + std::to_string(x.xyz().size()) +
                 " values, not xyz per vertex");
-  const size_t count = x.size() / 3;
-  check_vector(name, "elastic_force", elastic_force, x.size());
-  if (!external_force.empty()) check_vector(name, "external_force", external_force, x.size());
+  const size_t count = x.size();
+  check_vector(name, "elastic_force", elastic_force.xyz(), x.xyz().size());
+  if (!external_force.empty()) check_vector(name, "external_force", external_force.xyz(), x.xyz().size());
   Reaction r;
   r.name = name;
   r.about = about;
@@ -272,10 +274,10 @@ Reaction reaction(const std::string& name, const std::vector<int32_t>& vertices,
     if (seen[v]) continue;
     seen[v] = true;
     double rv[3], arm[3];
+    const size_t p = static_cast<size_t>(v);
     for (int i = 0; i < 3; ++i) {
-      const size_t dof = 3 * static_cast<size_t>(v) + i;
-      rv[i] = components[i] ? -(elastic_force[dof] + (external_force.empty() ? 0.0 : external_force[dof])) : 0.0;
-      arm[i] = x[dof] - about[i];
+      rv[i] = components[i] ? -(elastic_force(p, i) + (external_force.empty() ? 0.0 : external_force(p, i))) : 0.0;
+      arm[i] = x(p, i) - about[i];
       r.force[i] += rv[i];
     }
     r.torque[0] += arm[1] * rv[2] - arm[2] * rv[1];
@@ -285,8 +287,8 @@ Reaction reaction(const std::string& name, const std::vector<int32_t>& vertices,
   return r;
 }
 
-std::array<double, 3> centroid(const std::vector<int32_t>& vertices, const std::vector<double>& x) {
-  const size_t count = x.size() / 3;
+std::array<double, 3> centroid(const std::vector<int32_t>& vertices, const Points& x) {
+  const size_t count = x.size();
   std::vector<bool> seen(count, false);
   std::array<double, 3> sum{0, 0, 0};
   size_t distinct = 0;
@@ -297,7 +299,7 @@ std::array<double, 3> centroid(const std::vector<int32_t>& vertices, const std::
     if (seen[v]) continue;
     seen[v] = true;
     ++distinct;
-    for (int i = 0; i < 3; ++i) sum[i] += x[3 * static_cast<size_t>(v) + i];
+    for (int i = 0; i < 3; ++i) sum[i] += x(static_cast<size_t>(v), i);
   }
   if (distinct == 0) throw Error("centroid: no vertex given");
   for (double& s : sum) s /= static_cast<double>(distinct);
@@ -305,9 +307,9 @@ std::array<double, 3> centroid(const std::vector<int32_t>& vertices, const std::
 }
 
 std::vector<Reaction> constraint_reactions(const Mesh& mesh, const MaterialMap& materials,
-                                           const std::vector<ConstraintSet>& constraints, const std::vector<double>& x,
-                                           const std::vector<double>& external_force) {
-  const std::vector<double> forces = elastic_forces(mesh, materials, x);
+                                           const std::vector<ConstraintSet>& constraints, const Points& x,
+                                           const Points& external_force) {
+  const Points forces = elastic_forces(mesh, materials, x);
   std::vector<Reaction> out;
   for (const ConstraintSet& c : constraints) {
     if (c.vertices.empty()) throw Error("reaction of constraint set '" + c.name + "': it selects no vertex");

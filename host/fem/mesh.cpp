@@ -47,9 +47,10 @@ int quadrature_points(ElementType type) {
 
 MeshWarnings validate_mesh(const Mesh& mesh) {
   const int n = nodes_per_element(mesh.type);
-  if (mesh.positions.size() % 3 != 0) {
+  if (mesh.positions.xyz().size() % 3 != 0) {
     std::ostringstream s;
-    s << "mesh: the position array has " << mesh.positions.size() << " values, not a multiple of 3 (xyz per vertex)";
+    s << "mesh: the position array has " << mesh.positions.xyz().size()
+      << " values, not a multiple of 3 (xyz per vertex)";
     throw Error(s.str());
   }
   if (mesh.elements.size() % n != 0) {
@@ -70,10 +71,10 @@ MeshWarnings validate_mesh(const Mesh& mesh) {
   const size_t vertices = mesh.vertex_count();
   for (size_t v = 0; v < vertices; ++v)
     for (int d = 0; d < 3; ++d)
-      if (!std::isfinite(mesh.positions[3 * v + d])) {
+      if (!std::isfinite(mesh.positions(v, d))) {
         std::ostringstream s;
         s << "mesh: vertex " << v << " has a non-finite coordinate ("
-          << "xyz"[d] << " = " << mesh.positions[3 * v + d] << ")";
+          << "xyz"[d] << " = " << mesh.positions(v, d) << ")";
         throw Error(s.str());
       }
 
@@ -242,7 +243,7 @@ Mesh make_box_lattice(int nx, int ny, int nz, double h, std::array<double, 3> or
   check_lattice(nx, ny, nz, h, origin, "make_box_lattice");
   Mesh mesh;
   mesh.type = ElementType::hex8;
-  mesh.positions = lattice_positions(nx, ny, nz, h, origin);
+  mesh.positions = Points::from_xyz(lattice_positions(nx, ny, nz, h, origin));
   mesh.elements.reserve(8 * size_t(nx) * ny * nz);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
@@ -301,7 +302,7 @@ Mesh make_voxel_cylinder(double radius, double length, double h) {
   for (size_t v = 0; v < index.size(); ++v)
     if (index[v] == 0) {
       index[v] = next++;
-      mesh.positions.insert(mesh.positions.end(), positions.begin() + 3 * v, positions.begin() + 3 * v + 3);
+      mesh.positions.push_back({positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]});
     }
   mesh.elements.reserve(elements.size());
   for (int32_t v : elements) mesh.elements.push_back(index[v]);
@@ -313,7 +314,7 @@ Mesh make_tet_box(int nx, int ny, int nz, double h, std::array<double, 3> origin
   static const KuhnTets kuhn;
   Mesh mesh;
   mesh.type = ElementType::tet4;
-  mesh.positions = lattice_positions(nx, ny, nz, h, origin);
+  mesh.positions = Points::from_xyz(lattice_positions(nx, ny, nz, h, origin));
   mesh.elements.reserve(24 * size_t(nx) * ny * nz);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
@@ -338,7 +339,7 @@ Mesh split_hexes_into_tets(const Mesh& hexes) {
       for (int c = 0; c < 4; ++c) v[c] = hexes.elements[8 * e + kVtkNode[tet[c]]];
       double d[3][3];
       for (int r = 0; r < 3; ++r)
-        for (int k = 0; k < 3; ++k) d[r][k] = hexes.positions[3 * v[r + 1] + k] - hexes.positions[3 * v[0] + k];
+        for (int k = 0; k < 3; ++k) d[r][k] = hexes.positions(v[r + 1], k) - hexes.positions(v[0], k);
       const double det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) -
                          d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0]) +
                          d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
@@ -368,11 +369,11 @@ Mesh split_hexes_into_tets(const Mesh& hexes) {
   return mesh;
 }
 
-double mesh_volume(const Mesh& mesh, const std::vector<double>& x) {
-  if (x.size() != mesh.positions.size()) {
+double mesh_volume(const Mesh& mesh, const Points& x) {
+  if (x.size() != mesh.vertex_count()) {
     std::ostringstream s;
-    s << "mesh_volume: the configuration has " << x.size() << " values, but the mesh has " << mesh.vertex_count()
-      << " vertices (" << mesh.positions.size() << " values expected)";
+    s << "mesh_volume: the configuration has " << x.xyz().size() << " values, but the mesh has " << mesh.vertex_count()
+      << " vertices (" << mesh.positions.xyz().size() << " values expected)";
     throw Error(s.str());
   }
   // The rest-state code trusts the indices, so the mesh is checked first.

@@ -253,15 +253,16 @@ Joined join_lines(const Voxelization& given, const std::vector<std::vector<Cell>
   lattice.positions.clear();
   for (size_t k = 0; k < classes.parent.size(); ++k) {
     if (classes.find(static_cast<int32_t>(k)) != static_cast<int32_t>(k)) continue;
-    id[k] = static_cast<int32_t>(lattice.positions.size() / 3);
+    id[k] = static_cast<int32_t>(lattice.positions.size());
     if (k < vertices) {
-      for (int d = 0; d < 3; ++d) lattice.positions.push_back(old.positions[3 * k + d]);
+      lattice.positions.push_back({old.positions(k, 0), old.positions(k, 1), old.positions(k, 2)});
     } else {
       const size_t e = elements + (k - vertices) / 8;
       const int corner = static_cast<int>((k - vertices) % 8);
+      Vec3 p;
       for (int d = 0; d < 3; ++d)
-        lattice.positions.push_back(given.origin[d] +
-                                    given.cell * (out.voxels.element_cell[e][d] + ((corner >> d) & 1)));
+        p[d] = given.origin[d] + given.cell * (out.voxels.element_cell[e][d] + ((corner >> d) & 1));
+      lattice.positions.push_back(p);
     }
   }
   out.vertex_map.resize(vertices);
@@ -289,8 +290,8 @@ std::vector<int32_t> find_pieces(const Mesh& lattice, PiecedLattice& out) {
         piece_of_vertex[v] = static_cast<int32_t>(p);
         ++piece.vertices;
         for (int d = 0; d < 3; ++d) {
-          piece.lo[d] = std::min(piece.lo[d], lattice.positions[3 * v + d]);
-          piece.hi[d] = std::max(piece.hi[d], lattice.positions[3 * v + d]);
+          piece.lo[d] = std::min(piece.lo[d], lattice.positions(v, d));
+          piece.hi[d] = std::max(piece.hi[d], lattice.positions(v, d));
         }
       }
     out.pieces.push_back(std::move(piece));
@@ -486,7 +487,7 @@ void drop_pieces(const Voxelization& voxels, const Embedding& embedding, const T
   for (size_t v = 0; v < used.size(); ++v) {
     out.vertex_map[v] = used[v] ? next++ : -1;
     if (used[v])
-      for (int d = 0; d < 3; ++d) kept.lattice.positions.push_back(lattice.positions[3 * v + d]);
+      kept.lattice.positions.push_back({lattice.positions(v, 0), lattice.positions(v, 1), lattice.positions(v, 2)});
   }
   for (size_t e = 0; e < lattice.element_count(); ++e) {
     if (drop_element[e]) continue;
@@ -513,7 +514,7 @@ void drop_pieces(const Voxelization& voxels, const Embedding& embedding, const T
     }
     const Cell& c = anchor[piece_of_element[e]];
     double local[3];
-    for (int d = 0; d < 3; ++d) local[d] = (surface.positions[3 * v + d] - voxels.origin[d]) / voxels.cell - c[d];
+    for (int d = 0; d < 3; ++d) local[d] = (surface.positions(v, d) - voxels.origin[d]) / voxels.cell - c[d];
     out.embedding.element[v] = kept_element.at(grid_index(voxels.dims, c));
     const auto w = trilinear_weights(local);
     std::copy(w.begin(), w.end(), out.embedding.weights.begin() + 8 * v);

@@ -40,8 +40,7 @@ void element_rest_state(const Mesh& mesh, size_t e, double* gradients, double* w
   if (mesh.type == ElementType::tet4) {
     double dm[9];
     for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r)
-        dm[3 * c + r] = mesh.positions[3 * nodes[c + 1] + r] - mesh.positions[3 * nodes[0] + r];
+      for (int r = 0; r < 3; ++r) dm[3 * c + r] = mesh.positions(nodes[c + 1], r) - mesh.positions(nodes[0], r);
     double it[9];
     const double det = inverse_transpose(dm, it);
     const double volume = det / 6.0;
@@ -70,7 +69,7 @@ void element_rest_state(const Mesh& mesh, size_t e, double* gradients, double* w
     double jac[9] = {0};  // dX/dxi, column-major
     for (int a = 0; a < 8; ++a)
       for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) jac[3 * c + r] += mesh.positions[3 * nodes[a] + r] * dn[a][c];
+        for (int r = 0; r < 3; ++r) jac[3 * c + r] += mesh.positions(nodes[a], r) * dn[a][c];
     double it[9];
     const double det = inverse_transpose(jac, it);
     if (!(det > 0.0) || !std::isfinite(det)) fail(e, q, det);
@@ -90,14 +89,14 @@ bool is_uniform(const Mesh& mesh) {
   double size = 0.0;
   for (int a = 1; a < n; ++a)
     for (int d = 0; d < 3; ++d)
-      size = std::max(size, std::abs(mesh.positions[3 * first[a] + d] - mesh.positions[3 * first[0] + d]));
+      size = std::max(size, std::abs(mesh.positions(first[a], d) - mesh.positions(first[0], d)));
   const double tolerance = 1e-12 * size;
   for (size_t e = 1; e < count; ++e) {
     const int32_t* nodes = mesh.elements.data() + n * e;
     for (int a = 1; a < n; ++a)
       for (int d = 0; d < 3; ++d) {
-        const double here = mesh.positions[3 * nodes[a] + d] - mesh.positions[3 * nodes[0] + d];
-        const double there = mesh.positions[3 * first[a] + d] - mesh.positions[3 * first[0] + d];
+        const double here = mesh.positions(nodes[a], d) - mesh.positions(nodes[0], d);
+        const double there = mesh.positions(first[a], d) - mesh.positions(first[0], d);
         if (std::abs(here - there) > tolerance) return false;
       }
   }

@@ -44,7 +44,7 @@ Point centroid(const Mesh& mesh, size_t e) {
   Point c{0.0, 0.0, 0.0};
   for (int a = 0; a < n; ++a) {
     const int32_t v = mesh.elements[n * e + a];
-    for (int d = 0; d < 3; ++d) c[d] += mesh.positions[3 * v + d];
+    for (int d = 0; d < 3; ++d) c[d] += mesh.positions(v, d);
   }
   for (double& x : c) x /= n;
   return c;

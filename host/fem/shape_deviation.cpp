@@ -8,10 +8,10 @@
 
 namespace snh {
 
-ShapeDeviation shape_deviation(const Mesh& mesh, const std::vector<double>& x) {
+ShapeDeviation shape_deviation(const Mesh& mesh, const Points& x) {
   const size_t n = mesh.vertex_count();
-  if (x.size() != 3 * n)
-    throw Error("shape_deviation: the positions have " + std::to_string(x.size()) + " values, the mesh " +
+  if (x.size() != n)
+    throw Error("shape_deviation: the positions have " + std::to_string(x.xyz().size()) + " values, the mesh " +
                 std::to_string(n) + " vertices");
   std::vector<char> used(n, 0);
   for (int32_t v : mesh.elements) used[static_cast<size_t>(v)] = 1;
@@ -19,9 +19,9 @@ ShapeDeviation shape_deviation(const Mesh& mesh, const std::vector<double>& x) {
   size_t count = 0;
   for (size_t v = 0; v < n; ++v) {
     if (!used[v]) continue;
-    const Eigen::Vector3d p(x[3 * v], x[3 * v + 1], x[3 * v + 2]);
+    const Eigen::Vector3d p(x(v, 0), x(v, 1), x(v, 2));
     if (!p.allFinite()) throw Error("shape_deviation: the positions are not finite at vertex " + std::to_string(v));
-    rest_centroid += Eigen::Vector3d(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+    rest_centroid += Eigen::Vector3d(mesh.positions(v, 0), mesh.positions(v, 1), mesh.positions(v, 2));
     centroid += p;
     ++count;
   }
@@ -37,8 +37,8 @@ ShapeDeviation shape_deviation(const Mesh& mesh, const std::vector<double>& x) {
   for (size_t v = 0; v < n; ++v) {
     if (!used[v]) continue;
     const Eigen::Vector3d a =
-        Eigen::Vector3d(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]) - rest_centroid;
-    const Eigen::Vector3d b = Eigen::Vector3d(x[3 * v], x[3 * v + 1], x[3 * v + 2]) - centroid;
+        Eigen::Vector3d(mesh.positions(v, 0), mesh.positions(v, 1), mesh.positions(v, 2)) - rest_centroid;
+    const Eigen::Vector3d b = Eigen::Vector3d(x(v, 0), x(v, 1), x(v, 2)) - centroid;
     h += a * b.transpose();
     rest_square += a.squaredNorm();
     square += b.squaredNorm();

@@ -22,7 +22,7 @@ struct Shell {
 };
 
 const double* at(const TriangleSurface& s, size_t t, int c) {
-  return &s.positions[3 * static_cast<size_t>(s.triangles[3 * t + c])];
+  return s.positions.data() + 3 * static_cast<size_t>(s.triangles[3 * t + c]);
 }
 
 // The generalized winding number at p of the triangles of every shell but
@@ -80,7 +80,7 @@ std::vector<std::string> orient_shells(TriangleSurface& surface, const std::stri
     double centre[3] = {0, 0, 0};
     for (size_t t : s.triangles)
       for (int c = 0; c < 3; ++c)
-        for (int d = 0; d < 3; ++d) centre[d] += at(surface, t, c)[d] / (3.0 * s.triangles.size());
+        for (int d = 0; d < 3; ++d) centre[d] += at(surface, t, c)[d] / (3.0 * static_cast<double>(s.triangles.size()));
     for (size_t t : s.triangles) {
       double a[3], b[3], c[3];
       for (int d = 0; d < 3; ++d) {

@@ -68,7 +68,7 @@ inline std::vector<char> surface_crossed_cells(const TriangleSurface& surface, c
   const double r = 0.5 * h * scale;
   for (size_t t = 0; t < surface.triangle_count(); ++t) {
     const double* v[3];
-    for (int k = 0; k < 3; ++k) v[k] = &surface.positions[3 * surface.triangles[3 * t + k]];
+    for (int k = 0; k < 3; ++k) v[k] = surface.positions.data() + 3 * static_cast<size_t>(surface.triangles[3 * t + k]);
     int lo[3], hi[3];
     for (int d = 0; d < 3; ++d) {
       const double mn = std::min({v[0][d], v[1][d], v[2][d]}), mx = std::max({v[0][d], v[1][d], v[2][d]});

@@ -18,17 +18,18 @@ namespace snh {
 namespace {
 
 void check_input(const TriangleSurface& s, const std::string& name) {
-  if (s.positions.size() % 3 != 0 || s.triangles.size() % 3 != 0) {
+  if (s.positions.xyz().size() % 3 != 0 || s.triangles.size() % 3 != 0) {
     std::ostringstream m;
-    m << name << ": the surface arrays hold " << s.positions.size() << " coordinates and " << s.triangles.size()
+    m << name << ": the surface arrays hold " << s.positions.xyz().size() << " coordinates and " << s.triangles.size()
       << " indices (multiples of 3 expected)";
     throw Error(m.str());
   }
-  for (size_t i = 0; i < s.positions.size(); ++i)
-    if (!std::isfinite(s.positions[i])) {
+  const std::vector<double>& xyz = s.positions.xyz();
+  for (size_t i = 0; i < xyz.size(); ++i)
+    if (!std::isfinite(xyz[i])) {
       std::ostringstream m;
       m << name << ": vertex " << i / 3 << " has a non-finite coordinate ("
-        << "xyz"[i % 3] << " = " << s.positions[i] << ")";
+        << "xyz"[i % 3] << " = " << xyz[i] << ")";
       throw Error(m.str());
     }
   for (size_t i = 0; i < s.triangles.size(); ++i)
@@ -128,8 +129,8 @@ WeldedSurface weld_vertices(const TriangleSurface& surface, double tolerance) {
       out.vertex_of[v] = best;
     }
   }
-  out.surface.positions.reserve(3 * kept.size());
-  for (int32_t v : kept) out.surface.positions.insert(out.surface.positions.end(), p + 3 * v, p + 3 * v + 3);
+  out.surface.positions.reserve(kept.size());
+  for (int32_t v : kept) out.surface.positions.push_back({p[3 * v], p[3 * v + 1], p[3 * v + 2]});
   out.surface.triangles.resize(surface.triangles.size());
   for (size_t i = 0; i < surface.triangles.size(); ++i) out.surface.triangles[i] = out.vertex_of[surface.triangles[i]];
   return out;

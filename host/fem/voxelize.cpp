@@ -210,11 +210,11 @@ Voxelization voxelize(const TriangleSurface& input, double cell, const VoxelizeO
     for (std::string& w : fem::orient_shells(surface, name)) out.warnings.push_back(std::move(w));
 
   std::array<double, 3> lo, hi;
-  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = surface.positions[d];
+  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = surface.positions(0, d);
   for (size_t v = 0; v < surface.vertex_count(); ++v)
     for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min(lo[d], surface.positions[3 * v + d]);
-      hi[d] = std::max(hi[d], surface.positions[3 * v + d]);
+      lo[d] = std::min(lo[d], surface.positions(v, d));
+      hi[d] = std::max(hi[d], surface.positions(v, d));
     }
   Grid grid{};
   grid.h = cell;
@@ -310,7 +310,9 @@ Voxelization voxelize(const TriangleSurface& input, double cell, const VoxelizeO
       int32_t& v = vertex_of[corners.find(static_cast<int32_t>(8 * e + corner))];
       if (v < 0) {
         v = static_cast<int32_t>(lattice.vertex_count());
-        for (int d = 0; d < 3; ++d) lattice.positions.push_back(grid.origin[d] + cell * (g[d] + ((corner >> d) & 1)));
+        Vec3 p;
+        for (int d = 0; d < 3; ++d) p[d] = grid.origin[d] + cell * (g[d] + ((corner >> d) & 1));
+        lattice.positions.push_back(p);
       }
       node[corner] = v;
     }

@@ -34,9 +34,10 @@ constexpr int64_t max_cells_per_axis = int64_t(1) << 21;
 
 }  // namespace
 
-SelfIntersections count_self_intersections(const std::vector<double>& positions, const std::vector<int32_t>& triangles,
+SelfIntersections count_self_intersections(const Points& points, const std::vector<int32_t>& triangles,
                                            const SelfIntersectionOptions& options) {
   const std::string& name = options.name;
+  const std::vector<double>& positions = points.xyz();
   if (positions.size() % 3 != 0)
     throw Error(name + ": " + std::to_string(positions.size()) + " position values are not xyz triples");
   if (triangles.size() % 3 != 0)

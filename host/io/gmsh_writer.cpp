@@ -72,8 +72,7 @@ void write_gmsh(const std::string& path, const Mesh& mesh) {
   }
   file << "$Nodes\n" << mesh.vertex_count() << "\n";
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    file << v + 1 << " " << mesh.positions[3 * v] << " " << mesh.positions[3 * v + 1] << " "
-         << mesh.positions[3 * v + 2] << "\n";
+    file << v + 1 << " " << mesh.positions(v, 0) << " " << mesh.positions(v, 1) << " " << mesh.positions(v, 2) << "\n";
   file << "$EndNodes\n";
 
   size_t total = elements;

@@ -45,7 +45,7 @@ void write_medit(const std::string& path, const Mesh& mesh) {
   open_for_writing(file, path);
   file << "MeshVersionFormatted 2\nDimension 3\nVertices\n" << mesh.vertex_count() << "\n";
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    file << mesh.positions[3 * v] << " " << mesh.positions[3 * v + 1] << " " << mesh.positions[3 * v + 2] << " 0\n";
+    file << mesh.positions(v, 0) << " " << mesh.positions(v, 1) << " " << mesh.positions(v, 2) << " 0\n";
   file << (mesh.type == ElementType::hex8 ? "Hexahedra\n" : "Tetrahedra\n") << elements << "\n";
   for (size_t e = 0; e < elements; ++e) {
     for (int a = 0; a < n; ++a) file << mesh.elements[static_cast<size_t>(n) * e + a] + 1 << " ";

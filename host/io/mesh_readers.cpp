@@ -376,7 +376,7 @@ Mesh MeshBuilder::finish() {
 
   Mesh mesh;
   mesh.type = type_;
-  mesh.positions = std::move(positions_);
+  mesh.positions = Points::from_xyz(std::move(positions_));
   mesh.elements = std::move(elements_);
   mesh.groups = std::move(groups);
   mesh.point_arrays = std::move(point_arrays);

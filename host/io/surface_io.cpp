@@ -25,7 +25,7 @@ int32_t SurfaceBuilder::add_vertex(const double xyz[3], Location where) {
     }
   if (vertex_count() >= static_cast<size_t>(std::numeric_limits<int32_t>::max()))
     fail(path_, where, "more vertices than 32-bit indices can address");
-  surface_.positions.insert(surface_.positions.end(), xyz, xyz + 3);
+  surface_.positions.push_back({xyz[0], xyz[1], xyz[2]});
   return static_cast<int32_t>(vertex_count() - 1);
 }
 
@@ -76,12 +76,12 @@ TriangleSurface read_surface(const std::string& path) {
   return io::read_stl(path, data);
 }
 
-void write_obj(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x) {
-  const std::vector<double>& p = x.empty() ? surface.positions : x;
-  if (p.size() != surface.positions.size()) {
+void write_obj(const std::string& path, const TriangleSurface& surface, const Points& x) {
+  const Points& p = x.empty() ? surface.positions : x;
+  if (p.size() != surface.vertex_count()) {
     std::ostringstream s;
-    s << "write_obj " << path << ": the positions have " << p.size() << " values, but the surface has "
-      << surface.vertex_count() << " vertices (" << surface.positions.size() << " values expected)";
+    s << "write_obj " << path << ": the positions have " << p.xyz().size() << " values, but the surface has "
+      << surface.vertex_count() << " vertices (" << surface.positions.xyz().size() << " values expected)";
     throw Error(s.str());
   }
   for (size_t i = 0; i < surface.triangles.size(); ++i)
@@ -97,7 +97,7 @@ void write_obj(const std::string& path, const TriangleSurface& surface, const st
   file << std::setprecision(std::numeric_limits<double>::max_digits10);
   file << "# snh surface: " << surface.vertex_count() << " vertices, " << surface.triangle_count() << " triangles\n";
   for (size_t v = 0; v < surface.vertex_count(); ++v)
-    file << "v " << p[3 * v] << ' ' << p[3 * v + 1] << ' ' << p[3 * v + 2] << '\n';
+    file << "v " << p(v, 0) << ' ' << p(v, 1) << ' ' << p(v, 2) << '\n';
   for (size_t t = 0; t < surface.triangle_count(); ++t)
     file << "f " << surface.triangles[3 * t] + 1 << ' ' << surface.triangles[3 * t + 1] + 1 << ' '
          << surface.triangles[3 * t + 2] + 1 << '\n';

@@ -20,12 +20,12 @@ namespace {
 
 using Surface = fem::BoundaryFaces;
 
-Surface boundary(const std::string& writer, const std::string& path, const Mesh& mesh, const std::vector<double>& x) {
+Surface boundary(const std::string& writer, const std::string& path, const Mesh& mesh, const Points& x) {
   Surface surface = fem::boundary_faces(mesh, writer + " " + path);
-  if (x.size() != mesh.positions.size()) {
+  if (x.size() != mesh.vertex_count()) {
     std::ostringstream s;
-    s << writer << " " << path << ": the positions have " << x.size() << " values, but the mesh has "
-      << mesh.vertex_count() << " vertices (" << mesh.positions.size() << " values expected)";
+    s << writer << " " << path << ": the positions have " << x.xyz().size() << " values, but the mesh has "
+      << mesh.vertex_count() << " vertices (" << mesh.positions.xyz().size() << " values expected)";
     throw Error(s.str());
   }
   return surface;
@@ -47,14 +47,14 @@ void finish(std::ofstream& file, const std::string& path, const std::string& wri
 
 }  // namespace
 
-void write_obj_surface(const std::string& path, const Mesh& mesh, const std::vector<double>& x) {
-  const std::vector<double>& p = x.empty() ? mesh.positions : x;
+void write_obj_surface(const std::string& path, const Mesh& mesh, const Points& x) {
+  const Points& p = x.empty() ? mesh.positions : x;
   const Surface s = boundary("write_obj_surface", path, mesh, p);
   std::ofstream file;
   open_for_writing(file, path, "write_obj_surface");
   const size_t faces = s.faces.size() / s.corners;
   file << "# snh boundary surface: " << s.vertices.size() << " vertices, " << faces << " faces\n";
-  for (int32_t v : s.vertices) file << "v " << p[3 * v] << ' ' << p[3 * v + 1] << ' ' << p[3 * v + 2] << '\n';
+  for (int32_t v : s.vertices) file << "v " << p(v, 0) << ' ' << p(v, 1) << ' ' << p(v, 2) << '\n';
   for (size_t f = 0; f < faces; ++f) {
     file << 'f';
     for (int c = 0; c < s.corners; ++c) file << ' ' << s.faces[s.corners * f + c] + 1;
@@ -63,8 +63,8 @@ void write_obj_surface(const std::string& path, const Mesh& mesh, const std::vec
   finish(file, path, "write_obj_surface");
 }
 
-void write_ply_surface(const std::string& path, const Mesh& mesh, const std::vector<double>& x) {
-  const std::vector<double>& p = x.empty() ? mesh.positions : x;
+void write_ply_surface(const std::string& path, const Mesh& mesh, const Points& x) {
+  const Points& p = x.empty() ? mesh.positions : x;
   const Surface s = boundary("write_ply_surface", path, mesh, p);
   std::ofstream file;
   open_for_writing(file, path, "write_ply_surface");
@@ -79,7 +79,7 @@ void write_ply_surface(const std::string& path, const Mesh& mesh, const std::vec
        << "element face " << faces << "\n"
        << "property list uchar int vertex_indices\n"
        << "end_header\n";
-  for (int32_t v : s.vertices) file << p[3 * v] << ' ' << p[3 * v + 1] << ' ' << p[3 * v + 2] << '\n';
+  for (int32_t v : s.vertices) file << p(v, 0) << ' ' << p(v, 1) << ' ' << p(v, 2) << '\n';
   for (size_t f = 0; f < faces; ++f) {
     file << s.corners;
     for (int c = 0; c < s.corners; ++c) file << ' ' << s.faces[s.corners * f + c];

@@ -13,8 +13,7 @@ void write_tetgen(const std::string& node_path, const std::string& ele_path, con
   open_for_writing(node, node_path);
   node << "# snh mesh: points, dimension, attributes, boundary markers\n" << mesh.vertex_count() << " 3 0 0\n";
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    node << v + 1 << " " << mesh.positions[3 * v] << " " << mesh.positions[3 * v + 1] << " "
-         << mesh.positions[3 * v + 2] << "\n";
+    node << v + 1 << " " << mesh.positions(v, 0) << " " << mesh.positions(v, 1) << " " << mesh.positions(v, 2) << "\n";
   finish_writing(node, node_path);
   std::ofstream ele;
   open_for_writing(ele, ele_path);

@@ -51,7 +51,7 @@ void write_vtk_legacy(const std::string& path, const Mesh& mesh) {
   file << "# vtk DataFile Version 4.2\nsnh mesh (" << to_string(mesh.type) << ")\nASCII\nDATASET UNSTRUCTURED_GRID\n"
        << "POINTS " << vertices << " double\n";
   for (size_t v = 0; v < vertices; ++v)
-    file << mesh.positions[3 * v] << " " << mesh.positions[3 * v + 1] << " " << mesh.positions[3 * v + 2] << "\n";
+    file << mesh.positions(v, 0) << " " << mesh.positions(v, 1) << " " << mesh.positions(v, 2) << "\n";
   file << "CELLS " << elements << " " << static_cast<size_t>(n + 1) * elements << "\n";
   for (size_t e = 0; e < elements; ++e) {
     file << n;

@@ -56,9 +56,9 @@ void check_sizes(const std::string& path, const Mesh& mesh, const std::vector<do
                  const std::vector<VtuPointField>& point_fields, const std::vector<VtuCellField>& cell_fields) {
   const int n = nodes_per_element(mesh.type);
   const size_t vertices = mesh.vertex_count(), elements = mesh.element_count();
-  if (mesh.positions.size() % 3 != 0 || mesh.elements.size() % n != 0) {
+  if (mesh.positions.xyz().size() % 3 != 0 || mesh.elements.size() % n != 0) {
     std::ostringstream s;
-    s << "write_vtu " << path << ": the mesh is malformed (" << mesh.positions.size() << " position values, "
+    s << "write_vtu " << path << ": the mesh is malformed (" << mesh.positions.xyz().size() << " position values, "
       << mesh.elements.size() << " element indices for " << to_string(mesh.type) << ")";
     throw Error(s.str());
   }
@@ -178,12 +178,12 @@ void write_grid(const std::string& path, const std::vector<double>& x, const std
 
 }  // namespace
 
-void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<double>& x,
+void write_vtu(const std::string& path, const Mesh& mesh, const Points& x,
                const std::vector<VtuPointField>& point_fields, const std::vector<VtuCellField>& cell_fields) {
   // Everything is checked before the file is touched, so a bad call leaves no
   // half-written file behind.
-  check_sizes(path, mesh, x, point_fields, cell_fields);
-  write_grid(path, x, mesh.elements, nodes_per_element(mesh.type),
+  check_sizes(path, mesh, x.xyz(), point_fields, cell_fields);
+  write_grid(path, x.xyz(), mesh.elements, nodes_per_element(mesh.type),
              mesh.type == ElementType::hex8 ? kVtkHexahedron : kVtkTetra, point_fields, cell_fields);
 }
 
@@ -199,22 +199,22 @@ void write_vtu_mesh(const std::string& path, const Mesh& mesh) {
   for (const MeshArray* a : carried_arrays(mesh.cell_arrays, 64)) cells.push_back({a->name, a->values, a->components});
   // A mesh's arrays may have any number of components (write_vtu's fields
   // are the 1, 3 and 9 ParaView shows as scalars, vectors and tensors).
-  check_sizes(path, mesh, mesh.positions, {}, {});
-  write_grid(path, mesh.positions, mesh.elements, nodes_per_element(mesh.type),
+  check_sizes(path, mesh, mesh.positions.xyz(), {}, {});
+  write_grid(path, mesh.positions.xyz(), mesh.elements, nodes_per_element(mesh.type),
              mesh.type == ElementType::hex8 ? kVtkHexahedron : kVtkTetra, points, cells);
 }
 
 }  // namespace io
 
-void write_surface_vtu(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x,
+void write_surface_vtu(const std::string& path, const TriangleSurface& surface, const Points& x,
                        const std::vector<VtuPointField>& point_fields) {
-  const std::vector<double>& points = x.empty() ? surface.positions : x;
+  const std::vector<double>& points = x.empty() ? surface.positions.xyz() : x.xyz();
   // The checks of write_vtu on the triangles as a mesh of 3-node cells.
-  if (points.size() != surface.positions.size() || surface.positions.size() % 3 != 0 ||
+  if (points.size() != surface.positions.xyz().size() || surface.positions.xyz().size() % 3 != 0 ||
       surface.triangles.size() % 3 != 0) {
     std::ostringstream s;
     s << "write_surface_vtu " << path << ": the positions have " << points.size() << " values for a surface of "
-      << surface.vertex_count() << " vertices (" << surface.positions.size() << " values) and "
+      << surface.vertex_count() << " vertices (" << surface.positions.xyz().size() << " values) and "
       << surface.triangles.size() << " triangle indices";
     throw Error(s.str());
   }

@@ -34,7 +34,7 @@ void add_capsule(const Capsule& c, int segments, TriangleSurface& s) {
   const int quarter = std::max(1, segments / 4);  // rings per round end, the equator included
   const double pi = std::acos(-1.0);
   const int32_t base = static_cast<int32_t>(s.vertex_count());
-  const auto add = [&](const Point& p) { s.positions.insert(s.positions.end(), p.begin(), p.end()); };
+  const auto add = [&](const Point& p) { s.positions.push_back(p); };
   add({c.a[0] - c.radius * axis[0], c.a[1] - c.radius * axis[1], c.a[2] - c.radius * axis[2]});
   // Ring k of 2 * quarter: latitude from -90 degrees (exclusive) to 0 at a, then 0 to 90 (exclusive) at b.
   int rings = 0;
@@ -77,7 +77,8 @@ BoneMesh bone_mesh(const std::vector<Bone>& bones, const std::vector<Matrix4>& t
       add_capsule(*c, segments, s);
     } else {
       const TriangleSurface& t = std::get<TriangleSurface>(bones[b].shape);
-      s.positions.insert(s.positions.end(), t.positions.begin(), t.positions.end());
+      for (size_t i = 0; i < t.vertex_count(); ++i)
+        s.positions.push_back({t.positions(i, 0), t.positions(i, 1), t.positions(i, 2)});
       for (int32_t i : t.triangles) s.triangles.push_back(static_cast<int32_t>(first_vertex) + i);
     }
     out.vertex_bone.resize(s.vertex_count(), static_cast<int32_t>(b));
@@ -85,9 +86,9 @@ BoneMesh bone_mesh(const std::vector<Bone>& bones, const std::vector<Matrix4>& t
     if (transforms.empty()) continue;
     const Matrix4& m = transforms[b];
     for (size_t v = first_vertex; v < s.vertex_count(); ++v) {
-      const Point p{s.positions[3 * v], s.positions[3 * v + 1], s.positions[3 * v + 2]};
+      const Point p{s.positions(v, 0), s.positions(v, 1), s.positions(v, 2)};
       for (int r = 0; r < 3; ++r)
-        s.positions[3 * v + r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+        s.positions(v, r) = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
     }
   }
   return out;
@@ -107,7 +108,7 @@ void write_bone_mesh_vtu(const std::string& path, const BoneMesh& mesh) {
       << "    <Piece NumberOfPoints=\"" << s.vertex_count() << "\" NumberOfCells=\"" << s.triangle_count() << "\">\n"
       << "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (size_t v = 0; v < s.vertex_count(); ++v)
-    out << "          " << s.positions[3 * v] << ' ' << s.positions[3 * v + 1] << ' ' << s.positions[3 * v + 2] << '\n';
+    out << "          " << s.positions(v, 0) << ' ' << s.positions(v, 1) << ' ' << s.positions(v, 2) << '\n';
   out << "        </DataArray>\n      </Points>\n      <Cells>\n"
       << "        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
   for (size_t t = 0; t < s.triangle_count(); ++t)

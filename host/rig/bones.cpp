@@ -46,8 +46,8 @@ Bounds bounds_of(const TriangleSurface& s) {
   Bounds b;
   for (size_t v = 0; v < s.vertex_count(); ++v)
     for (int d = 0; d < 3; ++d) {
-      b.lo[d] = std::min(b.lo[d], s.positions[3 * v + d]);
-      b.hi[d] = std::max(b.hi[d], s.positions[3 * v + d]);
+      b.lo[d] = std::min(b.lo[d], s.positions(v, d));
+      b.hi[d] = std::max(b.hi[d], s.positions(v, d));
     }
   return b;
 }
@@ -118,10 +118,10 @@ double bone_distance(const Bone& bone, const std::array<double, 3>& p) {
   const TriangleSurface& s = std::get<TriangleSurface>(bone.shape);
   if (bone_contains(bone, p)) return 0.0;
   double best = HUGE_VAL;
+  const double* x = s.positions.data();
   for (size_t t = 0; t < s.triangle_count(); ++t)
-    best = std::min(best,
-                    triangle_distance(p, &s.positions[3 * s.triangles[3 * t]], &s.positions[3 * s.triangles[3 * t + 1]],
-                                      &s.positions[3 * s.triangles[3 * t + 2]]));
+    best = std::min(best, triangle_distance(p, x + 3 * s.triangles[3 * t], x + 3 * s.triangles[3 * t + 1],
+                                            x + 3 * s.triangles[3 * t + 2]));
   return best;
 }
 

@@ -29,7 +29,7 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     }
     std::array<double, 3> c{0, 0, 0};
     for (int32_t v : set->vertices)
-      for (int d = 0; d < 3; ++d) c[d] += mesh.positions[3 * static_cast<size_t>(v) + d];
+      for (int d = 0; d < 3; ++d) c[d] += mesh.positions(static_cast<size_t>(v), d);
     for (double& x : c) x /= static_cast<double>(set->vertices.size());
     centroids.push_back(c);
   }
@@ -81,8 +81,8 @@ std::vector<FrameRecord> run_frames(Simulation& simulation, const Animation& ani
     record.kernel_specialization = r.kernel_specialization;
     record.device_memory_bytes = r.device_memory_bytes;
     records.push_back(record);
-    const std::vector<double>& x = simulation.positions();
-    const std::vector<double> surface = embedding ? embedded_positions(*embedding, mesh, x) : std::vector<double>{};
+    const Points& x = simulation.positions();
+    const Points surface = embedding ? embedded_positions(*embedding, mesh, x) : Points{};
     const bool go_on = on_frame ? on_frame(record, x, surface) : true;
     if (!go_on || (options.stop_on_failure && !record.converged) || record.status == StepStatus::inverted_elements)
       break;

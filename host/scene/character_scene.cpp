@@ -124,8 +124,7 @@ SceneRun run_character_scene(const SceneFile& file, const SolveOptions& options,
   int done = 0;
   const std::vector<CharacterFrame> records =
       run_character_frames(simulation, c.character, c.rig, frame_options,
-                           [&](const CharacterFrame& f, const std::vector<double>& x,
-                               const std::vector<double>& surface, const std::vector<double>&) {
+                           [&](const CharacterFrame& f, const Points& x, const Points& surface, const Points&) {
                              const FrameRecord& r = f.record;
                              ++done;
                              if (run.progress) run.progress(frame_progress(r, done, frames));

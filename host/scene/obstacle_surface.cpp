@@ -26,7 +26,7 @@ void frame(const Vec& n, Vec& u, Vec& v) {
 }
 
 int32_t push(TriangleSurface& s, const Vec& x) {
-  s.positions.insert(s.positions.end(), x.begin(), x.end());
+  s.positions.push_back(x);
   return static_cast<int32_t>(s.vertex_count() - 1);
 }
 

@@ -20,17 +20,17 @@ OutputSurfaceCheck::OutputSurfaceCheck(const SceneFile& file, const Mesh& mesh) 
   }
 }
 
-SelfIntersections OutputSurfaceCheck::count(const std::vector<double>& x, const std::vector<double>& surface) const {
-  std::vector<double> embedded;
-  const std::vector<double>* from = &x;
+SelfIntersections OutputSurfaceCheck::count(const Points& x, const Points& surface) const {
+  Points embedded;
+  const Points* from = &x;
   if (file_->embedded) {
     if (surface.empty()) embedded = embedded_positions(file_->embedded->embedding, *mesh_, x);
     from = surface.empty() ? &embedded : &surface;
   }
-  std::vector<double> positions(3 * source_.size());
+  Points positions(source_.size());
   for (size_t i = 0; i < source_.size(); ++i)
-    for (int d = 0; d < 3; ++d) positions[3 * i + d] = (*from)[3 * size_t(source_[i]) + d];
-  for (double v : positions)
+    for (int d = 0; d < 3; ++d) positions(i, d) = (*from)(size_t(source_[i]), d);
+  for (double v : positions.xyz())
     if (!std::isfinite(v)) {
       // Not countable: reported as damage, never as clean.
       SelfIntersections damaged;

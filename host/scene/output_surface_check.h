@@ -16,9 +16,9 @@ namespace snh::scene_io {
 class OutputSurfaceCheck {
  public:
   OutputSurfaceCheck(const SceneFile& file, const Mesh& mesh);
-  // x: the lattice's positions; surface: the embedded surface's (xyz per
+  // x: the lattice's positions; surface: the embedded surface's (one per
   // vertex of file.embedded->surface), or empty to compute them from x.
-  SelfIntersections count(const std::vector<double>& x, const std::vector<double>& surface = {}) const;
+  SelfIntersections count(const Points& x, const Points& surface = {}) const;
   // The warning for a count that is not clean ("surface_intersections: ..."),
   // empty for a clean one.
   static std::string warning(const SelfIntersections& count);

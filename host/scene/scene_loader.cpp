@@ -438,15 +438,16 @@ void read_initial(const Reader& r, const json& init, Scene& s) {
   std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (size_t v = 0; v < s.mesh.vertex_count(); ++v)
     for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min(lo[d], s.mesh.positions[3 * v + d]);
-      hi[d] = std::max(hi[d], s.mesh.positions[3 * v + d]);
+      lo[d] = std::min(lo[d], s.mesh.positions(v, d));
+      hi[d] = std::max(hi[d], s.mesh.positions(v, d));
     }
   const double scale = std::cbrt(factor);
-  s.options.initial_positions.resize(s.mesh.positions.size());
-  for (size_t i = 0; i < s.options.initial_positions.size(); ++i) {
+  s.options.initial_positions = Points(s.mesh.vertex_count());
+  double* x = s.options.initial_positions.data();
+  for (size_t i = 0; i < 3 * s.mesh.vertex_count(); ++i) {
     const int d = static_cast<int>(i % 3);
     const double mid = 0.5 * (lo[d] + hi[d]), half = 0.5 * scale * (hi[d] - lo[d]);
-    s.options.initial_positions[i] = std::uniform_real_distribution<double>(mid - half, mid + half)(rng);
+    x[i] = std::uniform_real_distribution<double>(mid - half, mid + half)(rng);
   }
 }
 

@@ -21,9 +21,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-StepShape step_shape(const Mesh& mesh, const std::vector<double>& x) {
+StepShape step_shape(const Mesh& mesh, const Points& x) {
   StepShape s;
-  for (double v : x)
+  for (double v : x.xyz())
     if (!std::isfinite(v)) return s;
   const DeformationStatistics d = deformation_statistics(mesh, x);
   const ShapeDeviation fit = shape_deviation(mesh, x);
@@ -35,8 +35,7 @@ StepShape step_shape(const Mesh& mesh, const std::vector<double>& x) {
   return s;
 }
 
-void write_all(const SceneRunOptions& run, int index, double time, const std::vector<double>& x,
-               const std::vector<double>& surface) {
+void write_all(const SceneRunOptions& run, int index, double time, const Points& x, const Points& surface) {
   for (const SceneStepWriter& w : run.writers)
     if (w) w(index, time, x, surface);
 }
@@ -61,7 +60,7 @@ SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const
   std::optional<scene_io::OutputSurfaceCheck> check;
   if (file.check_intersections) check.emplace(file, file.scene.mesh);
   out.frames = run_frames(simulation, animation, embedding, frame_options,
-                          [&](const FrameRecord& r, const std::vector<double>& x, const std::vector<double>& surface) {
+                          [&](const FrameRecord& r, const Points& x, const Points& surface) {
                             if (check) out.surface_intersections.push_back(check->count(x, surface));
                             if (run.progress) {
                               SceneProgress p = scene_io::frame_progress(r, r.frame + 1, frames);
@@ -84,12 +83,12 @@ SceneRun run_frames_of(const SceneFile& file, const SolveOptions& options, const
 SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, const SceneRunOptions& run) {
   const Scene& scene = file.scene;
   // The embedded surface, only for writers to write.
-  const auto surface_of = [&](const Mesh& mesh, const std::vector<double>& x) {
+  const auto surface_of = [&](const Mesh& mesh, const Points& x) {
     return file.embedded && (!run.writers.empty() || file.check_intersections)
                ? embedded_positions(file.embedded->embedding, mesh, x)
-               : std::vector<double>{};
+               : Points{};
   };
-  const std::vector<double>& x0 = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
+  const Points& x0 = options.initial_positions.empty() ? scene.mesh.positions : options.initial_positions;
   write_all(run, 0, 0.0, x0, surface_of(scene.mesh, x0));
 
   QuasistaticSolver solver(scene.mesh, file.materials, scene.constraints, options);
@@ -102,7 +101,7 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
   // Each step's positions and applied force (ramped with the load), for the
   // reactions computed after the solve (so that they do not count in its
   // time).
-  std::vector<std::vector<double>> step_positions, step_forces;
+  std::vector<Points> step_positions, step_forces;
   // A scene with a contact stiffness but self-contact off: the same detector
   // measures, after each step, the self-penetration the penalty would see
   // (reported, not resisted; outside the solve's time).
@@ -119,18 +118,18 @@ SceneRun run_load_steps(const SceneFile& file, const SolveOptions& options, cons
     progress.residual_norm = it.residual_norm;
     return true;
   };
-  const StepCallback on_step = [&](int step, const std::vector<double>& x) {
+  const StepCallback on_step = [&](int step, const Points& x) {
     SceneStep record;
     record.shape = step_shape(mesh, x);
     if (unresolved) {
       record.self_contact_measured = true;
-      const auto pairs = unresolved->detect(x);
+      const auto pairs = unresolved->detect(x.xyz());
       record.unresolved_self_contacts = static_cast<int>(pairs.size());
       for (const auto& c : pairs)
-        record.max_self_penetration = std::max(record.max_self_penetration, solver::self_contact_length(c, x));
+        record.max_self_penetration = std::max(record.max_self_penetration, solver::self_contact_length(c, x.xyz()));
     }
     out.steps.push_back(std::move(record));
-    const std::vector<double> surface = surface_of(mesh, x);
+    const Points surface = surface_of(mesh, x);
     std::string intersections;
     if (check) {
       out.surface_intersections.push_back(check->count(x, surface));

@@ -29,7 +29,7 @@ using scene_io::profile_json;
 // The skin's bind-pose bounding box.
 std::pair<std::array<double, 3>, std::array<double, 3>> character_bounds(const Character& c) {
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
-  const std::vector<double>& x = c.surface.positions;
+  const std::vector<double>& x = c.surface.positions.xyz();
   for (size_t i = 0; i + 2 < x.size(); i += 3)
     for (int d = 0; d < 3; ++d) {
       lo[d] = i == 0 ? x[d] : std::min(lo[d], x[i + d]);
@@ -56,10 +56,11 @@ void create_parent(const std::string& path) {
 // Mises, energy density) of positions x, for ParaView. Where the fields are
 // undefined (a non-finite state, or an inverted element of a material
 // undefined for J <= 0) the file still shows the positions, without them.
-void write_step_vtu(const std::string& path, const Mesh& mesh, const MaterialMap& materials,
-                    const std::vector<double>& x, std::vector<std::string>& warnings) {
-  std::vector<double> displacement(x.size());
-  for (size_t i = 0; i < x.size(); ++i) displacement[i] = x[i] - mesh.positions[i];
+void write_step_vtu(const std::string& path, const Mesh& mesh, const MaterialMap& materials, const Points& x,
+                    std::vector<std::string>& warnings) {
+  std::vector<double> displacement(x.xyz().size());
+  const double *now = x.data(), *rest = mesh.positions.data();
+  for (size_t i = 0; i < displacement.size(); ++i) displacement[i] = now[i] - rest[i];
   std::vector<VtuCellField> cell_fields;
   try {
     cell_fields = element_fields_for_vtu(compute_element_fields(mesh, materials, x), materials);
@@ -419,15 +420,15 @@ SceneVtuSeries::SceneVtuSeries(std::string folder, const SceneFile& file, const 
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
     for (int k = 0; k < 3; ++k) {
-      lo[k] = v == 0 ? mesh.positions[3 * v + k] : std::min(lo[k], mesh.positions[3 * v + k]);
-      hi[k] = v == 0 ? mesh.positions[3 * v + k] : std::max(hi[k], mesh.positions[3 * v + k]);
+      lo[k] = v == 0 ? mesh.positions(v, k) : std::min(lo[k], mesh.positions(v, k));
+      hi[k] = v == 0 ? mesh.positions(v, k) : std::max(hi[k], mesh.positions(v, k));
     }
   middle_ = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
   extent_ = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
 }
 
 SceneStepWriter SceneVtuSeries::writer() {
-  return [this](int index, double time, const std::vector<double>& x, const std::vector<double>& surface) {
+  return [this](int index, double time, const Points& x, const Points& surface) {
     const SceneFile& file = *file_;
     const std::string& name = file.scene.name;
     const std::string lattice = numbered(name, index);
@@ -436,8 +437,9 @@ SceneStepWriter SceneVtuSeries::writer() {
     if (file.rig) {
       if (file.embedded) {  // part 1: the embedded surface
         const TriangleSurface& skin = file.embedded->surface;
-        std::vector<double> displacement(surface.size());
-        for (size_t i = 0; i < surface.size(); ++i) displacement[i] = surface[i] - skin.positions[i];
+        std::vector<double> displacement(surface.xyz().size());
+        const double *now = surface.data(), *rest = skin.positions.data();
+        for (size_t i = 0; i < displacement.size(); ++i) displacement[i] = now[i] - rest[i];
         const std::string skin_file = numbered(name + "_surface", index);
         write_surface_vtu(folder_ + "/" + skin_file, skin, surface, {{"displacement", 3, displacement}});
         written_.push_back({time, skin_file, 1});
@@ -461,7 +463,7 @@ void SceneVtuSeries::finish() { write_pvd_parts(folder_ + "/" + file_->scene.nam
 
 SceneStepWriter surface_obj_writer(const std::string& prefix, const SceneFile& file) {
   if (!file.embedded) throw Error("scene " + file.scene.name + ": an OBJ surface output needs \"embed\"");
-  return [prefix, &file](int index, double, const std::vector<double>&, const std::vector<double>& surface) {
+  return [prefix, &file](int index, double, const Points&, const Points& surface) {
     const std::string obj = surface_obj_path(prefix, file.scene.name, index);
     create_parent(obj);
     write_obj(obj, file.embedded->surface, surface);

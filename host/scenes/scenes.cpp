@@ -19,7 +19,7 @@ constexpr double kPi = 3.14159265358979323846;
 std::vector<int32_t> vertices_on_plane(const Mesh& mesh, int axis, double value, double tolerance) {
   std::vector<int32_t> out;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (std::abs(mesh.positions[3 * v + axis] - value) <= tolerance) out.push_back(static_cast<int32_t>(v));
+    if (std::abs(mesh.positions(v, axis) - value) <= tolerance) out.push_back(static_cast<int32_t>(v));
   return out;
 }
 
@@ -35,7 +35,7 @@ Scene stretch(const SceneParameters& p) {
   const double radius = 0.5, length = 2.0, h = 2.0 * radius / res;
   s.mesh = make_voxel_cylinder(radius, length, h);
   double top = 0.0;
-  for (size_t v = 0; v < s.mesh.vertex_count(); ++v) top = std::max(top, s.mesh.positions[3 * v + 2]);
+  for (size_t v = 0; v < s.mesh.vertex_count(); ++v) top = std::max(top, s.mesh.positions(v, 2));
   ConstraintSet bottom{"bottom_cap", vertices_on_plane(s.mesh, 2, 0.0, 1e-9 * h), {}, {}};
   ConstraintSet cap{"top_cap", vertices_on_plane(s.mesh, 2, top, 1e-9 * h), {}, {}};
   cap.motion = [top](double t) { return RigidTransform::translation_by({0.0, 0.0, t * 2.4 * top}); };
@@ -80,8 +80,9 @@ Scene scramble(const SceneParameters& p) {
   std::mt19937_64 rng(p.seed);
   const double side = std::cbrt(2.0);
   std::uniform_real_distribution<double> u(0.5 - 0.5 * side, 0.5 + 0.5 * side);
-  s.options.initial_positions.resize(s.mesh.positions.size());
-  for (double& c : s.options.initial_positions) c = u(rng);
+  s.options.initial_positions = Points(s.mesh.vertex_count());
+  double* x = s.options.initial_positions.data();
+  for (size_t i = 0; i < 3 * s.mesh.vertex_count(); ++i) x[i] = u(rng);
   s.options.load_steps = p.steps > 0 ? p.steps : 1;
   s.options.max_newton_iterations = 2000;
   s.description = "cube scrambled in a box of twice its volume, four corners pinned";

@@ -121,9 +121,8 @@ struct Character {
 Character read_character(const std::string& path, const CharacterReadOptions& options = {});
 
 // Linear blend skinning: sum_j w_j M_j x for each vertex of rest positions
-// x (xyz per vertex) with `weights` and one matrix per joint.
-std::vector<double> linear_blend_skinning(const std::vector<double>& rest, const SkinWeights& weights,
-                                          const std::vector<Matrix4>& matrices);
+// x with `weights` and one matrix per joint.
+Points linear_blend_skinning(const Points& rest, const SkinWeights& weights, const std::vector<Matrix4>& matrices);
 
 // The 4x4 matrix T * R * S of a translation, a unit quaternion (w, x, y, z)
 // and a scale, as glTF and assimp compose a node's transform.
@@ -250,11 +249,10 @@ struct CharacterFrameOptions {
 };
 
 // Called after each frame with its record, the lattice positions, the
-// character's simulated surface and its skinned surface (xyz per vertex of
+// character's simulated surface and its skinned surface (one point per vertex of
 // Character::surface). Return false to stop.
 using CharacterFrameCallback =
-    std::function<bool(const CharacterFrame&, const std::vector<double>& lattice, const std::vector<double>& surface,
-                       const std::vector<double>& skinned)>;
+    std::function<bool(const CharacterFrame&, const Points& lattice, const Points& surface, const Points& skinned)>;
 
 // Runs the clip's frames (run_frames, one frame at a time) on a simulation
 // of rig.voxels.lattice with rig.constraints.
@@ -262,10 +260,10 @@ std::vector<CharacterFrame> run_character_frames(Simulation& simulation, const C
                                                  const CharacterRig& rig, const CharacterFrameOptions& options = {},
                                                  const CharacterFrameCallback& on_frame = {});
 
-// The surface with positions x (xyz per vertex; empty: its own) as binary
+// The surface with positions x (empty: its own) as binary
 // little-endian PLY (float x, y, z; triangles as uchar-counted int lists),
 // vertices in the surface's order (write_obj, snh/surface.h, writes OBJ).
-void write_surface_ply(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x = {});
+void write_surface_ply(const std::string& path, const TriangleSurface& surface, const Points& x = {});
 
 // A point cache: the same points sampled over frames.
 struct PointCache {
@@ -299,9 +297,9 @@ class CharacterCacheSeries {
  public:
   CharacterCacheSeries(const Character& character, std::string pc2, std::string mdd, std::string lbs);
   // A frame (numbered as CharacterFrame::record.frame: the clip's frame
-  // number) with the simulated surface (xyz per vertex of
+  // number) with the simulated surface (one point per vertex of
   // Character::surface); frames are written in the order added.
-  void add(int clip_frame, const std::vector<double>& surface);
+  void add(int clip_frame, const Points& surface);
   void finish();  // writes the files
 
  private:

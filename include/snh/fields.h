@@ -46,7 +46,7 @@ struct ElementFields {
 // they are returned: a material undefined for J <= 0 (log Neo-Hookean
 // without inversion handling) at an element with J <= 0, or a non-finite
 // energy or stress, is an snh::Error naming the element and point.
-ElementFields compute_element_fields(const Mesh& mesh, const MaterialMap& materials, const std::vector<double>& x);
+ElementFields compute_element_fields(const Mesh& mesh, const MaterialMap& materials, const Points& x);
 
 // The fields as .vtu cell data: F (9 components), J, min_J, P (9), cauchy (9),
 // von_mises, energy_density, and "region" (the material map index) when the
@@ -59,11 +59,11 @@ ElementFields compute_element_fields(const Mesh& mesh, const MaterialMap& materi
 // other or with the map.
 std::vector<VtuCellField> element_fields_for_vtu(const ElementFields& fields, const MaterialMap& materials);
 
-// Elastic nodal forces -dE_elastic/dx at x, xyz per vertex, in double (the
+// Elastic nodal forces -dE_elastic/dx at x, in double (the
 // kernels' element math compiled for the host), summed per element then per
 // vertex in a fixed order: deterministic. Same input checks as
 // compute_element_fields.
-std::vector<double> elastic_forces(const Mesh& mesh, const MaterialMap& materials, const std::vector<double>& x);
+Points elastic_forces(const Mesh& mesh, const MaterialMap& materials, const Points& x);
 
 // The force and torque a set of prescribed DOFs exerts on the body:
 // reaction_v = -(elastic force + external force) at each prescribed
@@ -80,25 +80,25 @@ struct Reaction {
 
 // components: which of x, y, z are prescribed, the same for every vertex of
 // `vertices` ({true, true, true}: fully pinned, as ConstraintSet is). A
-// vertex listed twice counts once. external_force: lumped, xyz per vertex,
+// vertex listed twice counts once. external_force: lumped,
 // or empty. about: the reference point of the torque. Throws snh::Error
 // naming the set for a vertex out of range or a wrongly sized x,
 // elastic_force or external_force.
 Reaction reaction(const std::string& name, const std::vector<int32_t>& vertices, const std::array<bool, 3>& components,
-                  const std::vector<double>& x, const std::vector<double>& elastic_force,
-                  const std::vector<double>& external_force, const std::array<double, 3>& about);
+                  const Points& x, const Points& elastic_force, const Points& external_force,
+                  const std::array<double, 3>& about);
 
-// The centroid of the distinct `vertices` at positions x (xyz per vertex).
-std::array<double, 3> centroid(const std::vector<int32_t>& vertices, const std::vector<double>& x);
+// The centroid of the distinct `vertices` at positions x.
+std::array<double, 3> centroid(const std::vector<int32_t>& vertices, const Points& x);
 
 // The reaction of every constraint set at positions x, over each set's
 // prescribed components (ConstraintSet::components), with the torque
 // taken about the set's current centroid (for a rigidly moved set: its rest
 // centroid moved with it, i.e. the point a bone's load is reported at).
 // (Sets never share a vertex component: Simulation rejects that.) external_force as in SolveOptions
-// (lumped, xyz per vertex, or empty).
+// (lumped, or empty).
 std::vector<Reaction> constraint_reactions(const Mesh& mesh, const MaterialMap& materials,
-                                           const std::vector<ConstraintSet>& constraints, const std::vector<double>& x,
-                                           const std::vector<double>& external_force);
+                                           const std::vector<ConstraintSet>& constraints, const Points& x,
+                                           const Points& external_force);
 
 }  // namespace snh

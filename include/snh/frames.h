@@ -68,10 +68,9 @@ struct FrameOptions {
 };
 
 // Called after each frame with its record, the lattice positions and the
-// embedded surface's positions (xyz per vertex; empty without an embedding).
+// embedded surface's positions (empty without an embedding).
 // Return false to stop after this frame.
-using FrameCallback =
-    std::function<bool(const FrameRecord&, const std::vector<double>& lattice, const std::vector<double>& surface)>;
+using FrameCallback = std::function<bool(const FrameRecord&, const Points& lattice, const Points& surface)>;
 
 // Runs every frame of `animation` on `simulation`: each animated bone's
 // matrix goes to the constraint set of the same name through

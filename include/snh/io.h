@@ -25,16 +25,16 @@ struct VtuCellField {
   int components = 1;
 };
 
-// Writes `mesh` with vertex positions `x` (xyz per vertex) to `path`.
+// Writes `mesh` with vertex positions `x` to `path`.
 // Throws snh::Error naming the path when it cannot be written or a field's
 // size does not match the mesh.
-void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<double>& x,
+void write_vtu(const std::string& path, const Mesh& mesh, const Points& x,
                const std::vector<VtuPointField>& point_fields = {}, const std::vector<VtuCellField>& cell_fields = {});
 
-// A triangle surface with vertex positions x (xyz per vertex; empty: its
+// A triangle surface with vertex positions x (empty: its
 // own) as a .vtu of VTK_TRIANGLE cells, e.g. an embedded surface per frame
 // next to its lattice. Errors as write_vtu's.
-void write_surface_vtu(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x = {},
+void write_surface_vtu(const std::string& path, const TriangleSurface& surface, const Points& x = {},
                        const std::vector<VtuPointField>& point_fields = {});
 
 // A ParaView collection: one (time, relative .vtu path) entry per step.

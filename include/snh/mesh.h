@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "snh/points.h"
+
 namespace snh {
 
 enum class ElementType { hex8, tet4 };
@@ -49,8 +51,8 @@ struct MeshArray {
 
 struct Mesh {
   ElementType type = ElementType::hex8;
-  // Rest positions, xyz per vertex.
-  std::vector<double> positions;
+  // Rest positions, one per vertex.
+  Points positions;
   // Vertex indices, nodes_per_element() per element. hex8 nodes follow VTK's
   // VTK_HEXAHEDRON order: the bottom face (z-) counter-clockwise seen from
   // +z, then the top face; tet4 nodes are positively oriented
@@ -63,11 +65,9 @@ struct Mesh {
   std::vector<MeshArray> point_arrays;
   std::vector<MeshArray> cell_arrays;
 
-  size_t vertex_count() const { return positions.size() / 3; }
+  size_t vertex_count() const { return positions.size(); }
   size_t element_count() const { return elements.size() / nodes_per_element(type); }
-  std::array<double, 3> vertex(size_t i) const {
-    return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
-  }
+  Vec3 vertex(size_t i) const { return {positions(i, 0), positions(i, 1), positions(i, 2)}; }
 };
 
 // Problems found by validate_mesh that do not stop a solve.
@@ -104,9 +104,9 @@ Mesh make_tet_box(int nx, int ny, int nz, double h, std::array<double, 3> origin
 // point arrays are kept and each hex's cell-array values go to its six tets.
 Mesh split_hexes_into_tets(const Mesh& hexes);
 
-// Volume of the mesh at positions `x` (xyz per vertex): the sum over
+// Volume of the mesh at positions `x`: the sum over
 // elements and quadrature points of det F times the rest volume.
-double mesh_volume(const Mesh& mesh, const std::vector<double>& x);
+double mesh_volume(const Mesh& mesh, const Points& x);
 
 // The mesh's vertex spacing: (rest volume / vertices in elements)^(1/3).
 double vertex_spacing(const Mesh& mesh);

@@ -57,9 +57,9 @@ Mesh read_mesh(const std::string& path, const MeshReadOptions& options = {});
 void write_mesh(const std::string& path, const Mesh& mesh);
 
 // The boundary surface (faces used by one element), triangles for tet4 and
-// quads for hex8, oriented outwards, at positions x (xyz per vertex; empty:
+// quads for hex8, oriented outwards, at positions x (empty:
 // the rest positions). OBJ (ASCII) and PLY (ASCII).
-void write_obj_surface(const std::string& path, const Mesh& mesh, const std::vector<double>& x = {});
-void write_ply_surface(const std::string& path, const Mesh& mesh, const std::vector<double>& x = {});
+void write_obj_surface(const std::string& path, const Mesh& mesh, const Points& x = {});
+void write_ply_surface(const std::string& path, const Mesh& mesh, const Points& x = {});
 
 }  // namespace snh

@@ -188,8 +188,7 @@ struct SceneProgress {
 
 // Called with each step's or frame's lattice positions and the embedded
 // surface's (empty without "embed"), after its record; writers use it.
-using SceneStepWriter =
-    std::function<void(int index, double time, const std::vector<double>& lattice, const std::vector<double>& surface)>;
+using SceneStepWriter = std::function<void(int index, double time, const Points& lattice, const Points& surface)>;
 
 struct SceneRunOptions {
   int max_frames = 0;     // a rig: run only the first frames; 0: all

@@ -22,6 +22,6 @@ struct ShapeDeviation {
 
 // Throws snh::Error for positions of the wrong size or not finite, or a mesh
 // whose used vertices all coincide.
-ShapeDeviation shape_deviation(const Mesh& mesh, const std::vector<double>& positions);
+ShapeDeviation shape_deviation(const Mesh& mesh, const Points& positions);
 
 }  // namespace snh

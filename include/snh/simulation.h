@@ -53,7 +53,7 @@ struct RigidTransform {
 // A set of vertices whose positions are prescribed. At load parameter t in
 // (0, 1] (step s of n has t = s / n) each vertex sits at motion(t) applied to
 // its rest position; without a motion the vertices stay at rest. `targets`,
-// when set, overrides `motion`: it fills xyz per vertex of the set.
+// when set, overrides `motion`: it fills the positions of the set's vertices.
 // `components` says which of x, y, z the set prescribes; the others stay
 // free: {false, false, true} lets the vertices slide on their planes
 // z = const (per-component constraints; a sliding plane's normal is a
@@ -62,7 +62,7 @@ struct ConstraintSet {
   std::string name;
   std::vector<int32_t> vertices;
   std::function<RigidTransform(double t)> motion;
-  std::function<void(double t, std::vector<double>& xyz)> targets;
+  std::function<void(double t, Points& xyz)> targets;
   std::array<bool, 3> components{true, true, true};
 
   // Vertices held at their rest positions (in `components`; the others free).
@@ -76,9 +76,9 @@ struct ConstraintSet {
                               std::array<bool, 3> components = {true, true, true}) {
     return {std::move(name), std::move(vertices), std::move(motion), {}, components};
   }
-  // Vertices placed where targets(t, xyz) puts them (xyz per vertex of the set).
+  // Vertices placed where targets(t, xyz) puts them (one per vertex of the set).
   static ConstraintSet targets_of(std::string name, std::vector<int32_t> vertices,
-                                  std::function<void(double t, std::vector<double>& xyz)> targets,
+                                  std::function<void(double t, Points& xyz)> targets,
                                   std::array<bool, 3> components = {true, true, true}) {
     return {std::move(name), std::move(vertices), {}, std::move(targets), components};
   }
@@ -503,8 +503,8 @@ struct SolveOptions : SolverTuning {
   std::optional<double> strain_tolerance;
   double absolute_tolerance = 0.0;
   double relative_tolerance = 0.0;
-  // Lumped external force, xyz per vertex; empty for none.
-  std::vector<double> external_force;
+  // Lumped external force per vertex; empty for none.
+  Points external_force;
   // Body force per rest volume (e.g. density times gravity), lumped to the
   // vertices with each element's own quadrature; added to external_force.
   std::array<double, 3> body_force{0, 0, 0};
@@ -524,14 +524,14 @@ struct SolveOptions : SolverTuning {
   // SolveResult::converged false, and the later steps are not run. false:
   // such a step keeps its Newton status and says so in its warnings.
   bool fail_on_inverted = false;
-  // Starting positions of the first step (xyz per vertex); empty: rest.
-  std::vector<double> initial_positions;
-  // Starting velocities with dynamics (xyz per vertex); empty: zero.
-  std::vector<double> initial_velocities;
+  // Starting positions of the first step; empty: rest.
+  Points initial_positions;
+  // Starting velocities with dynamics; empty: zero.
+  Points initial_velocities;
   // Called after every Newton iteration with its record and the positions
-  // it produced (xyz per vertex), e.g. to measure error against a reference
+  // it produced, e.g. to measure error against a reference
   // as the solve runs. Downloads the positions: leave empty when not needed.
-  std::function<void(const NewtonIteration&, const std::vector<double>& positions)> on_iteration;
+  std::function<void(const NewtonIteration&, const Points& positions)> on_iteration;
 
   SolverTuning& tuning() { return *this; }
   const SolverTuning& tuning() const { return *this; }
@@ -646,7 +646,7 @@ struct StepResult {
 };
 
 struct SolveResult {
-  std::vector<double> positions;  // xyz per vertex, after the last step
+  Points positions;  // after the last step
   std::vector<NewtonIteration> history;
   std::vector<StepResult> steps;
   bool converged = false;
@@ -682,7 +682,7 @@ struct SolveResult {
 };
 
 // Called after each load step with the step's positions (e.g. to write a .vtu).
-using StepCallback = std::function<void(int step, const std::vector<double>& positions)>;
+using StepCallback = std::function<void(int step, const Points& positions)>;
 // Called after every Newton update; return false to cancel the solve (the
 // positions stay those of the last update, SolveResult::cancelled is set).
 using ProgressCallback = std::function<bool(const NewtonIteration&)>;
@@ -704,12 +704,12 @@ struct SimulationState {
   // The mesh it belongs to: its vertex count and mesh_fingerprint.
   uint64_t vertex_count = 0;
   uint64_t mesh_fingerprint = 0;
-  std::vector<double> positions;   // xyz per vertex
-  std::vector<double> velocities;  // xyz per vertex with dynamics; else empty
-  double time = 0.0;               // simulated time with dynamics
-  // Friction's anchors, xyz per vertex and obstacle (ContactOptions::friction);
-  // empty without friction.
-  std::vector<double> friction_anchors;
+  Points positions;
+  Points velocities;  // with dynamics; else empty
+  double time = 0.0;  // simulated time with dynamics
+  // Friction's anchors, one per vertex and obstacle, vertex-major
+  // (ContactOptions::friction); empty without friction.
+  Points friction_anchors;
   // Per constraint set, in the simulation's order.
   struct Target {
     std::string set;  // the set's name
@@ -717,16 +717,16 @@ struct SimulationState {
     // transform: the transform last reached (when known) and the one to reach.
     RigidTransform from, to;
     bool from_known = false;
-    std::vector<double> positions;  // positions: xyz per vertex of the set
+    Points positions;  // positions: one per vertex of the set
   };
   std::vector<Target> targets;
   // Loads: the lumped external force and the body force last set, and the
   // load ramp's ends (SolveOptions::ramp_loads): the total lumped force the
   // last solve reached, the one the next reaches, and the one applied at the
-  // last step (xyz per vertex; empty for none yet).
-  std::vector<double> external_force;
+  // last step (one per vertex; empty for none yet).
+  Points external_force;
   std::array<double, 3> body_force{0, 0, 0};
-  std::vector<double> force_from, force_to, force_applied;
+  Points force_from, force_to, force_applied;
 };
 
 // A hash (64-bit FNV-1a) of the mesh's element type, positions and element
@@ -758,13 +758,13 @@ class Simulation {
 
   // Targets and loads of the next solve (snh::Error naming the set or input).
   void set_transform(const std::string& set, const RigidTransform& transform);
-  void set_positions(const std::string& set, const std::vector<double>& xyz);  // xyz per vertex of the set
-  void set_external_force(const std::vector<double>& lumped);                  // xyz per vertex; empty: none
+  void set_positions(const std::string& set, const Points& positions);  // one per vertex of the set
+  void set_external_force(const Points& lumped);                        // one per vertex; empty: none
   void set_body_force(const std::array<double, 3>& per_rest_volume);
-  // Replaces the state (xyz per vertex), e.g. to restart from a saved frame.
-  void set_state(const std::vector<double>& positions);
-  // With dynamics: replaces the velocities (xyz per vertex; empty: zero).
-  void set_velocities(const std::vector<double>& velocities);
+  // Replaces the state, e.g. to restart from a saved frame.
+  void set_state(const Points& positions);
+  // With dynamics: replaces the velocities (empty: zero).
+  void set_velocities(const Points& velocities);
   // Back to the start: SolveOptions::initial_positions (else rest), every set
   // following its own callbacks, no force applied yet.
   void restart();
@@ -790,9 +790,9 @@ class Simulation {
   // solve) are reached at its end, the velocities are kept between solves.
   SolveResult solve(int load_steps = 0, const ProgressCallback& progress = {}, const StepCallback& on_step = {});
 
-  const std::vector<double>& positions() const;
-  // With dynamics: the velocities (xyz per vertex) and the simulated time.
-  const std::vector<double>& velocities() const;
+  const Points& positions() const;
+  // With dynamics: the velocities and the simulated time.
+  const Points& velocities() const;
   double time() const;
   // Per element F, J, stresses and energy density at the current state.
   ElementFields fields() const;
@@ -800,8 +800,8 @@ class Simulation {
   // current state (torque about the set's current centroid).
   std::vector<Reaction> reactions() const;
   // The lumped external force (external_force plus body force) of the last
-  // solve's final step, xyz per vertex.
-  const std::vector<double>& applied_force() const;
+  // solve's final step, one per vertex.
+  const Points& applied_force() const;
   // The result of the last step solved (in a StepCallback: that step's).
   const StepResult& last_step() const;
 
@@ -862,6 +862,6 @@ struct DeformationStatistics {
   double max_j = 0.0;
   int inverted_elements = 0;
 };
-DeformationStatistics deformation_statistics(const Mesh& mesh, const std::vector<double>& x);
+DeformationStatistics deformation_statistics(const Mesh& mesh, const Points& x);
 
 }  // namespace snh

@@ -15,9 +15,9 @@
 namespace snh {
 
 struct TriangleSurface {
-  std::vector<double> positions;   // xyz per vertex
+  Points positions;
   std::vector<int32_t> triangles;  // three vertex indices per triangle, outward normals by the right-hand rule
-  size_t vertex_count() const { return positions.size() / 3; }
+  size_t vertex_count() const { return positions.size(); }
   size_t triangle_count() const { return triangles.size() / 3; }
 };
 
@@ -26,9 +26,9 @@ struct TriangleSurface {
 // offset) for malformed input.
 TriangleSurface read_surface(const std::string& path);
 
-// Writes the surface with vertex positions x (xyz per vertex; empty: its own)
+// Writes the surface with vertex positions x (empty: its own)
 // as OBJ.
-void write_obj(const std::string& path, const TriangleSurface& surface, const std::vector<double>& x = {});
+void write_obj(const std::string& path, const TriangleSurface& surface, const Points& x = {});
 
 // Coincident vertices merged: the vertices within `tolerance` of a kept one
 // (taken in vertex order; the first of a cluster is kept) become that one.
@@ -212,15 +212,15 @@ CarriedEmbedding embed_carrying_all(const Voxelization& voxels, const TriangleSu
 // write_ply_surface write), oriented outwards, hex8 quads split into two
 // triangles (corners 0 1 2 and 0 2 3 of the face), in element order. Its
 // vertices are the mesh vertices on the boundary, in mesh order, at
-// positions x (xyz per mesh vertex; empty: the rest positions). Throws
+// positions x (per mesh vertex; empty: the rest positions). Throws
 // snh::Error for a malformed mesh or positions of the wrong size.
 struct MeshBoundary {
   TriangleSurface surface;
   std::vector<int32_t> vertices;  // the mesh vertex of each surface vertex
 };
-MeshBoundary boundary_surface(const Mesh& mesh, const std::vector<double>& x = {});
+MeshBoundary boundary_surface(const Mesh& mesh, const Points& x = {});
 
-// The surface's vertex positions (xyz per vertex) for lattice positions x.
-std::vector<double> embedded_positions(const Embedding& embedding, const Mesh& lattice, const std::vector<double>& x);
+// The surface's vertex positions for lattice positions x.
+Points embedded_positions(const Embedding& embedding, const Mesh& lattice, const Points& x);
 
 }  // namespace snh

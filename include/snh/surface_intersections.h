@@ -43,11 +43,11 @@ struct SelfIntersectionOptions {
   std::string name = "surface";  // starts every error message (the file)
 };
 
-// positions: xyz per vertex; triangles: three vertex indices each. Throws
+// positions: one per vertex; triangles: three vertex indices each. Throws
 // snh::Error naming `options.name` for arrays of the wrong length, indices
 // out of range and non-finite positions. Deterministic, and the count does
 // not depend on the order of the triangles or of their corners.
-SelfIntersections count_self_intersections(const std::vector<double>& positions, const std::vector<int32_t>& triangles,
+SelfIntersections count_self_intersections(const Points& positions, const std::vector<int32_t>& triangles,
                                            const SelfIntersectionOptions& options = {});
 SelfIntersections count_self_intersections(const TriangleSurface& surface, const SelfIntersectionOptions& options = {});
 

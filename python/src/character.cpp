@@ -189,9 +189,8 @@ void bind_reading_and_skinning(py::module_& m) {
   m.def(
       "linear_blend_skinning",
       [](py::handle rest, const snh::SkinWeights& weights, py::handle matrices) {
-        const std::vector<double> x = to_doubles(rest, "rest", 3, static_cast<py::ssize_t>(weights.vertex_count()));
-        const std::vector<double> out = snh::linear_blend_skinning(x, weights, to_matrices(matrices, "matrices"));
-        return copy_array(out, {static_cast<py::ssize_t>(out.size() / 3), 3});
+        const snh::Points x = to_points(rest, "rest", static_cast<py::ssize_t>(weights.vertex_count()));
+        return to_array(snh::linear_blend_skinning(x, weights, to_matrices(matrices, "matrices")));
       },
       py::arg("rest"), py::arg("weights"), py::arg("matrices"),
       "sum_j w_j M_j x per vertex of rest (n, 3) with one matrix (joints, 4, 4) per joint: (n, 3).");
@@ -322,14 +321,13 @@ void bind_character_frames(py::module_& m) {
           throw py::type_error("on_frame: expected a callable or None");
         std::shared_ptr<py::object> held = on_frame.is_none() ? nullptr : hold(on_frame);
         // Always called, so that Ctrl-C (a pending signal) stops after the frame.
-        const snh::CharacterFrameCallback callback =
-            [held](const snh::CharacterFrame& f, const std::vector<double>& lattice_x,
-                   const std::vector<double>& surface, const std::vector<double>& skinned) {
-              py::gil_scoped_acquire gil;
-              if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-              if (!held) return true;
-              return keep_going((*held)(f, xyz_array(lattice_x), xyz_array(surface), xyz_array(skinned)));
-            };
+        const snh::CharacterFrameCallback callback = [held](const snh::CharacterFrame& f, const snh::Points& lattice_x,
+                                                            const snh::Points& surface, const snh::Points& skinned) {
+          py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+          if (!held) return true;
+          return keep_going((*held)(f, xyz_array(lattice_x), xyz_array(surface), xyz_array(skinned)));
+        };
         py::gil_scoped_release release;
         return snh::run_character_frames(sim, character, rig, options, callback);
       },
@@ -344,8 +342,7 @@ void bind_outputs(py::module_& m) {
   m.def(
       "write_surface_ply",
       [](const std::string& path, const snh::TriangleSurface& s, py::handle x) {
-        snh::write_surface_ply(path, s,
-                               x.is_none() ? std::vector<double>{} : to_doubles(x, "positions", 3, s.vertex_count()));
+        snh::write_surface_ply(path, s, x.is_none() ? snh::Points{} : to_points(x, "positions", s.vertex_count()));
       },
       py::arg("path"), py::arg("surface"), py::arg("positions") = py::none(),
       "Writes the surface as binary PLY at positions (n, 3) (None: its own), vertices in its order.");
@@ -382,7 +379,7 @@ void bind_outputs(py::module_& m) {
       .def(
           "add",
           [](snh::CharacterCacheSeries& series, int clip_frame, py::handle surface) {
-            series.add(clip_frame, to_doubles(surface, "surface", 3));
+            series.add(clip_frame, to_points(surface, "surface"));
           },
           py::arg("clip_frame"), py::arg("surface"),
           "A frame (numbered as in the clip) with the simulated surface (n, 3).")

@@ -1,6 +1,6 @@
-// Shared by the binding files: NumPy arrays in and out of the engine's flat
-// std::vector layouts (xyz per vertex, nodes per element), checked before
-// anything reaches the engine, and each copied once.
+// Shared by the binding files: NumPy arrays in and out of the engine's
+// snh::Points (n, 3) and flat std::vector layouts (nodes per element),
+// checked before anything reaches the engine, and each copied once.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "snh/points.h"
 
 namespace snh_python {
 
@@ -37,9 +39,22 @@ py::array_t<int32_t> to_array(std::vector<int32_t>&& values, std::vector<py::ssi
 py::array_t<double> copy_array(const std::vector<double>& values, std::vector<py::ssize_t> shape);
 py::array_t<int32_t> copy_array(const std::vector<int32_t>& values, std::vector<py::ssize_t> shape);
 
-// xyz per vertex as (n, 3).
-inline py::array_t<double> xyz_array(const std::vector<double>& values) {
-  return copy_array(values, {static_cast<py::ssize_t>(values.size() / 3), 3});
+// An (n, 3) array (rows -1: any n) as Points, checked as to_doubles checks
+// it: the one conversion of NumPy points into the engine, one copy.
+inline snh::Points to_points(py::handle array, const std::string& what, py::ssize_t rows = -1, bool finite = true) {
+  return snh::Points::from_xyz(to_doubles(array, what, 3, rows, finite), what);
+}
+
+// Points the engine keeps as a float64 (n, 3) copy.
+inline py::array_t<double> xyz_array(const snh::Points& points) {
+  return copy_array(points.xyz(), {static_cast<py::ssize_t>(points.size()), 3});
+}
+
+// Points the engine returned as float64 (n, 3), their buffer handed to
+// NumPy without another copy.
+inline py::array_t<double> to_array(snh::Points&& points) {
+  const auto n = static_cast<py::ssize_t>(points.size());
+  return to_array(points.release(), {n, 3});
 }
 
 // 3x3 column-major matrices (nine values each, as the engine stores them)

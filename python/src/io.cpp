@@ -9,9 +9,9 @@ namespace snh_python {
 
 namespace {
 
-std::vector<double> positions_or_rest(const snh::Mesh& mesh, py::handle x) {
-  if (x.is_none()) return mesh.positions;
-  return to_doubles(x, "positions", 3, mesh.vertex_count());
+// Positions (n, 3) of the mesh's vertices given from Python (not None).
+snh::Points mesh_positions(const snh::Mesh& mesh, py::handle x) {
+  return to_points(x, "positions", mesh.vertex_count());
 }
 
 // A field's values as components per row: (rows,), (rows, c) or (rows, 3, 3)
@@ -43,13 +43,13 @@ void bind_io(py::module_& m) {
   m.def(
       "write_obj_surface",
       [](const std::string& path, const snh::Mesh& mesh, py::handle x) {
-        snh::write_obj_surface(path, mesh, x.is_none() ? std::vector<double>{} : positions_or_rest(mesh, x));
+        snh::write_obj_surface(path, mesh, x.is_none() ? snh::Points{} : mesh_positions(mesh, x));
       },
       py::arg("path"), py::arg("mesh"), py::arg("positions") = py::none(), "The boundary surface as OBJ.");
   m.def(
       "write_ply_surface",
       [](const std::string& path, const snh::Mesh& mesh, py::handle x) {
-        snh::write_ply_surface(path, mesh, x.is_none() ? std::vector<double>{} : positions_or_rest(mesh, x));
+        snh::write_ply_surface(path, mesh, x.is_none() ? snh::Points{} : mesh_positions(mesh, x));
       },
       py::arg("path"), py::arg("mesh"), py::arg("positions") = py::none(), "The boundary surface as PLY.");
   m.def(
@@ -72,7 +72,10 @@ void bind_io(py::module_& m) {
             f.values = field_values(item.second, "cell field '" + f.name + "'", mesh.element_count(), f.components);
             cells.push_back(std::move(f));
           }
-        snh::write_vtu(path, mesh, positions_or_rest(mesh, x), points, cells);
+        if (x.is_none())
+          snh::write_vtu(path, mesh, mesh.positions, points, cells);
+        else
+          snh::write_vtu(path, mesh, mesh_positions(mesh, x), points, cells);
       },
       py::arg("path"), py::arg("mesh"), py::arg("positions") = py::none(), py::arg("point_fields") = py::none(),
       py::arg("cell_fields") = py::none(),

@@ -24,7 +24,7 @@ py::ssize_t columns_of(py::handle elements) {
 
 snh::Mesh make_mesh(py::handle positions, py::handle elements, std::optional<snh::ElementType> type) {
   snh::Mesh mesh;
-  mesh.positions = to_doubles(positions, "positions", 3);
+  mesh.positions = to_points(positions, "positions");
   mesh.type = type ? *type : type_for_columns(columns_of(elements));
   mesh.elements =
       to_indices(elements, "elements", snh::nodes_per_element(mesh.type), static_cast<int64_t>(mesh.vertex_count()));
@@ -91,7 +91,7 @@ void bind_mesh(py::module_& m) {
       .def_readwrite("type", &snh::Mesh::type, "ElementType of every element.")
       .def_property(
           "positions", [](const snh::Mesh& mesh) { return xyz_array(mesh.positions); },
-          [](snh::Mesh& mesh, py::handle v) { mesh.positions = to_doubles(v, "positions", 3); },
+          [](snh::Mesh& mesh, py::handle v) { mesh.positions = to_points(v, "positions"); },
           "Rest positions, a float64 (n, 3) copy.")
       .def_property(
           "elements", &elements_array,
@@ -114,8 +114,8 @@ void bind_mesh(py::module_& m) {
       .def(
           "volume",
           [](const snh::Mesh& mesh, py::object x) {
-            return snh::mesh_volume(mesh,
-                                    x.is_none() ? mesh.positions : to_doubles(x, "positions", 3, mesh.vertex_count()));
+            if (x.is_none()) return snh::mesh_volume(mesh, mesh.positions);
+            return snh::mesh_volume(mesh, to_points(x, "positions", mesh.vertex_count()));
           },
           py::arg("positions") = py::none(), "Volume at positions (n, 3) (default: rest).")
       .def(
@@ -138,8 +138,7 @@ void bind_mesh(py::module_& m) {
   m.def(
       "lump_body_force",
       [](const snh::Mesh& mesh, py::handle force) {
-        return to_array(snh::lump_body_force(mesh, to_vec3(force, "force_per_rest_volume")),
-                        {static_cast<py::ssize_t>(mesh.vertex_count()), 3});
+        return to_array(snh::lump_body_force(mesh, to_vec3(force, "force_per_rest_volume")));
       },
       py::arg("mesh"), py::arg("force_per_rest_volume"),
       "Nodal forces (n, 3) of a uniform body force per rest volume.");
@@ -159,7 +158,7 @@ void bind_mesh(py::module_& m) {
   m.def(
       "shape_deviation",
       [](const snh::Mesh& mesh, py::handle x) {
-        return snh::shape_deviation(mesh, to_doubles(x, "positions", 3, mesh.vertex_count()));
+        return snh::shape_deviation(mesh, to_points(x, "positions", mesh.vertex_count()));
       },
       py::arg("mesh"), py::arg("positions"), "How far positions (n, 3) are from the rest shape up to a rigid motion.");
 }

@@ -29,7 +29,7 @@ void bind_surfaces(py::module_& m) {
   py::class_<snh::TriangleSurface>(m, "TriangleSurface", "A triangle surface: positions (n, 3), triangles (t, 3).")
       .def(py::init([](py::handle positions, py::handle triangles) {
              snh::TriangleSurface s;
-             s.positions = to_doubles(positions, "positions", 3);
+             s.positions = to_points(positions, "positions");
              s.triangles = to_indices(triangles, "triangles", 3, static_cast<int64_t>(s.vertex_count()));
              return s;
            }),
@@ -48,8 +48,8 @@ void bind_surfaces(py::module_& m) {
   m.def(
       "boundary_surface",
       [](const snh::Mesh& mesh, py::handle x) {
-        std::vector<double> positions;
-        if (!x.is_none()) positions = to_doubles(x, "positions", 3, mesh.vertex_count());
+        snh::Points positions;
+        if (!x.is_none()) positions = to_points(x, "positions", mesh.vertex_count());
         snh::MeshBoundary b = snh::boundary_surface(mesh, positions);
         return py::make_tuple(std::move(b.surface), copy_array(b.vertices, {py::ssize_t(b.vertices.size())}));
       },
@@ -60,14 +60,13 @@ void bind_surfaces(py::module_& m) {
   m.def(
       "write_obj",
       [](const std::string& path, const snh::TriangleSurface& s, py::handle x) {
-        snh::write_obj(path, s, x.is_none() ? std::vector<double>{} : to_doubles(x, "positions", 3, s.vertex_count()));
+        snh::write_obj(path, s, x.is_none() ? snh::Points{} : to_points(x, "positions", s.vertex_count()));
       },
       py::arg("path"), py::arg("surface"), py::arg("positions") = py::none(), "Writes the surface as OBJ.");
   m.def(
       "write_surface_vtu",
       [](const std::string& path, const snh::TriangleSurface& s, py::handle x) {
-        snh::write_surface_vtu(path, s,
-                               x.is_none() ? std::vector<double>{} : to_doubles(x, "positions", 3, s.vertex_count()));
+        snh::write_surface_vtu(path, s, x.is_none() ? snh::Points{} : to_points(x, "positions", s.vertex_count()));
       },
       py::arg("path"), py::arg("surface"), py::arg("positions") = py::none(), "Writes the surface as .vtu.");
   m.def("validate_closed_surface", &snh::validate_closed_surface, py::arg("surface"), py::arg("name") = "surface",
@@ -127,8 +126,7 @@ void bind_embedding(py::module_& m) {
   m.def(
       "embedded_positions",
       [](const snh::Embedding& e, const snh::Mesh& lattice, py::handle x) {
-        return to_array(snh::embedded_positions(e, lattice, to_doubles(x, "positions", 3, lattice.vertex_count())),
-                        {static_cast<py::ssize_t>(e.element.size()), 3});
+        return to_array(snh::embedded_positions(e, lattice, to_points(x, "positions", lattice.vertex_count())));
       },
       py::arg("embedding"), py::arg("lattice"), py::arg("positions"),
       "Surface positions (k, 3) for lattice positions (n, 3).");
@@ -218,8 +216,8 @@ void bind_frame_driver(py::module_& m) {
         const snh::FrameOptions options = frame_options.value_or(snh::FrameOptions{});
         std::shared_ptr<py::object> held = on_frame.is_none() ? nullptr : hold(on_frame);
         // Always called, so that Ctrl-C (a pending signal) stops after the frame.
-        const snh::FrameCallback callback = [held](const snh::FrameRecord& r, const std::vector<double>& lattice,
-                                                   const std::vector<double>& surface) {
+        const snh::FrameCallback callback = [held](const snh::FrameRecord& r, const snh::Points& lattice,
+                                                   const snh::Points& surface) {
           py::gil_scoped_acquire gil;
           if (PyErr_CheckSignals() != 0) throw py::error_already_set();
           if (!held) return true;

@@ -20,12 +20,12 @@ E enum_or_name(py::handle value, E (*parse)(const std::string&)) {
   return value.cast<E>();
 }
 
-std::vector<double> optional_xyz(py::handle value, const char* what, py::ssize_t rows = -1) {
+snh::Points optional_xyz(py::handle value, const char* what, py::ssize_t rows = -1) {
   if (value.is_none()) return {};
-  return to_doubles(value, what, 3, rows);
+  return to_points(value, what, rows);
 }
 
-py::object xyz_or_none(const std::vector<double>& values) {
+py::object xyz_or_none(const snh::Points& values) {
   if (values.empty()) return py::none();
   return xyz_array(values);
 }
@@ -49,9 +49,9 @@ snh::ConstraintSet make_constraint_set(std::string name, py::handle vertices, co
   if (!targets.is_none()) {
     auto held = hold(targets);
     const py::ssize_t rows = static_cast<py::ssize_t>(set.vertices.size());
-    set.targets = [held, rows](double t, std::vector<double>& xyz) {
+    set.targets = [held, rows](double t, snh::Points& xyz) {
       py::gil_scoped_acquire gil;
-      xyz = to_doubles((*held)(t), "targets", 3, rows);
+      xyz = to_points((*held)(t), "targets", rows);
     };
   }
   set.components = components;
@@ -69,14 +69,13 @@ void check_inputs(const snh::Mesh& mesh, const std::vector<snh::ConstraintSet>& 
         throw py::value_error("constraint set '" + set.name + "': vertex " + std::to_string(set.vertices[i]) +
                               " at position " + std::to_string(i) + " is outside [0, " + std::to_string(n) + ")");
   if (!options) return;
-  const std::pair<const char*, const std::vector<double>*> arrays[] = {
-      {"external_force", &options->external_force},
-      {"initial_positions", &options->initial_positions},
-      {"initial_velocities", &options->initial_velocities}};
+  const std::pair<const char*, const snh::Points*> arrays[] = {{"external_force", &options->external_force},
+                                                               {"initial_positions", &options->initial_positions},
+                                                               {"initial_velocities", &options->initial_velocities}};
   for (const auto& [name, values] : arrays)
-    if (!values->empty() && values->size() != 3 * n)
+    if (!values->empty() && values->size() != n)  // points
       throw py::value_error(std::string("SolveOptions.") + name + ": expected shape (" + std::to_string(n) +
-                            ", 3), got (" + std::to_string(values->size() / 3) + ", 3)");
+                            ", 3), got (" + std::to_string(values->size()) + ", 3)");
 }
 
 const snh::ConstraintSet* find_set(const snh::Simulation& sim, const std::string& name) {
@@ -370,8 +369,8 @@ void bind_simulation_class(py::module_& m) {
           "set_positions",
           [](snh::Simulation& sim, const std::string& name, py::handle xyz) {
             const snh::ConstraintSet* set = find_set(sim, name);
-            sim.set_positions(name, to_doubles(xyz, "positions of set '" + name + "'", 3,
-                                               set ? static_cast<py::ssize_t>(set->vertices.size()) : -1));
+            sim.set_positions(name, to_points(xyz, "positions of set '" + name + "'",
+                                              set ? static_cast<py::ssize_t>(set->vertices.size()) : -1));
           },
           py::arg("set"), py::arg("positions"), "Absolute target positions (k, 3) of the set's vertices.")
       .def(
@@ -386,7 +385,7 @@ void bind_simulation_class(py::module_& m) {
       .def(
           "set_state",
           [](snh::Simulation& sim, py::handle x) {
-            sim.set_state(to_doubles(x, "positions", 3, sim.mesh().vertex_count()));
+            sim.set_state(to_points(x, "positions", sim.mesh().vertex_count()));
           },
           py::arg("positions"), "Replaces the state (n, 3).")
       .def(
@@ -409,7 +408,7 @@ void bind_simulation_class(py::module_& m) {
             snh::StepCallback step_callback;
             if (!on_step.is_none()) {
               auto held = hold(on_step);
-              step_callback = [held](int step, const std::vector<double>& x) {
+              step_callback = [held](int step, const snh::Points& x) {
                 py::gil_scoped_acquire gil;
                 (*held)(step, xyz_array(x));
               };
@@ -480,20 +479,19 @@ void bind_field_functions(py::module_& m) {
   m.def(
       "deformation_statistics",
       [](const snh::Mesh& mesh, py::handle x) {
-        return snh::deformation_statistics(mesh, to_doubles(x, "positions", 3, mesh.vertex_count()));
+        return snh::deformation_statistics(mesh, to_points(x, "positions", mesh.vertex_count()));
       },
       py::arg("mesh"), py::arg("positions"), "Volume ratio, J range and inverted elements at positions (n, 3).");
   m.def(
       "compute_element_fields",
       [](const snh::Mesh& mesh, const snh::MaterialMap& materials, py::handle x) {
-        return snh::compute_element_fields(mesh, materials, to_doubles(x, "positions", 3, mesh.vertex_count()));
+        return snh::compute_element_fields(mesh, materials, to_points(x, "positions", mesh.vertex_count()));
       },
       py::arg("mesh"), py::arg("materials"), py::arg("positions"), "ElementFields at positions (n, 3).");
   m.def(
       "elastic_forces",
       [](const snh::Mesh& mesh, const snh::MaterialMap& materials, py::handle x) {
-        return to_array(snh::elastic_forces(mesh, materials, to_doubles(x, "positions", 3, mesh.vertex_count())),
-                        {static_cast<py::ssize_t>(mesh.vertex_count()), 3});
+        return to_array(snh::elastic_forces(mesh, materials, to_points(x, "positions", mesh.vertex_count())));
       },
       py::arg("mesh"), py::arg("materials"), py::arg("positions"), "Elastic nodal forces -dE/dx, (n, 3).");
 }

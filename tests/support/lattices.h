@@ -14,7 +14,8 @@ namespace snh::test {
 inline Mesh jittered(Mesh mesh, double h) {
   std::mt19937_64 rng(4711);
   std::uniform_real_distribution<double> u(-0.1 * h, 0.1 * h);
-  for (double& c : mesh.positions) c += u(rng);
+  double* c = mesh.positions.data();
+  for (size_t i = 0; i < 3 * mesh.positions.size(); ++i) c[i] += u(rng);
   return mesh;
 }
 
@@ -27,11 +28,11 @@ inline Mesh jittered_unit_cube(int n, unsigned seed) {
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     bool interior = true;
     for (int d = 0; d < 3; ++d) {
-      const double c = mesh.positions[3 * v + d];
+      const double c = mesh.positions(v, d);
       interior = interior && c > 1e-9 && c < 1.0 - 1e-9;
     }
     if (interior)
-      for (int d = 0; d < 3; ++d) mesh.positions[3 * v + d] += u(rng);
+      for (int d = 0; d < 3; ++d) mesh.positions(v, d) += u(rng);
   }
   return mesh;
 }
@@ -39,7 +40,8 @@ inline Mesh jittered_unit_cube(int n, unsigned seed) {
 // Every coordinate moved by amount * sin(1.7 i + 0.3): irregular but the same
 // on every platform, so that a swapped coordinate or node shows.
 inline Mesh sine_jiggled(Mesh mesh, double amount) {
-  for (size_t i = 0; i < mesh.positions.size(); ++i) mesh.positions[i] += amount * std::sin(1.7 * double(i) + 0.3);
+  double* c = mesh.positions.data();
+  for (size_t i = 0; i < 3 * mesh.positions.size(); ++i) c[i] += amount * std::sin(1.7 * double(i) + 0.3);
   return mesh;
 }
 

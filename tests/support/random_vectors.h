@@ -19,7 +19,7 @@ inline std::vector<double> random_vector(size_t n, double amplitude, unsigned se
 
 // The mesh's rest positions, each coordinate moved by random_vector.
 inline std::vector<double> perturbed(const Mesh& mesh, double amplitude, unsigned seed) {
-  std::vector<double> x = mesh.positions;
+  std::vector<double> x = mesh.positions.xyz();
   const std::vector<double> d = random_vector(x.size(), amplitude, seed);
   for (size_t i = 0; i < x.size(); ++i) x[i] += d[i];
   return x;

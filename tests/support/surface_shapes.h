@@ -16,8 +16,11 @@ namespace snh::test {
 // An axis-aligned box, 12 triangles facing outwards.
 inline TriangleSurface box_surface(std::array<double, 3> lo, std::array<double, 3> hi) {
   TriangleSurface s;
-  for (int c = 0; c < 8; ++c)
-    for (int d = 0; d < 3; ++d) s.positions.push_back((c >> d) & 1 ? hi[d] : lo[d]);
+  for (int c = 0; c < 8; ++c) {
+    Vec3 p;
+    for (int d = 0; d < 3; ++d) p[d] = (c >> d) & 1 ? hi[d] : lo[d];
+    s.positions.push_back(p);
+  }
   // Corner c: bit 0 +x, bit 1 +y, bit 2 +z; each face counter-clockwise from outside.
   const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : quads) s.triangles.insert(s.triangles.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
@@ -27,7 +30,7 @@ inline TriangleSurface box_surface(std::array<double, 3> lo, std::array<double, 
 // The octahedron |x| + |y| + |z| = r.
 inline TriangleSurface octahedron(double r) {
   TriangleSurface s;
-  s.positions = {r, 0, 0, -r, 0, 0, 0, r, 0, 0, -r, 0, 0, 0, r, 0, 0, -r};
+  s.positions = {{r, 0, 0}, {-r, 0, 0}, {0, r, 0}, {0, -r, 0}, {0, 0, r}, {0, 0, -r}};
   for (int sx = 0; sx < 2; ++sx)
     for (int sy = 0; sy < 2; ++sy)
       for (int sz = 0; sz < 2; ++sz) {
@@ -70,8 +73,7 @@ inline TriangleSurface icosphere(int level, double radius) {
     f = g;
   }
   TriangleSurface s;
-  for (const auto& p : v)
-    for (double x : p) s.positions.push_back(radius * x);
+  for (const auto& p : v) s.positions.push_back({radius * p[0], radius * p[1], radius * p[2]});
   for (const auto& tri : f) s.triangles.insert(s.triangles.end(), tri.begin(), tri.end());
   return s;
 }
@@ -91,7 +93,7 @@ inline TriangleSurface slit_box(double width, double bottom, double depth) {
   const int n = static_cast<int>(outline.size());
   TriangleSurface s;
   for (double y : {0.0, depth})
-    for (const auto& p : outline) s.positions.insert(s.positions.end(), {p[0], y, p[1]});
+    for (const auto& p : outline) s.positions.push_back({p[0], y, p[1]});
   // Seen from -y the xz outline is counter-clockwise with x right and z up, so
   // the y = 0 cap faces -y as listed, and the y = depth cap is reversed.
   for (const auto& c : caps) {
@@ -113,7 +115,7 @@ inline double winding_number(const TriangleSurface& s, const std::array<double, 
   for (size_t t = 0; t < s.triangle_count(); ++t) {
     double r[3][3], len[3];
     for (int k = 0; k < 3; ++k) {
-      for (int d = 0; d < 3; ++d) r[k][d] = s.positions[3 * s.triangles[3 * t + k] + d] - p[d];
+      for (int d = 0; d < 3; ++d) r[k][d] = s.positions(s.triangles[3 * t + k], d) - p[d];
       len[k] = std::sqrt(r[k][0] * r[k][0] + r[k][1] * r[k][1] + r[k][2] * r[k][2]);
     }
     const double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -

@@ -170,14 +170,14 @@ BarrierContact::BarrierContact(const Mesh& mesh) {
     if (faces.corners == 4) add(0, 2, 3);
   }
   points_.assign(faces.vertices.begin(), faces.vertices.end());
-  build_edges(mesh.positions);
+  build_edges(mesh.positions.xyz());
 }
 
 BarrierContact::BarrierContact(const Mesh& lattice, const TriangleSurface& surface, const Embedding& embedding) {
   const size_t n = surface.vertex_count();
   if (lattice.type != ElementType::hex8)
     throw Error("barrier contact: an embedded self-contact surface needs a hex8 lattice");
-  if (surface.positions.size() != 3 * n || embedding.element.size() != n || embedding.weights.size() != 8 * n)
+  if (surface.positions.xyz().size() != 3 * n || embedding.element.size() != n || embedding.weights.size() != 8 * n)
     throw Error("barrier contact: the self-contact surface has " + std::to_string(n) +
                 " vertices but its embedding has " + std::to_string(embedding.element.size()) + " elements and " +
                 std::to_string(embedding.weights.size()) + " weights (8 per vertex)");
@@ -199,14 +199,14 @@ BarrierContact::BarrierContact(const Mesh& lattice, const TriangleSurface& surfa
   for (int v : triangles_) used[v] = 1;
   for (size_t v = 0; v < n; ++v)
     if (used[v]) points_.push_back(static_cast<int>(v));
-  build_edges(surface.positions);
+  build_edges(surface.positions.xyz());
   // The cell size: the mean length of the lattice cells' first edges.
   double sum = 0.0;
   for (size_t e = 0; e < lattice.element_count(); ++e) {
     double l2 = 0.0;
     for (int d = 0; d < 3; ++d) {
       const double a =
-          lattice.positions[3 * lattice.elements[8 * e + 1] + d] - lattice.positions[3 * lattice.elements[8 * e] + d];
+          lattice.positions(lattice.elements[8 * e + 1], d) - lattice.positions(lattice.elements[8 * e], d);
       l2 += a * a;
     }
     sum += std::sqrt(l2);

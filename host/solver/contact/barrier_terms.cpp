@@ -34,7 +34,7 @@ BarrierTerms<Real>::BarrierTerms(device::OpenClContext& cl, const Mesh& mesh, Ph
       profiler_(profiler),
       vertex_count_(mesh.vertex_count()),
       contact_(mesh),
-      rest_(mesh.positions),
+      rest_(mesh.positions.xyz()),
       pair_bytes_(cl.info().has_fp64 ? sizeof(double) : sizeof(float)),
       broad_(cl, pair_bytes_, profiler) {
   const char* file = "contact/barrier_pairs.cl";

@@ -21,18 +21,18 @@ namespace snh::solver {
 class PrescribedCrossingCheck {
  public:
   // The barrier's surface and the lattice (or mesh) positions at rest.
-  PrescribedCrossingCheck(const BarrierContact& contact, const std::vector<double>& rest);
+  PrescribedCrossingCheck(const BarrierContact& contact, const Points& rest);
 
   // x before and after a placement: notes whether the CCD cleared the move.
-  void placed(const std::vector<double>& before, const std::vector<double>& after);
+  void placed(const Points& before, const Points& after);
   // At a step's end x: the warning when a placement since the last call was
   // not cleared and the surface has more intersecting pairs than at rest.
-  void assess(const std::vector<double>& x, const std::string& label, StepResult& step);
+  void assess(const Points& x, const std::string& label, StepResult& step);
 
   size_t intersecting_at_rest() const { return at_rest_; }
 
  private:
-  size_t intersecting(const std::vector<double>& x) const;
+  size_t intersecting(const Points& x) const;
 
   const BarrierContact* contact_;
   std::vector<int32_t> triangles_;

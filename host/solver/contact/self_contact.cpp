@@ -78,7 +78,7 @@ bool in_tet(const double* p, const double* x0, const double* x1, const double* x
 }  // namespace
 
 SelfContactDetector::SelfContactDetector(const Mesh& mesh)
-    : type_(mesh.type), nodes_(nodes_per_element(mesh.type)), elements_(mesh.elements), rest_(mesh.positions) {
+    : type_(mesh.type), nodes_(nodes_per_element(mesh.type)), elements_(mesh.elements), rest_(mesh.positions.xyz()) {
   const size_t elements = elements_.size() / nodes_, vertices = rest_.size() / 3;
   // Boundary faces: those of exactly one element, kept in element and face order.
   std::map<std::array<int, 4>, int> count;

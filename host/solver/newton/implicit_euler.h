@@ -44,26 +44,31 @@ void add_substep(const StepResult& sub, StepResult& total);
 // prepare(euler, t0, t1) places the substep's targets and obstacles for load
 // parameters t0 to t1; solve(euler) runs its Newton solve from x.
 template <typename Bound, typename Prepare, typename Solve>
-StepResult implicit_euler_step(const DynamicsOptions& d, int s, int steps, bool predict, std::vector<double>& x,
-                               std::vector<double>& v, const std::vector<double>& mass, double& time, Bound&& bound,
-                               Prepare&& prepare, Solve&& solve) {
+StepResult implicit_euler_step(const DynamicsOptions& d, int s, int steps, bool predict, Points& x, Points& v,
+                               const std::vector<double>& mass, double& time, Bound&& bound, Prepare&& prepare,
+                               Solve&& solve) {
   const double h = d.time_step / d.substeps;
+  const size_t dofs = x.xyz().size();
   StepResult total;
   total.step = s;
   total.converged = true;
   for (int j = 1; j <= d.substeps; ++j) {
-    const EulerStep euler = euler_step(d, x, v, mass, h);
+    const EulerStep euler = euler_step(d, x.xyz(), v.xyz(), mass, h);
     if (predict) {
       // A barrier must not be crossed by the predictor either: it moves the
       // fraction of h v that continuous collision detection clears.
-      std::vector<double> dx(x.size());
-      for (size_t i = 0; i < x.size(); ++i) dx[i] = h * v[i];
-      const double alpha = std::min(1.0, bound(x, dx));
-      for (size_t i = 0; i < x.size(); ++i) x[i] += alpha * dx[i];
+      std::vector<double> dx(dofs);
+      const double* pv = v.data();
+      for (size_t i = 0; i < dofs; ++i) dx[i] = h * pv[i];
+      const double alpha = std::min(1.0, bound(x.xyz(), dx));
+      double* px = x.data();
+      for (size_t i = 0; i < dofs; ++i) px[i] += alpha * dx[i];
     }
     prepare(euler, substep_fraction(s, j - 1, d.substeps, steps), substep_fraction(s, j, d.substeps, steps));
     const StepResult sub = solve(euler);
-    for (size_t i = 0; i < x.size(); ++i) v[i] = (x[i] - euler.start[i]) / h;
+    const double* px = x.data();
+    double* pv = v.data();
+    for (size_t i = 0; i < dofs; ++i) pv[i] = (px[i] - euler.start[i]) / h;
     time += h;
     add_substep(sub, total);
     if (sub.status == StepStatus::cancelled) break;

@@ -40,6 +40,7 @@ class Writer {
     u64(v.size());
     bytes(v.data(), v.size() * sizeof(double));
   }
+  void points(const Points& p) { values(p.xyz()); }
   template <size_t N>
   void fixed(const std::array<double, N>& a) {
     for (double v : a) f64(v);
@@ -130,6 +131,17 @@ class Reader {
     fail(item, std::to_string(v.size()) + " values, expected " + std::to_string(expected) +
                    (may_be_empty ? " or none" : "") + " (wrong size)");
   }
+  // `v` as points (three values each).
+  Points points(std::vector<double> v, const std::string& item) const {
+    if (v.size() % 3 != 0) fail(item, std::to_string(v.size()) + " values, not three per point (wrong size)");
+    return Points::from_xyz(std::move(v));
+  }
+  // The points of `item`, `expected` values (or none, where `may_be_empty`).
+  Points points(const std::string& item, size_t expected, bool may_be_empty) {
+    std::vector<double> v = values(item);
+    expect_size(v, expected, item, may_be_empty);
+    return points(std::move(v), item);
+  }
   void finish() const {
     if (at_ != data_.size())
       fail("end", std::to_string(data_.size() - at_) + " bytes after the last item (wrong size)");
@@ -151,7 +163,7 @@ uint64_t mesh_fingerprint(const Mesh& mesh) {
   };
   const uint32_t type = static_cast<uint32_t>(mesh.type);
   add(&type, sizeof type);
-  add(mesh.positions.data(), mesh.positions.size() * sizeof(double));
+  add(mesh.positions.data(), mesh.positions.xyz().size() * sizeof(double));
   add(mesh.elements.data(), mesh.elements.size() * sizeof(int32_t));
   return hash;
 }
@@ -163,10 +175,10 @@ void write_checkpoint(const std::string& path, const SimulationState& state) {
   w.u32(kByteOrder);
   w.u64(state.vertex_count);
   w.u64(state.mesh_fingerprint);
-  w.values(state.positions);
-  w.values(state.velocities);
+  w.points(state.positions);
+  w.points(state.velocities);
   w.f64(state.time);
-  w.values(state.friction_anchors);
+  w.points(state.friction_anchors);
   w.u64(state.targets.size());
   for (const SimulationState::Target& t : state.targets) {
     w.text(t.set);
@@ -174,13 +186,13 @@ void write_checkpoint(const std::string& path, const SimulationState& state) {
     w.transform(t.from);
     w.transform(t.to);
     w.flag(t.from_known);
-    w.values(t.positions);
+    w.points(t.positions);
   }
-  w.values(state.external_force);
+  w.points(state.external_force);
   w.fixed(state.body_force);
-  w.values(state.force_from);
-  w.values(state.force_to);
-  w.values(state.force_applied);
+  w.points(state.force_from);
+  w.points(state.force_to);
+  w.points(state.force_applied);
   w.finish();
 }
 
@@ -198,15 +210,14 @@ SimulationState read_checkpoint(const std::string& path) {
   s.vertex_count = r.u64("vertex count");
   s.mesh_fingerprint = r.u64("mesh fingerprint");
   const size_t dofs = 3 * static_cast<size_t>(s.vertex_count);
-  s.positions = r.values("positions");
-  r.expect_size(s.positions, dofs, "positions", false);
-  s.velocities = r.values("velocities");
-  r.expect_size(s.velocities, dofs, "velocities", true);
+  s.positions = r.points("positions", dofs, false);
+  s.velocities = r.points("velocities", dofs, true);
   s.time = r.f64("time");
-  s.friction_anchors = r.values("friction anchors");
-  if (s.friction_anchors.size() % (dofs > 0 ? dofs : 1) != 0)
-    r.fail("friction anchors", std::to_string(s.friction_anchors.size()) + " values, not a multiple of " +
-                                   std::to_string(dofs) + " (wrong size)");
+  std::vector<double> anchors = r.values("friction anchors");
+  if (anchors.size() % (dofs > 0 ? dofs : 1) != 0)
+    r.fail("friction anchors",
+           std::to_string(anchors.size()) + " values, not a multiple of " + std::to_string(dofs) + " (wrong size)");
+  s.friction_anchors = r.points(std::move(anchors), "friction anchors");
   s.targets.resize(r.count("targets", 1));
   for (size_t k = 0; k < s.targets.size(); ++k) {
     SimulationState::Target& t = s.targets[k];
@@ -219,17 +230,13 @@ SimulationState read_checkpoint(const std::string& path) {
     t.from = r.transform(item + " from");
     t.to = r.transform(item + " to");
     t.from_known = r.flag(item + " from_known");
-    t.positions = r.values(item + " positions");
+    t.positions = r.points(r.values(item + " positions"), item + " positions");
   }
-  s.external_force = r.values("external force");
-  r.expect_size(s.external_force, dofs, "external force", true);
+  s.external_force = r.points("external force", dofs, true);
   r.fixed(s.body_force, "body force");
-  s.force_from = r.values("force from");
-  r.expect_size(s.force_from, dofs, "force from", false);
-  s.force_to = r.values("force to");
-  r.expect_size(s.force_to, dofs, "force to", false);
-  s.force_applied = r.values("force applied");
-  r.expect_size(s.force_applied, dofs, "force applied", true);
+  s.force_from = r.points("force from", dofs, false);
+  s.force_to = r.points("force to", dofs, false);
+  s.force_applied = r.points("force applied", dofs, true);
   r.finish();
   return s;
 }

@@ -19,16 +19,19 @@ std::vector<char> prescribed_dofs(const Mesh& mesh, const std::vector<Constraint
   return prescribed;
 }
 
-void place_by_callback(const Mesh& mesh, const ConstraintSet& c, double t, std::vector<double>& x) {
+namespace {
+
+// place_by_callback into x, xyz per vertex.
+void place_by_callback_into(const Mesh& mesh, const ConstraintSet& c, double t, double* x) {
   if (c.targets) {
-    std::vector<double> xyz(3 * c.vertices.size());
+    Points xyz(c.vertices.size());
     c.targets(t, xyz);
-    if (xyz.size() != 3 * c.vertices.size())
-      throw Error("constraint set '" + c.name + "': targets callback returned " + std::to_string(xyz.size()) +
+    if (xyz.size() != c.vertices.size())
+      throw Error("constraint set '" + c.name + "': targets callback returned " + std::to_string(xyz.xyz().size()) +
                   " values, expected " + std::to_string(3 * c.vertices.size()));
     for (size_t k = 0; k < c.vertices.size(); ++k)
       for (int d = 0; d < 3; ++d)
-        if (c.components[d]) x[3 * c.vertices[k] + d] = xyz[3 * k + d];
+        if (c.components[d]) x[3 * c.vertices[k] + d] = xyz(k, d);
   } else {
     const RigidTransform motion = c.motion ? c.motion(t) : RigidTransform::identity();
     for (int32_t v : c.vertices) {
@@ -42,6 +45,16 @@ void place_by_callback(const Mesh& mesh, const ConstraintSet& c, double t, std::
       if (!std::isfinite(x[3 * v + d]))
         throw Error("constraint set '" + c.name + "': non-finite target position for vertex " + std::to_string(v) +
                     " at load parameter " + std::to_string(t));
+}
+
+}  // namespace
+
+void place_by_callback(const Mesh& mesh, const ConstraintSet& c, double t, std::vector<double>& x) {
+  place_by_callback_into(mesh, c, t, x.data());
+}
+
+void place_by_callback(const Mesh& mesh, const ConstraintSet& c, double t, Points& x) {
+  place_by_callback_into(mesh, c, t, x.data());
 }
 
 namespace {
@@ -58,20 +71,18 @@ void check_piece_rigid_modes(const Mesh& mesh, const std::vector<char>& used, co
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   size_t count = 0;
   for (size_t v = 0; v < n; ++v)
-    if (used[v])
-      c += Eigen::Vector3d(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]), ++count;
+    if (used[v]) c += Eigen::Vector3d(mesh.positions(v, 0), mesh.positions(v, 1), mesh.positions(v, 2)), ++count;
   if (count == 0) return;
   c /= static_cast<double>(count);
   double length = 0.0;
   for (size_t v = 0; v < n; ++v)
     if (used[v])
-      length = std::max(
-          length,
-          (Eigen::Vector3d(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]) - c).norm());
+      length = std::max(length,
+                        (Eigen::Vector3d(mesh.positions(v, 0), mesh.positions(v, 1), mesh.positions(v, 2)) - c).norm());
   if (!(length > 0.0)) length = 1.0;
   auto mode_row = [&](size_t v, int d) {
     const Eigen::Vector3d r =
-        (Eigen::Vector3d(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]) - c) / length;
+        (Eigen::Vector3d(mesh.positions(v, 0), mesh.positions(v, 1), mesh.positions(v, 2)) - c) / length;
     Eigen::Matrix<double, 1, 6> row = Eigen::Matrix<double, 1, 6>::Zero();
     row[d] = 1.0;
     // (w x r)_d = sum_k w_k (e_k x r)_d
@@ -157,8 +168,8 @@ void check_rigid_modes(const Mesh& mesh, const std::vector<char>& prescribed, co
         const int32_t v = mesh.elements[static_cast<size_t>(nodes) * e + k];
         used[v] = 1;
         for (int d = 0; d < 3; ++d) {
-          lo[d] = std::min(lo[d], mesh.positions[3 * v + d]);
-          hi[d] = std::max(hi[d], mesh.positions[3 * v + d]);
+          lo[d] = std::min(lo[d], mesh.positions(v, d));
+          hi[d] = std::max(hi[d], mesh.positions(v, d));
         }
       }
     std::string name;

@@ -18,6 +18,7 @@ std::vector<char> prescribed_dofs(const Mesh& mesh, const std::vector<Constraint
 // else `motion(t)` of the rest positions, else rest) into x; snh::Error
 // naming the set for a wrong-sized or non-finite target.
 void place_by_callback(const Mesh& mesh, const ConstraintSet& set, double t, std::vector<double>& x);
+void place_by_callback(const Mesh& mesh, const ConstraintSet& set, double t, Points& x);
 
 // The rigid motions (3 translations, 3 rotations) the prescribed DOFs leave
 // free, for each piece of the mesh (elements joined through shared vertices:

@@ -74,8 +74,8 @@ void assess_step(const Mesh& mesh, const fem::RestState& rest, const std::vector
 
 }  // namespace solver
 
-DeformationStatistics deformation_statistics(const Mesh& mesh, const std::vector<double>& x) {
-  return solver::deformation_statistics(mesh, fem::compute_rest_state(mesh), x);
+DeformationStatistics deformation_statistics(const Mesh& mesh, const Points& x) {
+  return solver::deformation_statistics(mesh, fem::compute_rest_state(mesh), x.xyz());
 }
 
 }  // namespace snh

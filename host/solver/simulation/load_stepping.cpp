@@ -57,15 +57,19 @@ void record_start(const ConstraintSet& set, const std::vector<double>& x, SetTar
     for (int d = 0; d < 3; ++d) target.start[3 * i + d] = x[3 * set.vertices[i] + d];
 }
 
-void place_target(const Mesh& mesh, const ConstraintSet& c, const SetTarget& t, double s,
-                  std::vector<double>& positions) {
+namespace {
+
+// place_target into positions, xyz per vertex (`Positions`: std::vector<double> or Points).
+template <typename Positions>
+void place_target_into(const Mesh& mesh, const ConstraintSet& c, const SetTarget& t, double s, Positions& all) {
+  double* positions = all.data();
   auto put = [&](size_t i, const double p[3]) {
     for (int d = 0; d < 3; ++d)
       if (c.components[d]) positions[3 * c.vertices[i] + d] = p[d];
   };
   switch (t.kind) {
     case SetTarget::Kind::callback:
-      place_by_callback(mesh, c, s, positions);
+      place_by_callback(mesh, c, s, all);
       break;
     case SetTarget::Kind::transform: {
       const bool rigid = t.from_known && is_rotation(affine_of(t.from).a) && is_rotation(affine_of(t.to).a);
@@ -92,6 +96,17 @@ void place_target(const Mesh& mesh, const ConstraintSet& c, const SetTarget& t, 
       if (!std::isfinite(positions[3 * c.vertices[i] + d]))
         throw Error("constraint set '" + c.name + "': non-finite target position for vertex " +
                     std::to_string(c.vertices[i]));
+}
+
+}  // namespace
+
+void place_target(const Mesh& mesh, const ConstraintSet& c, const SetTarget& t, double s,
+                  std::vector<double>& positions) {
+  place_target_into(mesh, c, t, s, positions);
+}
+
+void place_target(const Mesh& mesh, const ConstraintSet& c, const SetTarget& t, double s, Points& positions) {
+  place_target_into(mesh, c, t, s, positions);
 }
 
 void ramp_force(const std::vector<double>& from, const std::vector<double>& to, double s, std::vector<double>& out) {

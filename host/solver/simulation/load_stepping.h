@@ -48,6 +48,7 @@ void record_start(const ConstraintSet& set, const std::vector<double>& x, SetTar
 // from target.start. snh::Error naming the set for a non-finite target.
 void place_target(const Mesh& mesh, const ConstraintSet& set, const SetTarget& target, double s,
                   std::vector<double>& positions);
+void place_target(const Mesh& mesh, const ConstraintSet& set, const SetTarget& target, double s, Points& positions);
 
 // The external force at fraction s of a ramp: from + s (to - from).
 void ramp_force(const std::vector<double>& from, const std::vector<double>& to, double s, std::vector<double>& out);

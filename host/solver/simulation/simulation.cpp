@@ -67,9 +67,10 @@ struct Simulation::Impl {
   const SolveOptions& options;
   std::vector<char> prescribed;  // per DOF
   std::vector<std::string> warnings;
-  std::vector<double> x;
-  // Dynamics: velocities (xyz per vertex), lumped mass per vertex, time.
-  std::vector<double> v, mass;
+  Points x;
+  // Dynamics: velocities, lumped mass per vertex, time.
+  Points v;
+  std::vector<double> mass;
   double time = 0.0;
   std::vector<double> obstacle_table;  // the obstacles placed for the coming Newton solve
   // Friction's lag (ContactOptions::friction): the step's start positions,
@@ -81,15 +82,16 @@ struct Simulation::Impl {
   void reset_friction_anchors() {
     if (!friction) return;
     const size_t count = options.obstacles.size();
-    friction_anchor.resize(count * x.size());
-    for (size_t vertex = 0; vertex < x.size() / 3; ++vertex)
+    friction_anchor.resize(count * x.xyz().size());
+    for (size_t vertex = 0; vertex < x.size(); ++vertex)
       for (size_t o = 0; o < count; ++o)
-        for (int d = 0; d < 3; ++d) friction_anchor[3 * (count * vertex + o) + d] = x[3 * vertex + d];
+        for (int d = 0; d < 3; ++d) friction_anchor[3 * (count * vertex + o) + d] = x(vertex, d);
   }
   // The embedded surface in contact with the obstacles (set_contact_surface).
   solver::ContactSurface contact_surface;
   std::vector<Target> targets;
-  std::vector<double> force_from, force_to, force_applied;  // lumped, xyz per vertex
+  std::vector<double> force_from, force_to;  // lumped, xyz per vertex
+  Points force_applied;                      // lumped
   std::vector<double> body_force_lumped;
   std::vector<double> user_force;
   std::array<double, 3> body_force{0, 0, 0};
@@ -157,7 +159,7 @@ struct Simulation::Impl {
     validate_material_map(mesh, materials);
     config = resolve_configuration(o, mesh, materials, cl.info());
     prescribed = solver::prescribed_dofs(mesh, constraints);
-    user_force = options.external_force;
+    user_force = options.external_force.xyz();
     body_force = options.body_force;
     update_body_force();
     total_force(force_to);
@@ -168,8 +170,7 @@ struct Simulation::Impl {
     if (!options.dynamics) check_rigid_modes();
     if (options.dynamics) {
       mass = lumped_mass(mesh, options.dynamics->density);
-      v = options.initial_velocities.empty() ? std::vector<double>(3 * mesh.vertex_count(), 0.0)
-                                             : options.initial_velocities;
+      v = options.initial_velocities.empty() ? Points(mesh.vertex_count()) : options.initial_velocities;
     }
     if (!mesh_warnings.unused_vertices.empty())
       warnings.push_back("mesh: " + std::to_string(mesh_warnings.unused_vertices.size()) +
@@ -210,7 +211,7 @@ struct Simulation::Impl {
 
   void update_body_force() {
     const bool any = body_force[0] != 0.0 || body_force[1] != 0.0 || body_force[2] != 0.0;
-    body_force_lumped = any ? lump_body_force(mesh, body_force) : std::vector<double>();
+    body_force_lumped = any ? lump_body_force(mesh, body_force).release() : std::vector<double>();
   }
 
   void total_force(std::vector<double>& f) const {
@@ -254,7 +255,7 @@ struct Simulation::Impl {
   // handling, as the model or as the lambda part) cannot start a step from
   // an inverted or flat element: name it instead of returning NaN. (Inside a
   // step the line search never accepts a non-finite energy.)
-  void require_defined(const std::vector<double>& positions, int step) const {
+  void require_defined(const Points& positions, int step) const {
     for (size_t e = 0; e < mesh.element_count(); ++e) {
       const Material& material = materials.of_element(e);
       if (material.defined_for_inversion()) continue;
@@ -278,7 +279,7 @@ struct Simulation::Impl {
   // Every set's targets at fraction s of this solve, into x; with barrier
   // self-contact the placement's CCD is noted (solver/contact/prescribed_crossing.h).
   void place_targets(double s) {
-    const std::vector<double> before = crossing ? x : std::vector<double>();
+    const Points before = crossing ? x : Points();
     for (size_t k = 0; k < constraints.size(); ++k) solver::place_target(mesh, constraints[k], targets[k], s, x);
     if (crossing) crossing->placed(before, x);
   }
@@ -289,9 +290,9 @@ struct Simulation::Impl {
                       const ProgressCallback& progress, const solver::EulerStep* euler = nullptr) {
     device::use_viennacl(engine.viennacl_context_id);
     if (euler) {
-      solver::set_incremental_potential(*engine.model, *euler, force_applied);
+      solver::set_incremental_potential(*engine.model, *euler, force_applied.xyz());
     } else {
-      engine.model->set_external_force(force_applied);
+      engine.model->set_external_force(force_applied.xyz());
     }
     if (!options.obstacles.empty())
       engine.model->contact().set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
@@ -300,7 +301,7 @@ struct Simulation::Impl {
                                            options.contact.friction_slip);
     const double barrier_seconds =
         engine.model->contact().self_barrier() ? engine.model->contact().self_barrier()->state().seconds : 0.0;
-    const std::vector<Real> xr(x.begin(), x.end());
+    const std::vector<Real> xr(x.xyz().begin(), x.xyz().end());
     // Wrapping a zero-filled buffer: ViennaCL's own sized vector would clear
     // it with a kernel behind the device counts.
     const device::Buffer x_buffer =
@@ -317,7 +318,7 @@ struct Simulation::Impl {
           if (options.on_iteration) {
             std::vector<double> host;
             device::read_back(engine.model->context(), xi, host);
-            options.on_iteration(rec, host);
+            options.on_iteration(rec, Points::from_xyz(std::move(host)));
           }
           return progress ? progress(rec) : true;
         });
@@ -341,7 +342,7 @@ struct Simulation::Impl {
       solver::PhaseScope download(&engine.model->profiler(), solver::Phase::transfers);
       device::read_back(engine.model->context(), xd, back);
     }
-    std::copy(back.begin(), back.end(), x.begin());
+    std::copy(back.begin(), back.end(), x.data());
     device::use_viennacl(viennacl_context_id);
     return step;
   }
@@ -368,7 +369,7 @@ struct Simulation::Impl {
     result.tolerance = config.absolute_tolerance;
     result.kernel_specialization = single ? single->model->data().kernel_report() : dual->model->data().kernel_report();
     result.warnings = warnings;
-    for (size_t k = 0; k < constraints.size(); ++k) solver::record_start(constraints[k], x, targets[k]);
+    for (size_t k = 0; k < constraints.size(); ++k) solver::record_start(constraints[k], x.xyz(), targets[k]);
     precision_fallback.begin(options.precision);
     result.converged = true;
     for (int s = 1; s <= steps; ++s) {
@@ -379,14 +380,16 @@ struct Simulation::Impl {
         step = time_step(s, steps, result, start, progress);
       } else {
         const double fraction = solver::load_fraction(s, steps);
-        if (friction) lag_friction(x, solver::load_fraction(s - 1, steps), fraction);
+        if (friction) lag_friction(x.xyz(), solver::load_fraction(s - 1, steps), fraction);
         place_targets(fraction);
         if (!options.obstacles.empty()) obstacle_table = solver::obstacle_records(options.obstacles, fraction);
-        solver::ramp_force(force_from, force_to, fraction, force_applied);
+        std::vector<double> applied = force_applied.release();
+        solver::ramp_force(force_from, force_to, fraction, applied);
+        force_applied = Points::from_xyz(std::move(applied));
         step = solve_step(s, steps, result, start, progress);
       }
       const std::string label = (options.dynamics ? "time step " : "load step ") + std::to_string(s);
-      solver::assess_step(mesh, rest, x, options, label, step);
+      solver::assess_step(mesh, rest, x.xyz(), options, label, step);
       if (crossing) crossing->assess(x, label, step);
       result.warnings.insert(result.warnings.end(), step.warnings.begin(), step.warnings.end());
       result.converged = result.converged && step.converged && step.status != StepStatus::inverted_elements;
@@ -420,7 +423,7 @@ struct Simulation::Impl {
     bool defined_for_inversion = true;
     for (const Material& m : materials.materials)
       defined_for_inversion = defined_for_inversion && m.defined_for_inversion();
-    force_applied = force_to;
+    force_applied = Points::from_xyz(force_to);
     StepResult total = solver::implicit_euler_step(
         *options.dynamics, s, steps, defined_for_inversion, x, v, mass, time,
         [&](const std::vector<double>& from, const std::vector<double>& move) { return barrier_bound(from, move); },
@@ -466,7 +469,7 @@ struct Simulation::Impl {
                         const ProgressCallback& progress, const solver::EulerStep* euler = nullptr) {
     const bool may_fall_back = options.fallback_to_double && options.precision == Precision::single;
     require_defined(x, s);
-    const std::vector<double> step_start = may_fall_back ? x : std::vector<double>();
+    const Points step_start = may_fall_back ? x : Points();
     const std::vector<double> anchor_start = may_fall_back ? friction_anchor : std::vector<double>();
     return precision_fallback.step(
         s, steps, options.precision, may_fall_back, cl.info().has_fp64, result,
@@ -523,16 +526,17 @@ void Simulation::set_transform(const std::string& set, const RigidTransform& tra
     const ConstraintSet& c = impl_->constraints[impl_->set_index(set)];
     bool at_rest = true;
     for (int32_t v : c.vertices)
-      for (int d = 0; d < 3; ++d) at_rest = at_rest && impl_->x[3 * v + d] == impl_->mesh.positions[3 * v + d];
+      for (int d = 0; d < 3; ++d) at_rest = at_rest && impl_->x(v, d) == impl_->mesh.positions(v, d);
     t.from_known = at_rest;
   }
   t.kind = Impl::Target::Kind::transform;
   t.to = transform;
 }
 
-void Simulation::set_positions(const std::string& set, const std::vector<double>& xyz) {
+void Simulation::set_positions(const std::string& set, const Points& positions) {
   const int k = impl_->set_index(set);
   const ConstraintSet& c = impl_->constraints[k];
+  const std::vector<double>& xyz = positions.xyz();
   if (xyz.size() != 3 * c.vertices.size())
     throw Error("set_positions('" + set + "'): " + std::to_string(xyz.size()) + " values, expected " +
                 std::to_string(3 * c.vertices.size()) + " (xyz per vertex of the set)");
@@ -544,11 +548,11 @@ void Simulation::set_positions(const std::string& set, const std::vector<double>
   t.from_known = false;
 }
 
-void Simulation::set_external_force(const std::vector<double>& lumped) {
+void Simulation::set_external_force(const Points& lumped) {
   SolveOptions check;
   check.external_force = lumped;
   validate_solve_inputs(impl_->mesh, {}, check);
-  impl_->user_force = lumped;
+  impl_->user_force = lumped.xyz();
   impl_->total_force(impl_->force_to);
   impl_->check_rigid_modes();
 }
@@ -563,7 +567,7 @@ void Simulation::set_body_force(const std::array<double, 3>& per_rest_volume) {
   impl_->check_rigid_modes();
 }
 
-void Simulation::set_state(const std::vector<double>& positions) {
+void Simulation::set_state(const Points& positions) {
   SolveOptions check;
   check.initial_positions = positions;
   validate_solve_inputs(impl_->mesh, {}, check);
@@ -571,13 +575,13 @@ void Simulation::set_state(const std::vector<double>& positions) {
   impl_->reset_friction_anchors();
 }
 
-void Simulation::set_velocities(const std::vector<double>& velocities) {
+void Simulation::set_velocities(const Points& velocities) {
   if (!impl_->options.dynamics) throw Error("set_velocities: the simulation has no dynamics (SolveOptions::dynamics)");
   SolveOptions check;
   check.dynamics = impl_->options.dynamics;
   check.initial_velocities = velocities;
   validate_solve_inputs(impl_->mesh, {}, check);
-  impl_->v = velocities.empty() ? std::vector<double>(3 * impl_->mesh.vertex_count(), 0.0) : velocities;
+  impl_->v = velocities.empty() ? Points(impl_->mesh.vertex_count()) : velocities;
 }
 
 void Simulation::restart() {
@@ -585,12 +589,11 @@ void Simulation::restart() {
   m.x = m.options.initial_positions.empty() ? m.mesh.positions : m.options.initial_positions;
   m.reset_friction_anchors();
   if (m.options.dynamics) {
-    m.v = m.options.initial_velocities.empty() ? std::vector<double>(3 * m.mesh.vertex_count(), 0.0)
-                                               : m.options.initial_velocities;
+    m.v = m.options.initial_velocities.empty() ? Points(m.mesh.vertex_count()) : m.options.initial_velocities;
     m.time = 0.0;
   }
   m.targets.assign(m.constraints.size(), Impl::Target());
-  m.user_force = m.options.external_force;
+  m.user_force = m.options.external_force.xyz();
   m.body_force = m.options.body_force;
   m.update_body_force();
   m.total_force(m.force_to);
@@ -616,13 +619,13 @@ SimulationState Simulation::checkpoint() {
   s.positions = m.x;
   if (m.options.dynamics) s.velocities = m.v;
   s.time = m.time;
-  if (m.friction) s.friction_anchors = m.friction_anchor;
+  if (m.friction) s.friction_anchors = Points::from_xyz(m.friction_anchor);
   for (size_t k = 0; k < m.constraints.size(); ++k)
     s.targets.push_back(solver::state_target(m.constraints[k], m.targets[k]));
-  s.external_force = m.user_force;
+  s.external_force = Points::from_xyz(m.user_force);
   s.body_force = m.body_force;
-  s.force_from = m.force_from;
-  s.force_to = m.force_to;
+  s.force_from = Points::from_xyz(m.force_from);
+  s.force_to = Points::from_xyz(m.force_to);
   s.force_applied = m.force_applied;
   m.restart_preconditioners();
   return s;
@@ -635,13 +638,13 @@ void Simulation::restore(const SimulationState& s) {
   m.x = s.positions;
   if (m.options.dynamics) m.v = s.velocities;
   m.time = s.time;
-  if (m.friction) m.friction_anchor = s.friction_anchors;
+  if (m.friction) m.friction_anchor = s.friction_anchors.xyz();
   for (size_t k = 0; k < s.targets.size(); ++k) m.targets[k] = solver::set_target(s.targets[k]);
-  m.user_force = s.external_force;
+  m.user_force = s.external_force.xyz();
   m.body_force = s.body_force;
   m.update_body_force();
-  m.force_from = s.force_from;
-  m.force_to = s.force_to;
+  m.force_from = s.force_from.xyz();
+  m.force_to = s.force_to.xyz();
   m.force_applied = s.force_applied;
   m.restart_preconditioners();
 }
@@ -650,10 +653,10 @@ SolveResult Simulation::solve(int load_steps, const ProgressCallback& progress, 
   return impl_->solve(load_steps, progress, on_step);
 }
 
-const std::vector<double>& Simulation::positions() const { return impl_->x; }
-const std::vector<double>& Simulation::velocities() const { return impl_->v; }
+const Points& Simulation::positions() const { return impl_->x; }
+const Points& Simulation::velocities() const { return impl_->v; }
 double Simulation::time() const { return impl_->time; }
-const std::vector<double>& Simulation::applied_force() const { return impl_->force_applied; }
+const Points& Simulation::applied_force() const { return impl_->force_applied; }
 const StepResult& Simulation::last_step() const { return impl_->last_step; }
 const Mesh& Simulation::mesh() const { return impl_->mesh; }
 const MaterialMap& Simulation::materials() const { return impl_->materials; }

@@ -15,7 +15,7 @@ SimulationState::Target state_target(const ConstraintSet& set, const SetTarget& 
   out.from = t.from;
   out.to = t.to;
   out.from_known = t.from_known;
-  out.positions = t.xyz;
+  out.positions = Points::from_xyz(t.xyz);
   return out;
 }
 
@@ -27,7 +27,7 @@ SetTarget set_target(const SimulationState::Target& t) {
   to.from = t.from;
   to.to = t.to;
   to.from_known = t.from_known;
-  to.xyz = t.positions;
+  to.xyz = t.positions.xyz();
   return to;
 }
 
@@ -38,7 +38,8 @@ void check_restorable(const SimulationState& s, size_t vertex_count, uint64_t fi
     throw Error("restore: the checkpoint is of another mesh (" + std::to_string(s.vertex_count) +
                 " vertices, fingerprint " + std::to_string(s.mesh_fingerprint) + "; this simulation's mesh: " +
                 std::to_string(vertex_count) + " vertices, fingerprint " + std::to_string(fingerprint) + ")");
-  auto size_check = [&](const std::vector<double>& v, size_t expected, const char* item, bool may_be_empty) {
+  auto size_check = [&](const Points& p, size_t expected, const char* item, bool may_be_empty) {
+    const std::vector<double>& v = p.xyz();
     if (v.size() != expected && !(may_be_empty && v.empty()))
       throw Error(std::string("restore: the checkpoint's ") + item + " has " + std::to_string(v.size()) +
                   " values, expected " + std::to_string(expected) + (may_be_empty ? " or none" : ""));
@@ -60,9 +61,10 @@ void check_restorable(const SimulationState& s, size_t vertex_count, uint64_t fi
     if (t.set != c.name)
       throw Error("restore: the checkpoint's constraint set " + std::to_string(k) + " is '" + t.set +
                   "', this simulation's is '" + c.name + "'");
-    if (t.kind == TargetKind::positions && t.positions.size() != 3 * c.vertices.size())
+    if (t.kind == TargetKind::positions && t.positions.xyz().size() != 3 * c.vertices.size())
       throw Error("restore: the checkpoint's target positions of set '" + c.name + "' have " +
-                  std::to_string(t.positions.size()) + " values, expected " + std::to_string(3 * c.vertices.size()));
+                  std::to_string(t.positions.xyz().size()) + " values, expected " +
+                  std::to_string(3 * c.vertices.size()));
   }
 }
 

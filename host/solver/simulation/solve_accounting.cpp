@@ -53,7 +53,7 @@ SolveProfile profile_between(const Counters& since, const Counters& now, double 
   return profile;
 }
 
-void record_deformation(const Mesh& mesh, const std::vector<double>& x, SolveResult& result) {
+void record_deformation(const Mesh& mesh, const Points& x, SolveResult& result) {
   const DeformationStatistics stats = deformation_statistics(mesh, x);
   result.volume_ratio = stats.volume_ratio;
   result.min_j = stats.min_j;

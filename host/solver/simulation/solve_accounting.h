@@ -34,6 +34,6 @@ std::map<std::string, double> kernel_difference(std::map<std::string, double> no
 SolveProfile profile_between(const Counters& since, const Counters& now, double seconds);
 
 // The volume ratio, range of J and inverted elements of x into the result.
-void record_deformation(const Mesh& mesh, const std::vector<double>& x, SolveResult& result);
+void record_deformation(const Mesh& mesh, const Points& x, SolveResult& result);
 
 }  // namespace snh::solver

@@ -40,7 +40,8 @@ void validate_solve_inputs(const Mesh& mesh, const std::vector<ConstraintSet>& c
       }
     }
   }
-  auto check_vector = [&](const std::vector<double>& v, const char* what) {
+  auto check_vector = [&](const Points& p, const char* what) {
+    const std::vector<double>& v = p.xyz();
     if (!v.empty() && v.size() != 3 * n)
       throw Error(std::string("solve options: ") + what + " has " + std::to_string(v.size()) + " entries, expected " +
                   std::to_string(3 * n) + " (xyz per vertex)");
