@@ -226,7 +226,7 @@ SolveOptions series_options(const Scene& scene, const ErrtimeOptions& o) {
   options.absolute_tolerance = o.absolute_tolerance;
   options.relative_tolerance = 0.0;
   options.max_newton_iterations = std::max(options.max_newton_iterations, 100);
-  options.product = parse_product_variant(o.variant);
+  options.product = parse_optional(o.variant, parse_product_variant);
   options.hessian = parse_hessian_mode(o.hessian);
   return options;
 }
@@ -245,7 +245,7 @@ Series run_device_series(const Scene& scene, const SceneParameters& parameters, 
   try {
     {
       SceneParameters small = parameters;
-      small.resolution = std::min(parameters.resolution, 3);
+      if (parameters.resolution) small.resolution = std::min(*parameters.resolution, 3);
       const Scene tiny = make_scene(scene.name, small);
       SolveOptions warm = options;
       warm.initial_positions = tiny.options.initial_positions;
@@ -262,7 +262,7 @@ Series run_device_series(const Scene& scene, const SceneParameters& parameters, 
     for (const NewtonIteration& h : r.history) s.seconds = std::max(s.seconds, h.seconds);
     s.device = r.device.platform + " / " + r.device.name;
     s.specialization = r.kernel_specialization;
-    s.variant = to_string(r.product);  // `automatic` resolved
+    s.variant = to_string(r.product);  // resolved
   } catch (const Error& e) {
     s.skipped = e.what();
   }

@@ -82,7 +82,7 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
   try {
     const SolveOptions options = solve_options(scene, o, parse_preconditioner(preconditioner));
     const Scene tiny = make_scene(name, scene_parameters(std::min(resolution, 3), o));
-    warm_up_kernels(tiny, solve_options(tiny, o, options.preconditioner));
+    warm_up_kernels(tiny, solve_options(tiny, o, *options.preconditioner));
     QuasistaticSolver solver(scene.mesh, scene.material, scene.constraints, options);
     const SolveResult result = solver.solve();
     for (const StepResult& s : result.steps) {
@@ -98,8 +98,8 @@ ScaleRecord run_one(const std::string& name, int resolution, const std::string& 
     r.product = to_string(result.product);
     r.product_precision = to_string(result.product_precision);
     if (result.preconditioner == Preconditioner::multigrid) {
-      r.smoother =
-          std::string(to_string(result.multigrid_chebyshev)) + " " + std::to_string(result.multigrid_smoother_degree);
+      r.smoother = std::string(name_or_automatic(result.multigrid_chebyshev)) + " " +
+                   std::to_string(result.multigrid_smoother_degree.value_or(0));
       r.float_cycle = result.multigrid_float_cycle;
     }
     r.device = result.device.platform + " / " + result.device.name;

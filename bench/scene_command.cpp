@@ -67,11 +67,11 @@ int run_scene(const SceneOptions& given) {
   if (std::isnan(o.poisson_ratio)) o.poisson_ratio = defaults.poisson_ratio;
   const cli::SolverFlags& flags = o.solver;
   SceneParameters p;
-  p.resolution = o.resolution;
+  if (o.resolution > 0) p.resolution = o.resolution;  // 0: unset
   p.youngs_modulus = o.youngs_modulus;
   p.poisson_ratio = o.poisson_ratio;
   p.barrier = parse_barrier(o.barrier);
-  p.steps = flags.steps;
+  if (flags.steps > 0) p.steps = flags.steps;  // 0: unset
   p.seed = o.seed;
   p.element_type = cli::element_type_named(o.element);
   p.strain_tolerance =
@@ -81,9 +81,9 @@ int run_scene(const SceneOptions& given) {
   SolveOptions options = f.scene.options;
   options.precision = parse_precision(flags.precision);
   options.device.match = o.device;
-  options.product = parse_product_variant(flags.variant);
+  options.product = parse_optional(flags.variant, parse_product_variant);
   cli::apply_product_precision(flags.product_precision, options);
-  options.preconditioner = parse_preconditioner(flags.preconditioner);
+  options.preconditioner = parse_optional(flags.preconditioner, parse_preconditioner);
   flags.multigrid.apply(options.multigrid);
   flags.apply_limits(options);
   options.hessian = parse_hessian_mode(flags.hessian);

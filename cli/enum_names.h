@@ -55,20 +55,22 @@ inline std::vector<std::string> element_type_names() {
 }
 inline ElementType element_type_named(const std::string& text) { return parse_element_type(text); }
 
-// The names of the other enums the command lines take.
+// The names of the other enums the command lines take. Options that are
+// std::optional in the library take "automatic" first, for unset (read
+// with snh::parse_optional).
 inline std::vector<std::string> precision_names() { return enum_names<Precision>(to_string, parse_precision); }
 inline std::vector<std::string> preconditioner_names() {
-  return enum_names<Preconditioner>(to_string, parse_preconditioner);
+  return names_with({kAutomatic}, enum_names<Preconditioner>(to_string, parse_preconditioner));
 }
 inline std::vector<std::string> product_variant_names() {
-  return enum_names<ProductVariant>(to_string, parse_product_variant);
+  return names_with({kAutomatic}, enum_names<ProductVariant>(to_string, parse_product_variant));
 }
 inline std::vector<std::string> hessian_mode_names() { return enum_names<HessianMode>(to_string, parse_hessian_mode); }
 inline std::vector<std::string> chebyshev_kind_names() {
-  return enum_names<ChebyshevKind>(to_string, parse_chebyshev_kind);
+  return names_with({kAutomatic}, enum_names<ChebyshevKind>(to_string, parse_chebyshev_kind));
 }
 inline std::vector<std::string> multigrid_fine_level_names() {
-  return enum_names<MultigridFineLevel>(to_string, parse_multigrid_fine_level);
+  return names_with({kAutomatic}, enum_names<MultigridFineLevel>(to_string, parse_multigrid_fine_level));
 }
 
 }  // namespace snh::cli

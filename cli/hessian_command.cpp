@@ -32,7 +32,7 @@ struct HessianCommand {
 int run_hessian(const HessianCommand& o) {
   using Clock = std::chrono::steady_clock;
   SceneParameters p;
-  p.resolution = o.resolution;
+  if (o.resolution > 0) p.resolution = o.resolution;  // 0: unset
   p.youngs_modulus = o.youngs_modulus;
   p.poisson_ratio = o.poisson_ratio;
   p.element_type = parse_element_type(o.element);

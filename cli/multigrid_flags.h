@@ -11,14 +11,14 @@
 namespace snh::cli {
 
 struct MultigridFlags {
-  int rebuild_every = 0;                 // > 0: MultigridOptions::rebuild_every
-  int smoother_degree = 0;               // > 0: MultigridOptions::smoother_degree
-  int coarsest_dofs = 0;                 // > 0: MultigridOptions::coarsest_dofs
-  std::string chebyshev;                 // non-empty: MultigridOptions::chebyshev_kind
-  std::string fine_level = "automatic";  // MultigridOptions::fine_level
-  std::string fine_float = "on";         // MultigridOptions::fine_level_float
-  std::string float_cycle = "on";        // MultigridOptions::float_cycle
-  std::string coarse_solve = "host";     // MultigridOptions::coarse_solve_on_device
+  int rebuild_every = 0;                // > 0: MultigridOptions::rebuild_every
+  int smoother_degree = 0;              // > 0: MultigridOptions::smoother_degree
+  int coarsest_dofs = 0;                // > 0: MultigridOptions::coarsest_dofs
+  std::string chebyshev;                // non-empty: MultigridOptions::chebyshev_kind
+  std::string fine_level = kAutomatic;  // MultigridOptions::fine_level (automatic: unset)
+  std::string fine_float = "on";        // MultigridOptions::fine_level_float
+  std::string float_cycle = "on";       // MultigridOptions::float_cycle
+  std::string coarse_solve = "host";    // MultigridOptions::coarse_solve_on_device
 
   void add_to(CLI::App* cmd) {
     cmd->add_option("--multigrid-rebuild-every", rebuild_every,
@@ -65,9 +65,9 @@ struct MultigridFlags {
   void apply(MultigridOptions& options) const {
     if (rebuild_every > 0) options.rebuild_every = rebuild_every;
     if (smoother_degree > 0) options.smoother_degree = smoother_degree;
-    if (!chebyshev.empty()) options.chebyshev_kind = parse_chebyshev_kind(chebyshev);
+    if (!chebyshev.empty()) options.chebyshev_kind = parse_optional(chebyshev, parse_chebyshev_kind);
     if (coarsest_dofs > 0) options.coarsest_dofs = static_cast<size_t>(coarsest_dofs);
-    options.fine_level = parse_multigrid_fine_level(fine_level);
+    options.fine_level = parse_optional(fine_level, parse_multigrid_fine_level);
     options.fine_level_float = fine_float == "on";
     options.float_cycle = float_cycle == "on";
     options.coarse_solve_on_device = coarse_solve == "device";

@@ -182,8 +182,8 @@ void SolverFlags::apply_to_file(const SceneFile& file, SolveOptions& options) co
     options.precision = parse_precision(precision);
     if (!file.tolerance_given) options.strain_tolerance = defaults::strain_tolerance(options.precision);
   }
-  if (given.count("--variant")) options.product = parse_product_variant(variant);
-  if (given.count("--preconditioner")) options.preconditioner = parse_preconditioner(preconditioner);
+  if (given.count("--variant")) options.product = parse_optional(variant, parse_product_variant);
+  if (given.count("--preconditioner")) options.preconditioner = parse_optional(preconditioner, parse_preconditioner);
   if (given.count("--hessian")) options.hessian = parse_hessian_mode(hessian);
   if (steps > 0) options.load_steps = steps;
   apply_limits(options);

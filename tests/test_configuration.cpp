@@ -1,4 +1,4 @@
-// The resolved configuration (snh/configuration.h): each automatic choice
+// The resolved configuration (snh/configuration.h): each unset option's choice
 // made by its rule, with its reason; given values kept; resolving twice
 // changes nothing; the Simulation, its results, `snh run --explain` and the
 // JSON summary all report the same choices.
@@ -61,6 +61,54 @@ TEST(Configuration, LargeLatticeGetsMultigridWithItsReason) {
   }
 }
 
+// Unset is std::optional (docs/design.md, "Conventions of the public API"):
+// the defaults leave every choice empty, and the resolution fills each one
+// it uses.
+TEST(Configuration, DefaultsAreUnsetAndTheResolutionFillsThem) {
+  const SolveOptions defaults;
+  EXPECT_FALSE(defaults.preconditioner.has_value());
+  EXPECT_FALSE(defaults.product.has_value());
+  EXPECT_FALSE(defaults.product_precision.has_value());
+  EXPECT_FALSE(defaults.multigrid.smoother_degree.has_value());
+  EXPECT_FALSE(defaults.multigrid.chebyshev_kind.has_value());
+  EXPECT_FALSE(defaults.multigrid.rebuild_every.has_value());
+  EXPECT_FALSE(defaults.multigrid.fine_level.has_value());
+  EXPECT_FALSE(defaults.contact.self_distance.has_value());
+  EXPECT_FALSE(defaults.contact.self_stiffness.has_value());
+  EXPECT_FALSE(defaults.contact.friction_slip.has_value());
+  EXPECT_FALSE(defaults.contact.self_broad_phase.has_value());
+
+  // Multigrid (a lattice of 6,591 DOFs).
+  const Mesh mesh = make_box_lattice(12, 12, 12, 0.1);
+  const SolveOptions mg = resolve(defaults, mesh).options;
+  EXPECT_TRUE(mg.preconditioner.has_value());
+  EXPECT_TRUE(mg.product.has_value());
+  EXPECT_TRUE(mg.product_precision.has_value());
+  EXPECT_TRUE(mg.multigrid.smoother_degree.has_value());
+  EXPECT_TRUE(mg.multigrid.chebyshev_kind.has_value());
+  EXPECT_TRUE(mg.multigrid.rebuild_every.has_value());
+  EXPECT_TRUE(mg.multigrid.fine_level.has_value());
+  EXPECT_TRUE(mg.multigrid.rebuild_each_load_step.has_value());
+
+  // Barrier self-contact and friction against an obstacle.
+  SolveOptions contact;
+  contact.contact.self = true;
+  contact.contact.stiffness = 1e4;
+  contact.contact.friction = 0.5;
+  contact.obstacles.push_back(Obstacle::plane({0, 0, -0.01}, {0, 0, 1}));
+  const SolveOptions barrier = resolve(contact, make_box_lattice(4, 4, 4, 0.1)).options;
+  EXPECT_TRUE(barrier.contact.self_broad_phase.has_value());
+  EXPECT_GT(barrier.contact.self_distance.value_or(0.0), 0.0);
+  EXPECT_GT(barrier.contact.friction_slip.value_or(0.0), 0.0);
+  EXPECT_FALSE(barrier.contact.self_stiffness.has_value());  // the penalty's, not used
+
+  // Penalty self-contact: its stiffness, the obstacles' unless given.
+  contact.contact.self_method = SelfContactMethod::penalty;
+  contact.preconditioner = Preconditioner::block_jacobi;
+  const SolveOptions penalty = resolve(contact, make_box_lattice(4, 4, 4, 0.1)).options;
+  EXPECT_EQ(penalty.contact.self_stiffness, 1e4);
+}
+
 TEST(Configuration, SmallOrTetMeshesGetBlockJacobi) {
   const ResolvedConfiguration small = resolve(SolveOptions{}, make_box_lattice(4, 4, 4, 0.1));
   EXPECT_EQ(small.options.preconditioner, Preconditioner::block_jacobi);
@@ -95,7 +143,7 @@ TEST(Configuration, BarrierReachAndBroadPhaseFollowTheSurfaceAndDevice) {
   // triangles, two sides and one diagonal per quad, L = (2 + sqrt 2) h / 3;
   // kappa = E L^2 / dhat^3, E from the material's own mu and lambda.
   const double edge = (2.0 + std::sqrt(2.0)) * 0.1 / 3.0, dhat = 0.01 * edge;
-  EXPECT_NEAR(cpu.options.contact.self_distance, dhat, 1e-15);
+  EXPECT_NEAR(cpu.options.contact.self_distance.value(), dhat, 1e-15);
   const double youngs = kRubber.mu * (3 * kRubber.lambda + 2 * kRubber.mu) / (kRubber.lambda + kRubber.mu);
   const double kappa = youngs * edge * edge / (dhat * dhat * dhat);
   EXPECT_NEAR(cpu.barrier_stiffness, kappa, kappa * 1e-12);

@@ -358,7 +358,9 @@ TEST(Friction, OptionsAreChecked) {
   contact.friction = 0.5;
   contact.friction_slip = -1.0;
   EXPECT_NE(message(o, contact).find("contact: friction_slip"), std::string::npos);
-  contact.friction_slip = 0.0;
+  contact.friction_slip = 0.0;  // set: > 0
+  EXPECT_NE(message(o, contact).find("contact: friction_slip"), std::string::npos);
+  contact.friction_slip.reset();  // unset: 1% of the vertex spacing
   EXPECT_EQ(message(o, contact), "");
 }
 

@@ -35,7 +35,8 @@ TEST(MaterialParameters, AutomaticBarrierFollowsPaperAppendixD) {
   EXPECT_TRUE(StableNeoHookean::from_youngs_modulus(1.0, 0.39).barrier);
   EXPECT_FALSE(StableNeoHookean::from_youngs_modulus(1.0, 0.4).barrier);
   EXPECT_FALSE(StableNeoHookean::from_youngs_modulus(1.0, 0.49).barrier);
-  EXPECT_EQ(parse_barrier("auto"), Barrier::automatic);
+  EXPECT_EQ(parse_barrier("auto"), std::nullopt);  // unset: on below nu 0.4
+  EXPECT_EQ(parse_barrier("on"), Barrier::on);
   EXPECT_THROW(parse_barrier("maybe"), Error);
 }
 

@@ -475,9 +475,9 @@ TEST(Multigrid, CoarseOperatorsCarryInertiaAndContact) {
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("fine_level"), std::string::npos) << e.what();
     }
-    options.fine_level = MultigridFineLevel::automatic;
+    options.fine_level.reset();
     solver::MultigridPreconditioner<double> mg(model, c.mesh, c.mask, options);
-    EXPECT_FALSE(mg.fine_level_built());  // automatic: the model's operator, which has them
+    EXPECT_FALSE(mg.fine_level_built());  // unset: the model's operator, which has them
     ASSERT_GE(mg.levels(), 3);
     const viennacl::vector<double> x = upload<double>(c.x);
     ASSERT_GT(model.contact().contact_state(x).contacts, 4);
@@ -774,7 +774,7 @@ TEST(Multigrid, FloatCycleIsTheDoubleCycleToFloatRounding) {
   solver::ElasticModel<double>& model = *owned;
   const std::vector<double> mask(c.mask.begin(), c.mask.end());
   MultigridOptions options = built_fine_level(true, true);
-  options.fine_level = MultigridFineLevel::automatic;
+  options.fine_level.reset();
   solver::MultigridPreconditioner<double> single(model, c.mesh, c.mask, options);
   options.float_cycle = false;
   solver::MultigridPreconditioner<double> full(model, c.mesh, c.mask, options);
@@ -853,11 +853,10 @@ void expect_refused(const Mesh& mesh, const SolveOptions& options, const std::st
   }
 }
 
-SolveResult twist(Preconditioner preconditioner, int res, double nu,
-                  int rebuild_every = MultigridOptions{}.rebuild_every, int steps = 1,
-                  MultigridFineLevel fine_level = MultigridFineLevel::automatic, bool fine_level_float = true,
-                  std::optional<Precision> product_precision = std::nullopt,
-                  ProductVariant product = ProductVariant::automatic) {
+SolveResult twist(Preconditioner preconditioner, int res, double nu, std::optional<int> rebuild_every = std::nullopt,
+                  int steps = 1, std::optional<MultigridFineLevel> fine_level = std::nullopt,
+                  bool fine_level_float = true, std::optional<Precision> product_precision = std::nullopt,
+                  std::optional<ProductVariant> product = std::nullopt) {
   const Mesh mesh = make_box_lattice(res, res, res, 1.0 / res);
   std::vector<int32_t> bottom, top;
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -912,11 +911,11 @@ TEST(Multigrid, FloatProductsGiveTheDoubleAnswer) {
   for (double nu : {0.49, 0.499})
     for (Preconditioner preconditioner : {Preconditioner::multigrid, Preconditioner::block_jacobi}) {
       SCOPED_TRACE(std::string(to_string(preconditioner)) + " nu " + std::to_string(nu));
-      const SolveResult exact = twist(preconditioner, 6, nu, 0, 2, MultigridFineLevel::automatic, true,
-                                      Precision::double_, ProductVariant::cached);
+      const SolveResult exact =
+          twist(preconditioner, 6, nu, std::nullopt, 2, std::nullopt, true, Precision::double_, ProductVariant::cached);
       // Unset: float (the default).
       const SolveResult mixed =
-          twist(preconditioner, 6, nu, 0, 2, MultigridFineLevel::automatic, true, std::nullopt, ProductVariant::cached);
+          twist(preconditioner, 6, nu, std::nullopt, 2, std::nullopt, true, std::nullopt, ProductVariant::cached);
       ASSERT_TRUE(exact.converged);
       ASSERT_TRUE(mixed.converged);
       EXPECT_EQ(exact.product_precision, Precision::double_);
@@ -972,7 +971,7 @@ TEST(Multigrid, ReusedHierarchyGivesTheSameAnswerWithFewerBuilds) {
       reused.steps[0].cg_iterations + reused.steps[1].cg_iterations, worst);
   SolveOptions bad;
   bad.preconditioner = Preconditioner::multigrid;
-  bad.multigrid.rebuild_every = -1;
+  bad.multigrid.rebuild_every = 0;  // set: at least 1
   expect_refused(make_box_lattice(2, 2, 2, 0.5), bad, "rebuild_every");
 }
 
@@ -1005,11 +1004,11 @@ TEST(Multigrid, BuiltAndCurrentFineLevelsGiveTheSameAnswer) {
               totals(built).first, totals(built).second, totals(current).first, totals(current).second, worst);
 }
 
-// rebuild_every 0 (the default): 2 linearizations per build when each load
-// step rebuilds (quasistatic), 4 when the hierarchy is carried (dynamics).
+// rebuild_every unset (the default): 2 linearizations per build when each
+// load step rebuilds (quasistatic), 4 when the hierarchy is carried (dynamics).
 TEST(MultigridRebuild, DefaultCountFollowsThePerStepRebuild) {
   MultigridOptions o;
-  EXPECT_EQ(o.rebuild_every, 0);
+  EXPECT_FALSE(o.rebuild_every.has_value());
   EXPECT_EQ(solver::resolved_rebuild_every(o), 2);
   o.rebuild_each_load_step = false;
   EXPECT_EQ(solver::resolved_rebuild_every(o), 4);
@@ -1115,23 +1114,25 @@ TEST(Multigrid, RefusesTetMeshesByName) {
 }
 
 TEST(Multigrid, PreconditionerNamesParse) {
-  for (Preconditioner p :
-       {Preconditioner::automatic, Preconditioner::none, Preconditioner::block_jacobi, Preconditioner::multigrid})
+  for (Preconditioner p : {Preconditioner::none, Preconditioner::block_jacobi, Preconditioner::multigrid})
     EXPECT_EQ(parse_preconditioner(to_string(p)), p);
   EXPECT_THROW(parse_preconditioner("jacobi"), Error);
+  EXPECT_THROW(parse_preconditioner("automatic"), Error);  // unset is no value
+  EXPECT_EQ(parse_optional("automatic", parse_preconditioner), std::nullopt);
+  EXPECT_EQ(parse_optional("none", parse_preconditioner), Preconditioner::none);
 }
 
-// MultigridOptions' automatic smoothing (resolved_smoothing): degree 1 of the
+// MultigridOptions' unset smoothing (resolved_smoothing): degree 1 of the
 // optimized fourth kind below 600,000 DOFs and nu 0.495, else degree 2 of the
 // first kind; one of the two set leaves the other at its fixed default.
 TEST(Multigrid, AutomaticSmoothingFollowsSizeAndPoissonRatio) {
   auto resolved = [](MultigridOptions o, size_t dofs, double nu) {
     const MultigridOptions r = resolved_smoothing(o, dofs, nu);
-    return std::make_pair(r.smoother_degree, r.chebyshev_kind);
+    return std::make_pair(r.smoother_degree.value(), r.chebyshev_kind.value());
   };
   const MultigridOptions automatic;
-  EXPECT_EQ(automatic.smoother_degree, 0);
-  EXPECT_EQ(automatic.chebyshev_kind, ChebyshevKind::automatic);
+  EXPECT_FALSE(automatic.smoother_degree.has_value());
+  EXPECT_FALSE(automatic.chebyshev_kind.has_value());
   const auto light = std::make_pair(1, ChebyshevKind::optimized_fourth);
   const auto heavy = std::make_pair(2, ChebyshevKind::first);
   EXPECT_EQ(resolved(automatic, 107811, 0.49), light);
@@ -1146,8 +1147,7 @@ TEST(Multigrid, AutomaticSmoothingFollowsSizeAndPoissonRatio) {
   MultigridOptions kind = automatic;
   kind.chebyshev_kind = ChebyshevKind::fourth;
   EXPECT_EQ(resolved(kind, 1000, 0.3), std::make_pair(2, ChebyshevKind::fourth));
-  for (ChebyshevKind k :
-       {ChebyshevKind::automatic, ChebyshevKind::first, ChebyshevKind::fourth, ChebyshevKind::optimized_fourth})
+  for (ChebyshevKind k : {ChebyshevKind::first, ChebyshevKind::fourth, ChebyshevKind::optimized_fourth})
     EXPECT_EQ(parse_chebyshev_kind(to_string(k)), k);
 
   // The largest nu over the materials the elements use; the model and the
@@ -1162,7 +1162,8 @@ TEST(Multigrid, AutomaticSmoothingFollowsSizeAndPoissonRatio) {
   for (double nu : {0.45, 0.499}) {
     const SolveResult r = twist(Preconditioner::multigrid, 4, nu);
     ASSERT_EQ(r.preconditioner, Preconditioner::multigrid);
-    EXPECT_EQ(std::make_pair(r.multigrid_smoother_degree, r.multigrid_chebyshev), nu < 0.495 ? light : heavy);
+    EXPECT_EQ(std::make_pair(r.multigrid_smoother_degree.value(), r.multigrid_chebyshev.value()),
+              nu < 0.495 ? light : heavy);
   }
 }
 

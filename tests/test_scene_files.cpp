@@ -172,6 +172,28 @@ TEST(SceneFiles, ProductPrecisionKey) {
             std::string::npos);
 }
 
+// "automatic" (and the contact lengths' 0) in a scene file leaves the
+// option unset (std::optional empty), as leaving the key out does.
+TEST(SceneFiles, AutomaticLoadsAsUnset) {
+  const std::string mesh = R"("mesh": {"generator": "box", "cells": [2, 2, 2], "size": 0.5})";
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "snh_automatic_scene.json";
+  std::ofstream(path) << "{" + mesh + R"(, "material": {"nu": 0.45, "barrier": "auto"},
+    "contact": {"self": true, "self_distance": 0, "friction_slip": 0, "self_stiffness": 0},
+    "solver": {"preconditioner": "automatic", "product_precision": "automatic"}})";
+  const SolveOptions automatic = load_scene(path.string()).scene.options;
+  EXPECT_FALSE(automatic.preconditioner.has_value());
+  EXPECT_FALSE(automatic.product.has_value());
+  EXPECT_FALSE(automatic.product_precision.has_value());
+  EXPECT_FALSE(automatic.contact.self_distance.has_value());
+  EXPECT_FALSE(automatic.contact.friction_slip.has_value());
+  EXPECT_FALSE(automatic.contact.self_stiffness.has_value());
+  std::ofstream(path) << "{" + mesh + R"(, "contact": {"self": true, "self_distance": 0.01},
+    "solver": {"preconditioner": "multigrid"}})";
+  const SolveOptions given = load_scene(path.string()).scene.options;
+  EXPECT_EQ(given.preconditioner, Preconditioner::multigrid);
+  EXPECT_EQ(given.contact.self_distance, 0.01);
+}
+
 // The shipped arm scene at a quarter of its elements (cell 0.25) on frames 0,
 // 8, 16 and 24 of its animation: every frame converges, the shoulder stays
 // and the forearm's tip follows the elbow's rotation.

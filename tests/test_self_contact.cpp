@@ -245,7 +245,7 @@ TEST(SelfContact, OptionsAreValidated) {
   options.contact.self_stiffness = -1.0;
   options.contact.stiffness = 1.0;
   EXPECT_THROW(Simulation(mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3), {fixed}, options), Error);
-  options.contact.self_stiffness = 0.0;
+  options.contact.self_stiffness.reset();
   options.preconditioner = Preconditioner::multigrid;
   EXPECT_THROW(Simulation(mesh, StableNeoHookean::from_youngs_modulus(10.0, 0.3), {fixed}, options), Error);
 }

@@ -256,8 +256,8 @@ TEST(Solver, AdaptiveHessianUsesTrueHessianNearSolutionAndNeedsFewerIterations) 
 TEST(Scenes, TetVersionsSplitTheLatticeAndSolve) {
   SceneParameters p;
   p.resolution = 3;
+  const Scene hex_stretch = make_scene("stretch", p);
   p.element_type = ElementType::tet4;
-  const Scene hex_stretch = make_scene("stretch", SceneParameters{3});
   const Scene tet_stretch = make_scene("stretch", p);
   EXPECT_EQ(tet_stretch.mesh.type, ElementType::tet4);
   EXPECT_EQ(tet_stretch.mesh.element_count(), 6 * hex_stretch.mesh.element_count());

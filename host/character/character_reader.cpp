@@ -255,7 +255,7 @@ void finish_character(Character& c, const CharacterReadOptions& options) {
     for (int d = 0; d < 3; ++d) diagonal += (hi[d] - lo[d]) * (hi[d] - lo[d]);
     diagonal = std::sqrt(diagonal);
   }
-  const double weld_distance = options.weld_distance > 0.0 ? options.weld_distance : 1e-9 * std::max(diagonal, 1e-300);
+  const double weld_distance = options.weld_distance.value_or(1e-9 * std::max(diagonal, 1e-300));
   weld(c, weld_distance);
 }
 

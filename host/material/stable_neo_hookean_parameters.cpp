@@ -27,10 +27,10 @@ double poisson_of(const LameParameters& l) { return l.lambda / (2.0 * (l.lambda 
 
 }  // namespace
 
-Barrier parse_barrier(const std::string& text) {
+std::optional<Barrier> parse_barrier(const std::string& text) {
   if (text == "on") return Barrier::on;
   if (text == "off") return Barrier::off;
-  if (text == "auto") return Barrier::automatic;
+  if (text == "auto") return std::nullopt;
   throw Error("barrier: expected on, off or auto, got '" + text + "'");
 }
 
@@ -45,11 +45,11 @@ LameParameters lame_from_youngs_modulus(double e, double nu) {
   return l;
 }
 
-StableNeoHookean StableNeoHookean::from_youngs_modulus(double e, double nu, Barrier barrier) {
+StableNeoHookean StableNeoHookean::from_youngs_modulus(double e, double nu, std::optional<Barrier> barrier) {
   return from_lame(lame_from_youngs_modulus(e, nu), barrier);
 }
 
-StableNeoHookean StableNeoHookean::from_lame(const LameParameters& l, Barrier barrier) {
+StableNeoHookean StableNeoHookean::from_lame(const LameParameters& l, std::optional<Barrier> barrier) {
   if (!std::isfinite(l.mu) || !(l.mu > 0.0))
     throw Error("material: shear modulus mu must be finite and > 0, got " + number(l.mu));
   if (!std::isfinite(l.lambda) || !(l.lambda + 2.0 * l.mu / 3.0 > 0.0))
@@ -57,7 +57,7 @@ StableNeoHookean StableNeoHookean::from_lame(const LameParameters& l, Barrier ba
                 number(l.lambda));
   const double nu = poisson_of(l);
   StableNeoHookean m;
-  m.barrier = barrier == Barrier::automatic ? nu < kMinPoissonWithoutBarrier : barrier == Barrier::on;
+  m.barrier = !barrier ? nu < kMinPoissonWithoutBarrier : *barrier == Barrier::on;
   if (m.barrier) {
     // sec. 3.4: mu = 4/3 mu_Lame, lambda = lambda_Lame + 5/6 mu_Lame.
     m.mu = 4.0 / 3.0 * l.mu;

@@ -32,7 +32,7 @@ SceneFile::CharacterSection read_character_section(const SceneJson& r, const jso
       r.fail("character.frames", "expected [first, last], two integers");
     options.first_frame = f[0].get<int>();
     options.last_frame = f[1].get<int>();
-    if (options.first_frame < 0 || options.last_frame < options.first_frame)
+    if (options.first_frame < 0 || *options.last_frame < options.first_frame)
       r.fail("character.frames", "expected 0 <= first <= last");
   }
   if (c.contains("weights")) {
@@ -97,8 +97,10 @@ SceneFile::CharacterSection read_character_section(const SceneJson& r, const jso
     r.fail("character.file", e.what());
   }
   try {
-    if (resolution > 0) cell = character_cell(out.character, resolution);
-    out.resolution = resolution;
+    if (resolution > 0) {
+      cell = character_cell(out.character, resolution);
+      out.resolution = resolution;
+    }
     CharacterPrepareOptions prepare;
     prepare.bones = bones;
     prepare.pieces = pieces;

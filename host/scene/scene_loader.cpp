@@ -474,16 +474,23 @@ void read_dynamics(const Reader& r, const json& doc, Scene& s) {
   s.options.dynamics = dynamics;
 }
 
+// A "contact" number the file may leave out or give as 0 (both: unset, the
+// library chooses); else > 0.
+std::optional<double> unset_at_zero(const Reader& r, const json& c, const char* key) {
+  const double value = r.number(c, "contact", key, 0.0);
+  if (!(value >= 0.0)) r.fail(std::string("contact.") + key, "must be >= 0 (0: automatic)");
+  if (value == 0.0) return std::nullopt;
+  return value;
+}
+
 // "contact": obstacle and self-contact.
 void read_contact(const Reader& r, const json& c, ContactOptions& contact) {
   r.keys(c, "contact");
   contact.friction = r.number(c, "contact", "friction", 0.0);
-  contact.friction_slip = r.number(c, "contact", "friction_slip", 0.0);
   if (!(contact.friction >= 0.0)) r.fail("contact.friction", "must be >= 0");
-  if (!(contact.friction_slip >= 0.0)) r.fail("contact.friction_slip", "must be >= 0 (0: automatic)");
+  contact.friction_slip = unset_at_zero(r, c, "friction_slip");
   contact.stiffness = r.number(c, "contact", "stiffness", 0.0);
   contact.thickness = r.number(c, "contact", "thickness", 0.0);
-  contact.self_stiffness = r.number(c, "contact", "self_stiffness", 0.0);
   if (c.contains("self")) {
     if (!c["self"].is_boolean()) r.fail("contact.self", "expected true or false");
     contact.self = c["self"].get<bool>();
@@ -494,11 +501,10 @@ void read_contact(const Reader& r, const json& c, ContactOptions& contact) {
       r.fail("contact.self_method", "expected \"barrier\" or \"penalty\"");
     contact.self_method = m == "penalty" ? SelfContactMethod::penalty : SelfContactMethod::barrier;
   }
-  contact.self_distance = r.number(c, "contact", "self_distance", 0.0);
-  if (!(contact.self_distance >= 0.0)) r.fail("contact.self_distance", "must be >= 0 (0: automatic)");
-  if (!(contact.self_stiffness >= 0.0)) r.fail("contact.self_stiffness", "must be >= 0");
+  contact.self_distance = unset_at_zero(r, c, "self_distance");
+  contact.self_stiffness = unset_at_zero(r, c, "self_stiffness");
   if (contact.self && contact.self_method == SelfContactMethod::penalty && !(contact.stiffness > 0.0) &&
-      !(contact.self_stiffness > 0.0))
+      !contact.self_stiffness)
     r.fail("contact.stiffness", "missing (penalty self-contact needs stiffness or self_stiffness > 0)");
   if (!(contact.thickness >= 0.0)) r.fail("contact.thickness", "must be >= 0");
   if (contact.stiffness < 0.0) r.fail("contact.stiffness", "must be > 0");
@@ -543,7 +549,8 @@ void read_solver(const Reader& r, const json& doc, const std::string& path, Scen
     s.options.fail_on_inverted = solver["fail_on_inverted"].get<bool>();
   }
   try {
-    s.options.preconditioner = parse_preconditioner(r.text(solver, "solver", "preconditioner", "automatic"));
+    s.options.preconditioner =
+        parse_optional(r.text(solver, "solver", "preconditioner", kAutomatic), parse_preconditioner);
   } catch (const Error& error) {
     throw Error(path + ": solver.preconditioner: " + error.what());
   }

@@ -103,7 +103,7 @@ json summary_json(const Scene& scene, const SolveOptions& options, const SolveRe
                     {"thickness", options.contact.thickness},
                     {"self", options.contact.self}};
     if (options.contact.self && options.contact.self_method == SelfContactMethod::penalty)
-      j["contact"]["self_stiffness"] = options.contact.self_stiffness;
+      j["contact"]["self_stiffness"] = options.contact.self_stiffness.value_or(0.0);  // 0: unset
     if (options.contact.self)
       j["contact"]["self_method"] = options.contact.self_method == SelfContactMethod::penalty ? "penalty" : "barrier";
   }
@@ -317,7 +317,7 @@ void add_setup_json(json& j, const SceneFile& file) {
                       {"joints", c.character.joints.size()},
                       {"bounding_box", {{"min", lo}, {"max", hi}}},
                       {"cell", c.rig.cell},
-                      {"resolution", c.resolution},
+                      {"resolution", c.resolution.value_or(0)},  // 0: "cell" given
                       {"vertices_outside", c.rig.vertices_outside},
                       {"max_outside_distance", c.rig.max_outside_distance},
                       {"warnings", character_repairs(c)},
@@ -389,7 +389,7 @@ std::vector<std::string> scene_setup_report(const SceneFile& file) {
     l << "character " << c.character.file << ": " << c.character.surface.vertex_count() << " vertices, "
       << c.character.joints.size() << " joints; bind pose " << hi[0] - lo[0] << " x " << hi[1] - lo[1] << " x "
       << hi[2] - lo[2] << " from (" << lo[0] << ", " << lo[1] << ", " << lo[2] << "); cell " << c.rig.cell;
-    if (c.resolution > 0) l << " (" << c.resolution << " cells along the longest side)";
+    if (c.resolution) l << " (" << *c.resolution << " cells along the longest side)";
     lines.push_back(l.str());
     for (const std::string& w : character_repairs(c)) lines.push_back("warning: " + w);
   }

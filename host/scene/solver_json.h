@@ -17,11 +17,12 @@ void add_solver_json(nlohmann::ordered_json& j, const SolveOptions& options, con
   j["product_precision"] = to_string(r.product_precision);
   j["preconditioner"] = to_string(r.preconditioner);
   if (r.preconditioner == Preconditioner::multigrid) {
-    j["multigrid_fine_level"] = to_string(options.multigrid.fine_level);  // as requested (automatic: docs/design.md)
+    // As requested ("automatic": unset, docs/design.md).
+    j["multigrid_fine_level"] = name_or_automatic(options.multigrid.fine_level);
     j["multigrid_fine_float"] = options.multigrid.fine_level_float;
-    j["multigrid_float_cycle"] = r.multigrid_float_cycle;          // as used
-    j["multigrid_smoother_degree"] = r.multigrid_smoother_degree;  // as used (automatic resolved)
-    j["multigrid_chebyshev"] = to_string(r.multigrid_chebyshev);
+    j["multigrid_float_cycle"] = r.multigrid_float_cycle;                      // as used
+    j["multigrid_smoother_degree"] = r.multigrid_smoother_degree.value_or(0);  // as used (resolved)
+    j["multigrid_chebyshev"] = name_or_automatic(r.multigrid_chebyshev);
   }
   j["hessian"] = to_string(options.hessian);
   j["fail_on_inverted"] = options.fail_on_inverted;

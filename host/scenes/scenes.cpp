@@ -24,7 +24,7 @@ std::vector<int32_t> vertices_on_plane(const Mesh& mesh, int axis, double value,
 }
 
 int resolution_or(const SceneParameters& p, int fallback) {
-  const int r = p.resolution > 0 ? p.resolution : fallback;
+  const int r = p.resolution.value_or(fallback);
   if (r > 400) throw Error("scene: resolution " + std::to_string(r) + " is too large");
   return r;
 }
@@ -40,7 +40,7 @@ Scene stretch(const SceneParameters& p) {
   ConstraintSet cap{"top_cap", vertices_on_plane(s.mesh, 2, top, 1e-9 * h), {}, {}};
   cap.motion = [top](double t) { return RigidTransform::translation_by({0.0, 0.0, t * 2.4 * top}); };
   s.constraints = {bottom, cap};
-  s.options.load_steps = p.steps > 0 ? p.steps : 8;
+  s.options.load_steps = p.steps.value_or(8);
   s.description = "hex cylinder stretched to 3.4x its length";
   return s;
 }
@@ -52,7 +52,7 @@ Scene twist(const SceneParameters& p) {
   s.mesh = make_box_lattice(res, res, res, h);
   ConstraintSet bottom{"bottom_face", vertices_on_plane(s.mesh, 2, 0.0, 1e-9 * h), {}, {}};
   ConstraintSet top{"top_face", vertices_on_plane(s.mesh, 2, 1.0, 1e-9 * h), {}, {}};
-  const int steps = p.steps > 0 ? p.steps : 2;
+  const int steps = p.steps.value_or(2);
   // pi/2 per load step: t in (0, 1] maps to a total of steps * pi/2.
   top.motion = [steps](double t) {
     return RigidTransform::rotation_about({0.0, 0.0, 1.0}, t * steps * 0.5 * kPi, {0.5, 0.5, 1.0});
@@ -83,7 +83,7 @@ Scene scramble(const SceneParameters& p) {
   s.options.initial_positions = Points(s.mesh.vertex_count());
   double* x = s.options.initial_positions.data();
   for (size_t i = 0; i < 3 * s.mesh.vertex_count(); ++i) x[i] = u(rng);
-  s.options.load_steps = p.steps > 0 ? p.steps : 1;
+  s.options.load_steps = p.steps.value_or(1);
   s.options.max_newton_iterations = 2000;
   s.description = "cube scrambled in a box of twice its volume, four corners pinned";
   return s;
@@ -108,7 +108,7 @@ Scene flex(const SceneParameters& p) {
   const std::array<double, 3> joint{0.5 * length, 0.5 * w, 0.5 * w};
   lower.motion = [joint](double t) { return RigidTransform::rotation_about({0.0, 1.0, 0.0}, t * 0.5 * kPi, joint); };
   s.constraints = {upper, lower};
-  s.options.load_steps = p.steps > 0 ? p.steps : 6;
+  s.options.load_steps = p.steps.value_or(6);
   s.description = "limb-like lattice bent 90 degrees by two rigid bones";
   return s;
 }
@@ -145,7 +145,7 @@ Scene elbow(const SceneParameters& p) {
   const double angle = 140.0 / 180.0 * kPi;
   lower.motion = [joint, angle](double t) { return RigidTransform::rotation_about({0.0, 1.0, 0.0}, t * angle, joint); };
   s.constraints = {upper, lower};
-  s.options.load_steps = p.steps > 0 ? p.steps : 28;
+  s.options.load_steps = p.steps.value_or(28);
   // Springs of 80 E h per sample (force per length): the contact pressure
   // at 140 degrees keeps samples within the thickness 0.1 h (hex8: 0.0133
   // deepest for 0.025). The tet4 split of the same lattice locks at
@@ -191,11 +191,12 @@ std::vector<DropKey> drop_keys() {
 }
 
 // The file that holds the drop's body: data/meshes/blob.msh (resolution
-// 0 or 2) or blob_coarse.msh (1), under scene_data_dir().
-std::string drop_mesh_path(int resolution) {
-  if (resolution < 0 || resolution > 2)
+// unset or 2) or blob_coarse.msh (1), under scene_data_dir().
+std::string drop_mesh_path(std::optional<int> given) {
+  const int resolution = given.value_or(2);
+  if (resolution < 1 || resolution > 2)
     throw Error("scene drop: resolution " + std::to_string(resolution) +
-                " (expected 1 for the coarse blob, 2 or 0 for the default one)");
+                " (expected 1 for the coarse blob, 2 or unset for the default one)");
   const std::filesystem::path file =
       std::filesystem::path(scene_data_dir()) / "meshes" / (resolution == 1 ? "blob_coarse.msh" : "blob.msh");
   if (!std::filesystem::exists(file))
@@ -207,7 +208,7 @@ Scene drop(const SceneParameters& p) {
   Scene s;
   s.mesh = read_mesh(drop_mesh_path(p.resolution));
   s.material = StableNeoHookean::from_youngs_modulus(p.youngs_modulus, p.poisson_ratio, p.barrier);
-  const int frames = p.steps > 0 ? p.steps : 60;
+  const int frames = p.steps.value_or(60);
   DynamicsOptions d;
   d.time_step = kDropDuration / frames;
   d.density = 1000.0;

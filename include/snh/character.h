@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,26 +37,26 @@ namespace snh {
 enum class WeightPolicy { normalize, strict };
 
 struct CharacterReadOptions {
-  // The clip to sample: by name, else by index (clip_index >= 0), else the
-  // first clip. With require_clip false a file without animation reads as a
-  // character without a clip.
+  // The clip to sample: by name, else by index (clip_index set, >= 0), else
+  // the first clip. With require_clip false a file without animation reads
+  // as a character without a clip.
   std::string clip;
-  int clip_index = -1;
+  std::optional<int> clip_index;
   bool require_clip = true;
   double fps = 30.0;
   // Frames first..last (inclusive) at times frame / fps seconds from the
-  // clip's start; last < 0: up to the clip's last key.
+  // clip's start; last unset: up to the clip's last key.
   int first_frame = 0;
-  int last_frame = -1;
+  std::optional<int> last_frame;
   // Weights summing to 1 within weight_tolerance are taken as they are;
   // others are normalized or refused (WeightPolicy). A vertex with no weight
   // at all takes the weights of the nearest weighted vertex (a warning
   // counts them) under either policy.
   WeightPolicy weights = WeightPolicy::normalize;
   double weight_tolerance = 1e-3;
-  // Positions closer than this (absolute; 0: 1e-9 of the bounding box's
+  // Positions closer than this (absolute; unset: 1e-9 of the bounding box's
   // diagonal) are welded into one vertex of the simulated surface.
-  double weld_distance = 0.0;
+  std::optional<double> weld_distance;
 };
 
 // A joint of the skeleton: a node that skins vertices.

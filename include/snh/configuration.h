@@ -1,4 +1,4 @@
-// The solver's configuration with every automatic choice made: what a
+// The solver's configuration with every unset option chosen: what a
 // Simulation runs with, and why. One function, resolve_configuration, turns
 // the options, mesh, materials and device into it; the Simulation and
 // everything it builds read only the result (Simulation::configuration).
@@ -27,10 +27,12 @@ struct ResolvedSetting {
 };
 
 struct ResolvedConfiguration {
-  // The options with every automatic value replaced by the one chosen:
-  // preconditioner, product, product_precision, the multigrid's smoothing,
-  // fine level, rebuilds and float V-cycle, the self-contact broad phase and
-  // reach (contact.self_distance), the friction slip, and the stopping test
+  // The options with every unset (std::optional) value they use set to the
+  // one chosen: preconditioner, product and product_precision always; with
+  // multigrid its smoothing (smoother_degree, chebyshev_kind), fine level,
+  // rebuilds and float V-cycle; with barrier self-contact its broad phase
+  // and reach (contact.self_distance); with penalty self-contact its
+  // stiffness; with friction the slip; and the stopping test
   // (absolute_tolerance carries the strain criterion's value,
   // strain_tolerance is cleared). Loads, targets and callbacks as given.
   SolveOptions options;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,12 +47,12 @@ struct FrameRecord {
   std::vector<Reaction> reactions;
   std::vector<NewtonIteration> history;  // the frame's Newton iterations (SolveResult::history)
   // What the frame's solve ran, as SolveResult reports it (the fields of the
-  // same names): automatic choices resolved.
+  // same names): unset choices resolved.
   ProductVariant product = ProductVariant::cached;
   Preconditioner preconditioner = Preconditioner::block_jacobi;
   Precision product_precision = Precision::double_;
-  int multigrid_smoother_degree = 0;
-  ChebyshevKind multigrid_chebyshev = ChebyshevKind::automatic;
+  std::optional<int> multigrid_smoother_degree;  // empty without multigrid
+  std::optional<ChebyshevKind> multigrid_chebyshev;
   bool multigrid_float_cycle = false;
   std::string kernel_specialization;
   size_t device_memory_bytes = 0;

@@ -10,10 +10,10 @@ namespace snh {
 
 // Whether the energy carries the regularized origin barrier -mu/2 log(I_C + 1)
 // (Smith et al. 2018, Eq. 14). The paper allows leaving it out for nu >= 0.4
-// (App. D); `automatic` does exactly that.
-enum class Barrier { on, off, automatic };
+// (App. D); unset (std::optional) does exactly that.
+enum class Barrier { on, off };
 
-Barrier parse_barrier(const std::string& text);  // "on", "off", "auto"
+std::optional<Barrier> parse_barrier(const std::string& text);  // "on", "off"; "auto": unset
 
 struct LameParameters {
   double mu = 0.0;      // shear modulus
@@ -33,8 +33,8 @@ struct StableNeoHookean {
   // [-0.851, 0.5) with the barrier (supplement, sec. on critical points) or
   // nu < 0.4 without it (App. D), and for non-finite values.
   static StableNeoHookean from_youngs_modulus(double youngs_modulus, double poisson_ratio,
-                                              Barrier barrier = Barrier::automatic);
-  static StableNeoHookean from_lame(const LameParameters& lame, Barrier barrier = Barrier::automatic);
+                                              std::optional<Barrier> barrier = std::nullopt);
+  static StableNeoHookean from_lame(const LameParameters& lame, std::optional<Barrier> barrier = std::nullopt);
 
   double alpha() const;         // the rest-stable shift of J (Eq. 14 or Eq. 13)
   LameParameters lame() const;  // the small-strain moduli this energy reproduces
@@ -64,9 +64,9 @@ MaterialModel parse_material_model(const std::string& name);
 // like ones are fractions of the Lame shear modulus so that the small-strain
 // response stays (E, nu) whatever they are.
 struct MaterialOptions {
-  Barrier barrier = Barrier::automatic;  // snh only
-  double fung_gamma = 0.1;               // gamma / mu_Lame
-  double fung_mu1 = 0.5;                 // exponent rate
+  std::optional<Barrier> barrier;  // snh only; unset: see Barrier
+  double fung_gamma = 0.1;         // gamma / mu_Lame
+  double fung_mu1 = 0.5;           // exponent rate
   double arruda_boyce_beta1 = 0.1;
   double arruda_boyce_beta2 = 0.01;
   double kikuuwe_kappa = 10.0;  // kappa / mu_Lame

@@ -87,8 +87,8 @@ struct SceneFile {
   struct CharacterSection {
     Character character;
     CharacterRig rig;
-    bool skinned_guess = false;  // "character.skinned_guess"
-    int resolution = 0;          // "character.resolution" (rig.cell is the cell chosen), 0: "cell" given
+    bool skinned_guess = false;     // "character.skinned_guess"
+    std::optional<int> resolution;  // "character.resolution" (rig.cell is the cell chosen); empty: "cell" given
   };
   std::optional<CharacterSection> character;
   // "output.pc2", "output.mdd": the character's simulated surface per frame
@@ -149,7 +149,7 @@ struct SceneStep {
 
 struct SceneRun {
   SolveOptions options;  // as run
-  // Every automatic choice made, with its reason (snh/configuration.h).
+  // Every unset option chosen, with its reason (snh/configuration.h).
   ResolvedConfiguration resolved;
   // Load steps (no rig): the solve and a record per completed step.
   SolveResult result;
@@ -191,7 +191,9 @@ struct SceneProgress {
 using SceneStepWriter = std::function<void(int index, double time, const Points& lattice, const Points& surface)>;
 
 struct SceneRunOptions {
-  int max_frames = 0;     // a rig: run only the first frames; 0: all
+  // A rig: run only the first frames; 0: all (a concrete limit, none, not a
+  // choice left to the library, so no std::optional).
+  int max_frames = 0;
   bool reactions = true;  // load steps: each step's constraint reactions (kept positions, computed after the solve)
   std::function<void(const SceneProgress&)> progress;
   std::vector<SceneStepWriter> writers;  // e.g. SceneVtuSeries::writer, surface_obj_writer

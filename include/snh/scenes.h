@@ -3,6 +3,7 @@
 // QuasistaticSolver runs as they are.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,11 +14,11 @@
 namespace snh {
 
 struct SceneParameters {
-  int resolution = 0;  // cells across the scene's thickness; 0: the scene's default
+  std::optional<int> resolution;  // cells across the scene's thickness; unset: the scene's default
   double youngs_modulus = 1.0;
   double poisson_ratio = 0.49;
-  Barrier barrier = Barrier::automatic;
-  int steps = 0;  // load steps; 0: the scene's default
+  std::optional<Barrier> barrier;  // unset: see Barrier
+  std::optional<int> steps;        // load steps; unset: the scene's default
   unsigned seed = 1;
   // hex8 (the paper's lattices) or tet4 (each lattice hex split in six).
   ElementType element_type = ElementType::hex8;

@@ -84,8 +84,25 @@ struct ConstraintSet {
   }
 };
 
+// Text from users (scene files, the snh command line, Python strings) names
+// an unset option (std::optional, empty: the library chooses) "automatic"
+// (docs/design.md, "Conventions of the public API").
+inline constexpr const char* kAutomatic = "automatic";
+// Empty for "automatic", else parse(text).
+template <typename E>
+std::optional<E> parse_optional(const std::string& text, E (*parse)(const std::string&)) {
+  if (text == kAutomatic) return std::nullopt;
+  return parse(text);
+}
+// The value's name (to_string), "automatic" when empty.
+template <typename E>
+const char* name_or_automatic(const std::optional<E>& value) {
+  return value ? to_string(*value) : kAutomatic;
+}
+
+// The Hessian products of CG; unset (SolverTuning::product): the measured
+// winner for the element type, precision and device class.
 enum class ProductVariant {
-  automatic,         // the measured winner for this element type, precision and device class
   cached,            // SVD and eigensystem once per Newton iteration, reused by every product
   recompute,         // SVD and eigensystem at every product
   element_matrices,  // per-element 24x24 (hex8) / 12x12 (tet4) projected matrices, once per Newton iteration
@@ -95,25 +112,26 @@ enum class ProductVariant {
 const char* to_string(ProductVariant v);
 ProductVariant parse_product_variant(const std::string& text);  // the names above
 
-// The variant `automatic` resolves to, from snh-gpu-bench throughput
+// The variant an unset product resolves to, from snh-gpu-bench throughput
 // measurements (docs/performance.md); device classes not measured get `cached`.
 ProductVariant default_product_variant(ElementType type, Precision precision, bool gpu);
 
-// The preconditioner of the conjugate gradient solves.
+// The preconditioner of the conjugate gradient solves; unset
+// (SolverTuning::preconditioner): the measured choice, multigrid on hex8
+// lattices from 5,000 DOFs, else block-Jacobi.
 enum class Preconditioner {
-  automatic,     // the measured choice: multigrid on hex8 lattices from 5,000 DOFs, else block-Jacobi
   none,          // plain CG
   block_jacobi,  // the inverted 3x3 diagonal blocks of the projected Hessian
   multigrid,     // a geometric V-cycle on the hex8 lattice (solver/multigrid/multigrid.h); hex8 lattices only
 };
 
-const char* to_string(Preconditioner p);                       // "automatic", "none", "block-jacobi", "multigrid"
+const char* to_string(Preconditioner p);                       // "none", "block-jacobi", "multigrid"
 Preconditioner parse_preconditioner(const std::string& text);  // the names above
 
-// What `automatic` resolves to for this mesh (docs/performance.md).
+// What an unset preconditioner resolves to for this mesh (docs/performance.md).
 Preconditioner default_preconditioner(const Mesh& mesh);
 
-// The variant `automatic` resolves to with this preconditioner: as above,
+// The variant an unset product resolves to with this preconditioner: as above,
 // except multigrid on CPU devices, which reuses its hierarchy between
 // linearizations (MultigridOptions::rebuild_every) and so needs no element
 // matrices there: the cached linearization (docs/performance.md).
@@ -125,9 +143,9 @@ ProductVariant default_product_variant(ElementType type, Precision precision, bo
 // (the same before and after the coarse correction, so CG sees a symmetric
 // preconditioner) and a direct solve of the coarsest level on the host.
 // The fine level inside the multigrid V-cycle (its smoothing and the residual
-// restricted to the coarse levels).
+// restricted to the coarse levels); unset (MultigridOptions::fine_level):
+// built, except with inertia, obstacles or barrier self-contact (then current).
 enum class MultigridFineLevel {
-  automatic,  // built, except with inertia, obstacles or barrier self-contact (then current)
   // The element matrices of the build's linearization (24x24 per element,
   // kept on the device) and their block-Jacobi blocks, reused with the
   // coarse operators until the next build (also at true-Hessian
@@ -141,16 +159,15 @@ enum class MultigridFineLevel {
   current,
 };
 
-const char* to_string(MultigridFineLevel f);                             // "automatic", "built", "current"
+const char* to_string(MultigridFineLevel f);                             // "built", "current"
 MultigridFineLevel parse_multigrid_fine_level(const std::string& text);  // the names above
 
 // The polynomial of the multigrid's Chebyshev smoothing over block-Jacobi
 // (solver/linear/chebyshev.h); lambda below is each level's power-iteration
-// estimate of lambda_max(D^-1 A).
+// estimate of lambda_max(D^-1 A). Unset (MultigridOptions::chebyshev_kind):
+// the measured choice for the problem, with MultigridOptions::smoother_degree
+// (resolved_smoothing below).
 enum class ChebyshevKind {
-  // The measured choice for the problem, with MultigridOptions::smoother_degree
-  // (resolved_smoothing below).
-  automatic,
   // First kind on [0.1, 1.1] lambda: the smallest largest residual factor
   // there (PETSc's default interval; Adams et al. 2003).
   first,
@@ -163,21 +180,21 @@ enum class ChebyshevKind {
   optimized_fourth,
 };
 
-const char* to_string(ChebyshevKind k);                       // "automatic", "first", "fourth", "optimized-fourth"
+const char* to_string(ChebyshevKind k);                       // "first", "fourth", "optimized-fourth"
 ChebyshevKind parse_chebyshev_kind(const std::string& text);  // the names above
 
 struct MultigridOptions {
   // Chebyshev degree of each pre- and post-smoothing (operator products
-  // each), and its polynomial. Both automatic by default (0 and automatic;
-  // resolved_smoothing below): degree 1 of the optimized fourth kind on
+  // each), and its polynomial. Both unset by default (resolved_smoothing
+  // below): degree 1 of the optimized fourth kind on
   // fine levels of fewer than 600,000 DOFs whose materials all have
   // Poisson's ratio below 0.495, degree 2 of the first kind otherwise: the
   // former measured faster below those bounds, slower above them
   // (docs/performance.md, "Multigrid smoothing (degree and kind)"). Set one
-  // of the two and the other, left automatic, takes the fixed default:
+  // of the two and the other, left unset, takes the fixed default:
   // degree 2, the first kind.
-  int smoother_degree = 0;
-  ChebyshevKind chebyshev_kind = ChebyshevKind::automatic;
+  std::optional<int> smoother_degree;
+  std::optional<ChebyshevKind> chebyshev_kind;
   size_t coarsest_dofs = 1000;  // coarsen until a level has at most this many DOFs
   int max_levels = 12;
   // Reuse between Newton linearizations (PETSc's SNESSetLagPreconditioner,
@@ -189,10 +206,11 @@ struct MultigridOptions {
   // the build, or when the build came from a true (not projected) Hessian.
   // A reused V-cycle stays symmetric positive definite (fine_level below
   // says what of the fine level follows each linearization). 1: rebuild at
-  // every linearization; 0 (default): 2 when each load step rebuilds
+  // every linearization; unset (default): 2 when each load step rebuilds
   // (quasistatic), 4 when the hierarchy is carried across time steps
-  // (dynamics), as measured (docs/performance.md, "Multigrid rebuilds (rebuild_every)").
-  int rebuild_every = 0;
+  // (dynamics), as measured (docs/performance.md, "Multigrid rebuilds
+  // (rebuild_every)"; resolved_rebuild_every below).
+  std::optional<int> rebuild_every;
   double rebuild_growth = 2.0;
   // Whether each load step's first linearization rebuilds; unset: yes for
   // quasistatic load steps, no under dynamics (SolveOptions::dynamics),
@@ -200,7 +218,9 @@ struct MultigridOptions {
   // iterations each, so the hierarchy is carried across them and rebuilt
   // by the rules above only (docs/performance.md).
   std::optional<bool> rebuild_each_load_step;
-  MultigridFineLevel fine_level = MultigridFineLevel::automatic;
+  // Unset: built, except with inertia, obstacles or barrier self-contact
+  // (then current; MultigridFineLevel).
+  std::optional<MultigridFineLevel> fine_level;
   // Double precision with a built fine level: its element matrices stored in
   // float (exactly symmetric), which halves what the smoother reads at every
   // V-cycle; the fine blocks, the vectors and the coarse levels stay double
@@ -227,7 +247,7 @@ struct MultigridOptions {
   bool coarse_solve_on_device = false;
 };
 
-// `options` with smoother_degree and chebyshev_kind resolved (see above) for
+// `options` with smoother_degree and chebyshev_kind set (see above) for
 // a fine level of `dofs` DOFs whose stiffest material in volume has
 // Poisson's ratio `poisson_ratio` (the largest over the materials).
 MultigridOptions resolved_smoothing(MultigridOptions options, size_t dofs, double poisson_ratio);
@@ -348,7 +368,7 @@ struct Obstacle {
 // barrier (the default): the incremental-potential barrier (Li et al. 2020,
 // "Incremental Potential Contact"; docs/design.md): kappa b(d^2) on every
 // pair of non-adjacent surface primitives (point-triangle, edge-edge; hex8
-// quads as two triangles) closer than self_distance (dhat; 0: 1% of the mean
+// quads as two triangles) closer than self_distance (dhat; unset: 1% of the mean
 // rest surface edge length), kappa = E h^2 / dhat^3 (E the largest Young's
 // modulus, h that edge length), and every Newton step limited by continuous
 // collision detection, so that the surface never passes through itself.
@@ -357,7 +377,7 @@ struct Obstacle {
 //
 // penalty: the reference-map penalty (Smith et al. 2018
 // sec. 6; docs/design.md): a surface vertex found inside a deformed
-// element not adjacent to it is pulled by a spring of self_stiffness (0: the
+// element not adjacent to it is pulled by a spring of self_stiffness (unset: the
 // same as stiffness; force per length, like stiffness) to the deformed
 // position of the closest rest-surface point of where it sits in rest space,
 // E = k/2 |x_s - sum_j w_j x_j|^2, the weights frozen for a Newton
@@ -377,32 +397,33 @@ struct Obstacle {
 // (kernels/contact/obstacle.h). Kernels carry it (SNH_FRICTION) only
 // when some obstacle's coefficient is > 0.
 enum class SelfContactMethod { barrier, penalty };
-// Where barrier self-contact finds its candidate pairs. automatic: on the
+// Where barrier self-contact finds its candidate pairs. Unset: on the
 // device when it is a GPU (no read of x), on the host when the device is
 // the CPU (its uniform grid is faster there than the device's sorts on the
 // same cores). Either way the pairs, and so every result, are the same bit
 // for bit.
-enum class SelfBroadPhase { automatic, host, device };
+enum class SelfBroadPhase { host, device };
 
 struct ContactOptions {
   double stiffness = 0.0;  // > 0 when there are obstacles (or penalty self-contact without self_stiffness)
   double thickness = 0.0;  // >= 0
   bool self = false;
   SelfContactMethod self_method = SelfContactMethod::barrier;
-  double self_distance = 0.0;   // barrier's dhat, >= 0; 0: 1% of the mean rest surface edge (embedded: of the cell
-                                // size); pairs closer at rest are left out
-  double self_stiffness = 0.0;  // penalty's, >= 0; 0: stiffness
+  // Barrier's dhat (> 0); unset: 1% of the mean rest surface edge
+  // (embedded: of the cell size); pairs closer at rest are left out.
+  std::optional<double> self_distance;
+  std::optional<double> self_stiffness;  // penalty's (> 0); unset: stiffness
   // Barrier self-contact on a surface carried by a hex8 lattice's cells (an
   // embedded surface, snh/surface.h embed) instead of the mesh's boundary
   // faces: its triangles (positions at rest) and embedding. Empty: the
   // boundary. Scene files with "embed" set it to their surface.
   TriangleSurface self_surface;
   Embedding self_embedding;
-  SelfBroadPhase self_broad_phase = SelfBroadPhase::automatic;
-  double friction = 0.0;  // >= 0, the obstacles' coefficient unless they set their own
-  // The slip (length) below which friction sticks as a spring (> 0); 0:
+  std::optional<SelfBroadPhase> self_broad_phase;  // unset: see SelfBroadPhase
+  double friction = 0.0;                           // >= 0, the obstacles' coefficient unless they set their own
+  // The slip (length) below which friction sticks as a spring (> 0); unset:
   // 1% of the mesh's vertex spacing (rest volume / vertices)^(1/3).
-  double friction_slip = 0.0;
+  std::optional<double> friction_slip;
 };
 
 // The solver's defaults, written once: SolveOptions' members start from
@@ -444,12 +465,12 @@ struct SolverTuning {
   // capped at eta_max.
   double forcing_gamma = 0.9;
   double forcing_max = 0.5;
-  Preconditioner preconditioner = Preconditioner::automatic;
+  std::optional<Preconditioner> preconditioner;  // unset: see Preconditioner
   MultigridOptions multigrid;
   // Backtracking halvings the line search may take before it gives up (and
   // retries once along the preconditioned steepest-descent direction).
   int line_search_halvings = 40;
-  ProductVariant product = ProductVariant::automatic;
+  std::optional<ProductVariant> product;  // unset: see ProductVariant
   // Mixed precision in double solves: the precision of CG's Hessian
   // products. float: the cached variant's products read a float copy of
   // each linearization and compute in float (kernels/snh_portable.h,
@@ -468,7 +489,8 @@ struct SolverTuning {
   // nothing (SolveProfile::cg_iterations_past_convergence) and the result
   // does not depend on the interval. 0: ViennaCL's CG, which reads its
   // inner products every iteration (the previous solver, kept for
-  // comparison; also what devices without fp64 use).
+  // comparison; also what devices without fp64 use). 0 selects that solver,
+  // not a choice left to the library, so this is no std::optional.
   int cg_check_every = defaults::cg_check_every;
 };
 
@@ -665,14 +687,14 @@ struct SolveResult {
   size_t device_memory_bytes = 0;
   DeviceInfo device;
   std::string kernel_specialization;                             // the build-time switches of the kernels used
-  ProductVariant product = ProductVariant::cached;               // the variant used (automatic resolved)
-  Preconditioner preconditioner = Preconditioner::block_jacobi;  // the one used (automatic resolved)
+  ProductVariant product = ProductVariant::cached;               // the variant used (resolved)
+  Preconditioner preconditioner = Preconditioner::block_jacobi;  // the one used (resolved)
   // The precision CG's products ran in (SolveOptions::product_precision as used).
   Precision product_precision = Precision::double_;
-  // With multigrid: its smoothing, automatic resolved (resolved_smoothing);
-  // 0 and automatic otherwise.
-  int multigrid_smoother_degree = 0;
-  ChebyshevKind multigrid_chebyshev = ChebyshevKind::automatic;
+  // With multigrid: its smoothing as resolved (resolved_smoothing); empty
+  // otherwise.
+  std::optional<int> multigrid_smoother_degree;
+  std::optional<ChebyshevKind> multigrid_chebyshev;
   // With multigrid: whether its V-cycle ran in float
   // (MultigridOptions::float_cycle as used).
   bool multigrid_float_cycle = false;
@@ -820,7 +842,7 @@ class Simulation {
   const std::vector<ConstraintSet>& constraints() const;
   const DeviceInfo& device() const;
   double tolerance() const;  // the stopping test's absolute part (SolveOptions::strain_tolerance)
-  // The options with every automatic choice made, each with its reason
+  // The options with every unset option chosen, each with its reason
   // (snh/configuration.h): what this simulation runs with.
   const ResolvedConfiguration& configuration() const;
 

@@ -239,11 +239,8 @@ class Barrier:
       on
     
       off
-    
-      automatic
     """
     __members__: typing.ClassVar[dict[str, Barrier]]
-    automatic: typing.ClassVar[Barrier]
     off: typing.ClassVar[Barrier]
     on: typing.ClassVar[Barrier]
     def __eq__(self, other: typing.Any) -> bool:
@@ -393,12 +390,12 @@ class MaterialOptions:
     def arruda_boyce_beta2(self, arg0: float) -> None:
         ...
     @property
-    def barrier(self) -> Barrier:
+    def barrier(self) -> Barrier | None:
         """
-        Barrier (snh only).
+        Barrier (snh only), or None: on below nu 0.4.
         """
     @barrier.setter
-    def barrier(self, arg0: Barrier) -> None:
+    def barrier(self, arg0: Barrier | None) -> None:
         ...
     @property
     def fung_gamma(self) -> float:
@@ -445,12 +442,12 @@ class StableNeoHookean:
     The Stable Neo-Hookean energy's own parameters.
     """
     @staticmethod
-    def from_lame(lame: LameParameters, barrier: Barrier = Barrier.automatic) -> StableNeoHookean:
+    def from_lame(lame: LameParameters, barrier: Barrier | None = None) -> StableNeoHookean:
         """
         From the Lame moduli.
         """
     @staticmethod
-    def from_youngs_modulus(youngs_modulus: float, poisson_ratio: float, barrier: Barrier = Barrier.automatic) -> StableNeoHookean:
+    def from_youngs_modulus(youngs_modulus: float, poisson_ratio: float, barrier: Barrier | None = None) -> StableNeoHookean:
         """
         From E and nu with the paper's reparameterization (snh.Error for out-of-range values).
         """
@@ -678,8 +675,6 @@ class Preconditioner:
     
     Members:
     
-      automatic
-    
       none
     
       block_jacobi
@@ -687,7 +682,6 @@ class Preconditioner:
       multigrid
     """
     __members__: typing.ClassVar[dict[str, Preconditioner]]
-    automatic: typing.ClassVar[Preconditioner]
     block_jacobi: typing.ClassVar[Preconditioner]
     multigrid: typing.ClassVar[Preconditioner]
     none: typing.ClassVar[Preconditioner]
@@ -723,8 +717,6 @@ class ProductVariant:
     
     Members:
     
-      automatic
-    
       cached
     
       recompute
@@ -735,7 +727,6 @@ class ProductVariant:
     """
     __members__: typing.ClassVar[dict[str, ProductVariant]]
     assembled: typing.ClassVar[ProductVariant]
-    automatic: typing.ClassVar[ProductVariant]
     cached: typing.ClassVar[ProductVariant]
     element_matrices: typing.ClassVar[ProductVariant]
     recompute: typing.ClassVar[ProductVariant]
@@ -810,8 +801,6 @@ class ChebyshevKind:
     
     Members:
     
-      automatic
-    
       first
     
       fourth
@@ -819,7 +808,6 @@ class ChebyshevKind:
       optimized_fourth
     """
     __members__: typing.ClassVar[dict[str, ChebyshevKind]]
-    automatic: typing.ClassVar[ChebyshevKind]
     first: typing.ClassVar[ChebyshevKind]
     fourth: typing.ClassVar[ChebyshevKind]
     optimized_fourth: typing.ClassVar[ChebyshevKind]
@@ -1379,13 +1367,13 @@ class SolveResult:
     def min_j(self) -> float:
         ...
     @property
-    def multigrid_chebyshev(self) -> ChebyshevKind:
+    def multigrid_chebyshev(self) -> ChebyshevKind | None:
         ...
     @property
     def multigrid_float_cycle(self) -> bool:
         ...
     @property
-    def multigrid_smoother_degree(self) -> int:
+    def multigrid_smoother_degree(self) -> int | None:
         ...
     @property
     def positions(self) -> numpy.ndarray[numpy.float64]:
@@ -1784,12 +1772,12 @@ class ContactOptions:
     def friction(self, arg0: float) -> None:
         ...
     @property
-    def friction_slip(self) -> float:
+    def friction_slip(self) -> float | None:
         """
-        Stick-slip length; 0: automatic.
+        Stick-slip length; None: 1% of the vertex spacing.
         """
     @friction_slip.setter
-    def friction_slip(self, arg0: float) -> None:
+    def friction_slip(self, arg0: float | None) -> None:
         ...
     @property
     def self(self) -> bool:
@@ -1800,12 +1788,12 @@ class ContactOptions:
     def self(self, arg0: bool) -> None:
         ...
     @property
-    def self_stiffness(self) -> float:
+    def self_stiffness(self) -> float | None:
         """
-        0: stiffness.
+        Penalty self-contact's; None: stiffness.
         """
     @self_stiffness.setter
-    def self_stiffness(self, arg0: float) -> None:
+    def self_stiffness(self, arg0: float | None) -> None:
         ...
     @property
     def stiffness(self) -> float:
@@ -1936,17 +1924,17 @@ class SolveOptions:
     def precision(self, arg1: typing.Any) -> None:
         ...
     @property
-    def preconditioner(self) -> Preconditioner:
+    def preconditioner(self) -> Preconditioner | None:
         """
-        Preconditioner (or 'automatic', 'none', 'block-jacobi', 'multigrid').
+        Preconditioner (or 'none', 'block-jacobi', 'multigrid'), or None ('automatic'): the measured choice.
         """
     @preconditioner.setter
     def preconditioner(self, arg1: typing.Any) -> None:
         ...
     @property
-    def product(self) -> ProductVariant:
+    def product(self) -> ProductVariant | None:
         """
-        ProductVariant (or its name).
+        ProductVariant (or its name), or None ('automatic'): the measured choice.
         """
     @product.setter
     def product(self, arg1: typing.Any) -> None:
@@ -2537,12 +2525,12 @@ class CharacterReadOptions:
     def clip(self, arg0: str) -> None:
         ...
     @property
-    def clip_index(self) -> int:
+    def clip_index(self) -> int | None:
         """
-        The clip by index among the file's (>= 0).
+        The clip by index among the file's (>= 0), or None.
         """
     @clip_index.setter
-    def clip_index(self, arg0: int) -> None:
+    def clip_index(self, arg0: int | None) -> None:
         ...
     @property
     def first_frame(self) -> int:
@@ -2561,12 +2549,12 @@ class CharacterReadOptions:
     def fps(self, arg0: float) -> None:
         ...
     @property
-    def last_frame(self) -> int:
+    def last_frame(self) -> int | None:
         """
-        Last frame sampled (inclusive); < 0: up to the clip's last key.
+        Last frame sampled (inclusive); None: up to the clip's last key.
         """
     @last_frame.setter
-    def last_frame(self, arg0: int) -> None:
+    def last_frame(self, arg0: int | None) -> None:
         ...
     @property
     def require_clip(self) -> bool:
@@ -2593,12 +2581,12 @@ class CharacterReadOptions:
     def weights(self, arg0: WeightPolicy) -> None:
         ...
     @property
-    def weld_distance(self) -> float:
+    def weld_distance(self) -> float | None:
         """
-        Positions closer than this are welded (0: 1e-9 of the bounding box's diagonal).
+        Positions closer than this are welded (None: 1e-9 of the bounding box's diagonal).
         """
     @weld_distance.setter
-    def weld_distance(self, arg0: float) -> None:
+    def weld_distance(self, arg0: float | None) -> None:
         ...
 class Joint:
     """
@@ -3039,7 +3027,7 @@ class SceneParameters:
     """
     Size, material and steps of a built-in scene.
     """
-    barrier: Barrier
+    barrier: Barrier | None
     poisson_ratio: float
     seed: int
     strain_tolerance: float
@@ -3057,20 +3045,20 @@ class SceneParameters:
     def element_type(self, arg0: ElementType) -> None:
         ...
     @property
-    def resolution(self) -> int:
+    def resolution(self) -> int | None:
         """
-        Cells across; 0: the scene's default.
+        Cells across; None: the scene's default.
         """
     @resolution.setter
-    def resolution(self, arg0: int) -> None:
+    def resolution(self, arg0: int | None) -> None:
         ...
     @property
-    def steps(self) -> int:
+    def steps(self) -> int | None:
         """
-        Load steps; 0: the scene's default.
+        Load steps; None: the scene's default.
         """
     @steps.setter
-    def steps(self, arg0: int) -> None:
+    def steps(self, arg0: int | None) -> None:
         ...
 class Scene:
     """

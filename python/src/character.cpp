@@ -93,18 +93,19 @@ void bind_read_options(py::module_& m) {
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::CharacterReadOptions>(kw); }),
            "Keyword arguments set the fields of the same names.")
       .def_readwrite("clip", &snh::CharacterReadOptions::clip, "The clip by name ('': by clip_index, else the first).")
-      .def_readwrite("clip_index", &snh::CharacterReadOptions::clip_index, "The clip by index among the file's (>= 0).")
+      .def_readwrite("clip_index", &snh::CharacterReadOptions::clip_index,
+                     "The clip by index among the file's (>= 0), or None.")
       .def_readwrite("require_clip", &snh::CharacterReadOptions::require_clip,
                      "False: a file without animation reads as a character without a clip.")
       .def_readwrite("fps", &snh::CharacterReadOptions::fps, "Frames per second the clip is sampled at.")
       .def_readwrite("first_frame", &snh::CharacterReadOptions::first_frame, "First frame sampled (time frame / fps).")
       .def_readwrite("last_frame", &snh::CharacterReadOptions::last_frame,
-                     "Last frame sampled (inclusive); < 0: up to the clip's last key.")
+                     "Last frame sampled (inclusive); None: up to the clip's last key.")
       .def_readwrite("weights", &snh::CharacterReadOptions::weights, "WeightPolicy for sums off 1.")
       .def_readwrite("weight_tolerance", &snh::CharacterReadOptions::weight_tolerance,
                      "Sums within this of 1 are taken as they are.")
       .def_readwrite("weld_distance", &snh::CharacterReadOptions::weld_distance,
-                     "Positions closer than this are welded (0: 1e-9 of the bounding box's diagonal).");
+                     "Positions closer than this are welded (None: 1e-9 of the bounding box's diagonal).");
 }
 
 void bind_skeleton(py::module_& m) {

@@ -19,8 +19,7 @@ snh::MaterialModel model_of(py::handle model) {
 void bind_material(py::module_& m) {
   py::enum_<snh::Barrier>(m, "Barrier", "Whether Stable Neo-Hookean carries the origin barrier term.")
       .value("on", snh::Barrier::on)
-      .value("off", snh::Barrier::off)
-      .value("automatic", snh::Barrier::automatic);
+      .value("off", snh::Barrier::off);
 
   py::enum_<snh::MaterialModel>(m, "MaterialModel", "The material family (one kernel file each).")
       .value("stable_neo_hookean", snh::MaterialModel::stable_neo_hookean)
@@ -46,7 +45,7 @@ void bind_material(py::module_& m) {
                                    "Model-specific settings for building a material from (E, nu).")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::MaterialOptions>(kw); }),
            "Keyword arguments set the fields of the same names.")
-      .def_readwrite("barrier", &snh::MaterialOptions::barrier, "Barrier (snh only).")
+      .def_readwrite("barrier", &snh::MaterialOptions::barrier, "Barrier (snh only), or None: on below nu 0.4.")
       .def_readwrite("fung_gamma", &snh::MaterialOptions::fung_gamma, "gamma / mu_Lame.")
       .def_readwrite("fung_mu1", &snh::MaterialOptions::fung_mu1, "Fung exponent rate.")
       .def_readwrite("arruda_boyce_beta1", &snh::MaterialOptions::arruda_boyce_beta1, "Arruda-Boyce beta1.")
@@ -59,10 +58,10 @@ void bind_material(py::module_& m) {
 
   py::class_<snh::StableNeoHookean>(m, "StableNeoHookean", "The Stable Neo-Hookean energy's own parameters.")
       .def_static("from_youngs_modulus", &snh::StableNeoHookean::from_youngs_modulus, py::arg("youngs_modulus"),
-                  py::arg("poisson_ratio"), py::arg("barrier") = snh::Barrier::automatic,
+                  py::arg("poisson_ratio"), py::arg("barrier") = py::none(),
                   "From E and nu with the paper's reparameterization (snh.Error for out-of-range values).")
-      .def_static("from_lame", &snh::StableNeoHookean::from_lame, py::arg("lame"),
-                  py::arg("barrier") = snh::Barrier::automatic, "From the Lame moduli.")
+      .def_static("from_lame", &snh::StableNeoHookean::from_lame, py::arg("lame"), py::arg("barrier") = py::none(),
+                  "From the Lame moduli.")
       .def_readonly("mu", &snh::StableNeoHookean::mu, "The energy's mu.")
       .def_readonly("lambda_", &snh::StableNeoHookean::lambda, "The energy's lambda.")
       .def_readonly("barrier", &snh::StableNeoHookean::barrier, "Whether the barrier term is present.")

@@ -12,11 +12,11 @@ void bind_scene(py::module_& m) {
   py::class_<snh::SceneParameters>(m, "SceneParameters", "Size, material and steps of a built-in scene.")
       .def(py::init([](const py::kwargs& kw) { return from_kwargs<snh::SceneParameters>(kw); }),
            "Keyword arguments set the fields of the same names.")
-      .def_readwrite("resolution", &snh::SceneParameters::resolution, "Cells across; 0: the scene's default.")
+      .def_readwrite("resolution", &snh::SceneParameters::resolution, "Cells across; None: the scene's default.")
       .def_readwrite("youngs_modulus", &snh::SceneParameters::youngs_modulus)
       .def_readwrite("poisson_ratio", &snh::SceneParameters::poisson_ratio)
       .def_readwrite("barrier", &snh::SceneParameters::barrier)
-      .def_readwrite("steps", &snh::SceneParameters::steps, "Load steps; 0: the scene's default.")
+      .def_readwrite("steps", &snh::SceneParameters::steps, "Load steps; None: the scene's default.")
       .def_readwrite("seed", &snh::SceneParameters::seed)
       .def_readwrite("element_type", &snh::SceneParameters::element_type, "hex8 or tet4 (each hex split in six).")
       .def_readwrite("strain_tolerance", &snh::SceneParameters::strain_tolerance);

@@ -20,6 +20,15 @@ E enum_or_name(py::handle value, E (*parse)(const std::string&)) {
   return value.cast<E>();
 }
 
+// An unset option: None or 'automatic' (snh::kAutomatic) for empty, else
+// an enum value or its name.
+template <class E>
+std::optional<E> optional_enum_or_name(py::handle value, E (*parse)(const std::string&)) {
+  if (value.is_none()) return std::nullopt;
+  if (py::isinstance<py::str>(value)) return snh::parse_optional(value.cast<std::string>(), parse);
+  return value.cast<E>();
+}
+
 snh::Points optional_xyz(py::handle value, const char* what, py::ssize_t rows = -1) {
   if (value.is_none()) return {};
   return to_points(value, what, rows);
@@ -91,12 +100,10 @@ void bind_solver_enums(py::module_& m) {
       .value("single", snh::Precision::single)
       .value("double", snh::Precision::double_);
   py::enum_<snh::Preconditioner>(m, "Preconditioner", "Preconditioner of the conjugate gradient solves.")
-      .value("automatic", snh::Preconditioner::automatic)
       .value("none", snh::Preconditioner::none)
       .value("block_jacobi", snh::Preconditioner::block_jacobi)
       .value("multigrid", snh::Preconditioner::multigrid);
   py::enum_<snh::ProductVariant>(m, "ProductVariant", "How Hessian products are computed.")
-      .value("automatic", snh::ProductVariant::automatic)
       .value("cached", snh::ProductVariant::cached)
       .value("recompute", snh::ProductVariant::recompute)
       .value("element_matrices", snh::ProductVariant::element_matrices)
@@ -105,7 +112,6 @@ void bind_solver_enums(py::module_& m) {
       .value("projected", snh::HessianMode::projected)
       .value("adaptive", snh::HessianMode::adaptive);
   py::enum_<snh::ChebyshevKind>(m, "ChebyshevKind", "Polynomial of the multigrid smoother.")
-      .value("automatic", snh::ChebyshevKind::automatic)
       .value("first", snh::ChebyshevKind::first)
       .value("fourth", snh::ChebyshevKind::fourth)
       .value("optimized_fourth", snh::ChebyshevKind::optimized_fourth);
@@ -267,9 +273,10 @@ void bind_contact_options(py::module_& m) {
       .def_readwrite("stiffness", &snh::ContactOptions::stiffness, "Penalty stiffness per vertex (force/length).")
       .def_readwrite("thickness", &snh::ContactOptions::thickness, "Contact layer thickness.")
       .def_readwrite("self", &snh::ContactOptions::self, "Self-collision penalty on.")
-      .def_readwrite("self_stiffness", &snh::ContactOptions::self_stiffness, "0: stiffness.")
+      .def_readwrite("self_stiffness", &snh::ContactOptions::self_stiffness, "Penalty self-contact's; None: stiffness.")
       .def_readwrite("friction", &snh::ContactOptions::friction, "Default Coulomb coefficient.")
-      .def_readwrite("friction_slip", &snh::ContactOptions::friction_slip, "Stick-slip length; 0: automatic.");
+      .def_readwrite("friction_slip", &snh::ContactOptions::friction_slip,
+                     "Stick-slip length; None: 1% of the vertex spacing.");
 }
 
 void bind_solve_options(py::module_& m) {
@@ -300,13 +307,15 @@ void bind_solve_options(py::module_& m) {
       .def_readwrite("forcing_max", &snh::SolveOptions::forcing_max)
       .def_property(
           "preconditioner", [](const snh::SolveOptions& o) { return o.preconditioner; },
-          [](snh::SolveOptions& o, py::handle v) { o.preconditioner = enum_or_name(v, &snh::parse_preconditioner); },
-          "Preconditioner (or 'automatic', 'none', 'block-jacobi', 'multigrid').")
+          [](snh::SolveOptions& o, py::handle v) {
+            o.preconditioner = optional_enum_or_name(v, &snh::parse_preconditioner);
+          },
+          "Preconditioner (or 'none', 'block-jacobi', 'multigrid'), or None ('automatic'): the measured choice.")
       .def_readwrite("line_search_halvings", &snh::SolveOptions::line_search_halvings)
       .def_property(
           "product", [](const snh::SolveOptions& o) { return o.product; },
-          [](snh::SolveOptions& o, py::handle v) { o.product = enum_or_name(v, &snh::parse_product_variant); },
-          "ProductVariant (or its name).")
+          [](snh::SolveOptions& o, py::handle v) { o.product = optional_enum_or_name(v, &snh::parse_product_variant); },
+          "ProductVariant (or its name), or None ('automatic'): the measured choice.")
       .def_property(
           "product_precision", [](const snh::SolveOptions& o) { return o.product_precision; },
           [](snh::SolveOptions& o, py::handle v) {

@@ -85,7 +85,7 @@ def test_read_arm_shapes_and_weights(character):
 
 
 def test_linear_blend_skinning_bends_the_arm():
-    c = arm(last_frame=-1)  # the whole clip: 0 to 90 degrees over 1 s
+    c = arm(last_frame=None)  # the whole clip: 0 to 90 degrees over 1 s
     assert c.clip.frame_count == 11
     rest = c.surface.positions
     at_rest = snh.linear_blend_skinning(rest, c.weights, c.clip.skinning[0])

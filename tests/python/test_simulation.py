@@ -73,6 +73,43 @@ def test_options_keywords_and_names():
     assert options.obstacles[0].type == snh.ObstacleType.plane
 
 
+def test_unset_options_are_none():
+    # Unset (the library chooses) is None; 'automatic' names it in strings.
+    options = snh.SolveOptions()
+    assert options.preconditioner is None
+    assert options.product is None
+    assert options.product_precision is None
+    assert options.contact.self_stiffness is None
+    assert options.contact.friction_slip is None
+    assert not hasattr(snh.Preconditioner, "automatic")
+    options.preconditioner = "multigrid"
+    options.product = snh.ProductVariant.cached
+    assert options.preconditioner == snh.Preconditioner.multigrid
+    options.preconditioner = "automatic"
+    options.product = None
+    assert options.preconditioner is None and options.product is None
+    contact = snh.ContactOptions(friction_slip=0.01)
+    assert contact.friction_slip == 0.01
+    contact.friction_slip = None
+    assert contact.friction_slip is None
+    assert snh.MaterialOptions().barrier is None
+    assert snh.SceneParameters().resolution is None
+    assert snh.CharacterReadOptions().last_frame is None
+    automatic = snh.StableNeoHookean.from_youngs_modulus(1.0, 0.45, None)
+    assert automatic.barrier == snh.StableNeoHookean.from_youngs_modulus(1.0, 0.45).barrier
+
+
+def test_resolved_options_are_set(bar_problem):
+    mesh, material, sets, options = bar_problem
+    sim = snh.Simulation(mesh, material, sets, options)
+    resolved = sim.configuration.options
+    assert resolved.preconditioner is not None and resolved.product is not None
+    result = sim.solve()
+    assert result.preconditioner == resolved.preconditioner
+    if result.preconditioner != snh.Preconditioner.multigrid:
+        assert result.multigrid_smoother_degree is None and result.multigrid_chebyshev is None
+
+
 def test_frame_by_frame_targets(bar_problem):
     mesh, material, sets, options = bar_problem
     sets[1].motion = None

@@ -12,21 +12,18 @@ namespace snh {
 
 namespace {
 
-constexpr NameTable<Preconditioner, 4> kPreconditionerNames{{
-    {Preconditioner::automatic, "automatic"},
+constexpr NameTable<Preconditioner, 3> kPreconditionerNames{{
     {Preconditioner::none, "none"},
     {Preconditioner::block_jacobi, "block-jacobi"},
     {Preconditioner::multigrid, "multigrid"},
 }};
 
-constexpr NameTable<MultigridFineLevel, 3> kFineLevelNames{{
-    {MultigridFineLevel::automatic, "automatic"},
+constexpr NameTable<MultigridFineLevel, 2> kFineLevelNames{{
     {MultigridFineLevel::built, "built"},
     {MultigridFineLevel::current, "current"},
 }};
 
-constexpr NameTable<ChebyshevKind, 4> kChebyshevKindNames{{
-    {ChebyshevKind::automatic, "automatic"},
+constexpr NameTable<ChebyshevKind, 3> kChebyshevKindNames{{
     {ChebyshevKind::first, "first"},
     {ChebyshevKind::fourth, "fourth"},
     {ChebyshevKind::optimized_fourth, "optimized-fourth"},
@@ -58,7 +55,7 @@ ChebyshevKind parse_chebyshev_kind(const std::string& text) {
 // smoothing (degree and kind)"). One set: the other takes its fixed default
 // (degree 2, the first kind).
 MultigridOptions resolved_smoothing(MultigridOptions options, size_t dofs, double poisson_ratio) {
-  const bool degree_set = options.smoother_degree != 0, kind_set = options.chebyshev_kind != ChebyshevKind::automatic;
+  const bool degree_set = options.smoother_degree.has_value(), kind_set = options.chebyshev_kind.has_value();
   if (!degree_set && !kind_set) {
     const bool light = dofs < solver::kDegreeOneBelowDofs && poisson_ratio < solver::kDegreeOneBelowPoisson;
     options.smoother_degree = light ? 1 : 2;

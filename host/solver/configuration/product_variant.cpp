@@ -7,8 +7,7 @@ namespace snh {
 
 namespace {
 
-constexpr NameTable<ProductVariant, 5> kProductVariantNames{{
-    {ProductVariant::automatic, "automatic"},
+constexpr NameTable<ProductVariant, 4> kProductVariantNames{{
     {ProductVariant::cached, "cached"},
     {ProductVariant::recompute, "recompute"},
     {ProductVariant::element_matrices, "element-matrices"},

@@ -34,9 +34,7 @@ std::string count(size_t value) {
 
 const char* on_off(bool on) { return on ? "on" : "off"; }
 
-const char* broad_phase_name(SelfBroadPhase b) {
-  return b == SelfBroadPhase::device ? "device" : b == SelfBroadPhase::host ? "host" : "automatic";
-}
+const char* broad_phase_name(SelfBroadPhase b) { return b == SelfBroadPhase::device ? "device" : "host"; }
 
 // The resolution under way: the options being filled in and the settings
 // recorded so far.
@@ -64,13 +62,13 @@ struct Resolution {
 void resolve_preconditioner(Resolution& r) {
   SolveOptions& o = r.out.options;
   using solver::kMultigridFromDofs;
-  if (r.given.preconditioner != Preconditioner::automatic) {
-    r.add("preconditioner", to_string(o.preconditioner), "given");
+  if (r.given.preconditioner) {
+    r.add("preconditioner", to_string(*o.preconditioner), "given");
   } else if (r.given.contact.self) {
     // With self-contact multigrid takes fewer CG iterations but measured slower
     // (docs/performance.md, "Default preconditioner with self-contact").
     o.preconditioner = Preconditioner::block_jacobi;
-    r.add("preconditioner", to_string(o.preconditioner), "self-contact is on: block-Jacobi measured faster");
+    r.add("preconditioner", to_string(*o.preconditioner), "self-contact is on: block-Jacobi measured faster");
   } else {
     o.preconditioner = default_preconditioner(r.mesh);
     const bool lattice = solver::is_hex8_lattice(r.mesh);
@@ -79,7 +77,7 @@ void resolve_preconditioner(Resolution& r) {
         : r.dofs() >= kMultigridFromDofs
             ? "a hex8 lattice of " + count(r.dofs()) + " DOFs (multigrid from " + count(kMultigridFromDofs) + ")"
             : count(r.dofs()) + " DOFs, below multigrid's " + count(kMultigridFromDofs);
-    r.add("preconditioner", to_string(o.preconditioner), why);
+    r.add("preconditioner", to_string(*o.preconditioner), why);
   }
   if (o.preconditioner == Preconditioner::multigrid) {
     if (r.terms.self_contact)
@@ -92,12 +90,12 @@ void resolve_preconditioner(Resolution& r) {
 
 void resolve_products(Resolution& r) {
   SolveOptions& o = r.out.options;
-  if (r.given.product != ProductVariant::automatic) {
-    r.add("product", to_string(o.product), "given");
+  if (r.given.product) {
+    r.add("product", to_string(*o.product), "given");
   } else {
-    o.product = default_product_variant(r.mesh.type, o.precision, r.device.is_gpu, o.preconditioner);
+    o.product = default_product_variant(r.mesh.type, o.precision, r.device.is_gpu, *o.preconditioner);
     const bool cpu_multigrid = !r.device.is_gpu && o.preconditioner == Preconditioner::multigrid;
-    r.add("product", to_string(o.product),
+    r.add("product", to_string(*o.product),
           cpu_multigrid ? "multigrid on a CPU device reuses its hierarchy: the cached linearization"
                         : std::string("measured fastest on ") + (r.device.is_gpu ? "GPUs" : "CPU devices"));
   }
@@ -108,7 +106,7 @@ void resolve_products(Resolution& r) {
     r.add("product_precision", "float", "a float solve");
   } else if (!narrow_kind) {
     o.product_precision = Precision::double_;
-    r.add("product_precision", "double", std::string("the ") + to_string(o.product) + " products run in double");
+    r.add("product_precision", "double", std::string("the ") + to_string(*o.product) + " products run in double");
   } else {
     o.product_precision = asked;
     r.add("product_precision", to_string(asked),
@@ -122,38 +120,37 @@ void resolve_multigrid(Resolution& r) {
   const MultigridOptions& asked = r.given.multigrid;
   const double nu = max_poisson_ratio(r.materials);
   m = resolved_smoothing(m, r.dofs(), nu);
-  const bool smoothing_given = asked.smoother_degree != 0 || asked.chebyshev_kind != ChebyshevKind::automatic;
-  r.add("multigrid.smoother_degree", std::to_string(m.smoother_degree),
-        asked.smoother_degree != 0 ? "given"
-        : smoothing_given          ? "the fixed default beside a given polynomial"
-        : m.smoother_degree == 1
+  const bool smoothing_given = asked.smoother_degree || asked.chebyshev_kind;
+  r.add("multigrid.smoother_degree", std::to_string(*m.smoother_degree),
+        asked.smoother_degree ? "given"
+        : smoothing_given     ? "the fixed default beside a given polynomial"
+        : *m.smoother_degree == 1
             ? count(r.dofs()) + " DOFs below " + count(solver::kDegreeOneBelowDofs) + " and Poisson's ratio " +
                   number(nu) + " below " + number(solver::kDegreeOneBelowPoisson)
             : count(r.dofs()) + " DOFs or Poisson's ratio " + number(nu) + ": at least " +
                   count(solver::kDegreeOneBelowDofs) + " or " + number(solver::kDegreeOneBelowPoisson));
-  r.add("multigrid.chebyshev", to_string(m.chebyshev_kind),
-        asked.chebyshev_kind != ChebyshevKind::automatic ? "given"
-        : smoothing_given                                ? "the fixed default beside a given degree"
-                                                         : "with the degree above");
+  r.add("multigrid.chebyshev", to_string(*m.chebyshev_kind),
+        asked.chebyshev_kind ? "given"
+        : smoothing_given    ? "the fixed default beside a given degree"
+                             : "with the degree above");
   const bool vertex_terms = solver::has_vertex_terms(r.terms);
   if (asked.fine_level == MultigridFineLevel::built && vertex_terms)
     throw Error(
         "multigrid: fine_level built does not carry the inertia, obstacle contact or self-contact barrier blocks "
         "(use automatic or current)");
-  if (asked.fine_level == MultigridFineLevel::automatic)
-    m.fine_level = vertex_terms ? MultigridFineLevel::current : MultigridFineLevel::built;
-  r.add("multigrid.fine_level", to_string(m.fine_level),
-        asked.fine_level != MultigridFineLevel::automatic ? "given"
-        : vertex_terms ? "inertia, obstacles or the barrier add per-vertex terms a built level does not carry"
-                       : "no per-vertex terms: the build's element matrices are reused");
+  if (!asked.fine_level) m.fine_level = vertex_terms ? MultigridFineLevel::current : MultigridFineLevel::built;
+  r.add("multigrid.fine_level", to_string(*m.fine_level),
+        asked.fine_level ? "given"
+        : vertex_terms   ? "inertia, obstacles or the barrier add per-vertex terms a built level does not carry"
+                         : "no per-vertex terms: the build's element matrices are reused");
   if (!m.rebuild_each_load_step) m.rebuild_each_load_step = !r.given.dynamics.has_value();
   r.add("multigrid.rebuild_each_load_step", on_off(*m.rebuild_each_load_step),
         asked.rebuild_each_load_step ? "given"
         : r.given.dynamics           ? "dynamics: the hierarchy is carried across time steps"
                                      : "quasistatic load steps");
-  if (m.rebuild_every == 0) m.rebuild_every = solver::resolved_rebuild_every(m);  // < 0: the multigrid refuses it
-  r.add("multigrid.rebuild_every", std::to_string(m.rebuild_every),
-        asked.rebuild_every > 0 ? "given" : "measured for the rebuilds above");
+  m.rebuild_every = solver::resolved_rebuild_every(m);  // < 1: the multigrid refuses it
+  r.add("multigrid.rebuild_every", std::to_string(*m.rebuild_every),
+        asked.rebuild_every ? "given" : "measured for the rebuilds above");
   const bool built = m.fine_level == MultigridFineLevel::built, wide = o.precision == Precision::double_;
   m.float_cycle = m.float_cycle && built && wide;
   r.add("multigrid.float_cycle", on_off(m.float_cycle),
@@ -178,35 +175,35 @@ void resolve_contact(Resolution& r) {
   SolveOptions& o = r.out.options;
   ContactOptions& c = o.contact;
   if (r.terms.self_barrier) {
-    if (c.self_broad_phase == SelfBroadPhase::automatic) {
+    if (!c.self_broad_phase) {
       c.self_broad_phase = r.device.is_gpu ? SelfBroadPhase::device : SelfBroadPhase::host;
-      r.add("contact.self_broad_phase", broad_phase_name(c.self_broad_phase),
+      r.add("contact.self_broad_phase", broad_phase_name(*c.self_broad_phase),
             r.device.is_gpu ? "a GPU: no read of x" : "a CPU device: the host's grid beats the device's sorts");
     } else {
-      r.add("contact.self_broad_phase", broad_phase_name(c.self_broad_phase), "given");
+      r.add("contact.self_broad_phase", broad_phase_name(*c.self_broad_phase), "given");
     }
     // The length the default reach is a fraction of: the surface's own.
     const solver::BarrierContact surface = c.self_surface.triangles.empty()
                                                ? solver::BarrierContact(r.mesh)
                                                : solver::BarrierContact(r.mesh, c.self_surface, c.self_embedding);
     const double length = surface.length_scale();
-    if (!(c.self_distance > 0.0)) c.self_distance = solver::kDefaultSelfDistance * length;
-    r.add("contact.self_distance", number(c.self_distance),
-          r.given.contact.self_distance > 0.0
+    if (!c.self_distance) c.self_distance = solver::kDefaultSelfDistance * length;
+    r.add("contact.self_distance", number(*c.self_distance),
+          r.given.contact.self_distance
               ? "given"
               : number(solver::kDefaultSelfDistance) + " of the mean rest surface edge (" + number(length) + ")");
-    r.out.barrier_stiffness = solver::default_barrier_stiffness(r.materials, length, c.self_distance);
+    r.out.barrier_stiffness = solver::default_barrier_stiffness(r.materials, length, *c.self_distance);
     r.add("contact.barrier_stiffness", number(r.out.barrier_stiffness), "E h^2 / dhat^3, E the stiffest material");
   }
   if (r.terms.self_contact) {
-    if (!(c.self_stiffness > 0.0)) c.self_stiffness = c.stiffness;
-    r.add("contact.self_stiffness", number(c.self_stiffness),
-          r.given.contact.self_stiffness > 0.0 ? "given" : "the obstacles' contact stiffness");
+    if (!c.self_stiffness) c.self_stiffness = c.stiffness;
+    r.add("contact.self_stiffness", number(*c.self_stiffness),
+          r.given.contact.self_stiffness ? "given" : "the obstacles' contact stiffness");
   }
   if (r.terms.friction) {
-    if (!(c.friction_slip > 0.0)) c.friction_slip = 1e-2 * vertex_spacing(r.mesh);
-    r.add("contact.friction_slip", number(c.friction_slip),
-          r.given.contact.friction_slip > 0.0 ? "given" : "1% of the vertex spacing");
+    if (!c.friction_slip) c.friction_slip = 1e-2 * vertex_spacing(r.mesh);
+    r.add("contact.friction_slip", number(*c.friction_slip),
+          r.given.contact.friction_slip ? "given" : "1% of the vertex spacing");
   }
 }
 

@@ -43,19 +43,22 @@ void validate_obstacles(const std::vector<Obstacle>& obstacles, const ContactOpt
     throw Error("contact: thickness must be finite and >= 0 (got " + std::to_string(contact.thickness) + ")");
   if (!std::isfinite(contact.stiffness) || contact.stiffness < 0.0)
     throw Error("contact: stiffness must be finite and > 0 (got " + std::to_string(contact.stiffness) + ")");
-  if (!std::isfinite(contact.self_stiffness) || contact.self_stiffness < 0.0)
-    throw Error("contact: self_stiffness must be finite and >= 0 (got " + std::to_string(contact.self_stiffness) + ")");
-  if (contact.self && contact.self_method == SelfContactMethod::penalty && !(contact.self_stiffness > 0.0) &&
+  if (contact.self_stiffness && !(std::isfinite(*contact.self_stiffness) && *contact.self_stiffness > 0.0))
+    throw Error("contact: self_stiffness must be finite and > 0 when set (got " +
+                std::to_string(*contact.self_stiffness) + ")");
+  if (contact.self && contact.self_method == SelfContactMethod::penalty && !contact.self_stiffness &&
       !(contact.stiffness > 0.0))
     throw Error("contact: penalty self-contact needs stiffness or self_stiffness > 0");
   if (contact.self_method != SelfContactMethod::barrier && contact.self_method != SelfContactMethod::penalty)
     throw Error("contact: self_method is barrier or penalty");
-  if (!std::isfinite(contact.self_distance) || contact.self_distance < 0.0)
-    throw Error("contact: self_distance must be finite and >= 0 (got " + std::to_string(contact.self_distance) + ")");
+  if (contact.self_distance && !(std::isfinite(*contact.self_distance) && *contact.self_distance > 0.0))
+    throw Error("contact: self_distance must be finite and > 0 when set (got " +
+                std::to_string(*contact.self_distance) + ")");
   if (!std::isfinite(contact.friction) || !(contact.friction >= 0.0))
     throw Error("contact: friction must be finite and >= 0 (got " + std::to_string(contact.friction) + ")");
-  if (!std::isfinite(contact.friction_slip) || !(contact.friction_slip >= 0.0))
-    throw Error("contact: friction_slip must be finite and >= 0 (got " + std::to_string(contact.friction_slip) + ")");
+  if (contact.friction_slip && !(std::isfinite(*contact.friction_slip) && *contact.friction_slip > 0.0))
+    throw Error("contact: friction_slip must be finite and > 0 when set (got " +
+                std::to_string(*contact.friction_slip) + ")");
   if (obstacles.empty()) return;
   if (!(contact.stiffness > 0.0))
     throw Error("contact: stiffness must be > 0 with obstacles (got " + std::to_string(contact.stiffness) + ")");

@@ -107,9 +107,8 @@ ElasticModel<Real>::ElasticModel(device::OpenClContext& cl, const Mesh& mesh, co
   if (terms.self_contact) self_contact_ = std::make_unique<SelfContactTerms<Real>>(cl, mesh, config, &profiler_);
   if (terms.self_barrier) {
     barrier_ = std::make_unique<BarrierTerms<Real>>(cl, mesh, &profiler_);
-    barrier_->set_candidates_on_host(terms.self_broad_phase == SelfBroadPhase::automatic
-                                         ? !cl.info().is_gpu
-                                         : terms.self_broad_phase == SelfBroadPhase::host);
+    barrier_->set_candidates_on_host(!terms.self_broad_phase ? !cl.info().is_gpu
+                                                             : *terms.self_broad_phase == SelfBroadPhase::host);
   }
   contact_ = std::make_unique<ModelContact<Real>>(data_, terms_, &profiler_, vertex_terms_.get(), self_contact_.get(),
                                                   barrier_.get());

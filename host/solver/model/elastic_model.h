@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,7 +72,7 @@ struct ModelTerms {
   bool self_contact = false;  // self-collision springs (SNH_SELF_CONTACT, solver/contact/self_contact.h)
   bool friction = false;      // lagged Coulomb friction against the obstacles (SNH_FRICTION)
   bool self_barrier = false;  // barrier self-contact (SNH_SELF_BARRIER, solver/contact/barrier_terms.h)
-  SelfBroadPhase self_broad_phase = SelfBroadPhase::automatic;   // its candidate pairs' (BarrierTerms)
+  std::optional<SelfBroadPhase> self_broad_phase;                // its candidate pairs' (BarrierTerms)
   PointDataLayout hex8_point_data = PointDataLayout::automatic;  // SNH_POINT_MAJOR, SNH_CACHE_TILE (tet4 too)
 };
 

@@ -44,8 +44,7 @@ bool has_vertex_terms(const ElasticModel<Real>& model) {
 // Whether the options and the model's terms give a built fine level.
 template <typename Real>
 bool builds_fine_level(const ElasticModel<Real>& model, const MultigridOptions& options) {
-  return options.fine_level == MultigridFineLevel::built ||
-         (options.fine_level == MultigridFineLevel::automatic && !has_vertex_terms(model));
+  return options.fine_level == MultigridFineLevel::built || (!options.fine_level && !has_vertex_terms(model));
 }
 
 }  // namespace
@@ -229,15 +228,15 @@ const typename Levels<Real, C>::StencilKernels& Levels<Real, C>::stencil_kernels
 // The options' limits and what the model's terms allow; throws snh::Error.
 template <typename Real>
 void check_multigrid_options(const ElasticModel<Real>& model, const MultigridOptions& options) {
-  if (options.smoother_degree < 0 || options.smoother_degree > 16)
-    throw Error("multigrid: smoother_degree must be in 1..16 (0: automatic), got " +
-                std::to_string(options.smoother_degree));
+  if (options.smoother_degree && (*options.smoother_degree < 1 || *options.smoother_degree > 16))
+    throw Error("multigrid: smoother_degree must be in 1..16 (unset: automatic), got " +
+                std::to_string(*options.smoother_degree));
   if (options.max_levels < 2) throw Error("multigrid: max_levels must be at least 2");
-  if (options.rebuild_every < 0)
+  if (options.rebuild_every && *options.rebuild_every < 1)
     throw Error(
-        "multigrid: rebuild_every must be 0 (automatic) or at least 1 (1: rebuild at every linearization), "
+        "multigrid: rebuild_every must be unset (automatic) or at least 1 (1: rebuild at every linearization), "
         "got " +
-        std::to_string(options.rebuild_every));
+        std::to_string(*options.rebuild_every));
   if (!(options.rebuild_growth >= 1.0))
     throw Error("multigrid: rebuild_growth must be at least 1, got " + std::to_string(options.rebuild_growth));
   if (model.terms().self_contact)
@@ -300,7 +299,7 @@ Levels<Real, C>::Levels(ElasticModel<Real>& model, const Mesh& mesh, const std::
       options_(resolved_smoothing(options, 3 * mesh.vertex_count(), model.max_poisson_ratio())) {
   check_multigrid_options(model, options);
   // Throws for a degree without coefficients.
-  chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, 1.0);
+  chebyshev_steps(*options_.chebyshev_kind, *options_.smoother_degree, 1.0);
   hierarchy_ = build_lattice_hierarchy(mesh, mask, options.coarsest_dofs, options.max_levels);
   build_kernels(mesh, options);
   octant_weights_ = upload_as<Real>(cl_, octant_weights(), table_bytes_);
@@ -633,7 +632,7 @@ void Levels<Real, C>::set_bound(Level& L, double lambda) {
   L.estimated = std::isfinite(lambda) && lambda > 0.0;
   if (!L.estimated) lambda = 1.0;  // start again next time
   L.lambda = lambda;
-  L.steps = chebyshev_steps(options_.chebyshev_kind, options_.smoother_degree, lambda);
+  L.steps = chebyshev_steps(*options_.chebyshev_kind, *options_.smoother_degree, lambda);
   if (coarse_on_device_ && &L == levels_.back().get())
     L.solve_steps = chebyshev_interval_steps(kCoarseDegree, kUpperBound * lambda / kCoarseSpread, kUpperBound * lambda);
 }

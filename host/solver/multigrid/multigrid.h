@@ -63,12 +63,12 @@ inline bool has_vertex_terms(const ModelTerms& terms) {
   return terms.inertia || terms.obstacles > 0 || terms.self_barrier;
 }
 
-// MultigridOptions::rebuild_every with 0 resolved: 2 when each load step
+// MultigridOptions::rebuild_every, unset resolved: 2 when each load step
 // rebuilds (quasistatic), else 4 (dynamics, whose time steps carry the
 // hierarchy), each measured the faster there with the fine level built or
 // current alike (docs/performance.md, "Multigrid rebuilds (rebuild_every)").
 inline int resolved_rebuild_every(const MultigridOptions& options) {
-  if (options.rebuild_every > 0) return options.rebuild_every;
+  if (options.rebuild_every) return *options.rebuild_every;
   return options.rebuild_each_load_step.value_or(true) ? 2 : 4;
 }
 

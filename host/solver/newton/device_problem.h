@@ -39,8 +39,6 @@ class DeviceProblem {
         rebuild_(multigrid_ ? multigrid_->options() : MultigridOptions{}) {
     if (preconditioner == Preconditioner::multigrid && !multigrid_)
       throw Error("solver: the multigrid preconditioner was not built");
-    if (preconditioner == Preconditioner::automatic)
-      throw Error("solver: resolve Preconditioner::automatic before use");
     model_.profiler().count_with(&model_.context().counts());
   }
 

@@ -298,7 +298,7 @@ struct Simulation::Impl {
       engine.model->contact().set_obstacles(obstacle_table, options.contact.stiffness, options.contact.thickness);
     if (friction)
       engine.model->contact().set_friction(friction_start, friction_anchor, friction_start_table, friction_table,
-                                           options.contact.friction_slip);
+                                           *options.contact.friction_slip);
     const double barrier_seconds =
         engine.model->contact().self_barrier() ? engine.model->contact().self_barrier()->state().seconds : 0.0;
     const std::vector<Real> xr(x.xyz().begin(), x.xyz().end());
@@ -355,8 +355,8 @@ struct Simulation::Impl {
     solve_start = counters();
     SolveResult result;
     result.device = cl.info();
-    result.product = options.product;
-    result.preconditioner = options.preconditioner;
+    result.product = *options.product;
+    result.preconditioner = *options.preconditioner;
     result.product_precision =
         single || !dual->model->products().float_products() ? options.precision : Precision::single;
     if (const MultigridOptions* used =

@@ -52,7 +52,7 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
   device::use_viennacl(engine->viennacl_context_id);
   const SolveOptions& options = setup.config.options;
   const ModelTerms terms = model_terms(options);
-  engine->model = std::make_unique<ElasticModel<Real>>(ctx, setup.mesh, setup.rest, setup.materials, options.product,
+  engine->model = std::make_unique<ElasticModel<Real>>(ctx, setup.mesh, setup.rest, setup.materials, *options.product,
                                                        device::MaterialKernel::specialized, terms);
   std::vector<Real> mask(setup.prescribed.size());
   for (size_t i = 0; i < mask.size(); ++i) mask[i] = setup.prescribed[i] ? Real(0) : Real(1);
@@ -63,8 +63,8 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
   // Contact's constants, set once: the barrier's reach and stiffness, the
   // penalty's stiffness.
   if (terms.self_barrier)
-    engine->model->contact().set_self_barrier(options.contact.self_distance, setup.config.barrier_stiffness);
-  if (terms.self_contact) engine->model->contact().set_self_contact_stiffness(options.contact.self_stiffness);
+    engine->model->contact().set_self_barrier(*options.contact.self_distance, setup.config.barrier_stiffness);
+  if (terms.self_contact) engine->model->contact().set_self_contact_stiffness(*options.contact.self_stiffness);
   engine->model->products().set_float_products(options.product_precision == Precision::single);
   std::unique_ptr<MultigridPreconditioner<Real>> multigrid;
   if (options.preconditioner == Preconditioner::multigrid) {
@@ -72,7 +72,8 @@ std::unique_ptr<SimulationEngine<Real>> make_engine(const EngineSetup& setup, de
     for (size_t i = 0; i < free.size(); ++i) free[i] = setup.prescribed[i] ? 0 : 1;
     multigrid = std::make_unique<MultigridPreconditioner<Real>>(*engine->model, setup.mesh, free, options.multigrid);
   }
-  engine->problem = std::make_unique<DeviceProblem<Real>>(*engine->model, options.preconditioner, std::move(multigrid));
+  engine->problem =
+      std::make_unique<DeviceProblem<Real>>(*engine->model, *options.preconditioner, std::move(multigrid));
   // Tangled equilibria are perturbed by 1% of the vertex spacing
   // (solver/newton/newton_driver.h).
   engine->problem->set_perturbation(mask, 1e-2 * vertex_spacing(setup.mesh));
