@@ -152,6 +152,20 @@ TEST(RigTransforms, Matrix4AsATransformAboutAnyCentreIsTheSameMap) {
   EXPECT_TRUE(contains(error_of([&] { to_rigid_transform(projective); }), "not 0 0 0 1"));
 }
 
+// Every public matrix is row-major, m[3 row + col]: a quarter turn about z
+// takes x to y, so its first row is 0 -1 0; a Matrix4's upper-left 3x3 goes
+// to the rotation as it is.
+TEST(RigTransforms, RotationsAreRowMajor) {
+  const RigidTransform t = RigidTransform::rotation_about({0, 0, 1}, 0.5 * M_PI, {0, 0, 0});
+  const std::array<double, 9> expected{0, -1, 0, 1, 0, 0, 0, 0, 1};
+  for (int i = 0; i < 9; ++i) EXPECT_NEAR(t.rotation[i], expected[i], 1e-15) << i;
+  const auto y = t.apply({1, 0, 0});
+  EXPECT_NEAR(y[0], 0.0, 1e-15);
+  EXPECT_NEAR(y[1], 1.0, 1e-15);
+  const Matrix4 m{1, 2, 3, 0.5, 4, 5, 6, 0.25, 7, 8, 10, 0, 0, 0, 0, 1};
+  EXPECT_EQ(to_rigid_transform(m).rotation, (std::array<double, 9>{1, 2, 3, 4, 5, 6, 7, 8, 10}));
+}
+
 // ---- Animations ----
 
 Matrix4 rotation_y(double angle, const std::array<double, 3>& about) {

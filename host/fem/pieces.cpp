@@ -49,8 +49,8 @@ double obstacle_distance(const Obstacle& o, const Point& p) {
     const RigidTransform m = o.motion(0.0);
     point = m.apply(o.point);
     for (int i = 0; i < 3; ++i)
-      direction[i] =
-          m.rotation[i] * o.direction[0] + m.rotation[3 + i] * o.direction[1] + m.rotation[6 + i] * o.direction[2];
+      direction[i] = m.rotation[3 * i] * o.direction[0] + m.rotation[3 * i + 1] * o.direction[1] +
+                     m.rotation[3 * i + 2] * o.direction[2];
   }
   const double n = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
   const Point d{p[0] - point[0], p[1] - point[1], p[2] - point[2]};

@@ -20,7 +20,7 @@ RigidTransform to_rigid_transform(const Matrix4& m, const std::array<double, 3>&
   }
   RigidTransform t;
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) t.rotation[3 * c + r] = m[4 * r + c];
+    for (int c = 0; c < 3; ++c) t.rotation[3 * r + c] = m[4 * r + c];
   t.center = center;
   // x' = A (x - c) + c + t' = A x + (c + t' - A c): t' = A c + b - c.
   for (int r = 0; r < 3; ++r) {

@@ -43,8 +43,8 @@ TriangleSurface obstacle_surface(const std::vector<Obstacle>& obstacles, double 
       const RigidTransform m = o.motion(t);
       point = m.apply(o.point);
       for (int r = 0; r < 3; ++r)
-        direction[r] =
-            m.rotation[r] * o.direction[0] + m.rotation[3 + r] * o.direction[1] + m.rotation[6 + r] * o.direction[2];
+        direction[r] = m.rotation[3 * r] * o.direction[0] + m.rotation[3 * r + 1] * o.direction[1] +
+                       m.rotation[3 * r + 2] * o.direction[2];
     }
     if (o.type == ObstacleType::plane) {
       const Vec n = unit(direction);

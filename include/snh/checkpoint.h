@@ -8,7 +8,9 @@
 // 8 bytes "SNHSTATE", uint32 version, uint32 0x01020304; then the items of
 // SimulationState in declaration order: integers as uint64, doubles as
 // 8 bytes, bools as one byte, strings and arrays as a uint64 count followed
-// by their elements.
+// by their elements. A RigidTransform's rotation is stored column-major
+// (rotation[3 * row + col] at position 3 * col + row of its nine doubles),
+// the order of the files written before the API went row-major.
 #pragma once
 
 #include <string>

@@ -58,7 +58,7 @@ using Matrix4 = std::array<double, 16>;
 Matrix4 identity_matrix4();
 
 // The same map as a RigidTransform about `center` (its `rotation` holds the
-// upper-left 3x3, column-major; translation = M c + t - c): the centre is
+// upper-left 3x3, row-major like m; translation = M c + t - c): the centre is
 // the point Simulation's rigid interpolation rotates about, e.g. a bone's
 // centroid. Throws snh::Error for a last row other than 0 0 0 1 or
 // non-finite entries.

@@ -36,7 +36,8 @@ namespace snh {
 
 struct ResolvedConfiguration;  // snh/configuration.h
 
-// x = rotation (X - center) + center + translation; rotation column-major.
+// x = rotation (X - center) + center + translation; rotation row-major
+// (rotation[3 * row + col]).
 struct RigidTransform {
   std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};
   std::array<double, 3> translation{0, 0, 0};

@@ -40,13 +40,12 @@ py::object xyz_or_none(const snh::Points& values) {
 }
 
 py::array_t<double> rotation_array(const snh::RigidTransform& t) {
-  return matrices_array(std::vector<double>(t.rotation.begin(), t.rotation.end())).attr("reshape")(3, 3);
+  return copy_array(std::vector<double>(t.rotation.begin(), t.rotation.end()), {3, 3});  // both row-major
 }
 
 void set_rotation(snh::RigidTransform& t, py::handle rotation) {
   const std::vector<double> r = to_doubles(rotation, "rotation", 3, 3);
-  for (int row = 0; row < 3; ++row)
-    for (int col = 0; col < 3; ++col) t.rotation[3 * col + row] = r[3 * row + col];
+  for (int i = 0; i < 9; ++i) t.rotation[i] = r[i];  // both row-major
 }
 
 snh::ConstraintSet make_constraint_set(std::string name, py::handle vertices, const py::object& motion,

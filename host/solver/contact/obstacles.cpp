@@ -99,7 +99,7 @@ std::vector<double> friction_records(const std::vector<Obstacle>& obstacles, con
       std::array<double, 3> w{}, p{};
       for (int d = 0; d < 3; ++d) w[d] = q[d] - a.center[d] - a.translation[d];
       for (int d = 0; d < 3; ++d)
-        p[d] = a.rotation[3 * d] * w[0] + a.rotation[3 * d + 1] * w[1] + a.rotation[3 * d + 2] * w[2] + a.center[d];
+        p[d] = a.rotation[d] * w[0] + a.rotation[3 + d] * w[1] + a.rotation[6 + d] * w[2] + a.center[d];
       return b.apply(p);
     };
     double* record = table.data() + kFrictionRecord * k;
@@ -128,7 +128,7 @@ std::vector<double> obstacle_records(const std::vector<Obstacle>& obstacles, dou
     const std::array<double, 3> point = motion.apply(o.point);
     std::array<double, 3> direction{0, 0, 0};
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) direction[r] += motion.rotation[3 * c + r] * o.direction[c];
+      for (int c = 0; c < 3; ++c) direction[r] += motion.rotation[3 * r + c] * o.direction[c];
     const double length = norm(direction);
     double* record = table.data() + kRecord * k;
     record[0] = static_cast<double>(static_cast<int>(o.type));

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "fem/matrix_order.h"
 #include "snh/error.h"
 
 namespace snh {
@@ -45,8 +46,10 @@ class Writer {
   void fixed(const std::array<double, N>& a) {
     for (double v : a) f64(v);
   }
+  // The rotation goes to the file column-major, as version 1 has always
+  // stored it, while RigidTransform holds it row-major.
   void transform(const RigidTransform& t) {
-    fixed(t.rotation);
+    fixed(fem::column_major_of(t.rotation));
     fixed(t.translation);
     fixed(t.center);
   }
@@ -120,7 +123,9 @@ class Reader {
   }
   RigidTransform transform(const std::string& item) {
     RigidTransform t;
-    fixed(t.rotation, item + " rotation");
+    std::array<double, 9> column_major;  // the file's order (see the writer)
+    fixed(column_major, item + " rotation");
+    t.rotation = fem::row_major_of(column_major);
     fixed(t.translation, item + " translation");
     fixed(t.center, item + " centre");
     return t;

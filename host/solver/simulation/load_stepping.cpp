@@ -27,7 +27,7 @@ struct Affine {
 Affine affine_of(const RigidTransform& t) {
   Affine f;
   for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) f.a(r, c) = t.rotation[3 * c + r];
+    for (int r = 0; r < 3; ++r) f.a(r, c) = t.rotation[3 * r + c];
   const Eigen::Vector3d center(t.center[0], t.center[1], t.center[2]);
   f.b = center + Eigen::Vector3d(t.translation[0], t.translation[1], t.translation[2]) - f.a * center;
   return f;
