@@ -12,6 +12,7 @@
 #include <random>
 #include <sstream>
 
+#include "fem/matrix_order.h"
 #include "fem/rest_state.h"
 #include "material/element_reference.h"
 #include "reference/fem_reference.h"
@@ -27,7 +28,7 @@ namespace snh::test {
 namespace {
 
 namespace fs = std::filesystem;
-using Mat = std::array<double, 9>;  // column-major 3x3
+using Mat = std::array<double, 9>;  // column-major 3x3, the element math's vec (ElementFields are row-major)
 using Vec = std::array<double, 3>;
 
 double max_abs(const double* a, size_t n) {
@@ -97,9 +98,10 @@ MaterialMap two_materials(const Mesh& mesh) {
                            {{"fung", even, Material::from_youngs_modulus(MaterialModel::fung, 2.0, 0.4)}});
 }
 
+// Element e's row-major tensor of an ElementFields field, column-major.
 Mat element_matrix(const std::vector<double>& field, size_t e) {
   Mat m;
-  for (int i = 0; i < 9; ++i) m[i] = field[9 * e + i];
+  for (int i = 0; i < 9; ++i) m[i] = field[9 * e + fem::transposed_index(i)];
   return m;
 }
 
@@ -136,9 +138,25 @@ TEST(Fields, AffineMotionGivesTheMotionsGradientAndTheMaterialsStress) {
       EXPECT_GT(scale, 1e-3);  // a real stress, not a trivially passing zero
       for (int c = 0; c < 3; ++c)
         for (int r = 0; r < c; ++r) EXPECT_NEAR(sigma[3 * c + r], sigma[3 * r + c], 1e-12 * scale);
-      EXPECT_LT(max_diff(sigma.data(), &f.cauchy[9 * e], 9), 1e-12 * scale);
+      EXPECT_LT(max_diff(sigma.data(), element_matrix(f.cauchy, e).data(), 9), 1e-12 * scale);
     }
   }
+}
+
+// The public tensors are row-major, m[3 row + col]: under the simple shear
+// x' = x + s y, F(0, 1) = s is entry 1 of the element's nine values, and P
+// is the row-major transpose of the element math's column-major vec(P).
+TEST(Fields, TensorsAreRowMajor) {
+  const double s = 0.5;
+  const Mesh mesh = make_box_lattice(1, 1, 1, 1.0);
+  const StableNeoHookean snh = StableNeoHookean::from_youngs_modulus(1.0, 0.3);
+  const Mat shear{1, 0, 0, s, 1, 0, 0, 0, 1};  // column-major: F(0, 1) = s
+  const ElementFields f = compute_element_fields(mesh, uniform_material(mesh, snh), affine(mesh, shear, {0, 0, 0}));
+  const std::array<double, 9> expected{1, s, 0, 0, 1, 0, 0, 0, 1};
+  for (int i = 0; i < 9; ++i) EXPECT_NEAR(f.deformation_gradient[i], expected[i], 1e-14) << i;
+  const Mat p = reference::material_pk1<double>(shear, reference::spec_of(snh));
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f.pk1[3 * r + c], p[3 * c + r], 1e-13) << r << c;
 }
 
 // SNH's P = mu_t F + lambda (J - alpha) cof F with mu_t = mu (1 - 1/(I_C + 1))
@@ -466,12 +484,10 @@ TEST(FieldsVtu, TensorCellDataReadsBackInVtkOrder) {
     EXPECT_TRUE(contains(vtu, "Name=\"" + std::string(tensor) + "\" NumberOfComponents=\"9\"")) << tensor;
   for (const char* scalar : {"J", "min_J", "von_mises", "energy_density", "region"})
     EXPECT_TRUE(contains(vtu, "Name=\"" + std::string(scalar) + "\" format=\"ascii\"")) << scalar;
-  // Row-major: component 3 r + c of element e is F_rc.
+  // Row-major like ElementFields: component 3 r + c of element e is F_rc.
   const std::vector<double> fv = read_array(vtu, "F");
   ASSERT_EQ(fv.size(), 9 * mesh.element_count());
-  for (size_t e = 0; e < mesh.element_count(); ++e)
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) EXPECT_EQ(fv[9 * e + 3 * r + c], f.deformation_gradient[9 * e + 3 * c + r]);
+  EXPECT_EQ(fv, f.deformation_gradient);
   EXPECT_EQ(read_array(vtu, "J"), f.j);
   EXPECT_EQ(read_array(vtu, "region"), (std::vector<double>{1, 0, 1, 0, 1, 0, 1, 0}));
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 
+#include "fem/matrix_order.h"
 #include "fem/rest_state.h"
 #include "material/element_reference.h"
 #include "snh/error.h"
@@ -88,7 +89,7 @@ Mat3<double> deformation_gradient(const Mesh& mesh, const fem::RestState& rest, 
   return f;
 }
 
-// sqrt(3/2 s:s) with s = sigma - tr(sigma)/3 I.
+// sqrt(3/2 s:s) with s = sigma - tr(sigma)/3 I (sigma column-major).
 double von_mises(const double* sigma) {
   const double mean = (sigma[0] + sigma[4] + sigma[8]) / 3.0;
   double ss = 0.0;
@@ -105,15 +106,6 @@ void check_field_size(const char* name, size_t size, size_t expected) {
   std::ostringstream s;
   s << "element_fields_for_vtu: field " << name << " has " << size << " values, " << expected << " expected";
   throw Error(s.str());
-}
-
-// Column-major 3x3 per element to VTK's row-major tensor components.
-std::vector<double> row_major(const std::vector<double>& column_major) {
-  std::vector<double> out(column_major.size());
-  for (size_t e = 0; e < column_major.size() / 9; ++e)
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) out[9 * e + 3 * r + c] = column_major[9 * e + 3 * c + r];
-  return out;
 }
 
 void check_vector(const std::string& set, const char* what, const std::vector<double>& v, size_t expected) {
@@ -167,21 +159,25 @@ ElementFields compute_element_fields(const Mesh& mesh, const MaterialMap& materi
         for (int r = 0; r < 3; ++r)
           for (int k = 0; k < 3; ++k) pft_sum[3 * c + r] += w * p[3 * k + r] * f[3 * k + c];
     }
-    for (int i = 0; i < 9; ++i) {
-      out.deformation_gradient[9 * e + i] = f_sum[i] / volume;
-      out.pk1[9 * e + i] = p_sum[i] / volume;
-    }
+    // The sums are column-major (the element math's vec); the fields row-major.
+    double mean[9];
+    for (int i = 0; i < 9; ++i) mean[i] = f_sum[i] / volume;
+    fem::transpose3(mean, out.deformation_gradient.data() + 9 * e);
+    for (int i = 0; i < 9; ++i) mean[i] = p_sum[i] / volume;
+    fem::transpose3(mean, out.pk1.data() + 9 * e);
     out.j[e] = deformed_volume / volume;
     out.energy_density[e] = energy / volume;
     out.min_j[e] = min_j;
-    double* sigma = out.cauchy.data() + 9 * e;
+    double* cauchy = out.cauchy.data() + 9 * e;
     if (min_j > 0.0) {
+      double sigma[9];
       for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r)
           sigma[3 * c + r] = 0.5 * (pft_sum[3 * c + r] + pft_sum[3 * r + c]) / deformed_volume;
       out.von_mises[e] = von_mises(sigma);
+      fem::transpose3(sigma, cauchy);
     } else {
-      std::fill(sigma, sigma + 9, kNaN);
+      std::fill(cauchy, cauchy + 9, kNaN);
       out.von_mises[e] = kNaN;
     }
   }
@@ -197,13 +193,14 @@ std::vector<VtuCellField> element_fields_for_vtu(const ElementFields& fields, co
   check_field_size("energy_density", fields.energy_density.size(), elements);
   check_field_size("min_J", fields.min_j.size(), elements);
   std::vector<VtuCellField> out;
-  out.push_back({"F", row_major(fields.deformation_gradient), 9});
+  // The fields are row-major, VTK's tensor component order.
+  out.push_back({"F", fields.deformation_gradient, 9});
   out.push_back({"J", fields.j, 1});
   out.push_back({"min_J", fields.min_j, 1});
-  out.push_back({"P", row_major(fields.pk1), 9});
+  out.push_back({"P", fields.pk1, 9});
   // VTK's ASCII reader stops at a "nan" and drops the array: undefined
   // stresses (J <= 0) go out as 0, their elements marked by min_J <= 0.
-  std::vector<double> cauchy = row_major(fields.cauchy), von_mises = fields.von_mises;
+  std::vector<double> cauchy = fields.cauchy, von_mises = fields.von_mises;
   for (size_t e = 0; e < elements; ++e)
     if (std::isnan(von_mises[e])) {
       von_mises[e] = 0.0;

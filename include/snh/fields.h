@@ -19,7 +19,8 @@ struct ConstraintSet;  // simulation.h
 // Per element, averaged over the element's quadrature points with their rest
 // volume weights (tet4: the one point), except the Cauchy stress, which is
 // the average over the deformed element (see `cauchy`). Matrices are 3x3
-// column-major (index 3 * column + row), nine values per element. For a
+// row-major (index 3 * row + column, like every matrix of the API), nine
+// values per element. For a
 // uniform F (an affine motion, or any tet4) every average is the value at
 // the points.
 struct ElementFields {
@@ -50,8 +51,8 @@ ElementFields compute_element_fields(const Mesh& mesh, const MaterialMap& materi
 
 // The fields as .vtu cell data: F (9 components), J, min_J, P (9), cauchy (9),
 // von_mises, energy_density, and "region" (the material map index) when the
-// map has more than one material. Tensors are written row-major, VTK's
-// component order (XX XY XZ YX ...), so ParaView's component labels name
+// map has more than one material. Tensors are written as stored, row-major:
+// VTK's component order (XX XY XZ YX ...), so ParaView's component labels name
 // F_ij correctly. Where cauchy and von_mises are NaN (J <= 0) they are
 // written as 0, since VTK's ASCII reader stops at a "nan" and drops the
 // whole array; min_J <= 0 marks those elements (threshold on it in

@@ -101,14 +101,8 @@ py::array_t<int32_t> copy_array(const std::vector<int32_t>& values, std::vector<
   return copied(values, shape);
 }
 
-py::array_t<double> matrices_array(const std::vector<double>& column_major) {
-  const py::ssize_t m = static_cast<py::ssize_t>(column_major.size() / 9);
-  py::array_t<double> a({m, py::ssize_t(3), py::ssize_t(3)});
-  double* out = a.mutable_data();
-  for (py::ssize_t e = 0; e < m; ++e)
-    for (int row = 0; row < 3; ++row)
-      for (int col = 0; col < 3; ++col) out[9 * e + 3 * row + col] = column_major[9 * e + 3 * col + row];
-  return a;
+py::array_t<double> matrices_array(const std::vector<double>& row_major) {
+  return copied(row_major, {static_cast<py::ssize_t>(row_major.size() / 9), 3, 3});
 }
 
 }  // namespace snh_python

@@ -57,9 +57,9 @@ inline py::array_t<double> to_array(snh::Points&& points) {
   return to_array(points.release(), {n, 3});
 }
 
-// 3x3 column-major matrices (nine values each, as the engine stores them)
-// as an (m, 3, 3) array indexed [element, row, column].
-py::array_t<double> matrices_array(const std::vector<double>& column_major);
+// 3x3 row-major matrices (nine values each, as the API stores them) as an
+// (m, 3, 3) array indexed [element, row, column].
+py::array_t<double> matrices_array(const std::vector<double>& row_major);
 
 // An instance of T built by setting each keyword argument as an attribute:
 // Python keyword constructors for option structs (an unknown name raises
