@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "errtime.h"
+#include "fem/matrix_order.h"
 #include "material/element_reference.h"
 #include "record_writer.h"
 #include "scale.h"
@@ -33,17 +34,18 @@ using json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
 // Random F with singular values spanning compression to 10x stretch,
-// reflections and near-degeneracies, under random rotations.
-std::vector<Matrix3> sample_deformations(int count, unsigned seed) {
+// reflections and near-degeneracies, under random rotations, each as the
+// host reference's column-major vec(F).
+std::vector<reference::Mat3<double>> sample_deformations(int count, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  std::vector<Matrix3> out;
+  std::vector<reference::Mat3<double>> out;
   out.reserve(count);
   for (int n = 0; n < count; ++n) {
-    Matrix3 f;
+    reference::Mat3<double> f;
     const double scale = std::pow(10.0, unit(rng));  // 0.1 .. 10
     for (double& x : f) x = scale * unit(rng);
-    if (n % 7 == 0) f = Matrix3{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    if (n % 7 == 0) f = reference::Mat3<double>{1, 0, 0, 0, 1, 0, 0, 0, 1};
     if (n % 11 == 0)
       for (int c = 0; c < 3; ++c) f[3 * c + 2] = 1e-6 * f[3 * c + 2];  // crushed towards a plane
     out.push_back(f);
@@ -71,13 +73,16 @@ struct CaseResult {
   bool all_finite;
 };
 
-CaseResult run_case(Precision precision, bool barrier, const std::vector<Matrix3>& fs) {
+CaseResult run_case(Precision precision, bool barrier, const std::vector<reference::Mat3<double>>& fs) {
   const StableNeoHookean material =
       StableNeoHookean::from_youngs_modulus(1.0, barrier ? 0.3 : 0.45, barrier ? Barrier::on : Barrier::off);
+  std::vector<Matrix3> rows;  // the probe's row-major order
+  rows.reserve(fs.size());
+  for (const auto& f : fs) rows.push_back(fem::row_major_of(f));
   MaterialProbe probe(material, precision);
-  probe.evaluate({fs.front()});  // build the program outside the timing
+  probe.evaluate({rows.front()});  // build the program outside the timing
   const auto start = Clock::now();
-  const std::vector<ProbeResult> results = probe.evaluate(fs);
+  const std::vector<ProbeResult> results = probe.evaluate(rows);
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
   const reference::SnhParameters params{material.mu, material.lambda, material.barrier};
@@ -95,8 +100,13 @@ CaseResult run_case(Precision precision, bool barrier, const std::vector<Matrix3
     const ProbeResult& d = results[n];
     for (double x : d.H) r.all_finite = r.all_finite && std::isfinite(x);
     for (double x : d.P) r.all_finite = r.all_finite && std::isfinite(x);
-    r.max_error_pk1 = std::max(r.max_error_pk1, relative_error(d.P.data(), pk1.data(), 9, material.mu));
-    r.max_error_hessian = std::max(r.max_error_hessian, relative_error(d.H.data(), h.data(), 81, material.mu));
+    // The device's P and H in the reference's vec order, h[9 c + r] = d vec(P)_r / d vec(F)_c.
+    const auto p = fem::column_major_of(d.P);
+    std::array<double, 81> dh;
+    for (int c = 0; c < 9; ++c)
+      for (int k = 0; k < 9; ++k) dh[9 * c + k] = d.H[9 * fem::transposed_index(k) + fem::transposed_index(c)];
+    r.max_error_pk1 = std::max(r.max_error_pk1, relative_error(p.data(), pk1.data(), 9, material.mu));
+    r.max_error_hessian = std::max(r.max_error_hessian, relative_error(dh.data(), h.data(), 81, material.mu));
   }
   return r;
 }
@@ -106,7 +116,7 @@ CaseResult run_case(Precision precision, bool barrier, const std::vector<Matrix3
 int run_element_check(const std::string& out_dir, int samples, json& summary_out, std::string& md_out) {
   const std::vector<DeviceInfo> devices = list_devices();
   if (devices.empty()) throw Error("OpenCL: no OpenCL platform or device found");
-  const std::vector<Matrix3> fs = sample_deformations(samples, 2018);
+  const std::vector<reference::Mat3<double>> fs = sample_deformations(samples, 2018);
 
   std::vector<CaseResult> cases;
   std::string device_name;

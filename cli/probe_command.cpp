@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli_commands.h"
+#include "fem/matrix_order.h"
 #include "fem/rest_state.h"
 #include "material_options.h"
 #include "snh/error.h"
@@ -18,7 +19,7 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-// Parses {"F": [[a,b,c],[d,e,f],[g,h,i]]} (rows) into column-major storage.
+// Parses {"F": [[a,b,c],[d,e,f],[g,h,i]]} (rows) into row-major storage.
 Matrix3 parse_deformation(const std::string& line) {
   nlohmann::json doc;
   try {
@@ -36,17 +37,19 @@ Matrix3 parse_deformation(const std::string& line) {
     if (!f[r].is_array() || f[r].size() != 3) throw Error("row " + std::to_string(r) + " of \"F\" must hold 3 numbers");
     for (int c = 0; c < 3; ++c) {
       if (!f[r][c].is_number()) throw Error("F[" + std::to_string(r) + "][" + std::to_string(c) + "] is not a number");
-      m[3 * c + r] = f[r][c].get<double>();
+      m[3 * r + c] = f[r][c].get<double>();
     }
   }
   return m;
 }
 
-json rows(const double* column_major, int n) {
+// The n x n matrix whose entry (r, c) is at(r, c), as n rows.
+template <typename At>
+json rows(int n, At at) {
   json out = json::array();
   for (int r = 0; r < n; ++r) {
     json row = json::array();
-    for (int c = 0; c < n; ++c) row.push_back(column_major[n * c + r]);
+    for (int c = 0; c < n; ++c) row.push_back(at(r, c));
     out.push_back(row);
   }
   return out;
@@ -69,7 +72,7 @@ int run_probe(const MaterialOptions& options, const std::string& program) {
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
     try {
       const Matrix3 f = parse_deformation(text);
-      const double j = fem::determinant(f.data());
+      const double j = fem::determinant(fem::column_major_of(f).data());
       if (!material.defined_for_inversion() && !(j > 0.0))
         throw Error("the neohookean model without inversion handling (--j0 0) is undefined for J = det F = " +
                     std::to_string(j) + " <= 0");
@@ -92,8 +95,10 @@ int run_probe(const MaterialOptions& options, const std::string& program) {
       const ProbeResult& r = results[line.index];
       out["line"] = line.number;
       out["psi"] = r.psi;
-      out["P"] = rows(r.P.data(), 3);
-      out["H"] = rows(r.H.data(), 9);
+      out["P"] = rows(3, [&](int row, int col) { return r.P[3 * row + col]; });
+      // H over the paper's vec(F) (index 3 * column + row), as printed
+      // before; ProbeResult::H is over the row-major index.
+      out["H"] = rows(9, [&](int i, int k) { return r.H[9 * fem::transposed_index(i) + fem::transposed_index(k)]; });
       out["eigenvalues"] = r.eigenvalues;
       out["sigma"] = r.sigma;
     }

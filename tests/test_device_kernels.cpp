@@ -38,7 +38,7 @@ void compare_with_reference(Precision precision) {
   for (const TestMaterial& m : test_materials()) {
     const std::vector<NamedDeformation> set = deformations_for(m);
     std::vector<Matrix3> fs;
-    for (const NamedDeformation& d : set) fs.push_back(to_array<double>(d.F));
+    for (const NamedDeformation& d : set) fs.push_back(to_row_major(d.F));
     MaterialProbe probe(m.material, precision);
     const std::vector<ProbeResult> results = probe.evaluate(fs);
     ASSERT_EQ(results.size(), fs.size());
@@ -53,9 +53,9 @@ void compare_with_reference(Precision precision) {
       const double psi = reference::snh_energy<double>(f, m.params());
       errors.push_back(std::abs(r.psi - psi) / std::max(std::abs(psi), m.material.mu));
       const auto p = reference::snh_pk1<double>(f, m.params());
-      errors.push_back(rel(r.P.data(), p.data(), 9, m.material.mu));
+      errors.push_back(rel(r.P.data(), to_row_major(to_eigen(p)).data(), 9, m.material.mu));
       const Matrix9 h = projected_hessian<double>(set[n].F, m.params());
-      errors.push_back(rel(r.H.data(), h.data(), 81, m.material.mu));
+      errors.push_back(rel(r.H.data(), hessian_row_major(h).data(), 81, m.material.mu));
       auto e = reference::snh_hessian_eigensystem<double>(f, m.params()).values;
       std::sort(e.begin(), e.end());
       const double h_scale = std::max(explicit_hessian(set[n].F, m.params()).norm(), m.material.mu);
@@ -89,7 +89,7 @@ void expect_gpu_build_same(Precision precision) {
   device::OpenClContext cl(DeviceOptions{}, precision);
   for (const TestMaterial& m : test_materials()) {
     std::vector<Matrix3> fs;
-    for (const NamedDeformation& d : deformations_for(m)) fs.push_back(to_array<double>(d.F));
+    for (const NamedDeformation& d : deformations_for(m)) fs.push_back(to_row_major(d.F));
     const std::vector<ProbeResult> cpu = probe::evaluate(cl, m.material, fs);
     const std::vector<ProbeResult> gpu = probe::evaluate(cl, m.material, fs, true);
     ASSERT_EQ(gpu.size(), cpu.size());
@@ -113,7 +113,7 @@ TEST(DeviceKernels, GpuBuildGivesTheSameValues) {
 TEST(DeviceKernels, DeterministicAcrossRuns) {
   const StableNeoHookean material = StableNeoHookean::from_youngs_modulus(1.0, 0.45);
   std::vector<Matrix3> fs;
-  for (const NamedDeformation& d : hard_deformations()) fs.push_back(to_array<double>(d.F));
+  for (const NamedDeformation& d : hard_deformations()) fs.push_back(to_row_major(d.F));
   for (Precision precision : {Precision::single, Precision::double_}) {
     MaterialProbe probe(material, precision);
     const auto a = probe.evaluate(fs), b = probe.evaluate(fs);

@@ -272,16 +272,17 @@ TEST(Materials, NoNanWhereDefinedAndNeoHookeanWithoutHandlingIsFlagged) {
 }
 
 TEST(Materials, DeviceMatchesHostReferenceForEveryModel) {
-  std::vector<Matrix3> fs;
+  std::vector<Matrix3> fs, rows;  // the reference's column-major vec(F); the probe's row-major F
   std::vector<std::string> names;
   for (const NamedDeformation& d : hard_deformations()) {
     fs.push_back(to_array<double>(d.F));
+    rows.push_back(to_row_major(d.F));
     names.push_back(d.name);
   }
   for (const ModelCase& m : all_cases()) {
     if (m.name.find("nu0.3") != std::string::npos) continue;  // one kernel build per model
     MaterialProbe probe(m.material, Precision::double_);
-    const auto results = probe.evaluate(fs);
+    const auto results = probe.evaluate(rows);
     for (size_t n = 0; n < fs.size(); ++n) {
       // Co-rotational parts: P is discontinuous where sigma_i + sigma_j = 0
       // (R = U V^T is not unique there), so float and double may pick
@@ -289,7 +290,7 @@ TEST(Materials, DeviceMatchesHostReferenceForEveryModel) {
       if (has_corotational_part(m.material) && min_pair_sum(to_eigen(fs[n])) < 1e-2) continue;
       SCOPED_TRACE(m.name + " / " + names[n]);
       const auto spec = m.spec();
-      const auto p = reference::material_pk1<double>(fs[n], spec);
+      const auto p = to_row_major(to_eigen(reference::material_pk1<double>(fs[n], spec)));
       double diff = 0.0, norm = 0.0;
       for (int i = 0; i < 9; ++i) {
         diff += (results[n].P[i] - p[i]) * (results[n].P[i] - p[i]);
@@ -475,10 +476,11 @@ TEST(Materials, SolverRejectsInvertedStartForLogNeoHookeanWithoutHandling) {
 // which matters where parts are stiff at degenerate F (log Neo-Hookean's
 // extension at J = 0, Fung's exponential at large stretch).
 TEST(Materials, AdjustedFloatDeviceWithinDocumentedBound) {
-  std::vector<Matrix3> fs;
+  std::vector<Matrix3> fs, rows;  // the reference's column-major vec(F); the probe's row-major F
   std::vector<std::string> names;
   for (const NamedDeformation& d : hard_deformations()) {
     fs.push_back(to_array<double>(d.F));
+    rows.push_back(to_row_major(d.F));
     names.push_back(d.name);
   }
   double worst = 0.0;
@@ -486,7 +488,7 @@ TEST(Materials, AdjustedFloatDeviceWithinDocumentedBound) {
   int checked = 0;
   for (const ModelCase& m : adjusted_cases()) {
     MaterialProbe probe(m.material, Precision::single);
-    const auto results = probe.evaluate(fs);
+    const auto results = probe.evaluate(rows);
     const double floor = m.material.lame().mu;
     for (size_t n = 0; n < fs.size(); ++n) {
       const Eigen::Matrix3d f = to_eigen(fs[n]);
@@ -499,8 +501,7 @@ TEST(Materials, AdjustedFloatDeviceWithinDocumentedBound) {
       const Eigen::Matrix3d p = to_eigen(reference::material_pk1<double>(fs[n], spec));
       const double psi = reference::material_energy<double>(fs[n], spec);
       const double h = closed_form_hessian(f, spec).norm();
-      Eigen::Matrix3d pf;
-      for (int i = 0; i < 9; ++i) pf(i) = results[n].P[i];
+      const Eigen::Matrix3d pf = from_row_major(results[n].P);
       const double errors[2] = {std::abs(results[n].psi - psi) / (std::max(std::abs(psi), floor) + p.norm() * f.norm()),
                                 (pf - p).norm() / (std::max(p.norm(), floor) + h * f.norm())};
       for (double e : errors) {

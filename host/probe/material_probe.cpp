@@ -4,6 +4,7 @@
 #include "device/kernel_args.h"
 #include "device/material_args.h"
 #include "device/opencl_context.h"
+#include "fem/matrix_order.h"
 #include "probe/probe_kernel.h"
 #include "snh/error.h"
 #include "snh/probe.h"
@@ -21,8 +22,11 @@ std::vector<ProbeResult> evaluate_in(device::OpenClContext& cl, const Material& 
                                      const std::vector<Matrix3>& fs, bool gpu_build) {
   const int count = static_cast<int>(fs.size());
   std::vector<Real> input(9 * fs.size());
+  // The kernel takes and returns the column-major vec(F); Matrix3 and
+  // ProbeResult are row-major.
+  using fem::transposed_index;
   for (size_t n = 0; n < fs.size(); ++n)
-    for (int i = 0; i < 9; ++i) input[9 * n + i] = static_cast<Real>(fs[n][i]);
+    for (int i = 0; i < 9; ++i) input[9 * n + transposed_index(i)] = static_cast<Real>(fs[n][i]);
   std::vector<Real> output(kRecord * fs.size());
   device::Buffer in = cl.buffer(CL_MEM_READ_ONLY, input.size() * sizeof(Real), input.empty() ? nullptr : input.data());
   device::Buffer out = cl.buffer(CL_MEM_WRITE_ONLY, output.size() * sizeof(Real));
@@ -40,8 +44,10 @@ std::vector<ProbeResult> evaluate_in(device::OpenClContext& cl, const Material& 
     const Real* r = output.data() + kRecord * n;
     ProbeResult& res = results[n];
     res.psi = r[0];
-    for (int i = 0; i < 9; ++i) res.P[i] = r[1 + i];
-    for (int i = 0; i < 81; ++i) res.H[i] = r[10 + i];
+    for (int i = 0; i < 9; ++i) res.P[i] = r[1 + transposed_index(i)];
+    // The kernel's H[9 c + r] = d vec(P)_r / d vec(F)_c.
+    for (int a = 0; a < 9; ++a)
+      for (int b = 0; b < 9; ++b) res.H[9 * a + b] = r[10 + 9 * transposed_index(b) + transposed_index(a)];
     for (int i = 0; i < 9; ++i) res.eigenvalues[i] = r[91 + i];
     for (int i = 0; i < 3; ++i) res.sigma[i] = r[100 + i];
   }

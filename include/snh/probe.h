@@ -11,13 +11,16 @@
 
 namespace snh {
 
-// Column-major 3x3: m[3 * column + row], the paper's vec(F).
+// Row-major 3x3, like every matrix of the API: m[3 * row + column]. (The
+// kernels work on the paper's column-major vec(F); MaterialProbe converts.)
 using Matrix3 = std::array<double, 9>;
 
 struct ProbeResult {
   double psi = 0.0;
-  Matrix3 P{};                          // first Piola-Kirchhoff stress
-  std::array<double, 81> H{};           // projected Hessian, H[9 * c + r] = d vec(P)_r / d vec(F)_c
+  Matrix3 P{};  // first Piola-Kirchhoff stress
+  // The projected Hessian, H[9 * a + b] = d P_a / d F_b with a, b the
+  // row-major flat indices of P and F (a = 3 * row + column).
+  std::array<double, 81> H{};
   std::array<double, 9> eigenvalues{};  // of the unprojected Hessian, ascending
   std::array<double, 3> sigma{};        // rotation-variant singular values of F
 };

@@ -80,4 +80,32 @@ Eigen::Matrix3d to_eigen(const std::array<Real, 9>& a) {
   return m;
 }
 
+// Row-major array (the public API's order: snh::Matrix3, ProbeResult::P)
+// <-> Eigen.
+inline std::array<double, 9> to_row_major(const Eigen::Matrix3d& m) {
+  std::array<double, 9> a;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) a[3 * r + c] = m(r, c);
+  return a;
+}
+
+inline Eigen::Matrix3d from_row_major(const std::array<double, 9>& a) {
+  Eigen::Matrix3d m;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m(r, c) = a[3 * r + c];
+  return m;
+}
+
+// A 9x9 Hessian over the column-major vec(F), h(i, k) = d vec(P)_i /
+// d vec(F)_k, as ProbeResult::H: H[9 a + b] = d P_a / d F_b over the
+// row-major indices a, b.
+template <typename Matrix>
+std::array<double, 81> hessian_row_major(const Matrix& h) {
+  auto vec_index = [](int a) { return 3 * (a % 3) + a / 3; };
+  std::array<double, 81> out;
+  for (int a = 0; a < 9; ++a)
+    for (int b = 0; b < 9; ++b) out[9 * a + b] = h(vec_index(a), vec_index(b));
+  return out;
+}
+
 }  // namespace snh::test
