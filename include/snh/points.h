@@ -40,10 +40,9 @@ class Points {
     return p;
   }
 
-#ifndef SNH_POINTS_MIGRATION
   std::size_t size() const noexcept { return xyz_.size() / 3; }  // points
-#endif
   bool empty() const noexcept { return xyz_.empty(); }
+  Vec3 operator[](std::size_t i) const { return {xyz_[3 * i], xyz_[3 * i + 1], xyz_[3 * i + 2]}; }
   // Coordinate `axis` (0, 1, 2) of point i.
   double& operator()(std::size_t i, int axis) { return xyz_[3 * i + axis]; }
   double operator()(std::size_t i, int axis) const { return xyz_[3 * i + axis]; }
@@ -53,14 +52,13 @@ class Points {
     xyz_[3 * i + 2] = p[2];
   }
   void push_back(const Vec3& p) { xyz_.insert(xyz_.end(), p.begin(), p.end()); }
-#ifndef SNH_POINTS_MIGRATION
+  void append(const Points& other) { xyz_.insert(xyz_.end(), other.xyz_.begin(), other.xyz_.end()); }
   void resize(std::size_t count, const Vec3& value = {0, 0, 0}) {
     const std::size_t old = size();
     xyz_.resize(3 * count);
     for (std::size_t i = old; i < count; ++i) set(i, value);
   }
   void reserve(std::size_t count) { xyz_.reserve(3 * count); }
-#endif
   void clear() noexcept { xyz_.clear(); }
 
   // The 3 size() values, row-major.
