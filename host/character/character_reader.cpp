@@ -122,12 +122,19 @@ void decompose(const aiMatrix4x4& m, std::array<double, 3>& t, std::array<double
   s = {ss.x, ss.y, ss.z};
 }
 
+// Whether `path` names a glTF file (.gltf, or binary .glb) by its extension.
+bool is_gltf_path(const std::string& path) {
+  std::string ext = path.size() >= 5 ? path.substr(path.size() - 5) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return ext == ".gltf" || ext.substr(1) == ".glb";
+}
+
 // A .gltf's JSON, or a .glb's first chunk's; discarded (is_discarded())
 // for another format or what does not parse.
 nlohmann::json gltf_json(const std::string& path) {
-  std::string ext = path.size() >= 5 ? path.substr(path.size() - 5) : "";
+  if (!is_gltf_path(path)) return nlohmann::json(nlohmann::json::value_t::discarded);
+  std::string ext = path.substr(path.size() - 5);
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  if (ext != ".gltf" && ext.substr(1) != ".glb") return nlohmann::json(nlohmann::json::value_t::discarded);
   std::ifstream in(path, std::ios::binary);
   std::string text(std::istreambuf_iterator<char>(in), {});
   if (ext != ".gltf") {  // glb: 12-byte header, then chunk 0 (length, "JSON", data)
@@ -142,11 +149,15 @@ nlohmann::json gltf_json(const std::string& path) {
 
 // What assimp 5.2 does not check before it reads a glTF file: a skin
 // without inverseBindMatrices (identity matrices by the specification)
-// makes it dereference a null accessor (a crash). snh::Error naming the
-// file and the skin.
+// makes it dereference a null accessor (a crash). Its JSON reader also
+// takes text that is not UTF-8, where a mangled key hides the same skin
+// from a check that cannot parse the file, so JSON that does not parse is
+// refused too. snh::Error naming the file and the skin.
 void check_gltf_for_assimp(const std::string& path) {
+  if (!is_gltf_path(path)) return;
   const nlohmann::json doc = gltf_json(path);
-  if (doc.is_discarded() || !doc.is_object() || !doc.contains("skins") || !doc["skins"].is_array()) return;
+  if (doc.is_discarded()) fail(path, "is not glTF: its JSON does not parse (glTF's JSON is UTF-8 text, RFC 8259)");
+  if (!doc.is_object() || !doc.contains("skins") || !doc["skins"].is_array()) return;
   for (size_t k = 0; k < doc["skins"].size(); ++k) {
     const nlohmann::json& skin = doc["skins"][k];
     if (!skin.is_object() || !skin.contains("inverseBindMatrices"))
