@@ -9,12 +9,15 @@
 #include <sstream>
 #include <string>
 
+#include "character/reader_messages.h"
 #include "snh/character.h"
 #include "snh/error.h"
 #include "snh/pieces.h"
 
 namespace snh {
 namespace {
+
+using detail::number;
 
 using Vec3 = std::array<double, 3>;
 
@@ -97,12 +100,6 @@ double segment_surface_distance(const Vec3& a, const Vec3& b, const TriangleSurf
     }
   }
   return std::sqrt(best);
-}
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 // Names quoted and comma-separated, the first 8 and a count of the rest.

@@ -28,12 +28,16 @@
 #include "character/clip_selection.h"
 #include "character/collada_vertices.h"
 #include "character/fbx_reader.h"
+#include "character/reader_messages.h"
 #include "character/skin_weights.h"
 #include "snh/character.h"
 #include "snh/error.h"
 
 namespace snh {
 namespace {
+
+using detail::fail;
+using detail::number;
 
 Matrix4 to_matrix4(const aiMatrix4x4& m) {
   return {m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4};
@@ -45,14 +49,6 @@ double determinant3(const Matrix4& m) {  // of the upper-left 3x3 block
 
 bool finite(const Matrix4& m) {
   return std::all_of(m.begin(), m.end(), [](double v) { return std::isfinite(v); });
-}
-
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 // A key's value between keys: linear (positions, scales) or spherical

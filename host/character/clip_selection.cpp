@@ -3,23 +3,11 @@
 #include "character/clip_selection.h"
 
 #include <cmath>
-#include <sstream>
 
+#include "character/reader_messages.h"
 #include "snh/error.h"
 
 namespace snh::detail {
-
-namespace {
-
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-}  // namespace
 
 int select_clip(const std::string& path, const std::vector<std::string>& names, const CharacterReadOptions& options) {
   const auto listing = [&]() {

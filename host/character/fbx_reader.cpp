@@ -20,19 +20,12 @@
 #include <vector>
 
 #include "character/clip_selection.h"
+#include "character/reader_messages.h"
 #include "snh/error.h"
 #include "third_party/ufbx/ufbx.h"
 
 namespace snh::detail {
 namespace {
-
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 std::string text(const ufbx_string& s) { return std::string(s.data, s.length); }
 

@@ -10,16 +10,11 @@
 #include <utility>
 #include <vector>
 
+#include "character/reader_messages.h"
 #include "snh/error.h"
 
 namespace snh::detail {
 namespace {
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // For each vertex in `wanting`, the vertex among `having` nearest to it
 // (ties: the lower index), through a uniform grid over `having`.
