@@ -56,8 +56,9 @@ TEST_P(ShippedScene, RunsToConvergenceAndWritesItsSummary) {
   // A scene with barrier self-contact that counts its surface's
   // intersections: none in any step or frame.
   for (const auto& record : j.contains("frames") ? j["frames"] : j["steps"])
-    if (record.contains("self_contact_pairs") && record.contains("surface_intersections"))
+    if (record.contains("self_contact_pairs") && record.contains("surface_intersections")) {
       EXPECT_EQ(record["surface_intersections"], 0) << name << " " << record.value("step", record.value("frame", -1));
+    }
   fs::remove_all(dir);
 }
 
